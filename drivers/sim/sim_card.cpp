@@ -1,0 +1,103 @@
+// Pulse decoding and timing checks of the simulated card.
+#include "sim/sim_card.hpp"
+
+#include <limits>  // numeric_limits
+#include <thread>  // sleep_until for --realtime
+
+namespace gantry {
+namespace {
+
+constexpr std::int64_t kLongAgo = std::numeric_limits<std::int64_t>::min() / 2;
+
+std::array<AxisLimits, kAxisCount> limits_of(const Settings& s) {
+  std::array<AxisLimits, kAxisCount> out{};
+  for (int i = 0; i < kAxisCount; ++i)
+    out[i] = {s.axes[i].steps_per_unit, s.axes[i].max_speed, s.axes[i].max_accel};
+  return out;
+}
+
+}  // namespace
+
+SimCard::SimCard(const Settings& settings, bool realtime)
+    : pins_(PinMap::from(settings.pins)),
+      step_pulse_us_(settings.card.step_pulse_us),
+      dir_setup_us_(settings.card.dir_setup_us),
+      realtime_(realtime),
+      tick_s_(1.0 / settings.card.pacer_hz()),
+      limits_(limits_of(settings)),
+      monitor_(limits_, tick_s_) {
+  prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
+  last_step_.fill(kLongAgo);
+  last_dir_change_.fill(kLongAgo);
+}
+
+void SimCard::start(double pacer_hz) {
+  tick_s_ = 1.0 / pacer_hz;
+  monitor_ = KinematicsMonitor(limits_, tick_s_);
+  wall_start_ = std::chrono::steady_clock::now();
+}
+
+void SimCard::write(std::span<const std::uint32_t> words) {
+  for (std::uint32_t w : words) {
+    if (w != prev_) decode(w);
+    ++tick_;
+  }
+  if (realtime_) {
+    std::this_thread::sleep_until(
+        wall_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                          std::chrono::duration<double>(time_s())));
+  }
+}
+
+void SimCard::decode(std::uint32_t w) {
+  const std::uint32_t diff = w ^ prev_;
+  const auto t = static_cast<std::int64_t>(tick_);
+  const double tick_us = tick_s_ * 1e6;
+  constexpr double eps = 1e-6;  // microseconds: tolerance for the tick arithmetic only
+  for (int i = 0; i < kAxisCount; ++i) {
+    const AxisPins& ap = pins_.axes[i];
+    if (diff & ap.dir_mask) {
+      if (pulse_active_[i]) violation(i, TimingRule::DirDuringPulse);
+      last_dir_change_[i] = t;
+    }
+    if (!(diff & ap.step_mask)) continue;
+    const bool active = ((w & ap.step_mask) != 0) != ap.step_active_low;
+    if (active) {
+      if (static_cast<double>(t - last_dir_change_[i]) * tick_us < dir_setup_us_ - eps)
+        violation(i, TimingRule::DirSetup);
+      if (t - last_step_[i] < 2) violation(i, TimingRule::StepRate);  // pacer / 2 at most
+      const bool positive = ((w & ap.dir_mask) != 0) == ap.invert_dir;
+      steps_[i] += positive ? 1 : -1;
+      monitor_.on_step(i, t, positive);
+      pulse_start_[i] = t;
+      last_step_[i] = t;
+    } else if (static_cast<double>(t - pulse_start_[i]) * tick_us < step_pulse_us_ - eps) {
+      violation(i, TimingRule::PulseWidth);
+    }
+    pulse_active_[i] = active;
+  }
+  prev_ = w;
+}
+
+void SimCard::violation(int axis, TimingRule rule) {
+  ++violation_count_;
+  if (violations_.size() < 16) violations_.push_back({tick_, axis, rule});
+}
+
+const KinematicsMonitor& SimCard::kinematics() {
+  if (!monitor_finished_) monitor_.finish();
+  monitor_finished_ = true;
+  return monitor_;
+}
+
+const char* rule_name(TimingRule r) {
+  switch (r) {
+    case TimingRule::PulseWidth: return "step pulse shorter than step_pulse_us";
+    case TimingRule::DirSetup: return "step less than dir_setup_us after a direction change";
+    case TimingRule::DirDuringPulse: return "direction changed during a step pulse";
+    case TimingRule::StepRate: return "step rate above pacer/2";
+  }
+  return "?";
+}
+
+}  // namespace gantry

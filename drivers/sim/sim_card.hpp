@@ -1,0 +1,69 @@
+// The simulated card: plays pulse words in virtual (or real) time, decodes them back into
+// steps, and checks every pulse against the profile's timing rules.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gantry/hal/card.hpp"           // Card
+#include "gantry/hal/pin_map.hpp"        // PinMap
+#include "gantry/settings/settings.hpp"  // Settings
+#include "sim/kinematics_monitor.hpp"    // KinematicsMonitor
+
+namespace gantry {
+
+enum class TimingRule { PulseWidth, DirSetup, DirDuringPulse, StepRate };
+
+struct TimingViolation {
+  std::uint64_t tick;
+  int axis;
+  TimingRule rule;
+};
+
+class SimCard : public Card {
+ public:
+  // Checks pulses against the profile's step_pulse_us and dir_setup_us and the pacer/2 rate.
+  explicit SimCard(const Settings& settings, bool realtime = false);
+
+  void start(double pacer_hz) override;
+  void write(std::span<const std::uint32_t> words) override;
+  void drain() override {}  // virtual time: every word has played when write returns
+  std::uint64_t ticks_played() const override { return tick_; }
+
+  const Steps6& steps() const { return steps_; }  // decoded from the step and dir lines
+  double time_s() const { return static_cast<double>(tick_) * tick_s_; }
+  std::uint64_t timing_violations() const { return violation_count_; }
+  const std::vector<TimingViolation>& first_violations() const { return violations_; }
+  // Call once the run has ended, before reading the kinematics.
+  const KinematicsMonitor& kinematics();
+  std::uint64_t words_played() const { return tick_; }
+
+ private:
+  void decode(std::uint32_t word);
+  void violation(int axis, TimingRule rule);
+
+  PinMap pins_;
+  double step_pulse_us_, dir_setup_us_;
+  bool realtime_;
+  double tick_s_ = 0;
+  std::uint64_t tick_ = 0;
+  std::uint32_t prev_ = 0;
+  Steps6 steps_{};
+  std::array<std::int64_t, kAxisCount> pulse_start_{};
+  std::array<std::int64_t, kAxisCount> last_step_{};
+  std::array<std::int64_t, kAxisCount> last_dir_change_{};
+  std::array<bool, kAxisCount> pulse_active_{};
+  std::array<AxisLimits, kAxisCount> limits_{};
+  KinematicsMonitor monitor_;
+  bool monitor_finished_ = false;
+  std::uint64_t violation_count_ = 0;
+  std::vector<TimingViolation> violations_;  // the first few, for messages
+  std::chrono::steady_clock::time_point wall_start_;
+};
+
+const char* rule_name(TimingRule r);
+
+}  // namespace gantry

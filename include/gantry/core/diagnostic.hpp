@@ -1,0 +1,44 @@
+// Source locations and located messages: every error an operator sees says where and what.
+#pragma once
+
+#include <memory>     // shared_ptr for the file name shared by all locations of a file
+#include <stdexcept>  // runtime_error base for GantryError
+#include <string>
+#include <vector>
+
+namespace gantry {
+
+struct SourceLoc {
+  std::shared_ptr<const std::string> file;  // null for locations outside any file
+  int line = 0;                             // 1-based; 0 = unknown
+  int column = 0;                           // 1-based; 0 = whole line
+};
+
+enum class Severity { Error, Warning };
+
+struct Diagnostic {
+  SourceLoc loc;
+  Severity severity = Severity::Error;
+  std::string message;
+};
+
+// "FILE:LINE:COL: error: MESSAGE", omitting the parts that are unknown.
+std::string format(const Diagnostic& d);
+
+// Thrown by every layer for an operator-facing error; carries its location.
+class GantryError : public std::runtime_error {
+ public:
+  explicit GantryError(Diagnostic d);
+  const Diagnostic& diagnostic() const { return diag_; }
+
+ private:
+  Diagnostic diag_;
+};
+
+// Convenience: throw a located error.
+[[noreturn]] void fail(const SourceLoc& loc, std::string message);
+
+// A location naming only a file (for files that cannot be read, say).
+SourceLoc file_loc(const std::string& file, int line = 0, int column = 0);
+
+}  // namespace gantry

@@ -1,0 +1,36 @@
+// Canonical moves: what the interpreter asks the machine to do, in machine units.
+#pragma once
+
+#include "gantry/core/axes.hpp"          // Vec6
+#include "gantry/core/diagnostic.hpp"    // SourceLoc
+#include "gantry/settings/settings.hpp"  // GroupSpeeds
+
+namespace gantry {
+
+enum class MoveKind { Line };
+
+// Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
+enum class SpeedClass { Move, Jog };
+
+struct CanonMove {
+  MoveKind kind = MoveKind::Line;
+  SpeedClass speed_class = SpeedClass::Move;
+  Vec6 from = Vec6::Zero();
+  Vec6 to = Vec6::Zero();
+  GroupSpeeds speeds;  // the class's speeds in force when the move was issued
+  SourceLoc loc;       // the statement that asked for it
+};
+
+const char* kind_name(MoveKind k);
+const char* speed_class_name(SpeedClass c);
+
+// Receives canonical moves in order. `flush` marks the end of the stream: nothing more will
+// come, so everything buffered must be completed.
+class MotionSink {
+ public:
+  virtual ~MotionSink() = default;
+  virtual void move(const CanonMove& m) = 0;
+  virtual void flush() = 0;
+};
+
+}  // namespace gantry

@@ -1,0 +1,24 @@
+// Planned segments: a straight path with its speed profile, ready for step generation.
+#pragma once
+
+#include "gantry/motion/canon_move.hpp"  // SpeedClass, Vec6, SourceLoc
+#include "gantry/motion/trapezoid.hpp"   // Trapezoid
+
+namespace gantry {
+
+struct PlannedSegment {
+  Vec6 from = Vec6::Zero();  // units
+  Vec6 to = Vec6::Zero();
+  Trapezoid profile;  // along |to - from|
+  SpeedClass speed_class = SpeedClass::Move;
+  SourceLoc loc;
+};
+
+class SegmentSink {
+ public:
+  virtual ~SegmentSink() = default;
+  virtual void segment(const PlannedSegment& s) = 0;
+  virtual void flush() = 0;  // no more segments: complete everything pending
+};
+
+}  // namespace gantry

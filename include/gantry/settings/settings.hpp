@@ -1,0 +1,88 @@
+// The machine profile: everything the pipeline needs to know about one machine.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "gantry/core/axes.hpp"        // kAxisCount
+#include "gantry/core/diagnostic.hpp"  // Diagnostic for load errors
+
+namespace gantry {
+
+enum class Units { Inches, Millimetres };
+
+// One speed (or ramp speed) per group, as MS/JS/VS/VR name them: XY is a vector speed.
+struct GroupSpeeds {
+  double xy = 0, z = 0, a = 0, b = 0, c = 0;
+};
+
+struct AxisSettings {
+  double steps_per_unit = 1;  // motor steps per unit (in, mm or degree)
+  double max_speed = 1;       // hardware speed limit, units/s
+  double max_accel = 1;       // hardware acceleration limit, units/s^2
+  double min = 0, max = 0;    // soft limits (table envelope), units
+};
+
+struct SpeedSettings {  // VS: the operator's move and jog speeds
+  GroupSpeeds move, jog;
+};
+
+struct RampSettings {  // VR: SB3 ramp model values
+  GroupSpeeds move_ramp_speed, jog_ramp_speed;
+  double move_ramp_rate = 0.2;  // distance over which speed changes by 2 units/s
+  double jog_ramp_rate = 0.2;
+  double threshold_3d = 100;  // percent
+  double min_distance = 0.15;
+  double slow_corner = 65;  // percent
+  double keypad_ramp_rate = 0.2;
+  double small_circle = 0.25;
+};
+
+struct PinSettings {  // one axis's bits in the card's 32-bit output word
+  int step_bit = 0;
+  int dir_bit = 8;
+  bool invert_dir = false;
+  bool step_active_low = false;  // pulse goes low (negative-edge drives)
+};
+
+struct CardSettings {
+  std::string type = "sim";
+  double clock_hz = 4'000'000;  // PCI-7200 8254 timer clock
+  int pacer_divisor = 20;       // pacer = clock / divisor
+  double step_pulse_us = 5;
+  double dir_setup_us = 5;
+
+  double pacer_hz() const { return clock_hz / pacer_divisor; }
+};
+
+struct Settings {
+  std::string name;
+  Units units = Units::Inches;
+  std::array<AxisSettings, kAxisCount> axes{};
+  SpeedSettings speeds;
+  RampSettings ramps;
+  CardSettings card;
+  std::array<PinSettings, kAxisCount> pins{};
+};
+
+// The result of loading a profile: settings, or every problem found in it.
+struct SettingsLoad {
+  Settings settings;
+  std::vector<Diagnostic> errors;
+  bool ok() const { return errors.empty(); }
+};
+
+// Parses and validates a profile. `origin` names it in messages (a path).
+SettingsLoad parse_settings(const std::string& text, const std::string& origin);
+
+// Reads and validates a profile file; a missing file is an error like any other.
+SettingsLoad load_settings_file(const std::string& path);
+
+// The shipped default profile (settings/default.toml, compiled in).
+const std::string& default_profile_text();
+Settings default_settings();
+
+const char* units_name(Units u);
+
+}  // namespace gantry

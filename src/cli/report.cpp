@@ -1,0 +1,96 @@
+// Report and move formatting for the command line.
+#include "report.hpp"
+
+#include <fmt/format.h>  // text layout
+
+#include "gantry/motion/path_limits.hpp"  // nominal_path_speed
+
+namespace gantry {
+namespace {
+
+template <class V>
+nlohmann::ordered_json axis_object(const V& v) {
+  nlohmann::ordered_json o = nlohmann::ordered_json::object();
+  for (int i = 0; i < kAxisCount; ++i) o[std::string(1, kAxisLetters[i])] = v[i];
+  return o;
+}
+
+nlohmann::ordered_json vec_array(const Vec6& v) {
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (int i = 0; i < kAxisCount; ++i) a.push_back(v[i]);
+  return a;
+}
+
+}  // namespace
+
+nlohmann::ordered_json to_json(const Diagnostic& d) {
+  return {{"file", d.loc.file ? *d.loc.file : ""},
+          {"line", d.loc.line},
+          {"column", d.loc.column},
+          {"severity", d.severity == Severity::Error ? "error" : "warning"},
+          {"message", d.message}};
+}
+
+nlohmann::ordered_json to_json(const RunReport& r) {
+  nlohmann::ordered_json j;
+  j["status"] = r.errors.empty() ? "done" : "error";
+  j["units"] = units_name(r.units);
+  j["position"] = axis_object(r.position);
+  j["steps"] = axis_object(r.steps);
+  j["commanded_steps"] = axis_object(r.commanded_steps);
+  j["time_s"] = r.time_s;
+  j["planned_time_s"] = r.planned_time_s;
+  j["lines"] = r.lines;
+  j["moves"] = r.moves;
+  j["timing_violations"] = r.timing_violations;
+  j["max_velocity_ratio"] = r.max_velocity_ratio;
+  j["max_accel_ratio"] = r.max_accel_ratio;
+  j["errors"] = nlohmann::ordered_json::array();
+  for (const Diagnostic& d : r.errors) j["errors"].push_back(to_json(d));
+  return j;
+}
+
+std::string to_text(const RunReport& r) {
+  std::string out = fmt::format("status     {}\n", r.errors.empty() ? "done" : "error");
+  out += "position  ";
+  for (int i = 0; i < kAxisCount; ++i)
+    out += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'),
+                       r.position[i]);
+  out += fmt::format(" ({})\nsteps     ", units_name(r.units));
+  for (int i = 0; i < kAxisCount; ++i)
+    out += fmt::format(" {}={}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.steps[i]);
+  const bool exact = r.steps == r.commanded_steps;
+  out += fmt::format("\n           {} the planner's commanded steps\n",
+                     exact ? "equal to" : "DIFFERENT FROM");
+  out += fmt::format("time       {:.3f} s on the card ({:.3f} s planned)\n", r.time_s,
+                     r.planned_time_s);
+  out += fmt::format("executed   {} statements, {} moves\n", r.lines, r.moves);
+  out += fmt::format("timing     {} violations\n", r.timing_violations);
+  for (const std::string& n : r.violation_notes) out += fmt::format("           {}\n", n);
+  out += fmt::format("limits     peak velocity {:.1f} %, peak acceleration {:.1f} % of the "
+                     "axis limits\n",
+                     r.max_velocity_ratio * 100, r.max_accel_ratio * 100);
+  return out;
+}
+
+nlohmann::ordered_json to_json(const CanonMove& m) {
+  return {{"file", m.loc.file ? *m.loc.file : ""},
+          {"line", m.loc.line},
+          {"kind", kind_name(m.kind)},
+          {"speed_class", speed_class_name(m.speed_class)},
+          {"from", vec_array(m.from)},
+          {"to", vec_array(m.to)},
+          {"speed", nominal_path_speed(m.to - m.from, m.speeds)}};
+}
+
+std::string to_text(const CanonMove& m) {
+  auto v = [](const Vec6& p) {
+    return fmt::format("{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", p[0], p[1], p[2], p[3], p[4],
+                       p[5]);
+  };
+  return fmt::format("{}:{}  {} {}  {} -> {}  at {:.4f}/s", m.loc.file ? *m.loc.file : "",
+                     m.loc.line, kind_name(m.kind), speed_class_name(m.speed_class), v(m.from),
+                     v(m.to), nominal_path_speed(m.to - m.from, m.speeds));
+}
+
+}  // namespace gantry

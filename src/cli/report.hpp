@@ -1,0 +1,38 @@
+// The end-of-run report, as text for people and as one JSON object for scripts.
+#pragma once
+
+#include <nlohmann/json.hpp>  // json
+
+#include <string>
+#include <vector>
+
+#include "gantry/core/axes.hpp"          // Vec6, Steps6
+#include "gantry/core/diagnostic.hpp"    // Diagnostic
+#include "gantry/motion/canon_move.hpp"  // CanonMove
+#include "gantry/settings/settings.hpp"  // Units
+
+namespace gantry {
+
+struct RunReport {
+  std::vector<Diagnostic> errors;
+  Units units = Units::Inches;
+  Vec6 position = Vec6::Zero();  // from the steps the card counted
+  Steps6 steps{};                // counted by the card from its pulses
+  Steps6 commanded_steps{};      // emitted by the step generator
+  double time_s = 0;             // machine time on the card
+  double planned_time_s = 0;
+  std::size_t lines = 0, moves = 0;
+  std::uint64_t timing_violations = 0;
+  std::vector<std::string> violation_notes;
+  double max_velocity_ratio = 0, max_accel_ratio = 0;
+};
+
+nlohmann::ordered_json to_json(const RunReport& r);
+std::string to_text(const RunReport& r);
+
+nlohmann::ordered_json to_json(const Diagnostic& d);
+// One canonical move as `gantry moves` prints it.
+nlohmann::ordered_json to_json(const CanonMove& m);
+std::string to_text(const CanonMove& m);
+
+}  // namespace gantry

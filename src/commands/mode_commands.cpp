@@ -1,0 +1,102 @@
+// Modal commands: distance mode (SA, SR) and speeds (MS, JS, VS).
+#include <fmt/format.h>  // messages
+
+#include <algorithm>  // min
+
+#include "gantry/commands/command_table.hpp"
+#include "gantry/interp/interpreter.hpp"
+
+namespace gantry {
+namespace {
+
+void set_absolute(CommandContext& ctx, const CommandCall&) { ctx.state().absolute = true; }
+void set_relative(CommandContext& ctx, const CommandCall&) { ctx.state().absolute = false; }
+
+// The five speed groups in parameter order, with the axis limit each must respect.
+struct GroupRef {
+  double GroupSpeeds::*field;
+  const char* name;
+};
+constexpr GroupRef kGroups[] = {{&GroupSpeeds::xy, "XY"},
+                                {&GroupSpeeds::z, "Z"},
+                                {&GroupSpeeds::a, "A"},
+                                {&GroupSpeeds::b, "B"},
+                                {&GroupSpeeds::c, "C"}};
+
+double group_limit(const Settings& s, int g) {
+  return g == 0 ? std::min(s.axes[0].max_speed, s.axes[1].max_speed) : s.axes[g + 1].max_speed;
+}
+
+// Applies values[first .. first+count) to `speeds`, group by group; blanks keep the old speed.
+void apply_speeds(CommandContext& ctx, const CommandCall& call, size_t first, size_t count,
+                  GroupSpeeds& speeds) {
+  const Settings& s = ctx.settings();
+  for (size_t g = 0; g < count; ++g) {
+    const auto& v = call.values[first + g];
+    if (!v) continue;
+    const double limit = group_limit(s, static_cast<int>(g));
+    if (!(*v > 0) || *v > limit)
+      fail(call.param_loc(first + g),
+           fmt::format("{} speed {} is out of range; allowed: above 0 and up to {} {}/s (the "
+                       "axis max_speed in the profile)",
+                       kGroups[g].name, *v, limit, units_name(s.units)));
+  }
+  for (size_t g = 0; g < count; ++g)
+    if (const auto& v = call.values[first + g]) speeds.*kGroups[g].field = *v;
+}
+
+void set_move_speed(CommandContext& ctx, const CommandCall& call) {
+  apply_speeds(ctx, call, 0, 5, ctx.state().speeds.move);
+}
+void set_jog_speed(CommandContext& ctx, const CommandCall& call) {
+  apply_speeds(ctx, call, 0, 5, ctx.state().speeds.jog);
+}
+// VS (SB3 order): move XY, Z, A, B, then jog XY, Z, A, B.
+void set_speeds(CommandContext& ctx, const CommandCall& call) {
+  SpeedSettings next = ctx.state().speeds;
+  apply_speeds(ctx, call, 0, 4, next.move);
+  apply_speeds(ctx, call, 4, 4, next.jog);
+  ctx.state().speeds = next;
+}
+
+// Speed parameters for the groups XY, Z, A, B (and C), named for `suffix` ("", "move" or "jog").
+std::vector<ParamSpec> speed_params(std::string_view suffix, int groups) {
+  static constexpr std::string_view help[] = {"Vector speed of the cutter tip in XY.",
+                                              "Speed of the Z axis.", "Speed of the A axis.",
+                                              "Speed of the B axis.", "Speed of the C axis."};
+  static const std::string names[2][5] = {
+      {"XY speed", "Z speed", "A speed", "B speed", "C speed"},
+      {"XY move speed", "Z move speed", "A move speed", "B move speed", "C move speed"}};
+  static const std::string jog_names[] = {"XY jog speed", "Z jog speed", "A jog speed",
+                                          "B jog speed", "C jog speed"};
+  const std::string* row = suffix == "" ? names[0] : suffix == "move" ? names[1] : jog_names;
+  std::vector<ParamSpec> out;
+  for (int g = 0; g < groups; ++g) out.push_back({row[g], "units/s", false, std::nullopt, help[g]});
+  return out;
+}
+
+}  // namespace
+
+void add_mode_commands(std::vector<CommandSpec>& out) {
+  const auto S = CommandGroup::Settings;
+  out.push_back({"SA", "Set to absolute distances", S,
+                 "Locations in move commands are measured from the 0,0 point.", {},
+                 set_absolute});
+  out.push_back({"SR", "Set to relative distances", S,
+                 "Locations in move commands are distances from the current position.", {},
+                 set_relative});
+  out.push_back({"MS", "Move speed", CommandGroup::Move,
+                 "Sets the move (cutting) speeds; a blank keeps that speed. In a file it ends "
+                 "the current run of moves (the tool slows to change speed); VS does not.",
+                 speed_params("", 5), set_move_speed});
+  out.push_back({"JS", "Jog speed", CommandGroup::Jog,
+                 "Sets the jog (rapid) speeds; a blank keeps that speed.", speed_params("", 5),
+                 set_jog_speed});
+  std::vector<ParamSpec> vs = speed_params("move", 4);
+  for (ParamSpec& p : speed_params("jog", 4)) vs.push_back(p);
+  out.push_back({"VS", "Values for speeds", CommandGroup::Values,
+                 "Sets move and jog speeds together without interrupting motion.", vs,
+                 set_speeds});
+}
+
+}  // namespace gantry

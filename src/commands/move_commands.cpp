@@ -1,0 +1,81 @@
+// Straight moves at move speed (M…) and jog speed (J…) on one to five axes.
+#include "gantry/commands/command_table.hpp"
+#include "gantry/interp/interpreter.hpp"
+
+namespace gantry {
+namespace {
+
+// One handler per axis list: parameter i is the location (SA) or distance (SR) of the i-th
+// axis. A blank parameter leaves that axis where it is.
+template <SpeedClass Class, Axis... Axes>
+void move_axes(CommandContext& ctx, const CommandCall& call) {
+  const ModalState& st = ctx.state();
+  Vec6 target = st.position;
+  size_t i = 0;
+  for (Axis a : {Axes...}) {
+    if (const auto& v = call.values[i++]) {
+      target[index(a)] = st.absolute ? *v : st.position[index(a)] + *v;
+    }
+  }
+  ctx.line_to(target, Class, call.loc);
+}
+
+ParamSpec axis_param(char axis, bool required) {
+  static constexpr std::string_view names[] = {"X location", "Y location", "Z location",
+                                               "A location", "B location", "C location"};
+  const int i = axis == 'X' ? 0 : axis == 'Y' ? 1 : axis == 'Z' ? 2 : axis == 'A' ? 3
+                : axis == 'B' ? 4 : 5;
+  return ParamSpec{names[i], "units", required, std::nullopt,
+                   "Where the axis goes (SA), or how far it moves (SR)."};
+}
+
+std::vector<ParamSpec> axis_params(std::string_view axes, bool required) {
+  std::vector<ParamSpec> out;
+  for (char a : axes) out.push_back(axis_param(a, required));
+  return out;
+}
+
+}  // namespace
+
+void add_move_commands(std::vector<CommandSpec>& out) {
+  using enum SpeedClass;
+  using enum Axis;
+  const auto M = CommandGroup::Move;
+  const auto J = CommandGroup::Jog;
+  const char* single_move = "Moves one axis at move (cutting) speed.";
+  const char* single_jog = "Moves one axis at jog (rapid) speed.";
+  const char* multi_move =
+      "Moves several axes together in a straight line at move speed; a blank parameter "
+      "keeps that axis where it is.";
+  const char* multi_jog =
+      "Moves several axes together in a straight line at jog speed; a blank parameter keeps "
+      "that axis where it is.";
+  out.push_back({"MX", "Move X axis", M, single_move, axis_params("X", true), move_axes<Move, X>});
+  out.push_back({"MY", "Move Y axis", M, single_move, axis_params("Y", true), move_axes<Move, Y>});
+  out.push_back({"MZ", "Move Z axis", M, single_move, axis_params("Z", true), move_axes<Move, Z>});
+  out.push_back({"MA", "Move A axis", M, single_move, axis_params("A", true), move_axes<Move, A>});
+  out.push_back({"MB", "Move B axis", M, single_move, axis_params("B", true), move_axes<Move, B>});
+  out.push_back({"M2", "Move 2 dimensions", M, multi_move, axis_params("XY", false),
+                 move_axes<Move, X, Y>});
+  out.push_back({"M3", "Move 3 dimensions", M, multi_move, axis_params("XYZ", false),
+                 move_axes<Move, X, Y, Z>});
+  out.push_back({"M4", "Move 4 dimensions", M, multi_move, axis_params("XYZA", false),
+                 move_axes<Move, X, Y, Z, A>});
+  out.push_back({"M5", "Move 5 dimensions", M, multi_move, axis_params("XYZAB", false),
+                 move_axes<Move, X, Y, Z, A, B>});
+  out.push_back({"JX", "Jog X axis", J, single_jog, axis_params("X", true), move_axes<Jog, X>});
+  out.push_back({"JY", "Jog Y axis", J, single_jog, axis_params("Y", true), move_axes<Jog, Y>});
+  out.push_back({"JZ", "Jog Z axis", J, single_jog, axis_params("Z", true), move_axes<Jog, Z>});
+  out.push_back({"JA", "Jog A axis", J, single_jog, axis_params("A", true), move_axes<Jog, A>});
+  out.push_back({"JB", "Jog B axis", J, single_jog, axis_params("B", true), move_axes<Jog, B>});
+  out.push_back({"J2", "Jog 2 dimensions", J, multi_jog, axis_params("XY", false),
+                 move_axes<Jog, X, Y>});
+  out.push_back({"J3", "Jog 3 dimensions", J, multi_jog, axis_params("XYZ", false),
+                 move_axes<Jog, X, Y, Z>});
+  out.push_back({"J4", "Jog 4 dimensions", J, multi_jog, axis_params("XYZA", false),
+                 move_axes<Jog, X, Y, Z, A>});
+  out.push_back({"J5", "Jog 5 dimensions", J, multi_jog, axis_params("XYZAB", false),
+                 move_axes<Jog, X, Y, Z, A, B>});
+}
+
+}  // namespace gantry

@@ -1,0 +1,31 @@
+// Formatting of located diagnostics.
+#include "gantry/core/diagnostic.hpp"
+
+#include <fmt/format.h>  // message formatting
+
+namespace gantry {
+
+std::string format(const Diagnostic& d) {
+  std::string out;
+  if (d.loc.file) {
+    out += *d.loc.file;
+    if (d.loc.line > 0) out += fmt::format(":{}", d.loc.line);
+    if (d.loc.line > 0 && d.loc.column > 0) out += fmt::format(":{}", d.loc.column);
+    out += ": ";
+  }
+  out += d.severity == Severity::Error ? "error: " : "warning: ";
+  out += d.message;
+  return out;
+}
+
+GantryError::GantryError(Diagnostic d) : std::runtime_error(format(d)), diag_(std::move(d)) {}
+
+void fail(const SourceLoc& loc, std::string message) {
+  throw GantryError(Diagnostic{loc, Severity::Error, std::move(message)});
+}
+
+SourceLoc file_loc(const std::string& file, int line, int column) {
+  return SourceLoc{std::make_shared<const std::string>(file), line, column};
+}
+
+}  // namespace gantry

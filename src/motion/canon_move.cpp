@@ -1,0 +1,15 @@
+// Names of move kinds and speed classes, as reports and `gantry moves` print them.
+#include "gantry/motion/canon_move.hpp"
+
+namespace gantry {
+
+const char* kind_name(MoveKind k) {
+  switch (k) {
+    case MoveKind::Line: return "line";
+  }
+  return "?";
+}
+
+const char* speed_class_name(SpeedClass c) { return c == SpeedClass::Move ? "move" : "jog"; }
+
+}  // namespace gantry

@@ -1,0 +1,299 @@
+// Loading and validating a machine profile from TOML; every problem is reported with its place.
+#include "gantry/settings/settings.hpp"
+
+#include <fmt/format.h>       // messages
+#include <toml++/toml.h>  // the TOML parser
+
+#include <cmath>     // ceil for tick counts
+#include <fstream>   // reading the profile file
+#include <set>       // keys seen, to reject unknown ones
+#include <sstream>   // slurping the file
+
+namespace gantry {
+namespace {
+
+// Allowed values of one numeric key.
+struct Range {
+  double lo, hi;
+  bool lo_open = false;  // lo itself not allowed
+
+  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && v <= hi; }
+  std::string describe() const {
+    return fmt::format("{} {} and <= {}", lo_open ? ">" : ">=", lo, hi);
+  }
+};
+
+// Reads one TOML table against its schema: each read marks a key as known; `finish`
+// reports the keys nobody asked for. Errors accumulate so a load reports all of them.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, const std::string& origin,
+              std::vector<Diagnostic>& errors)
+      : table_(table), path_(std::move(path)), origin_(origin), errors_(errors) {}
+
+  double number(std::string_view key, Range range, double fallback) {
+    const toml::node* node = find(key);
+    if (!node) return fallback;
+    std::optional<double> v = node->value<double>();  // accepts integers too
+    if (!v || node->is_boolean()) {
+      error(*node, fmt::format("{} must be a number", full(key)));
+      return fallback;
+    }
+    if (!range.contains(*v)) {
+      error(*node, fmt::format("{} = {} is out of range; allowed: {}", full(key), *v,
+                               range.describe()));
+      return fallback;
+    }
+    return *v;
+  }
+
+  int integer(std::string_view key, int lo, int hi, int fallback) {
+    const toml::node* node = find(key);
+    if (!node) return fallback;
+    if (!node->is_integer()) {
+      error(*node, fmt::format("{} must be a whole number", full(key)));
+      return fallback;
+    }
+    std::int64_t v = *node->value<std::int64_t>();
+    if (v < lo || v > hi) {
+      error(*node,
+            fmt::format("{} = {} is out of range; allowed: {} to {}", full(key), v, lo, hi));
+      return fallback;
+    }
+    return static_cast<int>(v);
+  }
+
+  bool boolean(std::string_view key, bool fallback) {
+    const toml::node* node = find(key);
+    if (!node) return fallback;
+    if (!node->is_boolean()) {
+      error(*node, fmt::format("{} must be true or false", full(key)));
+      return fallback;
+    }
+    return *node->value<bool>();
+  }
+
+  std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed,
+                     std::string fallback) {
+    const toml::node* node = find(key);
+    if (!node) return fallback;
+    std::optional<std::string> v = node->value<std::string>();
+    std::string list;
+    for (auto a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
+    if (!v) {
+      error(*node, fmt::format("{} must be a string, one of {}", full(key), list));
+      return fallback;
+    }
+    for (auto a : allowed)
+      if (*v == a) return *v;
+    if (allowed.size() == 0) return *v;
+    error(*node, fmt::format("{} = \"{}\" is not allowed; use one of {}", full(key), *v, list));
+    return fallback;
+  }
+
+  // A sub-table; a missing or mistyped one is reported and read as empty.
+  TableReader table(std::string_view key) {
+    static const toml::table empty;
+    const toml::node* node = find(key);
+    if (node && !node->is_table()) {
+      error(*node, fmt::format("{} must be a table", full(key)));
+      node = nullptr;
+    }
+    return TableReader(node ? *node->as_table() : empty, full(key), origin_, errors_);
+  }
+
+  void finish() {
+    for (auto&& [k, v] : table_)
+      if (!seen_.count(std::string(k.str())))
+        error(v, fmt::format("unknown key {}; check its spelling against docs/settings.md",
+                             full(k.str())));
+  }
+
+ private:
+  const toml::node* find(std::string_view key) {
+    seen_.insert(std::string(key));
+    const toml::node* node = table_.get(key);
+    if (!node) {
+      errors_.push_back({loc_of(table_), Severity::Error,
+                         fmt::format("missing key {}", full(key))});
+    }
+    return node;
+  }
+  std::string full(std::string_view key) const {
+    return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
+  }
+  SourceLoc loc_of(const toml::node& n) const {
+    const auto& b = n.source().begin;
+    return file_loc(origin_, static_cast<int>(b.line), static_cast<int>(b.column));
+  }
+  void error(const toml::node& n, std::string msg) {
+    errors_.push_back({loc_of(n), Severity::Error, std::move(msg)});
+  }
+
+  const toml::table& table_;
+  std::string path_;
+  const std::string& origin_;
+  std::vector<Diagnostic>& errors_;
+  std::set<std::string> seen_;
+};
+
+GroupSpeeds read_speeds(TableReader t, Range range) {
+  GroupSpeeds s;
+  s.xy = t.number("xy", range, 1);
+  s.z = t.number("z", range, 1);
+  s.a = t.number("a", range, 1);
+  s.b = t.number("b", range, 1);
+  s.c = t.number("c", range, 1);
+  t.finish();
+  return s;
+}
+
+constexpr Range kPositive{0, 1e6, true};
+constexpr Range kSpeed{0, 1e5, true};
+
+void read_profile(TableReader root, Settings& s) {
+  s.name = root.choice("name", {}, "");
+  s.units = root.choice("units", {"in", "mm"}, "in") == "mm" ? Units::Millimetres : Units::Inches;
+
+  TableReader axes = root.table("axes");
+  for (int i = 0; i < kAxisCount; ++i) {
+    TableReader ax = axes.table(std::string(1, kAxisLetters[i]));
+    AxisSettings& a = s.axes[i];
+    a.steps_per_unit = ax.number("steps_per_unit", {0, 1e6, true}, 1);
+    a.max_speed = ax.number("max_speed", kSpeed, 1);
+    a.max_accel = ax.number("max_accel", {0, 1e7, true}, 1);
+    a.min = ax.number("min", {-1e9, 1e9}, 0);
+    a.max = ax.number("max", {-1e9, 1e9}, 0);
+    ax.finish();
+  }
+  axes.finish();
+
+  TableReader speeds = root.table("speeds");
+  s.speeds.move = read_speeds(speeds.table("move"), kSpeed);
+  s.speeds.jog = read_speeds(speeds.table("jog"), kSpeed);
+  speeds.finish();
+
+  TableReader ramps = root.table("ramps");
+  RampSettings& r = s.ramps;
+  r.move_ramp_rate = ramps.number("move_ramp_rate", kPositive, 0.2);
+  r.jog_ramp_rate = ramps.number("jog_ramp_rate", kPositive, 0.2);
+  r.threshold_3d = ramps.number("threshold_3d", {0, 1000}, 100);
+  r.min_distance = ramps.number("min_distance", {0, 1e3}, 0.15);
+  r.slow_corner = ramps.number("slow_corner", {0, 100}, 65);
+  r.keypad_ramp_rate = ramps.number("keypad_ramp_rate", kPositive, 0.2);
+  r.small_circle = ramps.number("small_circle", {0, 1e3}, 0.25);
+  r.move_ramp_speed = read_speeds(ramps.table("move_speed"), kSpeed);
+  r.jog_ramp_speed = read_speeds(ramps.table("jog_speed"), kSpeed);
+  ramps.finish();
+
+  TableReader card = root.table("card");
+  CardSettings& c = s.card;
+  c.type = card.choice("type", {"sim"}, "sim");
+  c.clock_hz = card.number("clock_hz", {1e3, 1e9}, 4e6);
+  c.pacer_divisor = card.integer("pacer_divisor", 2, 65535, 20);
+  c.step_pulse_us = card.number("step_pulse_us", {0, 1e4, true}, 5);
+  c.dir_setup_us = card.number("dir_setup_us", {0, 1e4}, 5);
+  card.finish();
+
+  TableReader pins = root.table("pins");
+  for (int i = 0; i < kAxisCount; ++i) {
+    TableReader p = pins.table(std::string(1, kAxisLetters[i]));
+    PinSettings& pin = s.pins[i];
+    pin.step_bit = p.integer("step_bit", 0, 31, i);
+    pin.dir_bit = p.integer("dir_bit", 0, 31, 8 + i);
+    pin.invert_dir = p.boolean("invert_dir", false);
+    pin.step_active_low = p.boolean("step_active_low", false);
+    p.finish();
+  }
+  pins.finish();
+  root.finish();
+}
+
+// Rules that tie keys together; reported at the file, naming the keys.
+void check_consistency(const Settings& s, const std::string& origin,
+                       std::vector<Diagnostic>& errors) {
+  auto err = [&](std::string msg) {
+    errors.push_back({file_loc(origin), Severity::Error, std::move(msg)});
+  };
+  const double pacer = s.card.pacer_hz();
+  const double tick_us = 1e6 / pacer;
+  const int pulse_ticks = static_cast<int>(std::ceil(s.card.step_pulse_us / tick_us - 1e-9));
+  const double max_rate = pacer / (pulse_ticks + 1);  // one pulse plus at least one idle tick
+  std::uint32_t used = 0;
+  for (int i = 0; i < kAxisCount; ++i) {
+    const char L = kAxisLetters[i];
+    const AxisSettings& a = s.axes[i];
+    if (a.min >= a.max)
+      err(fmt::format("axes.{0}.min ({1}) must be below axes.{0}.max ({2})", L, a.min, a.max));
+    const double rate = a.max_speed * a.steps_per_unit;
+    if (rate > max_rate)
+      err(fmt::format(
+          "axes.{}.max_speed {} x steps_per_unit {} = {:.0f} steps/s exceeds the card's {:.0f} "
+          "steps/s (pacer {:.0f} Hz, {}-tick pulse plus one idle tick); lower max_speed or "
+          "raise the pacer",
+          L, a.max_speed, a.steps_per_unit, rate, max_rate, pacer, pulse_ticks));
+    for (int bit : {s.pins[i].step_bit, s.pins[i].dir_bit}) {
+      if (used & (1u << bit))
+        err(fmt::format("pins.{}: output bit {} is already used by another pin", L, bit));
+      used |= 1u << bit;
+    }
+  }
+  auto check_group = [&](const char* what, const GroupSpeeds& g) {
+    const double xy_limit = std::min(s.axes[0].max_speed, s.axes[1].max_speed);
+    const std::array<std::pair<const char*, std::pair<double, double>>, 5> items{{
+        {"xy", {g.xy, xy_limit}},
+        {"z", {g.z, s.axes[2].max_speed}},
+        {"a", {g.a, s.axes[3].max_speed}},
+        {"b", {g.b, s.axes[4].max_speed}},
+        {"c", {g.c, s.axes[5].max_speed}},
+    }};
+    for (auto& [k, vl] : items)
+      if (vl.first > vl.second)
+        err(fmt::format("{}.{} = {} exceeds the axis max_speed {}", what, k, vl.first, vl.second));
+  };
+  check_group("speeds.move", s.speeds.move);
+  check_group("speeds.jog", s.speeds.jog);
+}
+
+}  // namespace
+
+SettingsLoad parse_settings(const std::string& text, const std::string& origin) {
+  SettingsLoad out;
+  toml::table table;
+  try {
+    table = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    const auto& b = e.source().begin;
+    out.errors.push_back({file_loc(origin, static_cast<int>(b.line), static_cast<int>(b.column)),
+                          Severity::Error,
+                          fmt::format("not valid TOML: {}", e.description())});
+    return out;
+  }
+  read_profile(TableReader(table, "", origin, out.errors), out.settings);
+  if (out.errors.empty()) check_consistency(out.settings, origin, out.errors);
+  return out;
+}
+
+SettingsLoad load_settings_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    SettingsLoad out;
+    out.errors.push_back({file_loc(path), Severity::Error,
+                          "cannot open the settings file; check the path (--settings) and its "
+                          "permissions"});
+    return out;
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_settings(ss.str(), path);
+}
+
+Settings default_settings() {
+  SettingsLoad load = parse_settings(default_profile_text(), "settings/default.toml");
+  if (!load.ok()) throw GantryError(load.errors.front());  // a build defect, caught by tests
+  return load.settings;
+}
+
+const char* units_name(Units u) { return u == Units::Inches ? "in" : "mm"; }
+
+}  // namespace gantry
