@@ -2,11 +2,12 @@
 #include <CLI/CLI.hpp>   // command-line parsing
 #include <fmt/format.h>  // output
 
-#include <cmath>     // nothing rounds here; positions come from card steps
+#include <cctype>    // toupper
 #include <cstdio>    // stdout, stderr
 #include <iostream>  // JSON to stdout
 
-#include "gantry/lang/parser.hpp"      // parse_file
+#include "gantry/commands/command_docs.hpp"  // help text
+#include "gantry/lang/parser.hpp"             // parse_file
 #include "gantry/machine/job.hpp"      // run_job, check_program, interpret
 #include "progress.hpp"                // ProgressBar
 #include "report.hpp"                  // RunReport, to_json, to_text
@@ -44,6 +45,9 @@ int cmd_run(const RunArgs& a) {
   report.units = settings.units;
   program = parse_file(a.file);
 
+  if (!a.json)
+    fmt::print(stderr, "gantry: running {} on the simulated card, profile \"{}\"\n", a.file,
+               settings.name);
   SimCard card(settings, a.realtime);
   JobResult job;
   {
@@ -118,6 +122,26 @@ int cmd_moves(const std::string& file, const std::string& settings_path,
   return 0;
 }
 
+int cmd_help(const std::string& code, bool markdown) {
+  const CommandTable& table = CommandTable::standard();
+  if (markdown) {
+    fmt::print("{}", commands_markdown(table));
+    return 0;
+  }
+  if (code.empty()) {
+    fmt::print("{}", command_list(table));
+    return 0;
+  }
+  std::string upper = code;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (const CommandSpec* spec = table.find(upper)) {
+    fmt::print("{}", command_help(*spec));
+    return 0;
+  }
+  fmt::print(stderr, "error: unknown command '{}'; `gantry help` lists them all\n", code);
+  return 1;
+}
+
 }  // namespace
 }  // namespace gantry
 
@@ -150,6 +174,12 @@ int main(int argc, char** argv) {
   moves_cmd->add_option("--format", moves_format, "text or jsonl")
       ->check(CLI::IsMember({"text", "jsonl"}));
 
+  std::string help_code;
+  bool help_markdown = false;
+  CLI::App* help_cmd = app.add_subcommand("help", "List the commands, or describe one");
+  help_cmd->add_option("code", help_code, "A two-letter command, such as MX");
+  help_cmd->add_flag("--markdown", help_markdown, "Print the command reference (docs/commands.md)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -159,6 +189,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return cmd_run(run);
     if (*check_cmd) return cmd_check(check_file, check_settings);
     if (*moves_cmd) return cmd_moves(moves_file, moves_settings, moves_format);
+    if (*help_cmd) return cmd_help(help_code, help_markdown);
   } catch (const GantryError& e) {
     fmt::print(stderr, "{}\n", e.what());
     return 1;

@@ -1,1 +1,251 @@
+// End to end: real part files through `gantry` on the simulated card, checked to the step.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kSource = GANTRY_SOURCE_DIR;
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs the gantry binary with `args`, capturing stdout and stderr.
+Result gantry(const std::string& args) {
+  const fs::path err_file = fs::temp_directory_path() / fmt::format("gantry_e2e_{}.err", getpid());
+  const std::string cmd =
+      fmt::format("cd '{}' && '{}' {} 2>'{}'", kSource.string(), GANTRY_BIN, args,
+                  err_file.string());
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  fs::remove(err_file);
+  return r;
+}
+
+// Steps per unit of the shipped profile, written out here so the test does not trust the code
+// under test to convert positions.
+constexpr std::array<double, 6> kStepsPerUnit{916.7324, 916.7324, 1018.5916, 13.8889, 13.8889,
+                                              13.8889};
+constexpr std::array<const char*, 6> kAxes{"x", "y", "z", "a", "b", "c"};
+
+struct Expected {
+  std::array<double, 6> last_point;  // the file's last commanded point, units
+  int lines, moves;
+};
+
+// Every file in parts/ with its last commanded point, worked out by hand from the file.
+const std::map<std::string, Expected> kParts = {
+    {"demo.sbp", {{12, 9, 1, 0, 0, 0}, 46, 40}},
+    {"relative_steps.sbp", {{5.125, 3.333333, 0.25, 0, 0, 0}, 16, 12}},
+    {"rotary.sbp", {{3, 3, 1, 45, 0, 0}, 12, 8}},
+    {"speeds.sbp", {{7.75, 3.5, 0.25, 0, 0, 0}, 12, 7}},
+};
+
+TEST(Parts, EveryPartFileHasExpectations) {
+  for (const auto& entry : fs::directory_iterator(kSource / "parts")) {
+    if (entry.path().extension() != ".sbp") continue;
+    EXPECT_TRUE(kParts.count(entry.path().filename().string()))
+        << entry.path() << " has no expected result in run_parts_test.cpp";
+  }
+}
+
+class PartRun : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PartRun, EndsOnTheLastCommandedPointToTheStep) {
+  const std::string name = GetParam();
+  const Expected& want = kParts.at(name);
+  const Result r = gantry(fmt::format("run parts/{} --json", name));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);  // exactly one JSON object on stdout
+  EXPECT_EQ(j["status"], "done");
+  EXPECT_EQ(j["lines"], want.lines);
+  EXPECT_EQ(j["moves"], want.moves);
+  for (int i = 0; i < 6; ++i) {
+    const std::int64_t steps = std::llround(want.last_point[i] * kStepsPerUnit[i]);
+    EXPECT_EQ(j["steps"][kAxes[i]].get<std::int64_t>(), steps) << "axis " << kAxes[i];
+    EXPECT_EQ(j["commanded_steps"][kAxes[i]].get<std::int64_t>(), steps) << "axis " << kAxes[i];
+    EXPECT_NEAR(j["position"][kAxes[i]].get<double>(), want.last_point[i],
+                0.5 / kStepsPerUnit[i] + 1e-12)
+        << "axis " << kAxes[i];
+  }
+  EXPECT_EQ(j["timing_violations"], 0);
+  EXPECT_GT(j["max_velocity_ratio"].get<double>(), 0.0);
+  EXPECT_LE(j["max_velocity_ratio"].get<double>(), 1.0);
+  EXPECT_GT(j["max_accel_ratio"].get<double>(), 0.0);
+  EXPECT_LE(j["max_accel_ratio"].get<double>(), 1.0);
+  // The card's clock and the planner agree to within one tick per move.
+  EXPECT_NEAR(j["time_s"].get<double>(), j["planned_time_s"].get<double>(), 5e-6 * want.moves);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllParts, PartRun,
+                         ::testing::Values("demo.sbp", "relative_steps.sbp", "rotary.sbp",
+                                           "speeds.sbp"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
+
+TEST(Run, TextReportNamesTheOutcome) {
+  const Result r = gantry("run parts/speeds.sbp");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("status     done"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("equal to the planner's commanded steps"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 violations"), std::string::npos) << r.out;
+}
+
+// Bad input: a located message, exit status 1, and not one pulse on the card.
+void expect_rejected(const Result& r, const std::string& located_message) {
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(located_message), std::string::npos)
+      << "stderr was:\n" << r.err << "\nexpected to contain:\n" << located_message;
+}
+
+void expect_no_motion(const std::string& out) {
+  const json j = json::parse(out);
+  EXPECT_EQ(j["status"], "error");
+  EXPECT_EQ(j["time_s"].get<double>(), 0.0);
+  for (const char* a : kAxes) EXPECT_EQ(j["steps"][a].get<std::int64_t>(), 0) << a;
+}
+
+TEST(BadInput, UnknownCommand) {
+  const Result r = gantry("run tests/data/unknown_command.sbp --json");
+  expect_rejected(r, "tests/data/unknown_command.sbp:3:1: error: unknown command 'QQ'");
+  expect_no_motion(r.out);
+}
+
+TEST(BadInput, NonNumericParameter) {
+  const Result r = gantry("run tests/data/non_numeric.sbp --json");
+  expect_rejected(r, "tests/data/non_numeric.sbp:3:5: error: expected a number for Y location "
+                     "(MY), found 'one'");
+  expect_no_motion(r.out);
+}
+
+TEST(BadInput, MoveBeyondTheSoftLimitStopsBeforeAnyMotion) {
+  // Line 2 is a legal move, but the file is refused whole: nothing moves at all.
+  const Result r = gantry("run tests/data/soft_limit.sbp --json");
+  expect_rejected(r, "tests/data/soft_limit.sbp:3:1: error: move to X=30.0000 is outside the "
+                     "soft limits");
+  expect_no_motion(r.out);
+}
+
+TEST(BadInput, MissingPartFile) {
+  const Result r = gantry("run parts/no_such_file.sbp --json");
+  expect_rejected(r, "parts/no_such_file.sbp: error: cannot open the part file");
+  expect_no_motion(r.out);
+}
+
+TEST(BadInput, SettingsWithAWrongValue) {
+  const Result r = gantry("run parts/demo.sbp --settings tests/data/bad_value.toml --json");
+  expect_rejected(r, "tests/data/bad_value.toml:11:18: error: axes.x.steps_per_unit = "
+                     "-916.7324 is out of range; allowed: > 0 and <= 1000000");
+  EXPECT_EQ(r.out, "");  // no card was started, so there is no report
+}
+
+TEST(BadInput, MissingSettingsFile) {
+  const Result r = gantry("run parts/demo.sbp --settings tests/data/none.toml");
+  expect_rejected(r, "tests/data/none.toml: error: cannot open the settings file");
+}
+
+TEST(Check, ValidFileExitsZero) {
+  const Result r = gantry("check parts/demo.sbp");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(Check, ReportsEveryErrorInOrder) {
+  const Result r = gantry("check tests/data/many_errors.sbp");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err,
+            "tests/data/many_errors.sbp:3:1: error: unknown command 'QQ'; see docs/commands.md "
+            "for the commands Gantry knows\n"
+            "tests/data/many_errors.sbp:4:5: error: expected a number for Y location (MY), "
+            "found 'abc'\n"
+            "tests/data/many_errors.sbp:5:5: error: XY speed 0 is out of range; allowed: above 0 "
+            "and up to 8 in/s (the axis max_speed in the profile)\n"
+            "tests/data/many_errors.sbp:6:8: error: MZ takes 1 parameter; this is parameter 2\n");
+}
+
+TEST(Moves, JsonlGivesEveryCanonicalMove) {
+  const Result r = gantry("moves parts/relative_steps.sbp --format jsonl");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::vector<json> moves;
+  while (std::getline(in, line)) moves.push_back(json::parse(line));
+  ASSERT_EQ(moves.size(), 12u);
+  const json& first = moves[0];
+  EXPECT_EQ(first["file"], "parts/relative_steps.sbp");
+  EXPECT_EQ(first["line"], 4);
+  EXPECT_EQ(first["kind"], "line");
+  EXPECT_EQ(first["speed_class"], "jog");
+  EXPECT_EQ(first["from"], json::array({0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(first["to"], json::array({2, 2, 0.25, 0, 0, 0}));
+  // Jog XY 6 in/s is the binding limit: Z moves 0.25 at 6 * 0.25 / hypot(2, 2) < 3 in/s.
+  EXPECT_NEAR(first["speed"].get<double>(), 6.0 * std::sqrt(8 + 0.0625) / std::sqrt(8), 1e-12);
+  const json& plunge = moves[1];  // SR; MZ, -0.35
+  EXPECT_EQ(plunge["speed_class"], "move");
+  EXPECT_NEAR(plunge["to"][2].get<double>(), -0.1, 1e-12);
+  EXPECT_DOUBLE_EQ(plunge["speed"].get<double>(), 0.5);
+  const json& last = moves.back();
+  EXPECT_EQ(last["line"], 17);
+  EXPECT_EQ(last["to"][0], 5.125);
+}
+
+TEST(Help, DocsCommandsPageIsGeneratedFromTheTable) {
+  const Result r = gantry("help --markdown");
+  ASSERT_EQ(r.exit_code, 0);
+  std::ifstream in(kSource / "docs" / "commands.md");
+  std::stringstream page;
+  page << in.rdbuf();
+  EXPECT_EQ(r.out, page.str()) << "regenerate with: build/gantry help --markdown > docs/commands.md";
+}
+
+TEST(Help, OneCommandListsItsParametersInOrder) {
+  const Result r = gantry("help vs");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("Usage: VS, XY move speed, Z move speed, A move speed, B move speed, "
+                       "XY jog speed, Z jog speed, A jog speed, B jog speed"),
+            std::string::npos)
+      << r.out;
+  const Result bad = gantry("help qq");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("unknown command 'qq'"), std::string::npos);
+}
+
+TEST(Cli, VersionAndHelp) {
+  const Result v = gantry("--version");
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_EQ(v.out, "gantry 0.1.0\n");
+  const Result h = gantry("--help");
+  EXPECT_EQ(h.exit_code, 0);
+  for (const char* sub : {"run", "check", "moves"}) EXPECT_NE(h.out.find(sub), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,70 @@
+// Generated help: the command table is the only place a command is described.
+#include "gantry/commands/command_docs.hpp"
+
+#include <fmt/format.h>  // layout
+
+namespace gantry {
+namespace {
+
+constexpr CommandGroup kGroupOrder[] = {CommandGroup::Move, CommandGroup::Jog,
+                                        CommandGroup::Settings, CommandGroup::Values};
+
+std::string param_default(const ParamSpec& p) {
+  if (p.required) return "required";
+  if (p.default_value) return fmt::format("{}", *p.default_value);
+  return "blank: unchanged";
+}
+
+}  // namespace
+
+std::string command_help(const CommandSpec& spec) {
+  std::string out = fmt::format("{} - {}\n  {}\n", spec.code, spec.name, spec.help);
+  if (spec.params.empty()) return out + "  No parameters.\n";
+  out += fmt::format("  Usage: {}", spec.code);
+  for (const ParamSpec& p : spec.params) out += fmt::format(", {}", p.name);
+  out += "\n";
+  for (size_t i = 0; i < spec.params.size(); ++i) {
+    const ParamSpec& p = spec.params[i];
+    out += fmt::format("  {:>2}. {} ({}{}{}): {}\n", i + 1, p.name, p.unit,
+                       p.unit.empty() ? "" : "; ", param_default(p), p.help);
+  }
+  return out;
+}
+
+std::string command_list(const CommandTable& table) {
+  std::string out;
+  for (CommandGroup g : kGroupOrder) {
+    out += fmt::format("{}:\n", group_name(g));
+    for (const CommandSpec& s : table.all())
+      if (s.group == g) out += fmt::format("  {}  {}\n", s.code, s.name);
+  }
+  return out + "Type `gantry help CODE` for a command's parameters.\n";
+}
+
+std::string commands_markdown(const CommandTable& table) {
+  std::string out =
+      "# Gantry commands\n\n"
+      "Generated from the command table by `gantry help --markdown`; do not edit by hand.\n"
+      "Parameters are listed in part-file order. A blank parameter (nothing between two "
+      "commas) keeps the current value unless the table says otherwise.\n";
+  for (CommandGroup g : kGroupOrder) {
+    out += fmt::format("\n## {}\n", group_name(g));
+    for (const CommandSpec& s : table.all()) {
+      if (s.group != g) continue;
+      out += fmt::format("\n### {} - {}\n\n{}\n", s.code, s.name, s.help);
+      if (s.params.empty()) {
+        out += "\nNo parameters.\n";
+        continue;
+      }
+      out += "\n| # | Parameter | Unit | Default | Meaning |\n|---|---|---|---|---|\n";
+      for (size_t i = 0; i < s.params.size(); ++i) {
+        const ParamSpec& p = s.params[i];
+        out += fmt::format("| {} | {} | {} | {} | {} |\n", i + 1, p.name, p.unit,
+                           param_default(p), p.help);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace gantry
