@@ -3,15 +3,19 @@
 
 #include <fmt/format.h>  // messages
 
-#include <cctype>   // character classes
-#include <fstream>  // parse_file
-#include <sstream>  // slurp
+#include <cctype>  // character classes
+
+#include "gantry/core/text_file.hpp"  // read_text_file
 
 namespace gantry {
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-bool is_word(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+bool is_word(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
 
 std::string upper(std::string_view s) {
   std::string out(s);
@@ -34,9 +38,10 @@ class LineParser {
     const std::string_view word = s_.substr(start, pos_ - start);
     const SourceLoc at = loc(start);
     if (word.empty()) {
-      error(out, start, fmt::format("unexpected '{}' at the start of a statement; a line "
-                                    "starts with a two-letter command, a label or a comment",
-                                    s_[start]));
+      error(out, start,
+            fmt::format("unexpected '{}' at the start of a statement; a line "
+                        "starts with a two-letter command, a label or a comment",
+                        s_[start]));
       return;
     }
     const std::string key = upper(word);
@@ -78,21 +83,25 @@ class LineParser {
     if (peek() == ',') {
       ++pos_;
     } else if (pos_ > 0 && !is_space(s_[pos_ - 1])) {
+      std::string_view rest = s_.substr(pos_, s_.find_first_of(",'", pos_) - pos_);
+      while (!rest.empty() && is_space(rest.back())) rest.remove_suffix(1);
       error(out, pos_,
             fmt::format("expected a space or a comma after the command {}; write `{}, {}`",
-                        cmd.code, cmd.code, s_.substr(pos_, s_.find_first_of(",'", pos_) - pos_)));
+                        cmd.code, cmd.code, rest));
       return false;
     }
     while (true) {
       const size_t field_start = pos_;
       size_t end = pos_;
-      bool in_quote = false;
-      while (end < s_.size() && (in_quote || (s_[end] != ',' && s_[end] != '\''))) {
-        if (s_[end] == '"') in_quote = !in_quote;
+      size_t open_quote = std::string_view::npos;
+      while (end < s_.size() &&
+             (open_quote != std::string_view::npos || (s_[end] != ',' && s_[end] != '\''))) {
+        if (s_[end] == '"')
+          open_quote = open_quote == std::string_view::npos ? end : std::string_view::npos;
         ++end;
       }
-      if (in_quote) {
-        error(out, field_start, "this parameter opens a quote (\") that is never closed");
+      if (open_quote != std::string_view::npos) {
+        error(out, open_quote, "this parameter opens a quote (\") that is never closed");
         return false;
       }
       size_t a = field_start, b = end;
@@ -149,17 +158,15 @@ Program parse_program(std::string_view text, const std::string& file_name) {
 }
 
 Program parse_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const std::optional<std::string> text = read_text_file(path);
+  if (!text) {
     Program prog;
     prog.file = std::make_shared<const std::string>(path);
     prog.errors.push_back({SourceLoc{prog.file, 0, 0}, Severity::Error,
                            "cannot open the part file; check the name and that it exists"});
     return prog;
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_program(ss.str(), path);
+  return parse_program(*text, path);
 }
 
 }  // namespace gantry

@@ -1,13 +1,13 @@
 // Loading and validating a machine profile from TOML; every problem is reported with its place.
 #include "gantry/settings/settings.hpp"
 
-#include <fmt/format.h>       // messages
+#include <fmt/format.h>   // messages
 #include <toml++/toml.h>  // the TOML parser
 
-#include <cmath>     // ceil for tick counts
-#include <fstream>   // reading the profile file
-#include <set>       // keys seen, to reject unknown ones
-#include <sstream>   // slurping the file
+#include <cmath>  // ceil for tick counts
+#include <set>    // keys seen, to reject unknown ones
+
+#include "gantry/core/text_file.hpp"  // read_text_file
 
 namespace gantry {
 namespace {
@@ -28,8 +28,8 @@ struct Range {
 class TableReader {
  public:
   TableReader(const toml::table& table, std::string path, const std::string& origin,
-              std::vector<Diagnostic>& errors)
-      : table_(table), path_(std::move(path)), origin_(origin), errors_(errors) {}
+              std::vector<Diagnostic>& errors, bool absent = false)
+      : table_(table), path_(std::move(path)), origin_(origin), errors_(errors), absent_(absent) {}
 
   double number(std::string_view key, Range range, double fallback) {
     const toml::node* node = find(key);
@@ -40,8 +40,8 @@ class TableReader {
       return fallback;
     }
     if (!range.contains(*v)) {
-      error(*node, fmt::format("{} = {} is out of range; allowed: {}", full(key), *v,
-                               range.describe()));
+      error(*node,
+            fmt::format("{} = {} is out of range; allowed: {}", full(key), *v, range.describe()));
       return fallback;
     }
     return *v;
@@ -56,8 +56,7 @@ class TableReader {
     }
     std::int64_t v = *node->value<std::int64_t>();
     if (v < lo || v > hi) {
-      error(*node,
-            fmt::format("{} = {} is out of range; allowed: {} to {}", full(key), v, lo, hi));
+      error(*node, fmt::format("{} = {} is out of range; allowed: {} to {}", full(key), v, lo, hi));
       return fallback;
     }
     return static_cast<int>(v);
@@ -81,7 +80,9 @@ class TableReader {
     std::string list;
     for (auto a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
     if (!v) {
-      error(*node, fmt::format("{} must be a string, one of {}", full(key), list));
+      error(*node, allowed.size() == 0
+                       ? fmt::format("{} must be a string", full(key))
+                       : fmt::format("{} must be a string, one of {}", full(key), list));
       return fallback;
     }
     for (auto a : allowed)
@@ -91,7 +92,7 @@ class TableReader {
     return fallback;
   }
 
-  // A sub-table; a missing or mistyped one is reported and read as empty.
+  // A sub-table; a missing or mistyped one is reported once, and its keys are not.
   TableReader table(std::string_view key) {
     static const toml::table empty;
     const toml::node* node = find(key);
@@ -99,33 +100,35 @@ class TableReader {
       error(*node, fmt::format("{} must be a table", full(key)));
       node = nullptr;
     }
-    return TableReader(node ? *node->as_table() : empty, full(key), origin_, errors_);
+    return TableReader(node ? *node->as_table() : empty, full(key), origin_, errors_, !node);
   }
 
   void finish() {
     for (auto&& [k, v] : table_)
       if (!seen_.count(std::string(k.str())))
-        error(v, fmt::format("unknown key {}; check its spelling against docs/settings.md",
-                             full(k.str())));
+        errors_.push_back({loc_of(k.source()), Severity::Error,
+                           fmt::format("unknown key {}; check its spelling against "
+                                       "docs/settings.md",
+                                       full(k.str()))});
   }
 
  private:
   const toml::node* find(std::string_view key) {
     seen_.insert(std::string(key));
     const toml::node* node = table_.get(key);
-    if (!node) {
-      errors_.push_back({loc_of(table_), Severity::Error,
-                         fmt::format("missing key {}", full(key))});
+    if (!node && !absent_) {
+      errors_.push_back(
+          {loc_of(table_), Severity::Error, fmt::format("missing key {}", full(key))});
     }
     return node;
   }
   std::string full(std::string_view key) const {
     return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
   }
-  SourceLoc loc_of(const toml::node& n) const {
-    const auto& b = n.source().begin;
-    return file_loc(origin_, static_cast<int>(b.line), static_cast<int>(b.column));
+  SourceLoc loc_of(const toml::source_region& r) const {
+    return file_loc(origin_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column));
   }
+  SourceLoc loc_of(const toml::node& n) const { return loc_of(n.source()); }
   void error(const toml::node& n, std::string msg) {
     errors_.push_back({loc_of(n), Severity::Error, std::move(msg)});
   }
@@ -135,6 +138,7 @@ class TableReader {
   const std::string& origin_;
   std::vector<Diagnostic>& errors_;
   std::set<std::string> seen_;
+  bool absent_;  // the table itself is missing (already reported)
 };
 
 GroupSpeeds read_speeds(TableReader t, Range range) {
@@ -265,8 +269,7 @@ SettingsLoad parse_settings(const std::string& text, const std::string& origin) 
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
     out.errors.push_back({file_loc(origin, static_cast<int>(b.line), static_cast<int>(b.column)),
-                          Severity::Error,
-                          fmt::format("not valid TOML: {}", e.description())});
+                          Severity::Error, fmt::format("not valid TOML: {}", e.description())});
     return out;
   }
   read_profile(TableReader(table, "", origin, out.errors), out.settings);
@@ -275,17 +278,15 @@ SettingsLoad parse_settings(const std::string& text, const std::string& origin) 
 }
 
 SettingsLoad load_settings_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const std::optional<std::string> text = read_text_file(path);
+  if (!text) {
     SettingsLoad out;
     out.errors.push_back({file_loc(path), Severity::Error,
                           "cannot open the settings file; check the path (--settings) and its "
                           "permissions"});
     return out;
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_settings(ss.str(), path);
+  return parse_settings(*text, path);
 }
 
 Settings default_settings() {
@@ -294,6 +295,8 @@ Settings default_settings() {
   return load.settings;
 }
 
-const char* units_name(Units u) { return u == Units::Inches ? "in" : "mm"; }
+const char* units_name(Units u) {
+  return u == Units::Inches ? "in" : "mm";
+}
 
 }  // namespace gantry

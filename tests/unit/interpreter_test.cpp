@@ -1,1 +1,606 @@
 #include <gtest/gtest.h>
+
+#include <iterator>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gantry/core/diagnostic.hpp"
+#include "gantry/interp/interpreter.hpp"
+#include "gantry/lang/parser.hpp"
+#include "gantry/motion/canon_move.hpp"
+#include "gantry/settings/settings.hpp"
+
+namespace gantry {
+namespace {
+
+// Collects every move the interpreter emits.
+class RecordingSink : public MotionSink {
+ public:
+  void move(const CanonMove& m) override { moves.push_back(m); }
+  void flush() override { ++flushes; }
+
+  std::vector<CanonMove> moves;
+  int flushes = 0;
+};
+
+std::string where(const SourceLoc& loc) {
+  return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
+         std::to_string(loc.column);
+}
+
+Vec6 at(double x, double y = 0, double z = 0, double a = 0, double b = 0, double c = 0) {
+  Vec6 v;
+  v << x, y, z, a, b, c;
+  return v;
+}
+
+void expect_vec(const Vec6& actual, const Vec6& expected) {
+  for (int i = 0; i < kAxisCount; ++i)
+    EXPECT_NEAR(actual[i], expected[i], 1e-12) << "axis " << kAxisLetters[i];
+}
+
+void expect_speeds(const GroupSpeeds& s, double xy, double z, double a, double b, double c) {
+  EXPECT_DOUBLE_EQ(s.xy, xy);
+  EXPECT_DOUBLE_EQ(s.z, z);
+  EXPECT_DOUBLE_EQ(s.a, a);
+  EXPECT_DOUBLE_EQ(s.b, b);
+  EXPECT_DOUBLE_EQ(s.c, c);
+}
+
+class InterpreterTest : public ::testing::Test {
+ protected:
+  // Parses and runs `text` as part.sbp; parse errors fail the test.
+  void run(std::string_view text) {
+    program_ = parse_program(text, "part.sbp");
+    ASSERT_TRUE(program_.ok()) << format(program_.errors.front());
+    interp().run(program_);
+  }
+
+  // Runs `text` expecting it to stop with an error; returns that error.
+  Diagnostic run_error(std::string_view text) {
+    program_ = parse_program(text, "part.sbp");
+    try {
+      interp().run(program_);
+    } catch (const GantryError& e) {
+      return e.diagnostic();
+    }
+    ADD_FAILURE() << "no error from:\n" << text;
+    return {};
+  }
+
+  std::vector<Diagnostic> check(std::string_view text) {
+    program_ = parse_program(text, "part.sbp");
+    return interp().check(program_);
+  }
+
+  Interpreter& interp() {
+    if (!interp_) interp_.emplace(settings, sink);
+    return *interp_;
+  }
+  const ModalState& state() { return interp().state(); }
+  const std::vector<CanonMove>& moves() const { return sink.moves; }
+
+  Settings settings = default_settings();
+  RecordingSink sink;
+
+ private:
+  Program program_;
+  std::optional<Interpreter> interp_;
+};
+
+// ---- absolute and relative distances
+
+TEST_F(InterpreterTest, StartsAtOriginInAbsoluteModeWithProfileSpeeds) {
+  EXPECT_TRUE(state().absolute);
+  expect_vec(state().position, Vec6::Zero());
+  expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
+  expect_speeds(state().speeds.jog, 6.0, 3.0, 45, 45, 45);
+}
+
+TEST_F(InterpreterTest, Sb3WorkedExampleAbsoluteThenRelative) {
+  run("SA\nM3 1,1,.2\nSR\nMZ -.45\nJZ .45\nJX 1.5\n");
+  ASSERT_EQ(moves().size(), 4u);
+  expect_vec(moves()[0].from, at(0, 0, 0));
+  expect_vec(moves()[0].to, at(1, 1, 0.2));
+  expect_vec(moves()[1].from, at(1, 1, 0.2));
+  expect_vec(moves()[1].to, at(1, 1, -0.25));
+  expect_vec(moves()[2].to, at(1, 1, 0.2));
+  expect_vec(moves()[3].to, at(2.5, 1, 0.2));
+  EXPECT_EQ(moves()[0].speed_class, SpeedClass::Move);
+  EXPECT_EQ(moves()[1].speed_class, SpeedClass::Move);
+  EXPECT_EQ(moves()[2].speed_class, SpeedClass::Jog);
+  EXPECT_EQ(moves()[3].speed_class, SpeedClass::Jog);
+  expect_vec(state().position, at(2.5, 1, 0.2));
+  EXPECT_FALSE(state().absolute);
+}
+
+TEST_F(InterpreterTest, AbsoluteMovesGoToTheLocation) {
+  run("MX, 5\nMX, 3\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_vec(moves()[1].from, at(5));
+  expect_vec(moves()[1].to, at(3));
+}
+
+TEST_F(InterpreterTest, RelativeMovesAddToThePosition) {
+  run("SR\nMX, 5\nMX, 3\nMY, 2\nMY, -1.5\n");
+  ASSERT_EQ(moves().size(), 4u);
+  expect_vec(moves()[1].to, at(8));
+  expect_vec(moves()[3].to, at(8, 0.5));
+}
+
+TEST_F(InterpreterTest, SaAfterSrRestoresAbsolute) {
+  run("SR\nMX, 5\nSA\nMX, 2\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_vec(moves()[1].to, at(2));
+  EXPECT_TRUE(state().absolute);
+}
+
+TEST_F(InterpreterTest, BlankParameterKeepsThatAxisInAbsoluteMode) {
+  run("SA\nM3, 1, 2, 3\nM2, , 3\nM3, 4, , 1\n");
+  ASSERT_EQ(moves().size(), 3u);
+  expect_vec(moves()[1].to, at(1, 3, 3));
+  expect_vec(moves()[2].to, at(4, 3, 1));
+}
+
+TEST_F(InterpreterTest, BlankParameterKeepsThatAxisInRelativeMode) {
+  run("SR\nM2, 1, 2\nM2, , 3\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_vec(moves()[1].to, at(1, 5));
+}
+
+TEST_F(InterpreterTest, MultiAxisCommandsUseAxisOrderXYZAB) {
+  run("M5, 1, 2, 3, 4, 5\nJ4, 6, 7, 1, 8\nM4, , , , 9\n");
+  ASSERT_EQ(moves().size(), 3u);
+  expect_vec(moves()[0].to, at(1, 2, 3, 4, 5));
+  expect_vec(moves()[1].to, at(6, 7, 1, 8, 5));
+  expect_vec(moves()[2].to, at(6, 7, 1, 9, 5));
+}
+
+struct SingleAxisCase {
+  const char* code;
+  int axis;
+  SpeedClass cls;
+};
+
+TEST_F(InterpreterTest, EachSingleAxisCommandMovesItsAxisInItsClass) {
+  const SingleAxisCase cases[] = {{"MX", 0, SpeedClass::Move}, {"MY", 1, SpeedClass::Move},
+                                  {"MZ", 2, SpeedClass::Move}, {"MA", 3, SpeedClass::Move},
+                                  {"MB", 4, SpeedClass::Move}, {"JX", 0, SpeedClass::Jog},
+                                  {"JY", 1, SpeedClass::Jog},  {"JZ", 2, SpeedClass::Jog},
+                                  {"JA", 3, SpeedClass::Jog},  {"JB", 4, SpeedClass::Jog}};
+  std::string text;
+  for (const auto& c : cases) text += std::string(c.code) + ", 1\n" + c.code + ", 0\n";
+  run(text);
+  ASSERT_EQ(moves().size(), 2 * std::size(cases));
+  for (size_t i = 0; i < std::size(cases); ++i) {
+    SCOPED_TRACE(cases[i].code);
+    const CanonMove& m = moves()[2 * i];
+    Vec6 expected = Vec6::Zero();
+    expected[cases[i].axis] = 1;
+    expect_vec(m.to, expected);
+    EXPECT_EQ(m.speed_class, cases[i].cls);
+    EXPECT_EQ(moves()[2 * i + 1].speed_class, cases[i].cls);
+  }
+}
+
+TEST_F(InterpreterTest, MultiAxisJogsAreJogClassAndMovesAreMoveClass) {
+  run("M2, 1, 1\nJ2, 2, 2\nM3, 3, 3, 1\nJ3, 0, 0, 0\nM5, 1, 1, 1, 1, 1\nJ5, 2, 2, 2, 2, 2\n");
+  ASSERT_EQ(moves().size(), 6u);
+  for (size_t i = 0; i < moves().size(); ++i)
+    EXPECT_EQ(moves()[i].speed_class, i % 2 == 0 ? SpeedClass::Move : SpeedClass::Jog) << i;
+}
+
+TEST_F(InterpreterTest, MoveRecordsItsStatementLocation) {
+  run("SA\n\n   MX, 1\n");
+  ASSERT_EQ(moves().size(), 1u);
+  EXPECT_EQ(where(moves()[0].loc), "part.sbp:3:4");
+  EXPECT_EQ(moves()[0].kind, MoveKind::Line);
+}
+
+// ---- speeds
+
+TEST_F(InterpreterTest, MovesCarryMoveSpeedsAndJogsCarryJogSpeeds) {
+  run("MX, 1\nJX, 2\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_speeds(moves()[0].speeds, 2.0, 0.5, 10, 10, 10);
+  expect_speeds(moves()[1].speeds, 6.0, 3.0, 45, 45, 45);
+}
+
+TEST_F(InterpreterTest, MsSetsMoveSpeedsOnly) {
+  run("MS, 3, 1, 20, 30, 40\nMX, 1\nJX, 2\n");
+  expect_speeds(state().speeds.move, 3, 1, 20, 30, 40);
+  expect_speeds(state().speeds.jog, 6.0, 3.0, 45, 45, 45);
+  ASSERT_EQ(moves().size(), 2u);
+  expect_speeds(moves()[0].speeds, 3, 1, 20, 30, 40);
+  expect_speeds(moves()[1].speeds, 6.0, 3.0, 45, 45, 45);
+}
+
+TEST_F(InterpreterTest, MsBlankKeepsThatSpeed) {
+  run("MS, , 1\n");
+  expect_speeds(state().speeds.move, 2.0, 1, 10, 10, 10);
+}
+
+TEST_F(InterpreterTest, JsSetsJogSpeedsOnly) {
+  run("JS, 7, 2, , , 60\nJY, 1\nMY, 2\n");
+  expect_speeds(state().speeds.jog, 7, 2, 45, 45, 60);
+  expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
+  ASSERT_EQ(moves().size(), 2u);
+  expect_speeds(moves()[0].speeds, 7, 2, 45, 45, 60);
+  expect_speeds(moves()[1].speeds, 2.0, 0.5, 10, 10, 10);
+}
+
+TEST_F(InterpreterTest, VsTakesMoveXyZABThenJogXyZAB) {
+  run("VS, 1, .2, 3, 4, 5, 1.5, 30, 40\n");
+  expect_speeds(state().speeds.move, 1, 0.2, 3, 4, 10);
+  expect_speeds(state().speeds.jog, 5, 1.5, 30, 40, 45);
+}
+
+TEST_F(InterpreterTest, VsBlanksKeepTheirSpeeds) {
+  run("VS, , , , , 7\n");
+  expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
+  expect_speeds(state().speeds.jog, 7, 3.0, 45, 45, 45);
+}
+
+TEST_F(InterpreterTest, VsHasNoNinthParameter) {
+  const Diagnostic d = run_error("VS, 1, 1, 1, 1, 1, 1, 1, 1, 1\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:29");
+  EXPECT_EQ(d.message, "VS takes 8 parameters; this is parameter 9");
+}
+
+TEST_F(InterpreterTest, EachMoveKeepsTheSpeedInForceWhenIssued) {
+  run("MX, 1\nMS, 3\nMX, 2\nVS, 1.5\nMX, 3\n");
+  ASSERT_EQ(moves().size(), 3u);
+  EXPECT_DOUBLE_EQ(moves()[0].speeds.xy, 2.0);
+  EXPECT_DOUBLE_EQ(moves()[1].speeds.xy, 3.0);
+  EXPECT_DOUBLE_EQ(moves()[2].speeds.xy, 1.5);
+}
+
+TEST_F(InterpreterTest, SpeedEqualToMaxSpeedIsAllowed) {
+  run("MS, 8, 4, 90, 90, 90\n");
+  expect_speeds(state().speeds.move, 8, 4, 90, 90, 90);
+}
+
+TEST_F(InterpreterTest, ZeroSpeedIsAnErrorAtTheParameter) {
+  const Diagnostic d = run_error("MS, 0\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:5");
+  EXPECT_EQ(d.message,
+            "XY speed 0 is out of range; allowed: above 0 and up to 8 in/s (the axis max_speed "
+            "in the profile)");
+}
+
+TEST_F(InterpreterTest, NegativeSpeedIsAnErrorAtTheParameter) {
+  const Diagnostic d = run_error("SA\nMS, , -1\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:2:7");
+  EXPECT_EQ(d.message,
+            "Z speed -1 is out of range; allowed: above 0 and up to 4 in/s (the axis max_speed "
+            "in the profile)");
+}
+
+TEST_F(InterpreterTest, SpeedAboveAxisMaxSpeedIsAnError) {
+  const Diagnostic d = run_error("JS, 8.5\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:5");
+  EXPECT_EQ(d.message,
+            "XY speed 8.5 is out of range; allowed: above 0 and up to 8 in/s (the axis "
+            "max_speed in the profile)");
+}
+
+TEST_F(InterpreterTest, CSpeedIsCheckedAgainstTheCAxis) {
+  settings.axes[5].max_speed = 50;
+  const Diagnostic d = run_error("MS, , , , , 60\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:13");
+  EXPECT_EQ(d.message,
+            "C speed 60 is out of range; allowed: above 0 and up to 50 in/s (the axis max_speed "
+            "in the profile)");
+}
+
+TEST_F(InterpreterTest, XySpeedLimitIsTheSlowerOfXAndY) {
+  settings.axes[1].max_speed = 5;
+  const Diagnostic d = run_error("MS, 6\n");
+  EXPECT_EQ(d.message,
+            "XY speed 6 is out of range; allowed: above 0 and up to 5 in/s (the axis max_speed "
+            "in the profile)");
+}
+
+TEST_F(InterpreterTest, VsJogSpeedErrorIsAtItsParameter) {
+  const Diagnostic d = run_error("VS, , , , , , , , 91\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:19");
+  EXPECT_EQ(d.message,
+            "B speed 91 is out of range; allowed: above 0 and up to 90 in/s (the axis max_speed "
+            "in the profile)");
+}
+
+TEST_F(InterpreterTest, SpeedErrorChangesNoSpeed) {
+  EXPECT_EQ(run_error("MS, 3, 0\n").message.rfind("Z speed 0", 0), 0u);
+  expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
+}
+
+TEST_F(InterpreterTest, VsJogErrorChangesNoMoveSpeed) {
+  EXPECT_EQ(run_error("VS, 1, , , , 0\n").message.rfind("XY speed 0", 0), 0u);
+  expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
+  expect_speeds(state().speeds.jog, 6.0, 3.0, 45, 45, 45);
+}
+
+// ---- zero-length moves, labels, END
+
+TEST_F(InterpreterTest, ZeroLengthMovesEmitNothing) {
+  run("MX, 0\nSR\nMX, 0\nM2, 0, 0\nSA\nM3\nM2, ,\nJ5, 0, 0, 0, 0, 0\n");
+  EXPECT_TRUE(moves().empty());
+  EXPECT_EQ(interp().moves_emitted(), 0u);
+  EXPECT_EQ(interp().statements_executed(), 8u);
+}
+
+TEST_F(InterpreterTest, RepeatedTargetEmitsOnlyTheFirstMove) {
+  run("MX, 5\nMX, 5\nM2, 5, 0\n");
+  EXPECT_EQ(moves().size(), 1u);
+  EXPECT_EQ(interp().moves_emitted(), 1u);
+}
+
+TEST_F(InterpreterTest, LabelsDoNothing) {
+  run("START:\nMX, 1\nLOOP:\n");
+  EXPECT_EQ(moves().size(), 1u);
+  EXPECT_EQ(interp().statements_executed(), 3u);
+}
+
+TEST_F(InterpreterTest, EndStopsExecution) {
+  run("MX, 1\nEND\nMX, 2\nQQ\n");
+  ASSERT_EQ(moves().size(), 1u);
+  expect_vec(state().position, at(1));
+  EXPECT_EQ(interp().statements_executed(), 2u);
+  EXPECT_EQ(sink.flushes, 1);
+}
+
+TEST_F(InterpreterTest, RunFlushesTheSinkOnceAtTheEnd) {
+  run("MX, 1\nMX, 2\n");
+  EXPECT_EQ(sink.flushes, 1);
+}
+
+TEST_F(InterpreterTest, ProgressIsReportedAfterEachStatement) {
+  std::vector<std::pair<size_t, size_t>> calls;
+  interp().on_progress([&](size_t done, size_t total) { calls.emplace_back(done, total); });
+  run("SA\nMX, 1\nEND\nMX, 2\n");
+  EXPECT_EQ(calls, (std::vector<std::pair<size_t, size_t>>{{1, 4}, {2, 4}, {3, 4}}));
+}
+
+// ---- errors
+
+TEST_F(InterpreterTest, UnknownCommandIsAnErrorAtTheCommand) {
+  const Diagnostic d = run_error("SA\n  QQ, 1, 2\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:2:3");
+  EXPECT_EQ(d.message, "unknown command 'QQ'; see docs/commands.md for the commands Gantry knows");
+  EXPECT_EQ(format(d),
+            "part.sbp:2:3: error: unknown command 'QQ'; see docs/commands.md for the commands "
+            "Gantry knows");
+}
+
+TEST_F(InterpreterTest, TooManyParametersIsAnErrorAtTheFirstExtraParameter) {
+  const Diagnostic d = run_error("MX, 1, 2, 3\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:8");
+  EXPECT_EQ(d.message, "MX takes 1 parameter; this is parameter 2");
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(InterpreterTest, ParameterToACommandWithoutParametersIsAnError) {
+  const Diagnostic d = run_error("SA 1\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:4");
+  EXPECT_EQ(d.message, "SA takes 0 parameters; this is parameter 1");
+}
+
+TEST_F(InterpreterTest, TooManyParametersForMultiAxisCommand) {
+  const Diagnostic d = run_error("M2, 1, 2, 3\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:11");
+  EXPECT_EQ(d.message, "M2 takes 2 parameters; this is parameter 3");
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(InterpreterTest, MissingRequiredParameterIsAnErrorAtTheCommand) {
+  const Diagnostic d = run_error("SA\n  MX\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:2:3");
+  EXPECT_EQ(d.message, "MX needs its parameter 1 (X location)");
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(InterpreterTest, TrailingBlankDoesNotSatisfyARequiredParameter) {
+  const Diagnostic d = run_error("JZ, \n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:1");
+  EXPECT_EQ(d.message, "JZ needs its parameter 1 (Z location)");
+}
+
+TEST_F(InterpreterTest, NonNumericParameterIsAnErrorAtTheParameter) {
+  const Diagnostic d = run_error("MX, abc\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:5");
+  EXPECT_EQ(d.message, "expected a number for X location (MX), found 'abc'");
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(InterpreterTest, NonNumericSecondParameterNamesItsAxis) {
+  const Diagnostic d = run_error("M3, 1, two, 3\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:8");
+  EXPECT_EQ(d.message, "expected a number for Y location (M3), found 'two'");
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(InterpreterTest, NonNumericSpeedNamesTheSpeed) {
+  const Diagnostic d = run_error("VS, , , , , fast\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:13");
+  EXPECT_EQ(d.message, "expected a number for XY jog speed (VS), found 'fast'");
+}
+
+// ---- soft limits
+
+TEST_F(InterpreterTest, MoveBeyondMaxSoftLimitIsAnErrorAndEmitsNothing) {
+  const Diagnostic d = run_error("SA\nMX, 25\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:2:1");
+  EXPECT_EQ(d.message,
+            "move to X=25.0000 is outside the soft limits 0.0000 to 24.0000 in (axes.x.min/max "
+            "in the profile); nothing was moved");
+  EXPECT_TRUE(moves().empty());
+  expect_vec(state().position, Vec6::Zero());
+}
+
+TEST_F(InterpreterTest, MoveBelowMinSoftLimitIsAnError) {
+  const Diagnostic d = run_error("MX, 1\nJX, -0.5\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:2:1");
+  EXPECT_EQ(d.message,
+            "move to X=-0.5000 is outside the soft limits 0.0000 to 24.0000 in (axes.x.min/max "
+            "in the profile); nothing was moved");
+  EXPECT_EQ(moves().size(), 1u);
+  expect_vec(state().position, at(1));
+}
+
+TEST_F(InterpreterTest, MoveToExactlyTheSoftLimitsIsAllowed) {
+  run("M3, 24, 18, 5.5\nM3, 0, 0, -4\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_vec(moves()[0].to, at(24, 18, 5.5));
+  expect_vec(moves()[1].to, at(0, 0, -4));
+}
+
+TEST_F(InterpreterTest, OneAxisOutsideLimitsStopsTheWholeMove) {
+  const Diagnostic d = run_error("M2, 1, 18.5\n");
+  EXPECT_EQ(d.message,
+            "move to Y=18.5000 is outside the soft limits 0.0000 to 18.0000 in (axes.y.min/max "
+            "in the profile); nothing was moved");
+  EXPECT_TRUE(moves().empty());
+  expect_vec(state().position, Vec6::Zero());
+}
+
+TEST_F(InterpreterTest, RelativeMoveIsCheckedAtItsTarget) {
+  const Diagnostic d = run_error("SR\nMX, 20\nMX, 5\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:3:1");
+  EXPECT_EQ(d.message.rfind("move to X=25.0000 is outside", 0), 0u) << d.message;
+  EXPECT_EQ(moves().size(), 1u);
+  expect_vec(state().position, at(20));
+}
+
+TEST_F(InterpreterTest, SoftLimitsComeFromTheSettings) {
+  settings.axes[0].max = 10;
+  const Diagnostic d = run_error("MX, 10.5\n");
+  EXPECT_EQ(d.message,
+            "move to X=10.5000 is outside the soft limits 0.0000 to 10.0000 in (axes.x.min/max "
+            "in the profile); nothing was moved");
+}
+
+TEST_F(InterpreterTest, OverflowingNumberIsOutsideTheSoftLimits) {
+  const Diagnostic d = run_error("MX, 1e999\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:1");
+  EXPECT_NE(d.message.find("is outside the soft limits"), std::string::npos) << d.message;
+  EXPECT_TRUE(moves().empty());
+}
+
+// ---- run and check
+
+TEST_F(InterpreterTest, RunStopsAtTheFirstError) {
+  const Diagnostic d = run_error("MX, 1\nQQ\nMX, 2\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:2:1");
+  ASSERT_EQ(moves().size(), 1u);
+  expect_vec(state().position, at(1));
+}
+
+TEST_F(InterpreterTest, RunRefusesAProgramWithParseErrorsBeforeAnyMotion) {
+  const Diagnostic d = run_error("MX, 1\nPAUSEX 3\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:2:1");
+  EXPECT_EQ(d.message.rfind("unknown statement 'PAUSEX'", 0), 0u) << d.message;
+  EXPECT_TRUE(moves().empty());
+  EXPECT_EQ(interp().statements_executed(), 0u);
+}
+
+TEST_F(InterpreterTest, CheckCollectsEveryErrorAndContinues) {
+  const std::vector<Diagnostic> errors = check(
+      "SA\n"        // 1
+      "MX, 1\n"     // 2
+      "QQ\n"        // 3
+      "MY, abc\n"   // 4
+      "MS, 0\n"     // 5
+      "MZ, 1, 2\n"  // 6
+      "MX, 30\n"    // 7
+      "MX, 2\n"     // 8
+      "MY\n");      // 9
+  ASSERT_EQ(errors.size(), 6u);
+  EXPECT_EQ(where(errors[0].loc), "part.sbp:3:1");
+  EXPECT_EQ(where(errors[1].loc), "part.sbp:4:5");
+  EXPECT_EQ(where(errors[2].loc), "part.sbp:5:5");
+  EXPECT_EQ(where(errors[3].loc), "part.sbp:6:8");
+  EXPECT_EQ(where(errors[4].loc), "part.sbp:7:1");
+  EXPECT_EQ(where(errors[5].loc), "part.sbp:9:1");
+  EXPECT_EQ(errors[0].message.rfind("unknown command 'QQ'", 0), 0u);
+  EXPECT_EQ(errors[3].message, "MZ takes 1 parameter; this is parameter 2");
+  // The good moves still ran, and the failed move to X=30 left X at 1.
+  ASSERT_EQ(moves().size(), 2u);
+  expect_vec(moves()[1].from, at(1));
+  expect_vec(moves()[1].to, at(2));
+  EXPECT_EQ(interp().statements_executed(), 9u);
+  EXPECT_EQ(sink.flushes, 1);
+}
+
+TEST_F(InterpreterTest, CheckReportsParseErrorsFirst) {
+  const std::vector<Diagnostic> errors = check("QQ\nPAUSEX 3\nMX, 1\n");
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_EQ(where(errors[0].loc), "part.sbp:2:1");
+  EXPECT_EQ(errors[0].message.rfind("unknown statement 'PAUSEX'", 0), 0u);
+  EXPECT_EQ(where(errors[1].loc), "part.sbp:1:1");
+  EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
+  EXPECT_EQ(moves().size(), 1u);
+}
+
+TEST_F(InterpreterTest, CheckOfAGoodProgramFindsNothing) {
+  EXPECT_TRUE(check("SA\nM3, 1, 1, .2\nSR\nMZ, -.45\nJZ, .45\nJX, 1.5\n").empty());
+  EXPECT_EQ(moves().size(), 4u);
+}
+
+TEST_F(InterpreterTest, CheckStopsAtEnd) {
+  const std::vector<Diagnostic> errors = check("MX, 1\nEND\nMX, 2\n");
+  EXPECT_TRUE(errors.empty());
+  EXPECT_EQ(moves().size(), 1u);
+  EXPECT_EQ(interp().statements_executed(), 2u);
+}
+
+TEST_F(InterpreterTest, CheckOfTheManyErrorsFileNamesTheFile) {
+  const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data/many_errors.sbp";
+  const Program p = parse_file(path);
+  ASSERT_TRUE(p.ok());
+  const std::vector<Diagnostic> errors = interp().check(p);
+  ASSERT_EQ(errors.size(), 4u);
+  EXPECT_EQ(where(errors[0].loc), path + ":3:1");
+  EXPECT_EQ(where(errors[1].loc), path + ":4:5");
+  EXPECT_EQ(where(errors[2].loc), path + ":5:5");
+  EXPECT_EQ(where(errors[3].loc), path + ":6:8");
+  EXPECT_EQ(moves().size(), 2u);
+}
+
+// ---- numbers
+
+TEST(EvaluateNumber, AcceptsOpenSbpNumerals) {
+  const std::pair<const char*, double> cases[] = {
+      {"5", 5},         {"-.45", -0.45}, {"+3.", 3},     {"1e-3", 0.001}, {".5", 0.5},
+      {"0", 0},         {"-0", 0},       {"007", 7},     {"1E3", 1000},   {"-2.5e+2", -250},
+      {"12.75", 12.75}, {"5.", 5},       {"+.25", 0.25}, {"3e0", 3}};
+  for (const auto& [text, value] : cases) {
+    SCOPED_TRACE(text);
+    EXPECT_DOUBLE_EQ(evaluate_number(Param{text, {}}, "X"), value);
+  }
+}
+
+TEST(EvaluateNumber, RejectsMalformedNumbers) {
+  for (const char* text : {"1.2.3", "--1", "e5", "5x", ".", "1e", "1e+", "+", "-", "+-1", "0x10",
+                           "inf", "nan", "1 2", ".e5", "5..", "abc"}) {
+    SCOPED_TRACE(text);
+    EXPECT_THROW(evaluate_number(Param{text, {}}, "X"), GantryError);
+  }
+}
+
+TEST(EvaluateNumber, ErrorIsAtTheParameterAndNamesWhatWasExpected) {
+  const Param p{"1.2.3", file_loc("job.sbp", 7, 12)};
+  try {
+    evaluate_number(p, "Z location (MZ)");
+    FAIL() << "no error";
+  } catch (const GantryError& e) {
+    EXPECT_EQ(where(e.diagnostic().loc), "job.sbp:7:12");
+    EXPECT_EQ(e.diagnostic().message, "expected a number for Z location (MZ), found '1.2.3'");
+    EXPECT_STREQ(e.what(),
+                 "job.sbp:7:12: error: expected a number for Z location (MZ), found '1.2.3'");
+  }
+}
+
+}  // namespace
+}  // namespace gantry

@@ -1,1 +1,475 @@
 #include <gtest/gtest.h>
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "gantry/core/diagnostic.hpp"
+#include "gantry/lang/parser.hpp"
+
+namespace gantry {
+namespace {
+
+Program parse(std::string_view text) {
+  return parse_program(text, "part.sbp");
+}
+
+// The command of statement i; fails the test if it is not a command.
+const CommandStmt& command(const Program& p, size_t i) {
+  static const CommandStmt none{};
+  if (i >= p.statements.size()) {
+    ADD_FAILURE() << "no statement " << i << "; the program has " << p.statements.size();
+    return none;
+  }
+  const auto* cmd = std::get_if<CommandStmt>(&p.statements[i].body);
+  if (!cmd) {
+    ADD_FAILURE() << "statement " << i << " is not a command";
+    return none;
+  }
+  return *cmd;
+}
+
+std::vector<std::string> param_texts(const CommandStmt& cmd) {
+  std::vector<std::string> out;
+  for (const Param& p : cmd.params) out.push_back(p.text);
+  return out;
+}
+
+// "FILE:LINE:COL" of a location, so that one expectation checks all three.
+std::string where(const SourceLoc& loc) {
+  return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
+         std::to_string(loc.column);
+}
+
+using Texts = std::vector<std::string>;
+
+// ---- comments and blank lines
+
+TEST(Parser, EmptyTextGivesNoStatementsAndNoErrors) {
+  const Program p = parse("");
+  EXPECT_TRUE(p.ok());
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_TRUE(p.file);
+  EXPECT_EQ(*p.file, "part.sbp");
+}
+
+TEST(Parser, BlankAndWhitespaceOnlyLinesAreSkipped) {
+  const Program p = parse("\n   \n\t\nMX, 1\n\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 1u);
+  EXPECT_EQ(p.statements[0].loc.line, 4);
+}
+
+TEST(Parser, ApostropheCommentLinesAreSkipped) {
+  const Program p = parse("' a comment, with commas\n   ' indented comment\nMX, 1\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 1u);
+  EXPECT_EQ(command(p, 0).code, "MX");
+  EXPECT_EQ(p.statements[0].loc.line, 3);
+}
+
+TEST(Parser, RemCommentLinesAreSkippedInAnyCase) {
+  const Program p = parse("REM a remark, MX 5\nrem lower case\n  Rem\tmixed\nREM\nMY, 2\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 1u);
+  EXPECT_EQ(command(p, 0).code, "MY");
+  EXPECT_EQ(p.statements[0].loc.line, 5);
+}
+
+TEST(Parser, WordStartingWithRemIsNotAComment) {
+  const Program p = parse("REMARK 5\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_TRUE(p.statements.empty());
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:1");
+  EXPECT_NE(p.errors[0].message.find("unknown statement 'REMARK'"), std::string::npos)
+      << p.errors[0].message;
+}
+
+// ---- commands and their parameters
+
+TEST(Parser, CommandCodeIsUpperCased) {
+  const Program p = parse("mx, 5\nJz, 1\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 2u);
+  EXPECT_EQ(command(p, 0).code, "MX");
+  EXPECT_EQ(command(p, 1).code, "JZ");
+}
+
+TEST(Parser, CommandWithoutParameters) {
+  const Program p = parse("SA\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 1u);
+  EXPECT_EQ(command(p, 0).code, "SA");
+  EXPECT_TRUE(command(p, 0).params.empty());
+}
+
+TEST(Parser, SpaceCommaAndCommaSpaceSeparatorsAreEquivalent) {
+  for (const char* text : {"MX 5", "MX, 5", "MX,5", "MX ,5", "MX\t5"}) {
+    SCOPED_TRACE(text);
+    const Program p = parse(text);
+    ASSERT_TRUE(p.ok());
+    ASSERT_EQ(p.statements.size(), 1u);
+    EXPECT_EQ(command(p, 0).code, "MX");
+    EXPECT_EQ(param_texts(command(p, 0)), Texts{"5"});
+  }
+}
+
+TEST(Parser, ParametersAreTrimmed) {
+  const Program p = parse("M3,  1 ,\t2\t,3   \n");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(param_texts(command(p, 0)), (Texts{"1", "2", "3"}));
+}
+
+TEST(Parser, SpaceSeparatorKeepsFollowingCommaSeparatedParameters) {
+  const Program p = parse("M3 1, 2, 3\n");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(param_texts(command(p, 0)), (Texts{"1", "2", "3"}));
+}
+
+TEST(Parser, BlankParameterIsKeptAsEmptyText) {
+  const Program p = parse("M3, , 2\n");
+  ASSERT_TRUE(p.ok());
+  const CommandStmt& cmd = command(p, 0);
+  ASSERT_EQ(cmd.params.size(), 2u);
+  EXPECT_TRUE(cmd.params[0].blank());
+  EXPECT_EQ(cmd.params[0].text, "");
+  EXPECT_FALSE(cmd.params[1].blank());
+  EXPECT_EQ(cmd.params[1].text, "2");
+}
+
+TEST(Parser, AdjacentCommasGiveBlankParameters) {
+  const Program p = parse("M3,,,4\n");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(param_texts(command(p, 0)), (Texts{"", "", "4"}));
+}
+
+TEST(Parser, TrailingBlankParametersAreDropped) {
+  const Program p = parse("MX, 5,\nM3, 1, , ,\nM3, , ,\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 3u);
+  EXPECT_EQ(param_texts(command(p, 0)), Texts{"5"});
+  EXPECT_EQ(param_texts(command(p, 1)), Texts{"1"});
+  EXPECT_TRUE(command(p, 2).params.empty());
+}
+
+TEST(Parser, TrailingCommentAfterParametersIsIgnored) {
+  const Program p = parse("M2, 1, 2 ' go to 1, 2, 3\n");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(param_texts(command(p, 0)), (Texts{"1", "2"}));
+}
+
+TEST(Parser, CommentDirectlyAfterParameterOrCode) {
+  const Program p = parse("MX, 5' tight comment\nSA ' distance mode\nSR'x\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 3u);
+  EXPECT_EQ(param_texts(command(p, 0)), Texts{"5"});
+  EXPECT_TRUE(command(p, 1).params.empty());
+  EXPECT_EQ(command(p, 2).code, "SR");
+  EXPECT_TRUE(command(p, 2).params.empty());
+}
+
+TEST(Parser, QuotedParameterKeepsCommasAndApostrophes) {
+  const Program p = parse("MX, \"a, it's\", 2\n");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(param_texts(command(p, 0)), (Texts{"\"a, it's\"", "2"}));
+}
+
+// ---- labels and END
+
+TEST(Parser, LabelIsUpperCasedAndLocated) {
+  const Program p = parse("SA\n  start:\nLOOP_2 :  ' comment\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 3u);
+  const auto* l1 = std::get_if<LabelStmt>(&p.statements[1].body);
+  const auto* l2 = std::get_if<LabelStmt>(&p.statements[2].body);
+  ASSERT_NE(l1, nullptr);
+  ASSERT_NE(l2, nullptr);
+  EXPECT_EQ(l1->name, "START");
+  EXPECT_EQ(l2->name, "LOOP_2");
+  EXPECT_EQ(where(p.statements[1].loc), "part.sbp:2:3");
+  EXPECT_EQ(where(p.statements[2].loc), "part.sbp:3:1");
+}
+
+TEST(Parser, TextAfterLabelIsAnErrorAtTheText) {
+  const Program p = parse("START: MX, 5\n");
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:8");
+  EXPECT_EQ(p.errors[0].message,
+            "unexpected text after the label; put the next statement on its own line");
+}
+
+TEST(Parser, EndInAnyCaseIsAnEndStatement) {
+  const Program p = parse("MX, 1\nend\n  END ' done\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 3u);
+  EXPECT_TRUE(std::holds_alternative<EndStmt>(p.statements[1].body));
+  EXPECT_TRUE(std::holds_alternative<EndStmt>(p.statements[2].body));
+  EXPECT_EQ(where(p.statements[2].loc), "part.sbp:3:3");
+}
+
+TEST(Parser, EndWithParametersIsAnErrorAtTheParameter) {
+  const Program p = parse("END 5\n");
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:5");
+  EXPECT_EQ(p.errors[0].message, "END takes no parameters");
+}
+
+TEST(Parser, StatementsAfterEndAreStillParsed) {
+  const Program p = parse("END\nMX, 1\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 2u);
+  EXPECT_EQ(command(p, 1).code, "MX");
+}
+
+// ---- line endings
+
+TEST(Parser, WindowsLineEndingsParseLikeUnix) {
+  const Program p = parse("' comment\r\nSA\r\nMX, 5\r\nM3, 1, , 2 \r\nSTART:\r\nEND\r\n");
+  ASSERT_TRUE(p.ok()) << format(p.errors.front());
+  ASSERT_EQ(p.statements.size(), 5u);
+  EXPECT_EQ(command(p, 0).code, "SA");
+  EXPECT_TRUE(command(p, 0).params.empty());
+  EXPECT_EQ(param_texts(command(p, 1)), Texts{"5"});
+  EXPECT_EQ(param_texts(command(p, 2)), (Texts{"1", "", "2"}));
+  ASSERT_TRUE(std::holds_alternative<LabelStmt>(p.statements[3].body));
+  EXPECT_EQ(std::get<LabelStmt>(p.statements[3].body).name, "START");
+  EXPECT_TRUE(std::holds_alternative<EndStmt>(p.statements[4].body));
+  EXPECT_EQ(p.statements[4].loc.line, 6);
+}
+
+TEST(Parser, WindowsLineEndingsKeepColumns) {
+  const Program p = parse("SA\r\n  MX, 5\r\n");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(where(p.statements[1].loc), "part.sbp:2:3");
+  EXPECT_EQ(where(command(p, 1).params[0].loc), "part.sbp:2:7");
+}
+
+TEST(Parser, LastLineWithoutNewlineIsParsed) {
+  const Program p = parse("SA\nMX, 5");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 2u);
+  EXPECT_EQ(param_texts(command(p, 1)), Texts{"5"});
+}
+
+// ---- locations
+
+TEST(Parser, StatementLocationIsTheFirstCharacterOfTheCode) {
+  const Program p = parse("SA\n\n   mx, 5\n");
+  ASSERT_TRUE(p.ok());
+  ASSERT_EQ(p.statements.size(), 2u);
+  EXPECT_EQ(where(p.statements[0].loc), "part.sbp:1:1");
+  EXPECT_EQ(where(p.statements[1].loc), "part.sbp:3:4");
+}
+
+TEST(Parser, ParameterLocationsAreTheirFirstCharacter) {
+  // Columns: M3 at 1, "1.5" at 5, "-2" at 11, "3" at 15.
+  const Program p = parse("SA\nM3, 1.5,  -2 ,3\n");
+  ASSERT_TRUE(p.ok());
+  const CommandStmt& cmd = command(p, 1);
+  ASSERT_EQ(cmd.params.size(), 3u);
+  EXPECT_EQ(where(cmd.params[0].loc), "part.sbp:2:5");
+  EXPECT_EQ(where(cmd.params[1].loc), "part.sbp:2:11");
+  EXPECT_EQ(where(cmd.params[2].loc), "part.sbp:2:15");
+}
+
+TEST(Parser, SpaceSeparatedParameterLocation) {
+  const Program p = parse("MX   7\n");
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(where(command(p, 0).params[0].loc), "part.sbp:1:6");
+}
+
+TEST(Parser, BlankParameterIsLocatedJustAfterItsComma) {
+  // `M3, , 2`: the blank field starts at column 4, right after the comma at column 3.
+  const Program p = parse("M3, , 2\n");
+  ASSERT_TRUE(p.ok());
+  const CommandStmt& cmd = command(p, 0);
+  ASSERT_EQ(cmd.params.size(), 2u);
+  EXPECT_EQ(where(cmd.params[0].loc), "part.sbp:1:4");
+  EXPECT_EQ(where(cmd.params[1].loc), "part.sbp:1:7");
+}
+
+TEST(Parser, AllLocationsShareTheFileName) {
+  const Program p = parse_program("MX, 1\n", "dir/job.sbp");
+  ASSERT_TRUE(p.ok());
+  ASSERT_TRUE(p.file);
+  EXPECT_EQ(*p.file, "dir/job.sbp");
+  EXPECT_EQ(p.statements[0].loc.file, p.file);
+  EXPECT_EQ(command(p, 0).params[0].loc.file, p.file);
+}
+
+// ---- errors
+
+TEST(Parser, UnknownLongStatementIsAnErrorAtItsStart) {
+  const Program p = parse("SA\n  PAUSEX 3\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:3");
+  EXPECT_EQ(p.errors[0].severity, Severity::Error);
+  EXPECT_EQ(p.errors[0].message,
+            "unknown statement 'PAUSEX'; commands are two characters, such as MX or J3");
+  ASSERT_EQ(p.statements.size(), 1u);  // only SA
+}
+
+TEST(Parser, CodeStartingWithADigitIsAnError) {
+  const Program p = parse("3M, 1\n");
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:1");
+  EXPECT_NE(p.errors[0].message.find("unknown statement '3M'"), std::string::npos);
+}
+
+TEST(Parser, OneLetterCodeIsAnError) {
+  const Program p = parse("M 5\n");
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:1");
+  EXPECT_NE(p.errors[0].message.find("unknown statement 'M'"), std::string::npos);
+}
+
+TEST(Parser, CodeRunIntoNumberWithoutSeparatorIsAnError) {
+  // `MX5` reads as one word; it is not taken as `MX, 5`.
+  const Program p = parse("SA\nMX5\n");
+  ASSERT_EQ(p.statements.size(), 1u);
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:1");
+  EXPECT_EQ(p.errors[0].message,
+            "unknown statement 'MX5'; commands are two characters, such as MX or J3");
+}
+
+TEST(Parser, CodeRunIntoSignedNumberIsAnErrorAtTheNumber) {
+  const Program p = parse("MX-5\n");
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:3");
+  EXPECT_EQ(p.errors[0].message,
+            "expected a space or a comma after the command MX; write `MX, -5`");
+}
+
+TEST(Parser, MissingSeparatorSuggestionStopsAtComma) {
+  const Program p = parse("M2.5, 1\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:3");
+  EXPECT_EQ(p.errors[0].message,
+            "expected a space or a comma after the command M2; write `M2, .5`");
+}
+
+TEST(Parser, MissingSeparatorSuggestionOnAWindowsLineHasNoCarriageReturn) {
+  const Program p = parse("MX-5\r\nMX-5 ' c\n");
+  ASSERT_EQ(p.errors.size(), 2u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:3");
+  EXPECT_EQ(p.errors[0].message,
+            "expected a space or a comma after the command MX; write `MX, -5`");
+  EXPECT_EQ(where(p.errors[1].loc), "part.sbp:2:3");
+  EXPECT_EQ(p.errors[1].message,
+            "expected a space or a comma after the command MX; write `MX, -5`");
+}
+
+TEST(Parser, UnexpectedCharacterAtStatementStart) {
+  const Program p = parse("  , MX 5\n");
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:3");
+  EXPECT_EQ(p.errors[0].message,
+            "unexpected ',' at the start of a statement; a line starts with a two-letter "
+            "command, a label or a comment");
+}
+
+TEST(Parser, UnclosedQuoteIsAnError) {
+  const Program p = parse("SA\nMX \"abc\n");
+  ASSERT_EQ(p.statements.size(), 1u);
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:4");
+  EXPECT_EQ(p.errors[0].message, "this parameter opens a quote (\") that is never closed");
+}
+
+TEST(Parser, UnclosedQuoteHidesApostropheComment) {
+  // The apostrophe is inside the open quote, so it does not start a comment.
+  const Program p = parse("MX \"abc ' not a comment\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:4");
+}
+
+TEST(Parser, UnclosedQuoteAfterCommaIsLocatedAtTheQuote) {
+  const Program p = parse("MX, \"abc\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:5");
+}
+
+TEST(Parser, BadLineAddsNoStatement) {
+  const Program p = parse("MX, \"abc\nMY, 1\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  ASSERT_EQ(p.statements.size(), 1u);
+  EXPECT_EQ(command(p, 0).code, "MY");
+}
+
+TEST(Parser, EveryBadLineIsReportedAndGoodLinesAreKept) {
+  const Program p = parse(
+      "SA\n"           // 1
+      "PAUSEX 3\n"     // 2
+      "MX, 1\n"        // 3
+      "MX5\n"          // 4
+      "' comment\n"    // 5
+      "MY \"open\n"    // 6
+      "START: MX 1\n"  // 7
+      "END 1\n"        // 8
+      "  *\n"          // 9
+      "MY, 2\n");      // 10
+  ASSERT_EQ(p.errors.size(), 6u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:1");
+  EXPECT_EQ(where(p.errors[1].loc), "part.sbp:4:1");
+  EXPECT_EQ(where(p.errors[2].loc), "part.sbp:6:4");
+  EXPECT_EQ(where(p.errors[3].loc), "part.sbp:7:8");
+  EXPECT_EQ(where(p.errors[4].loc), "part.sbp:8:5");
+  EXPECT_EQ(where(p.errors[5].loc), "part.sbp:9:3");
+  ASSERT_EQ(p.statements.size(), 3u);
+  EXPECT_EQ(p.statements[0].loc.line, 1);
+  EXPECT_EQ(p.statements[1].loc.line, 3);
+  EXPECT_EQ(p.statements[2].loc.line, 10);
+  EXPECT_FALSE(p.ok());
+}
+
+TEST(Parser, ErrorFormatsAsFileLineColumn) {
+  const Program p = parse("\nPAUSEX 3\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(format(p.errors[0]),
+            "part.sbp:2:1: error: unknown statement 'PAUSEX'; commands are two characters, such "
+            "as MX or J3");
+}
+
+// ---- files
+
+TEST(ParseFile, MissingFileIsOneErrorNamingIt) {
+  const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data/no_such_file.sbp";
+  const Program p = parse_file(path);
+  EXPECT_TRUE(p.statements.empty());
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), path + ":0:0");
+  EXPECT_EQ(p.errors[0].message, "cannot open the part file; check the name and that it exists");
+  EXPECT_EQ(format(p.errors[0]),
+            path + ": error: cannot open the part file; check the name and that it exists");
+}
+
+TEST(ParseFile, DirectoryIsAnUnreadableFile) {
+  const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data";
+  const Program p = parse_file(path);
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), path + ":0:0");
+  EXPECT_EQ(p.errors[0].message, "cannot open the part file; check the name and that it exists");
+}
+
+TEST(ParseFile, ReadsAndLocatesAFile) {
+  const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data/unknown_command.sbp";
+  const Program p = parse_file(path);
+  ASSERT_TRUE(p.ok());
+  ASSERT_TRUE(p.file);
+  EXPECT_EQ(*p.file, path);
+  ASSERT_EQ(p.statements.size(), 3u);
+  EXPECT_EQ(command(p, 1).code, "QQ");
+  EXPECT_EQ(param_texts(command(p, 1)), (Texts{"1", "2"}));
+  EXPECT_EQ(where(p.statements[1].loc), path + ":3:1");
+  EXPECT_EQ(where(command(p, 2).params[0].loc), path + ":4:5");
+}
+
+}  // namespace
+}  // namespace gantry

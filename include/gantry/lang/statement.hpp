@@ -12,7 +12,7 @@ namespace gantry {
 // One comma-separated parameter as written; empty text means "left blank".
 struct Param {
   std::string text;  // trimmed
-  SourceLoc loc;     // column of its first character (or of the comma before a blank)
+  SourceLoc loc;     // column of its first character (a blank: just after its comma)
   bool blank() const { return text.empty(); }
 };
 
