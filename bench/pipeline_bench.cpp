@@ -19,7 +19,8 @@ std::string generated_file(int lines) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> x(1, 23), y(1, 17), z(-0.5, 0.5);
   std::string text = "SA\nMS, 4, 2\n";
-  for (int i = 0; i < lines; ++i) text += fmt::format("M3, {:.4f}, {:.4f}, {:.4f}\n", x(rng), y(rng), z(rng));
+  for (int i = 0; i < lines; ++i)
+    text += fmt::format("M3, {:.4f}, {:.4f}, {:.4f}\n", x(rng), y(rng), z(rng));
   return text;
 }
 
@@ -31,9 +32,8 @@ void BM_ParseAndInterpret(benchmark::State& state) {
     Program p = parse_program(text, "bench.sbp");
     benchmark::DoNotOptimize(check_program(p, settings));
   }
-  state.counters["lines/s"] =
-      benchmark::Counter(static_cast<double>(state.range(0) * state.iterations()),
-                         benchmark::Counter::kIsRate);
+  state.counters["lines/s"] = benchmark::Counter(
+      static_cast<double>(state.range(0) * state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ParseAndInterpret)->Arg(100000)->Unit(benchmark::kMillisecond);
 
@@ -57,8 +57,8 @@ void BM_StepGeneratorSixAxesAt100kHz(benchmark::State& state) {
   }
   const double len = std::sqrt(6.0) * 10;  // one second at 10 units/s per axis
   PlannedSegment seg;
-  seg.profile = Trapezoid::plan(len, std::sqrt(6.0) * 10, std::sqrt(6.0) * 10,
-                                std::sqrt(6.0) * 10, 1e9);
+  seg.profile =
+      Trapezoid::plan(len, std::sqrt(6.0) * 10, std::sqrt(6.0) * 10, std::sqrt(6.0) * 10, 1e9);
   std::uint64_t words = 0;
   for (auto _ : state) {
     DiscardCard card;
@@ -71,8 +71,8 @@ void BM_StepGeneratorSixAxesAt100kHz(benchmark::State& state) {
   }
   state.counters["words/s"] =
       benchmark::Counter(static_cast<double>(words), benchmark::Counter::kIsRate);
-  state.counters["x_realtime"] = benchmark::Counter(
-      static_cast<double>(words) / s.card.pacer_hz(), benchmark::Counter::kIsRate);
+  state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(words) / s.card.pacer_hz(),
+                                                    benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_StepGeneratorSixAxesAt100kHz)->Unit(benchmark::kMillisecond);
 

@@ -10,7 +10,8 @@ KinematicsMonitor::KinematicsMonitor(const std::array<AxisLimits, kAxisCount>& l
                                      double tick_s, double window_s)
     : limits_(limits),
       tick_s_(tick_s),
-      window_ticks_(std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(window_s / tick_s)))) {}
+      window_ticks_(
+          std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(window_s / tick_s)))) {}
 
 void KinematicsMonitor::on_step(int axis, std::int64_t tick, bool positive) {
   Window& w = axes_[axis];
@@ -32,8 +33,8 @@ void KinematicsMonitor::close(int axis) {
   if (w.intervals == 0 || w.last == w.first) return;
   const AxisLimits& lim = limits_[axis];
   const double dt = static_cast<double>(w.last - w.first) * tick_s_;
-  const double v = (w.positive ? 1.0 : -1.0) * static_cast<double>(w.intervals) /
-                   (lim.steps_per_unit * dt);
+  const double v =
+      (w.positive ? 1.0 : -1.0) * static_cast<double>(w.intervals) / (lim.steps_per_unit * dt);
   const double mid = static_cast<double>(w.first + w.last) / 2 * tick_s_;
   w.max_v_ratio = std::max(w.max_v_ratio, std::abs(v) / lim.max_speed);
   if (w.have_prev && mid > w.prev_mid) {

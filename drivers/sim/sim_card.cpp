@@ -27,7 +27,6 @@ SimCard::SimCard(const Settings& settings, bool realtime)
       limits_(limits_of(settings)),
       monitor_(limits_, tick_s_) {
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
-  last_step_.fill(kLongAgo);
   last_dir_change_.fill(kLongAgo);
 }
 
@@ -43,9 +42,9 @@ void SimCard::write(std::span<const std::uint32_t> words) {
     ++tick_;
   }
   if (realtime_) {
-    std::this_thread::sleep_until(
-        wall_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                          std::chrono::duration<double>(time_s())));
+    std::this_thread::sleep_until(wall_start_ +
+                                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                      std::chrono::duration<double>(time_s())));
   }
 }
 
@@ -56,25 +55,29 @@ void SimCard::decode(std::uint32_t w) {
   constexpr double eps = 1e-6;  // microseconds: tolerance for the tick arithmetic only
   for (int i = 0; i < kAxisCount; ++i) {
     const AxisPins& ap = pins_.axes[i];
+    const bool step_changed = (diff & ap.step_mask) != 0;
+    const bool active = ((w & ap.step_mask) != 0) != ap.step_active_low;
+    // Order within one word: a trailing edge ends the pulse, then a direction change is
+    // judged, then a leading edge is a step. A direction change in the very word where the
+    // pulse ends is after the pulse, not during it.
+    if (step_changed && !active) {
+      if (static_cast<double>(t - pulse_start_[i]) * tick_us < step_pulse_us_ - eps)
+        violation(i, TimingRule::PulseWidth);
+      pulse_active_[i] = false;
+    }
     if (diff & ap.dir_mask) {
       if (pulse_active_[i]) violation(i, TimingRule::DirDuringPulse);
       last_dir_change_[i] = t;
     }
-    if (!(diff & ap.step_mask)) continue;
-    const bool active = ((w & ap.step_mask) != 0) != ap.step_active_low;
-    if (active) {
+    if (step_changed && active) {
       if (static_cast<double>(t - last_dir_change_[i]) * tick_us < dir_setup_us_ - eps)
         violation(i, TimingRule::DirSetup);
-      if (t - last_step_[i] < 2) violation(i, TimingRule::StepRate);  // pacer / 2 at most
       const bool positive = ((w & ap.dir_mask) != 0) == ap.invert_dir;
       steps_[i] += positive ? 1 : -1;
       monitor_.on_step(i, t, positive);
       pulse_start_[i] = t;
-      last_step_[i] = t;
-    } else if (static_cast<double>(t - pulse_start_[i]) * tick_us < step_pulse_us_ - eps) {
-      violation(i, TimingRule::PulseWidth);
+      pulse_active_[i] = true;
     }
-    pulse_active_[i] = active;
   }
   prev_ = w;
 }
@@ -92,10 +95,12 @@ const KinematicsMonitor& SimCard::kinematics() {
 
 const char* rule_name(TimingRule r) {
   switch (r) {
-    case TimingRule::PulseWidth: return "step pulse shorter than step_pulse_us";
-    case TimingRule::DirSetup: return "step less than dir_setup_us after a direction change";
-    case TimingRule::DirDuringPulse: return "direction changed during a step pulse";
-    case TimingRule::StepRate: return "step rate above pacer/2";
+    case TimingRule::PulseWidth:
+      return "step pulse shorter than step_pulse_us";
+    case TimingRule::DirSetup:
+      return "step less than dir_setup_us after a direction change";
+    case TimingRule::DirDuringPulse:
+      return "direction changed during a step pulse";
   }
   return "?";
 }

@@ -15,7 +15,9 @@
 
 namespace gantry {
 
-enum class TimingRule { PulseWidth, DirSetup, DirDuringPulse, StepRate };
+// The step rate needs no rule of its own: one word per tick makes two leading edges at
+// least two ticks apart (pacer / 2), and the pulse-width rule bounds it by the profile.
+enum class TimingRule { PulseWidth, DirSetup, DirDuringPulse };
 
 struct TimingViolation {
   std::uint64_t tick;
@@ -25,7 +27,7 @@ struct TimingViolation {
 
 class SimCard : public Card {
  public:
-  // Checks pulses against the profile's step_pulse_us and dir_setup_us and the pacer/2 rate.
+  // Checks pulses against the profile's step_pulse_us and dir_setup_us.
   explicit SimCard(const Settings& settings, bool realtime = false);
 
   void start(double pacer_hz) override;
@@ -53,7 +55,6 @@ class SimCard : public Card {
   std::uint32_t prev_ = 0;
   Steps6 steps_{};
   std::array<std::int64_t, kAxisCount> pulse_start_{};
-  std::array<std::int64_t, kAxisCount> last_step_{};
   std::array<std::int64_t, kAxisCount> last_dir_change_{};
   std::array<bool, kAxisCount> pulse_active_{};
   std::array<AxisLimits, kAxisCount> limits_{};

@@ -1,17 +1,17 @@
 // gantry: the headless command line. run, check and moves over the same pipeline as the UI.
-#include <CLI/CLI.hpp>   // command-line parsing
 #include <fmt/format.h>  // output
+#include <CLI/CLI.hpp>   // command-line parsing
 
 #include <cctype>    // toupper
 #include <cstdio>    // stdout, stderr
 #include <iostream>  // JSON to stdout
 
 #include "gantry/commands/command_docs.hpp"  // help text
-#include "gantry/lang/parser.hpp"             // parse_file
-#include "gantry/machine/job.hpp"      // run_job, check_program, interpret
-#include "progress.hpp"                // ProgressBar
-#include "report.hpp"                  // RunReport, to_json, to_text
-#include "sim/sim_card.hpp"            // SimCard
+#include "gantry/lang/parser.hpp"            // parse_file
+#include "gantry/machine/job.hpp"            // run_job, check_program, interpret
+#include "progress.hpp"                      // ProgressBar
+#include "report.hpp"                        // RunReport, to_json, to_text
+#include "sim/sim_card.hpp"                  // SimCard
 
 namespace gantry {
 namespace {
@@ -147,8 +147,9 @@ int cmd_help(const std::string& code, bool markdown) {
 
 int main(int argc, char** argv) {
   using namespace gantry;
-  CLI::App app{"Gantry: an OpenSBP CNC controller. Runs part files on a step card or the "
-               "simulated card."};
+  CLI::App app{
+      "Gantry: an OpenSBP CNC controller. Runs part files on a step card or the "
+      "simulated card."};
   app.set_version_flag("--version", std::string("gantry ") + GANTRY_VERSION);
   app.require_subcommand(1);
 

@@ -54,8 +54,7 @@ std::string to_text(const RunReport& r) {
   std::string out = fmt::format("status     {}\n", r.errors.empty() ? "done" : "error");
   out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)
-    out += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'),
-                       r.position[i]);
+    out += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.position[i]);
   out += fmt::format(" ({})\nsteps     ", units_name(r.units));
   for (int i = 0; i < kAxisCount; ++i)
     out += fmt::format(" {}={}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.steps[i]);
@@ -67,9 +66,10 @@ std::string to_text(const RunReport& r) {
   out += fmt::format("executed   {} statements, {} moves\n", r.lines, r.moves);
   out += fmt::format("timing     {} violations\n", r.timing_violations);
   for (const std::string& n : r.violation_notes) out += fmt::format("           {}\n", n);
-  out += fmt::format("limits     peak velocity {:.1f} %, peak acceleration {:.1f} % of the "
-                     "axis limits\n",
-                     r.max_velocity_ratio * 100, r.max_accel_ratio * 100);
+  out += fmt::format(
+      "limits     peak velocity {:.1f} %, peak acceleration {:.1f} % of the "
+      "axis limits\n",
+      r.max_velocity_ratio * 100, r.max_accel_ratio * 100);
   return out;
 }
 

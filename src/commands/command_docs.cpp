@@ -59,8 +59,8 @@ std::string commands_markdown(const CommandTable& table) {
       out += "\n| # | Parameter | Unit | Default | Meaning |\n|---|---|---|---|---|\n";
       for (size_t i = 0; i < s.params.size(); ++i) {
         const ParamSpec& p = s.params[i];
-        out += fmt::format("| {} | {} | {} | {} | {} |\n", i + 1, p.name, p.unit,
-                           param_default(p), p.help);
+        out += fmt::format("| {} | {} | {} | {} | {} |\n", i + 1, p.name, p.unit, param_default(p),
+                           p.help);
       }
     }
   }

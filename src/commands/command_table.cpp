@@ -25,10 +25,14 @@ const CommandSpec* CommandTable::find(std::string_view code) const {
 
 const char* group_name(CommandGroup g) {
   switch (g) {
-    case CommandGroup::Jog: return "Jog";
-    case CommandGroup::Move: return "Move";
-    case CommandGroup::Settings: return "Settings";
-    case CommandGroup::Values: return "Values";
+    case CommandGroup::Jog:
+      return "Jog";
+    case CommandGroup::Move:
+      return "Move";
+    case CommandGroup::Settings:
+      return "Settings";
+    case CommandGroup::Values:
+      return "Values";
   }
   return "?";
 }

@@ -9,8 +9,12 @@
 namespace gantry {
 namespace {
 
-void set_absolute(CommandContext& ctx, const CommandCall&) { ctx.state().absolute = true; }
-void set_relative(CommandContext& ctx, const CommandCall&) { ctx.state().absolute = false; }
+void set_absolute(CommandContext& ctx, const CommandCall&) {
+  ctx.state().absolute = true;
+}
+void set_relative(CommandContext& ctx, const CommandCall&) {
+  ctx.state().absolute = false;
+}
 
 // The five speed groups in parameter order, with the axis limit each must respect.
 struct GroupRef {
@@ -79,11 +83,17 @@ std::vector<ParamSpec> speed_params(std::string_view suffix, int groups) {
 
 void add_mode_commands(std::vector<CommandSpec>& out) {
   const auto S = CommandGroup::Settings;
-  out.push_back({"SA", "Set to absolute distances", S,
-                 "Locations in move commands are measured from the 0,0 point.", {},
+  out.push_back({"SA",
+                 "Set to absolute distances",
+                 S,
+                 "Locations in move commands are measured from the 0,0 point.",
+                 {},
                  set_absolute});
-  out.push_back({"SR", "Set to relative distances", S,
-                 "Locations in move commands are distances from the current position.", {},
+  out.push_back({"SR",
+                 "Set to relative distances",
+                 S,
+                 "Locations in move commands are distances from the current position.",
+                 {},
                  set_relative});
   out.push_back({"MS", "Move speed", CommandGroup::Move,
                  "Sets the move (cutting) speeds; a blank keeps that speed. In a file it ends "
@@ -95,8 +105,7 @@ void add_mode_commands(std::vector<CommandSpec>& out) {
   std::vector<ParamSpec> vs = speed_params("move", 4);
   for (ParamSpec& p : speed_params("jog", 4)) vs.push_back(p);
   out.push_back({"VS", "Values for speeds", CommandGroup::Values,
-                 "Sets move and jog speeds together without interrupting motion.", vs,
-                 set_speeds});
+                 "Sets move and jog speeds together without interrupting motion.", vs, set_speeds});
 }
 
 }  // namespace gantry

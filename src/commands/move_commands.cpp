@@ -23,8 +23,12 @@ void move_axes(CommandContext& ctx, const CommandCall& call) {
 ParamSpec axis_param(char axis, bool required) {
   static constexpr std::string_view names[] = {"X location", "Y location", "Z location",
                                                "A location", "B location", "C location"};
-  const int i = axis == 'X' ? 0 : axis == 'Y' ? 1 : axis == 'Z' ? 2 : axis == 'A' ? 3
-                : axis == 'B' ? 4 : 5;
+  const int i = axis == 'X'   ? 0
+                : axis == 'Y' ? 1
+                : axis == 'Z' ? 2
+                : axis == 'A' ? 3
+                : axis == 'B' ? 4
+                              : 5;
   return ParamSpec{names[i], "units", required, std::nullopt,
                    "Where the axis goes (SA), or how far it moves (SR)."};
 }
@@ -55,8 +59,8 @@ void add_move_commands(std::vector<CommandSpec>& out) {
   out.push_back({"MZ", "Move Z axis", M, single_move, axis_params("Z", true), move_axes<Move, Z>});
   out.push_back({"MA", "Move A axis", M, single_move, axis_params("A", true), move_axes<Move, A>});
   out.push_back({"MB", "Move B axis", M, single_move, axis_params("B", true), move_axes<Move, B>});
-  out.push_back({"M2", "Move 2 dimensions", M, multi_move, axis_params("XY", false),
-                 move_axes<Move, X, Y>});
+  out.push_back(
+      {"M2", "Move 2 dimensions", M, multi_move, axis_params("XY", false), move_axes<Move, X, Y>});
   out.push_back({"M3", "Move 3 dimensions", M, multi_move, axis_params("XYZ", false),
                  move_axes<Move, X, Y, Z>});
   out.push_back({"M4", "Move 4 dimensions", M, multi_move, axis_params("XYZA", false),
@@ -68,10 +72,10 @@ void add_move_commands(std::vector<CommandSpec>& out) {
   out.push_back({"JZ", "Jog Z axis", J, single_jog, axis_params("Z", true), move_axes<Jog, Z>});
   out.push_back({"JA", "Jog A axis", J, single_jog, axis_params("A", true), move_axes<Jog, A>});
   out.push_back({"JB", "Jog B axis", J, single_jog, axis_params("B", true), move_axes<Jog, B>});
-  out.push_back({"J2", "Jog 2 dimensions", J, multi_jog, axis_params("XY", false),
-                 move_axes<Jog, X, Y>});
-  out.push_back({"J3", "Jog 3 dimensions", J, multi_jog, axis_params("XYZ", false),
-                 move_axes<Jog, X, Y, Z>});
+  out.push_back(
+      {"J2", "Jog 2 dimensions", J, multi_jog, axis_params("XY", false), move_axes<Jog, X, Y>});
+  out.push_back(
+      {"J3", "Jog 3 dimensions", J, multi_jog, axis_params("XYZ", false), move_axes<Jog, X, Y, Z>});
   out.push_back({"J4", "Jog 4 dimensions", J, multi_jog, axis_params("XYZA", false),
                  move_axes<Jog, X, Y, Z, A>});
   out.push_back({"J5", "Jog 5 dimensions", J, multi_jog, axis_params("XYZAB", false),

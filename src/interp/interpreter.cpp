@@ -95,8 +95,8 @@ void Interpreter::execute_command(const CommandStmt& cmd, const SourceLoc& loc) 
     if (i < cmd.params.size() && !cmd.params[i].blank()) {
       call.values[i] = evaluate_number(cmd.params[i], fmt::format("{} ({})", ps.name, spec->code));
     } else if (ps.required) {
-      fail(call.param_loc(i), fmt::format("{} needs its parameter {} ({})", spec->code, i + 1,
-                                          ps.name));
+      fail(call.param_loc(i),
+           fmt::format("{} needs its parameter {} ({})", spec->code, i + 1, ps.name));
     } else {
       call.values[i] = ps.default_value;
     }

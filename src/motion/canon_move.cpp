@@ -5,11 +5,14 @@ namespace gantry {
 
 const char* kind_name(MoveKind k) {
   switch (k) {
-    case MoveKind::Line: return "line";
+    case MoveKind::Line:
+      return "line";
   }
   return "?";
 }
 
-const char* speed_class_name(SpeedClass c) { return c == SpeedClass::Move ? "move" : "jog"; }
+const char* speed_class_name(SpeedClass c) {
+  return c == SpeedClass::Move ? "move" : "jog";
+}
 
 }  // namespace gantry

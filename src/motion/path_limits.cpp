@@ -14,7 +14,9 @@ std::array<double, 5> group_fractions(const Vec6& delta, double length) {
           std::abs(delta[3]) / length, std::abs(delta[4]) / length, std::abs(delta[5]) / length};
 }
 
-std::array<double, 5> as_array(const GroupSpeeds& g) { return {g.xy, g.z, g.a, g.b, g.c}; }
+std::array<double, 5> as_array(const GroupSpeeds& g) {
+  return {g.xy, g.z, g.a, g.b, g.c};
+}
 
 // min over groups/axes with a non-zero share of limit / share.
 double limit_along(const std::array<double, 5>& fractions, const std::array<double, 5>& limits) {
@@ -32,7 +34,9 @@ double nominal_path_speed(const Vec6& delta, const GroupSpeeds& speeds) {
   return limit_along(group_fractions(delta, length), as_array(speeds));
 }
 
-double ramp_accel(double ramp_speed, double ramp_rate) { return 2 * (ramp_speed + 1) / ramp_rate; }
+double ramp_accel(double ramp_speed, double ramp_rate) {
+  return 2 * (ramp_speed + 1) / ramp_rate;
+}
 
 PathLimits path_limits(const CanonMove& m, const Settings& s) {
   PathLimits out;

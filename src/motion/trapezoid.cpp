@@ -35,19 +35,21 @@ double Trapezoid::distance_at(double t) const {
   return std::min(length, s_accel + s_cruise + v_cruise * t - accel * t * t / 2);
 }
 
-// Each phase solves s = u t +/- a t^2 / 2 for t. The form t = 2 s / (u + sqrt(u^2 +/- 2 a s))
+// Each phase solves s = u t +/- a t^2 / 2 for t. The form t = 2 s / (u + sqrt(u^2 + 2 a s))
 // is the same root as the textbook one but does not cancel when u is large and a t small.
+// The deceleration phase is solved backwards from the end (remaining distance r, reached
+// from v_exit accelerating), because sqrt(v^2 - 2 a s) cancels as the speed nears zero.
 double Trapezoid::time_at(double s) const {
   s = std::clamp(s, 0.0, length);
   if (s <= s_accel) {
     const double d = v_entry + std::sqrt(v_entry * v_entry + 2 * accel * s);
     return d > 0 ? 2 * s / d : 0;
   }
-  s -= s_accel;
-  if (s <= s_cruise) return t_accel + s / v_cruise;
-  s -= s_cruise;
-  const double d = v_cruise + std::sqrt(std::max(0.0, v_cruise * v_cruise - 2 * accel * s));
-  return t_accel + t_cruise + std::min(t_decel, 2 * s / d);
+  if (s <= s_accel + s_cruise) return t_accel + (s - s_accel) / v_cruise;
+  const double r = std::max(0.0, length - s);
+  const double d = v_exit + std::sqrt(v_exit * v_exit + 2 * accel * r);
+  const double back = d > 0 ? 2 * r / d : 0;
+  return duration() - std::min(t_decel, back);
 }
 
 double Trapezoid::speed_at(double t) const {

@@ -51,8 +51,8 @@ void StepGenerator::segment(const PlannedSegment& seg) {
       if (k == 1 && positive != positive_[i]) {
         // The new direction level goes out once the last pulse is over and no earlier than
         // words already sent; the step waits for the setup time after it.
-        const std::int64_t dir_tick = std::max(
-            {cursor_, pulse_end_[i], tick - timing_.dir_setup_ticks});
+        const std::int64_t dir_tick =
+            std::max({cursor_, pulse_end_[i], tick - timing_.dir_setup_ticks});
         events_.push_back({dir_tick, i, true, positive});
         tick = std::max(tick, dir_tick + timing_.dir_setup_ticks);
       }
@@ -77,6 +77,12 @@ void StepGenerator::flush() {
   std::int64_t end = segment_end_;
   for (std::int64_t pe : pulse_end_) end = std::max(end, pe);
   emit_until(end);
+  // A pulse ending exactly here needs the idle word itself sent, or its line stays active.
+  for (std::int64_t pe : pulse_end_)
+    if (pe == cursor_ && cursor_ > 0) {
+      emit_until(cursor_ + 1);
+      break;
+    }
   if (!block_.empty()) {
     card_.write(block_);
     block_.clear();

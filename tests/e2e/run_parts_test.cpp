@@ -1,8 +1,8 @@
 // End to end: real part files through `gantry` on the simulated card, checked to the step.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <sys/wait.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cmath>
@@ -28,9 +28,8 @@ struct Result {
 // Runs the gantry binary with `args`, capturing stdout and stderr.
 Result gantry(const std::string& args) {
   const fs::path err_file = fs::temp_directory_path() / fmt::format("gantry_e2e_{}.err", getpid());
-  const std::string cmd =
-      fmt::format("cd '{}' && '{}' {} 2>'{}'", kSource.string(), GANTRY_BIN, args,
-                  err_file.string());
+  const std::string cmd = fmt::format("cd '{}' && '{}' {} 2>'{}'", kSource.string(), GANTRY_BIN,
+                                      args, err_file.string());
   Result r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -49,8 +48,8 @@ Result gantry(const std::string& args) {
 
 // Steps per unit of the shipped profile, written out here so the test does not trust the code
 // under test to convert positions.
-constexpr std::array<double, 6> kStepsPerUnit{916.7324, 916.7324, 1018.5916, 13.8889, 13.8889,
-                                              13.8889};
+constexpr std::array<double, 6> kStepsPerUnit{916.7324, 916.7324, 1018.5916,
+                                              13.8889,  13.8889,  13.8889};
 constexpr std::array<const char*, 6> kAxes{"x", "y", "z", "a", "b", "c"};
 
 struct Expected {
@@ -123,8 +122,9 @@ TEST(Run, TextReportNamesTheOutcome) {
 // Bad input: a located message, exit status 1, and not one pulse on the card.
 void expect_rejected(const Result& r, const std::string& located_message) {
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find(located_message), std::string::npos)
-      << "stderr was:\n" << r.err << "\nexpected to contain:\n" << located_message;
+  EXPECT_NE(r.err.find(located_message), std::string::npos) << "stderr was:\n"
+                                                            << r.err << "\nexpected to contain:\n"
+                                                            << located_message;
 }
 
 void expect_no_motion(const std::string& out) {
@@ -142,16 +142,18 @@ TEST(BadInput, UnknownCommand) {
 
 TEST(BadInput, NonNumericParameter) {
   const Result r = gantry("run tests/data/non_numeric.sbp --json");
-  expect_rejected(r, "tests/data/non_numeric.sbp:3:5: error: expected a number for Y location "
-                     "(MY), found 'one'");
+  expect_rejected(r,
+                  "tests/data/non_numeric.sbp:3:5: error: expected a number for Y location "
+                  "(MY), found 'one'");
   expect_no_motion(r.out);
 }
 
 TEST(BadInput, MoveBeyondTheSoftLimitStopsBeforeAnyMotion) {
   // Line 2 is a legal move, but the file is refused whole: nothing moves at all.
   const Result r = gantry("run tests/data/soft_limit.sbp --json");
-  expect_rejected(r, "tests/data/soft_limit.sbp:3:1: error: move to X=30.0000 is outside the "
-                     "soft limits");
+  expect_rejected(r,
+                  "tests/data/soft_limit.sbp:3:1: error: move to X=30.0000 is outside the "
+                  "soft limits");
   expect_no_motion(r.out);
 }
 
@@ -163,8 +165,9 @@ TEST(BadInput, MissingPartFile) {
 
 TEST(BadInput, SettingsWithAWrongValue) {
   const Result r = gantry("run parts/demo.sbp --settings tests/data/bad_value.toml --json");
-  expect_rejected(r, "tests/data/bad_value.toml:11:18: error: axes.x.steps_per_unit = "
-                     "-916.7324 is out of range; allowed: > 0 and <= 1000000");
+  expect_rejected(r,
+                  "tests/data/bad_value.toml:11:18: error: axes.x.steps_per_unit = "
+                  "-916.7324 is out of range; allowed: > 0 and <= 1000000");
   EXPECT_EQ(r.out, "");  // no card was started, so there is no report
 }
 
@@ -224,7 +227,8 @@ TEST(Help, DocsCommandsPageIsGeneratedFromTheTable) {
   std::ifstream in(kSource / "docs" / "commands.md");
   std::stringstream page;
   page << in.rdbuf();
-  EXPECT_EQ(r.out, page.str()) << "regenerate with: build/gantry help --markdown > docs/commands.md";
+  EXPECT_EQ(r.out, page.str())
+      << "regenerate with: build/gantry help --markdown > docs/commands.md";
 }
 
 TEST(Help, OneCommandListsItsParametersInOrder) {

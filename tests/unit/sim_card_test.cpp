@@ -1,1 +1,538 @@
+// SimCard decoding and timing checks on hand-made words, the kinematics monitor on
+// computed step trains, and StepGenerator -> SimCard end to end.
 #include <gtest/gtest.h>
+
+#include "segment_builders.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "gantry/motion/planned_segment.hpp"
+#include "gantry/motion/trapezoid.hpp"
+#include "gantry/settings/settings.hpp"
+#include "gantry/step/step_generator.hpp"
+#include "sim/kinematics_monitor.hpp"
+#include "sim/sim_card.hpp"
+
+namespace gantry {
+namespace {
+
+// Default pins: X step bit 0, dir bit 8; Y step bit 1, dir bit 9; ... Direction low means
+// positive travel unless invert_dir.
+constexpr std::uint32_t kXStep = 1u << 0, kXDir = 1u << 8;
+constexpr std::uint32_t kYStep = 1u << 1, kYDir = 1u << 9;
+
+std::uint32_t step_bit(int axis) {
+  return 1u << axis;
+}
+std::uint32_t dir_bit(int axis) {
+  return 1u << (8 + axis);
+}
+
+std::uint64_t count(const SimCard& card, TimingRule rule) {
+  std::uint64_t n = 0;
+  for (const TimingViolation& v : card.first_violations()) n += v.rule == rule;
+  return n;
+}
+
+void play(SimCard& card, const std::vector<std::uint32_t>& words) {
+  card.write(words);
+}
+
+// ---------------------------------------------------------------------------------------
+// Step counting.
+
+TEST(SimCardSteps, CountsRisingEdgesAsPositiveSteps) {
+  SimCard card(default_settings());
+  play(card, {0, kXStep, 0, 0, kXStep, 0, kXStep, 0});
+  EXPECT_EQ(card.steps()[0], 3);
+  for (int i = 1; i < kAxisCount; ++i) EXPECT_EQ(card.steps()[i], 0);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, AHeldLineIsOneStep) {
+  SimCard card(default_settings());
+  play(card, {kXStep, kXStep, kXStep, kXStep, 0, 0});
+  EXPECT_EQ(card.steps()[0], 1);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, DirectionHighCountsNegative) {
+  SimCard card(default_settings());
+  play(card, {kXDir, kXDir, kXDir | kXStep, kXDir, kXDir | kXStep, kXDir, kXDir | kXStep, kXDir});
+  EXPECT_EQ(card.steps()[0], -3);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, CountsBothDirectionsToTheNetPosition) {
+  SimCard card(default_settings());
+  // +2, then the direction goes high and stays 2 ticks before three -1 steps.
+  play(card, {kXStep, 0, kXStep, 0, kXDir, kXDir, kXDir | kXStep, kXDir, kXDir | kXStep, kXDir,
+              kXDir | kXStep, kXDir, 0, 0, kXStep, 0});
+  EXPECT_EQ(card.steps()[0], 2 - 3 + 1);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, EveryAxisCountsOnItsOwnBits) {
+  SimCard card(default_settings());
+  std::vector<std::uint32_t> words;
+  std::uint32_t dirs = 0;
+  for (int i = 0; i < kAxisCount; i += 2) dirs |= dir_bit(i);  // X, Z, B negative
+  words.push_back(dirs);
+  for (int i = 0; i < kAxisCount; ++i) {  // axis i steps i + 1 times
+    for (int k = 0; k <= i; ++k) {
+      words.push_back(dirs | step_bit(i));
+      words.push_back(dirs);
+    }
+  }
+  play(card, words);
+  EXPECT_EQ(card.steps(), (Steps6{-1, 2, -3, 4, -5, 6}));
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, SimultaneousStepsOnTwoAxes) {
+  SimCard card(default_settings());
+  play(card, {kXStep | kYStep, 0, kXStep | kYStep, 0, kYStep, 0});
+  EXPECT_EQ(card.steps()[0], 2);
+  EXPECT_EQ(card.steps()[1], 3);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, InvertDirMakesDirectionHighPositive) {
+  Settings s = default_settings();
+  s.pins[0].invert_dir = true;
+  SimCard card(s);
+  // The line rests high (positive): three steps with it high, then two with it low.
+  play(card, {kXDir, kXDir | kXStep, kXDir, kXDir | kXStep, kXDir, kXDir | kXStep, kXDir, 0, 0,
+              kXStep, 0, kXStep, 0});
+  EXPECT_EQ(card.steps()[0], 3 - 2);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, InvertDirRestsHighSoALowLineIsAChange) {
+  Settings s = default_settings();
+  s.pins[0].invert_dir = true;
+  SimCard card(s);
+  play(card, {0, kXStep, 0});  // low from the first word: negative, and set 1 tick before
+  EXPECT_EQ(card.steps()[0], -1);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, ActiveLowStepsIdleHighAndCountFallingEdges) {
+  Settings s = default_settings();
+  s.pins[0].step_active_low = true;
+  s.card.step_pulse_us = 10;  // 2 ticks: a high gap of 1 tick would be a short pulse
+  SimCard card(s);
+  play(card, {kXStep, kXStep, 0, 0, kXStep, 0, 0, kXStep, kXStep});
+  EXPECT_EQ(card.steps()[0], 2);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, ActiveLowIdleLevelIsNotAStep) {
+  Settings s = default_settings();
+  s.pins[0].step_active_low = true;
+  SimCard card(s);
+  play(card, std::vector<std::uint32_t>(10, kXStep));
+  EXPECT_EQ(card.steps()[0], 0);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, ActiveLowWithInvertDir) {
+  Settings s = default_settings();
+  s.pins[1].step_active_low = true;
+  s.pins[1].invert_dir = true;
+  SimCard card(s);
+  const std::uint32_t idle = kYStep | kYDir;
+  play(card, {idle, kYDir, idle, kYDir, idle, kYStep, kYStep, 0, kYStep});
+  EXPECT_EQ(card.steps()[1], 2 - 1);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardSteps, CountsWordsAndTime) {
+  SimCard card(default_settings());
+  play(card, std::vector<std::uint32_t>(1000, 0));
+  play(card, std::vector<std::uint32_t>(500, 0));
+  EXPECT_EQ(card.words_played(), 1500u);
+  EXPECT_EQ(card.ticks_played(), 1500u);
+  EXPECT_NEAR(card.time_s(), 1500 * 5e-6, 1e-12);
+}
+
+TEST(SimCardSteps, EdgesAcrossWriteCallsAreDecoded) {
+  SimCard card(default_settings());
+  play(card, {0, kXStep});
+  play(card, {kXStep, 0});  // the pulse continues across the call: still one step
+  play(card, {kXStep});
+  play(card, {0});
+  EXPECT_EQ(card.steps()[0], 2);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+// ---------------------------------------------------------------------------------------
+// Timing rules.
+
+TEST(SimCardTiming, CleanSequenceHasNoViolations) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;  // 2 ticks
+  s.card.dir_setup_us = 10;   // 2 ticks
+  SimCard card(s);
+  play(card, {0, kXStep, kXStep, 0, kXStep, kXStep, 0, kXDir, kXDir, kXDir | kXStep, kXDir | kXStep,
+              kXDir, kXDir, 0, 0, kXStep, kXStep, 0});
+  EXPECT_EQ(card.steps()[0], 2 - 1 + 1);
+  EXPECT_EQ(card.timing_violations(), 0u);
+  EXPECT_TRUE(card.first_violations().empty());
+}
+
+TEST(SimCardTiming, PulseShorterThanTheSettingIsAViolation) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;  // 2 ticks
+  SimCard card(s);
+  play(card, {0, 0, kXStep, 0, 0, 0});  // 1 tick wide, ends at tick 3
+  EXPECT_EQ(card.steps()[0], 1);        // still counted
+  ASSERT_EQ(card.timing_violations(), 1u);
+  ASSERT_EQ(card.first_violations().size(), 1u);
+  const TimingViolation& v = card.first_violations()[0];
+  EXPECT_EQ(v.rule, TimingRule::PulseWidth);
+  EXPECT_EQ(v.axis, 0);
+  EXPECT_EQ(v.tick, 3u);
+}
+
+TEST(SimCardTiming, PulseOfExactlyTheSettingIsFine) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;
+  SimCard card(s);
+  play(card, {0, kYStep, kYStep, 0, kYStep, kYStep, kYStep, 0});
+  EXPECT_EQ(card.steps()[1], 2);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardTiming, ActiveLowShortPulseIsAViolation) {
+  Settings s = default_settings();
+  s.pins[0].step_active_low = true;
+  s.card.step_pulse_us = 10;
+  SimCard card(s);
+  play(card, {kXStep, 0, kXStep, kXStep});  // low for one tick only
+  EXPECT_EQ(card.steps()[0], 1);
+  ASSERT_EQ(card.timing_violations(), 1u);
+  EXPECT_EQ(card.first_violations()[0].rule, TimingRule::PulseWidth);
+}
+
+TEST(SimCardTiming, DirectionChangedWithTheStepIsASetupViolation) {
+  SimCard card(default_settings());  // setup 5 us = 1 tick
+  play(card, {0, kXDir | kXStep, kXDir, kXDir});
+  EXPECT_EQ(card.steps()[0], -1);
+  ASSERT_EQ(card.timing_violations(), 1u);
+  const TimingViolation& v = card.first_violations()[0];
+  EXPECT_EQ(v.rule, TimingRule::DirSetup);
+  EXPECT_EQ(v.axis, 0);
+  EXPECT_EQ(v.tick, 1u);
+}
+
+TEST(SimCardTiming, DirectionChangedLessThanSetupBeforeTheStepIsAViolation) {
+  Settings s = default_settings();
+  s.card.dir_setup_us = 10;  // 2 ticks
+  SimCard card(s);
+  play(card, {0, kXDir, kXDir | kXStep, kXDir});  // 1 tick of setup
+  ASSERT_EQ(card.timing_violations(), 1u);
+  EXPECT_EQ(card.first_violations()[0].rule, TimingRule::DirSetup);
+  EXPECT_EQ(card.first_violations()[0].tick, 2u);
+}
+
+TEST(SimCardTiming, DirectionChangedExactlySetupBeforeTheStepIsFine) {
+  Settings s = default_settings();
+  s.card.dir_setup_us = 10;
+  SimCard card(s);
+  play(card, {0, kXDir, kXDir, kXDir | kXStep, kXDir});
+  EXPECT_EQ(card.steps()[0], -1);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardTiming, ZeroSetupAllowsDirectionWithTheStep) {
+  Settings s = default_settings();
+  s.card.dir_setup_us = 0;
+  SimCard card(s);
+  play(card, {0, kXDir | kXStep, kXDir});
+  EXPECT_EQ(card.steps()[0], -1);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardTiming, DirectionChangedDuringAPulseIsAViolation) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;  // the pulse is 2 ticks, so it is still high at tick 2
+  SimCard card(s);
+  play(card, {0, kXStep, kXStep | kXDir, kXDir, kXDir});
+  EXPECT_EQ(card.steps()[0], 1);  // direction at the active edge was positive
+  ASSERT_EQ(card.timing_violations(), 1u);
+  const TimingViolation& v = card.first_violations()[0];
+  EXPECT_EQ(v.rule, TimingRule::DirDuringPulse);
+  EXPECT_EQ(v.axis, 0);
+  EXPECT_EQ(v.tick, 2u);
+}
+
+TEST(SimCardTiming, DirectionChangedWithTheTrailingEdgeIsNotDuringThePulse) {
+  SimCard card(default_settings());
+  play(card, {0, kXStep, kXDir, kXDir, kXDir | kXStep, kXDir});
+  EXPECT_EQ(card.steps()[0], 0);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardTiming, StepsTwoTicksApartAreTheFastestLegalRate) {
+  // One word per tick: the closest two rising edges of one line can be is 2 ticks (high, low,
+  // high), which is exactly pacer / 2, the allowed rate.
+  SimCard card(default_settings());
+  play(card, {kXStep, 0, kXStep, 0, kXStep, 0, kXStep, 0});
+  EXPECT_EQ(card.steps()[0], 4);
+  EXPECT_EQ(card.timing_violations(), 0u);
+}
+
+TEST(SimCardTiming, EachViolationIsCountedAndTheFirstSixteenKept) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;
+  SimCard card(s);
+  std::vector<std::uint32_t> words;
+  for (int k = 0; k < 20; ++k) {  // twenty 1-tick pulses on Y
+    words.push_back(kYStep);
+    words.push_back(0);
+    words.push_back(0);
+  }
+  play(card, words);
+  EXPECT_EQ(card.steps()[1], 20);
+  EXPECT_EQ(card.timing_violations(), 20u);
+  ASSERT_EQ(card.first_violations().size(), 16u);
+  for (std::size_t k = 0; k < 16; ++k) {
+    EXPECT_EQ(card.first_violations()[k].axis, 1);
+    EXPECT_EQ(card.first_violations()[k].rule, TimingRule::PulseWidth);
+    EXPECT_EQ(card.first_violations()[k].tick, 3 * k + 1);
+  }
+}
+
+TEST(SimCardTiming, ViolationsOnDifferentAxesAreAttributed) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;
+  SimCard card(s);
+  // Y: a 1-tick pulse. X: direction and step in one word.
+  play(card, {kYStep, 0, kXDir | kXStep, kXDir | kXStep, kXDir});
+  ASSERT_EQ(card.timing_violations(), 2u);
+  EXPECT_EQ(count(card, TimingRule::PulseWidth), 1u);
+  EXPECT_EQ(count(card, TimingRule::DirSetup), 1u);
+  EXPECT_EQ(card.first_violations()[0].axis, 1);
+  EXPECT_EQ(card.first_violations()[0].rule, TimingRule::PulseWidth);
+  EXPECT_EQ(card.first_violations()[1].axis, 0);
+  EXPECT_EQ(card.first_violations()[1].rule, TimingRule::DirSetup);
+}
+
+TEST(SimCardTiming, RuleNamesAreDistinct) {
+  EXPECT_STRNE(rule_name(TimingRule::PulseWidth), rule_name(TimingRule::DirSetup));
+  EXPECT_STRNE(rule_name(TimingRule::DirSetup), rule_name(TimingRule::DirDuringPulse));
+  EXPECT_STRNE(rule_name(TimingRule::PulseWidth), rule_name(TimingRule::DirDuringPulse));
+}
+
+// ---------------------------------------------------------------------------------------
+// KinematicsMonitor on computed step trains (default axes: X 916.7324 steps/in, 8 in/s,
+// 20 in/s^2; A 13.8889 steps/deg, 90 deg/s, 360 deg/s^2).
+
+constexpr double kTick = 5e-6;
+
+std::array<AxisLimits, kAxisCount> default_limits() {
+  const Settings s = default_settings();
+  std::array<AxisLimits, kAxisCount> out{};
+  for (int i = 0; i < kAxisCount; ++i)
+    out[i] = {s.axes[i].steps_per_unit, s.axes[i].max_speed, s.axes[i].max_accel};
+  return out;
+}
+
+// Steps at a constant rate of `v` units/s for `seconds`, from `start_tick`.
+std::vector<std::int64_t> constant_rate(double spu, double v, double seconds,
+                                        std::int64_t start_tick = 0) {
+  std::vector<std::int64_t> ticks;
+  const double period = 1 / (spu * v);
+  for (int k = 0; k * period <= seconds; ++k)
+    ticks.push_back(start_tick + std::llround(k * period / kTick));
+  return ticks;
+}
+
+// Steps under constant acceleration `a` from rest: step k at t_k = sqrt(2 k / (spu a)).
+std::vector<std::int64_t> constant_accel(double spu, double a, double seconds) {
+  std::vector<std::int64_t> ticks;
+  for (int k = 0;; ++k) {
+    const double t = std::sqrt(2.0 * k / (spu * a));
+    if (t > seconds) break;
+    ticks.push_back(std::llround(t / kTick));
+  }
+  return ticks;
+}
+
+TEST(KinematicsMonitor, ConstantRateGivesTheVelocityRatio) {
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  for (std::int64_t t : constant_rate(limits[0].steps_per_unit, 2.0, 0.5)) m.on_step(0, t, true);
+  m.finish();
+  EXPECT_NEAR(m.velocity_ratio(0), 2.0 / 8.0, 0.25 * 0.005);
+  EXPECT_NEAR(m.max_velocity_ratio(), 2.0 / 8.0, 0.25 * 0.005);
+  EXPECT_LT(m.accel_ratio(0), 0.05);  // constant speed: only tick rounding
+  EXPECT_DOUBLE_EQ(m.velocity_ratio(1), 0);
+}
+
+TEST(KinematicsMonitor, ConstantRateNegativeAndRotary) {
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  for (std::int64_t t : constant_rate(limits[0].steps_per_unit, 6.0, 0.3)) m.on_step(0, t, false);
+  for (std::int64_t t : constant_rate(limits[3].steps_per_unit, 45.0, 0.5)) m.on_step(3, t, true);
+  m.finish();
+  EXPECT_NEAR(m.velocity_ratio(0), 6.0 / 8.0, 0.75 * 0.005);
+  EXPECT_NEAR(m.velocity_ratio(3), 45.0 / 90.0, 0.5 * 0.005);
+  EXPECT_NEAR(m.max_velocity_ratio(), 0.75, 0.75 * 0.005);
+}
+
+TEST(KinematicsMonitor, ConstantAccelerationGivesTheAccelRatio) {
+  const auto limits = default_limits();
+  const double a = 10;  // half of X's 20 in/s^2
+  KinematicsMonitor m(limits, kTick);
+  for (std::int64_t t : constant_accel(limits[0].steps_per_unit, a, 0.3)) m.on_step(0, t, true);
+  m.finish();
+  EXPECT_NEAR(m.accel_ratio(0), a / 20, 0.05 * a / 20);
+  EXPECT_NEAR(m.max_accel_ratio(), a / 20, 0.05 * a / 20);
+  // The last window's mean velocity is just below the final 3 in/s.
+  EXPECT_GT(m.velocity_ratio(0), 2.8 / 8);
+  EXPECT_LE(m.velocity_ratio(0), 3.0 / 8);
+}
+
+TEST(KinematicsMonitor, ExcessiveAccelerationGivesARatioAboveOne) {
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  for (std::int64_t t : constant_accel(limits[0].steps_per_unit, 30, 0.2)) m.on_step(0, t, true);
+  m.finish();
+  EXPECT_NEAR(m.accel_ratio(0), 1.5, 0.075);
+}
+
+TEST(KinematicsMonitor, SpeedAboveTheLimitGivesARatioAboveOne) {
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  for (std::int64_t t : constant_rate(limits[0].steps_per_unit, 10.0, 0.2)) m.on_step(0, t, true);
+  for (std::int64_t t : constant_rate(limits[4].steps_per_unit, 100.0, 0.2)) m.on_step(4, t, false);
+  m.finish();
+  EXPECT_NEAR(m.velocity_ratio(0), 10.0 / 8.0, 1.25 * 0.005);
+  EXPECT_NEAR(m.velocity_ratio(4), 100.0 / 90.0, 1.11 * 0.005);
+  EXPECT_GT(m.max_velocity_ratio(), 1.0);
+}
+
+TEST(KinematicsMonitor, InstantReversalShowsAsALargeAcceleration) {
+  // 2 in/s forward for 0.1 s, then straight back at 2 in/s: windows are cut at the reversal,
+  // so the speed is right on both sides and the sign change reads as a huge acceleration.
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  const auto fwd = constant_rate(limits[0].steps_per_unit, 2.0, 0.1);
+  for (std::int64_t t : fwd) m.on_step(0, t, true);
+  for (std::int64_t t : constant_rate(limits[0].steps_per_unit, 2.0, 0.1, fwd.back() + 109))
+    m.on_step(0, t, false);
+  m.finish();
+  EXPECT_NEAR(m.velocity_ratio(0), 0.25, 0.25 * 0.005);
+  EXPECT_GT(m.accel_ratio(0), 10);  // about 4 in/s over ~10 ms = 400 in/s^2 = 20 x 20
+}
+
+TEST(KinematicsMonitor, ReversalClosesAWindowBeforeItIsFull) {
+  // 5 steps forward and 5 back at 2 in/s, all within one 10 ms window's span: two windows,
+  // +2 and -2 in/s about 2.7 ms apart, so a huge acceleration; one mixed window would read
+  // a steady 2 in/s.
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  const auto train = constant_rate(limits[0].steps_per_unit, 2.0, 0.005);
+  ASSERT_GE(train.size(), 10u);
+  for (std::size_t k = 0; k < 10; ++k) m.on_step(0, train[k], k < 5);
+  m.finish();
+  EXPECT_NEAR(m.velocity_ratio(0), 0.25, 0.25 * 0.01);
+  EXPECT_GT(m.accel_ratio(0), 50);  // 4 in/s over 545 ticks = 1467 in/s^2 = 73 x 20
+}
+
+TEST(KinematicsMonitor, FinishClosesTheOpenWindow) {
+  // A train shorter than one 10 ms window is only measured when the run is finished.
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  for (std::int64_t t : constant_rate(limits[0].steps_per_unit, 4.0, 0.005)) m.on_step(0, t, true);
+  EXPECT_DOUBLE_EQ(m.velocity_ratio(0), 0);
+  m.finish();
+  EXPECT_NEAR(m.velocity_ratio(0), 0.5, 0.5 * 0.01);
+}
+
+TEST(KinematicsMonitor, SimCardFeedsItFromDecodedSteps) {
+  Settings s = default_settings();
+  SimCard card(s);
+  card.start(s.card.pacer_hz());
+  const auto ticks = constant_rate(s.axes[1].steps_per_unit, 4.0, 0.2);
+  std::vector<std::uint32_t> words(static_cast<std::size_t>(ticks.back() + 2), 0);
+  for (std::int64_t t : ticks) words[static_cast<std::size_t>(t)] = kYStep;
+  play(card, words);
+  EXPECT_EQ(card.steps()[1], static_cast<std::int64_t>(ticks.size()));
+  EXPECT_EQ(card.timing_violations(), 0u);
+  EXPECT_NEAR(card.kinematics().velocity_ratio(1), 0.5, 0.5 * 0.005);
+  EXPECT_LT(card.kinematics().max_accel_ratio(), 0.05);
+}
+
+// ---------------------------------------------------------------------------------------
+// StepGenerator -> SimCard.
+
+using test::segment;
+using test::vec;
+
+struct EndToEnd {
+  explicit EndToEnd(const Settings& s) : settings(s), card(s), gen(s, card) {
+    card.start(s.card.pacer_hz());
+  }
+  Settings settings;
+  SimCard card;
+  StepGenerator gen;
+};
+
+TEST(SimCardEndToEnd, StepsMatchTheGeneratorAndNothingIsViolated) {
+  EndToEnd e(default_settings());
+  const Vec6 p0 = Vec6::Zero(), p1 = vec(0.5, 0.25, -0.1, 3), p2 = vec(0.2, 0.4, 0.05, -2, 1),
+             p3 = vec(0.2, 0.1, 0.05, -2, 1, 4), p4 = vec(0.3, 0.1, -0.02);
+  // Speeds and accelerations within every axis's limits, as the planner would make them.
+  e.gen.segment(segment(p0, p1, 0, 1.5, 0, 10));
+  e.gen.segment(segment(p1, p2, 0, 2.0, 0, 12));
+  e.gen.segment(segment(p2, p3, 0, 3.0, 0, 14));
+  e.gen.segment(segment(p3, p4, 0, 2.0, 0, 14));
+  e.gen.flush();
+  EXPECT_EQ(e.card.steps(), e.gen.position());
+  for (int i = 0; i < kAxisCount; ++i)
+    EXPECT_EQ(e.card.steps()[i], std::llround(p4[i] * e.settings.axes[i].steps_per_unit))
+        << "axis " << i;
+  EXPECT_EQ(e.card.timing_violations(), 0u);
+  EXPECT_EQ(e.card.words_played(), static_cast<std::uint64_t>(e.gen.tick()));
+  EXPECT_LE(e.card.kinematics().max_velocity_ratio(), 1.0);
+  EXPECT_LE(e.card.kinematics().max_accel_ratio(), 1.0);
+}
+
+TEST(SimCardEndToEnd, WideningPulseAndSetupKeepsTheCardHappy) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 12;  // 3 ticks
+  s.card.dir_setup_us = 17;   // 4 ticks
+  s.pins[0].invert_dir = true;
+  s.pins[1].step_active_low = true;
+  EndToEnd e(s);
+  const Vec6 p1 = vec(0.3, -0.2, 0.1), p2 = vec(-0.1, 0.1, -0.1), p3 = vec(0.05, 0.1, 0);
+  e.gen.segment(segment(Vec6::Zero(), p1, 0, 2.0, 0, 14));
+  e.gen.segment(segment(p1, p2, 0, 2.0, 0, 14));
+  e.gen.segment(segment(p2, p3, 0, 1.0, 0, 14));
+  e.gen.flush();
+  EXPECT_EQ(e.card.steps(), e.gen.position());
+  EXPECT_EQ(e.card.steps()[0], std::llround(0.05 * s.axes[0].steps_per_unit));
+  EXPECT_EQ(e.card.timing_violations(), 0u);
+}
+
+TEST(SimCardEndToEnd, AbruptFastReversalHasNoViolations) {
+  EndToEnd e(default_settings());
+  const double spu = e.settings.axes[0].steps_per_unit;
+  const double v = 100e3 / spu;
+  const Vec6 p1 = vec(20 / spu), p2 = vec(10 / spu);
+  e.gen.segment(segment(Vec6::Zero(), p1, v, v, v, 1e6));
+  e.gen.segment(segment(p1, p2, v, v, v, 1e6));
+  e.gen.flush();
+  EXPECT_EQ(e.card.steps(), e.gen.position());
+  EXPECT_EQ(e.card.steps()[0], 10);
+  EXPECT_EQ(e.card.timing_violations(), 0u);
+}
+
+}  // namespace
+}  // namespace gantry

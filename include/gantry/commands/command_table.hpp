@@ -27,8 +27,8 @@ struct ParamSpec {
 // A command's parameters after evaluation: one slot per ParamSpec, nullopt when blank.
 struct CommandCall {
   const CommandSpec& spec;
-  SourceLoc loc;                         // the command's own location
-  const std::vector<Param>& params;      // as written, for locating errors
+  SourceLoc loc;                     // the command's own location
+  const std::vector<Param>& params;  // as written, for locating errors
   std::vector<std::optional<double>> values;
 
   // The location of parameter i (or of the command when it was not written).

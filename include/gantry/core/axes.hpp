@@ -19,6 +19,8 @@ using Steps6 = std::array<std::int64_t, kAxisCount>;
 
 inline constexpr std::array<char, kAxisCount> kAxisLetters{'x', 'y', 'z', 'a', 'b', 'c'};
 
-constexpr int index(Axis a) { return static_cast<int>(a); }
+constexpr int index(Axis a) {
+  return static_cast<int>(a);
+}
 
 }  // namespace gantry

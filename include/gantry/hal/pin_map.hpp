@@ -12,7 +12,7 @@ namespace gantry {
 struct AxisPins {
   std::uint32_t step_mask = 0;
   std::uint32_t dir_mask = 0;
-  bool invert_dir = false;       // dir bit high means negative travel
+  bool invert_dir = false;       // default: dir line low = positive travel; inverted: high
   bool step_active_low = false;  // idle high, pulse low
 };
 

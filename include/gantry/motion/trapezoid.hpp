@@ -24,8 +24,7 @@ struct Trapezoid {
 
   // Plans the fastest profile within v_max and accel. Requires the entry and exit speeds to
   // be reachable from each other over `length` (v_entry, v_exit <= v_max).
-  static Trapezoid plan(double length, double v_entry, double v_max, double v_exit,
-                        double accel);
+  static Trapezoid plan(double length, double v_entry, double v_max, double v_exit, double accel);
 
   double duration() const { return t_accel + t_cruise + t_decel; }
   // Distance travelled at time t (clamped to [0, duration]).

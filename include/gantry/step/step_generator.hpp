@@ -61,7 +61,7 @@ class StepGenerator : public SegmentSink {
   Card& card_;
   std::size_t block_words_;
 
-  Steps6 position_{};            // steps after all applied events
+  Steps6 position_{};  // steps after all applied events
   std::array<bool, kAxisCount> positive_{};
   std::array<std::int64_t, kAxisCount> last_step_{};
   std::array<std::int64_t, kAxisCount> pulse_end_{};
