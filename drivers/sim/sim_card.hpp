@@ -41,7 +41,6 @@ class SimCard : public Card {
   const std::vector<TimingViolation>& first_violations() const { return violations_; }
   // Call once the run has ended, before reading the kinematics.
   const KinematicsMonitor& kinematics();
-  std::uint64_t words_played() const { return tick_; }
 
  private:
   void decode(std::uint32_t word);

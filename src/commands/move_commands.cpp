@@ -20,22 +20,15 @@ void move_axes(CommandContext& ctx, const CommandCall& call) {
   ctx.line_to(target, Class, call.loc);
 }
 
-ParamSpec axis_param(char axis, bool required) {
-  static constexpr std::string_view names[] = {"X location", "Y location", "Z location",
-                                               "A location", "B location", "C location"};
-  const int i = axis == 'X'   ? 0
-                : axis == 'Y' ? 1
-                : axis == 'Z' ? 2
-                : axis == 'A' ? 3
-                : axis == 'B' ? 4
-                              : 5;
-  return ParamSpec{names[i], "units", required, std::nullopt,
-                   "Where the axis goes (SA), or how far it moves (SR)."};
-}
-
+// Parameters named after each letter of `axes` ("XYZ"), in part-file order.
 std::vector<ParamSpec> axis_params(std::string_view axes, bool required) {
+  static const std::string names[] = {"X location", "Y location", "Z location",
+                                      "A location", "B location", "C location"};
+  static constexpr std::string_view letters = "XYZABC";
   std::vector<ParamSpec> out;
-  for (char a : axes) out.push_back(axis_param(a, required));
+  for (char a : axes)
+    out.push_back({names[letters.find(a)], "units", required, std::nullopt,
+                   "Where the axis goes (SA), or how far it moves (SR)."});
   return out;
 }
 

@@ -31,7 +31,7 @@ void CommandContext::line_to(const Vec6& target, SpeedClass cls, const SourceLoc
 }
 
 Interpreter::Interpreter(const Settings& settings, MotionSink& sink, const CommandTable& table)
-    : settings_(settings), table_(table), sink_(sink), ctx_(state_, settings, sink) {
+    : table_(table), sink_(sink), ctx_(state_, settings, sink) {
   state_.speeds = settings.speeds;
 }
 

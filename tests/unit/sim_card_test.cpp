@@ -154,7 +154,7 @@ TEST(SimCardSteps, CountsWordsAndTime) {
   SimCard card(default_settings());
   play(card, std::vector<std::uint32_t>(1000, 0));
   play(card, std::vector<std::uint32_t>(500, 0));
-  EXPECT_EQ(card.words_played(), 1500u);
+  EXPECT_EQ(card.ticks_played(), 1500u);
   EXPECT_EQ(card.ticks_played(), 1500u);
   EXPECT_NEAR(card.time_s(), 1500 * 5e-6, 1e-12);
 }
@@ -499,7 +499,7 @@ TEST(SimCardEndToEnd, StepsMatchTheGeneratorAndNothingIsViolated) {
     EXPECT_EQ(e.card.steps()[i], std::llround(p4[i] * e.settings.axes[i].steps_per_unit))
         << "axis " << i;
   EXPECT_EQ(e.card.timing_violations(), 0u);
-  EXPECT_EQ(e.card.words_played(), static_cast<std::uint64_t>(e.gen.tick()));
+  EXPECT_EQ(e.card.ticks_played(), static_cast<std::uint64_t>(e.gen.tick()));
   EXPECT_LE(e.card.kinematics().max_velocity_ratio(), 1.0);
   EXPECT_LE(e.card.kinematics().max_accel_ratio(), 1.0);
 }

@@ -65,7 +65,6 @@ class Interpreter {
   bool execute(const Statement& st);
   void execute_command(const CommandStmt& cmd, const SourceLoc& loc);
 
-  const Settings& settings_;
   const CommandTable& table_;
   MotionSink& sink_;
   ModalState state_;
