@@ -2,21 +2,25 @@
 #include <fmt/format.h>  // output
 #include <CLI/CLI.hpp>   // command-line parsing
 
-#include <cctype>    // toupper
-#include <cstdio>    // stdout, stderr
-#include <iostream>  // JSON to stdout
+#include <algorithm>  // none_of
+#include <cctype>     // toupper
+#include <cstdio>     // stdout, stderr
+#include <iostream>   // JSON to stdout
 
 #include "gantry/commands/command_docs.hpp"  // help text
-#include "gantry/lang/parser.hpp"            // parse_file
+#include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
 #include "progress.hpp"                      // ProgressBar
 #include "report.hpp"                        // RunReport, to_json, to_text
 #include "sim/sim_card.hpp"                  // SimCard
+#include "terminal_io.hpp"                   // TerminalIO
+
+#include <unistd.h>  // isatty
 
 namespace gantry {
 namespace {
 
-void print_errors(const std::vector<Diagnostic>& errors) {
+void print_errors(const std::vector<Diagnostic>& errors) {  // and warnings
   for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));
 }
 
@@ -37,13 +41,62 @@ struct RunArgs {
   bool json = false, realtime = false;
 };
 
-int cmd_run(const RunArgs& a) {
+// Options every command that interprets a file shares.
+struct LanguageArgs {
+  bool yes = false;
+  bool allow_shell = false;
+  std::vector<std::string> inputs;  // NAME=VALUE
+  std::string macros;
+  std::string persistent;  // file of $variables; default in the user's config directory
+  std::size_t budget = 10'000'000;
+
+  void add_to(CLI::App* cmd) {
+    cmd->add_flag("--yes", yes, "Continue every PAUSE and press each MSGBOX's default button");
+    cmd->add_option("--input", inputs, "Answer INPUT for a variable: --input '&DEPTH=0.5'");
+    cmd->add_flag("--allow-shell", allow_shell, "Let SHELL start programs");
+    cmd->add_option("--macros", macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
+    cmd->add_option("--persistent", persistent, "File of persistent $variables (JSON)");
+  }
+
+  // Options for the job; false (after printing why) when an --input is malformed.
+  bool job_options(const Settings& settings, JobOptions& out) const {
+    out.interpreter.allow_shell = allow_shell;
+    out.interpreter.macro_dir = macros;
+    out.interpreter.trig_in_degrees = settings.dialect == Dialect::FabMo;
+    out.check_budget = budget;
+    for (const std::string& kv : inputs) {
+      const size_t eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) {
+        fmt::print(stderr, "error: --input {} must be NAME=VALUE, e.g. --input '&DEPTH=0.5'\n", kv);
+        return false;
+      }
+      std::string name = kv.substr(0, eq);
+      for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      if (name[0] != '&' && name[0] != '$') name = "&" + name;
+      out.inputs[name] = kv.substr(eq + 1);
+    }
+    return true;
+  }
+
+  PersistentStore store() const {
+    return PersistentStore(persistent.empty() ? PersistentStore::default_path() : persistent);
+  }
+};
+
+int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   Settings settings;
   RunReport report;
-  Program program;
   if (!load_profile(a.settings, settings)) return 1;
+  JobOptions opt;
+  if (!lang.job_options(settings, opt)) return 1;
+  PersistentStore store = lang.store();
   report.units = settings.units;
-  program = parse_file(a.file);
+  std::shared_ptr<const Script> script = Script::load(a.file);
+  // A person at a terminal answers the file's questions, unless --yes/--input do.
+  ScriptedIO scripted(lang.yes, opt.inputs);
+  TerminalIO terminal;
+  const bool interactive = !lang.yes && isatty(STDIN_FILENO) && isatty(STDERR_FILENO);
+  OperatorIO& io = interactive ? static_cast<OperatorIO&>(terminal) : scripted;
 
   if (!a.json)
     fmt::print(stderr, "gantry: running {} on the simulated card, profile \"{}\"\n", a.file,
@@ -52,10 +105,12 @@ int cmd_run(const RunArgs& a) {
   JobResult job;
   {
     ProgressBar bar;
-    JobOptions opt;
-    if (bar.enabled() && !a.json) opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
-    job = run_job(program, settings, card, opt);
+    if (bar.enabled() && !a.json && !interactive)
+      opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
+    job = run_job(script, settings, card, io, store, opt);
   }
+  for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));
+  for (const Diagnostic& w : scripted.warnings()) fmt::print(stderr, "{}\n", format(w));
   report.errors = job.errors;
   report.lines = job.lines;
   report.moves = job.moves;
@@ -82,14 +137,18 @@ int cmd_run(const RunArgs& a) {
   return report.errors.empty() && report.timing_violations == 0 ? 0 : 1;
 }
 
-int cmd_check(const std::string& file, const std::string& settings_path) {
+int cmd_check(const std::string& file, const std::string& settings_path, const LanguageArgs& lang) {
   Settings settings;
   if (!load_profile(settings_path, settings)) return 1;
-  const Program program = parse_file(file);
-  const std::vector<Diagnostic> errors = check_program(program, settings);
-  print_errors(errors);
-  if (errors.empty()) fmt::print("{}: ok, {} statements\n", file, program.statements.size());
-  return errors.empty() ? 0 : 1;
+  JobOptions opt;
+  if (!lang.job_options(settings, opt)) return 1;
+  std::shared_ptr<const Script> script = Script::load(file);
+  const std::vector<Diagnostic> found = check_program(script, settings, lang.store(), opt);
+  print_errors(found);
+  const bool ok = std::none_of(found.begin(), found.end(),
+                               [](const Diagnostic& d) { return d.severity == Severity::Error; });
+  if (ok) fmt::print("{}: ok, {} lines\n", file, script->line_count());
+  return ok ? 0 : 1;
 }
 
 class PrintingSink : public MotionSink {
@@ -107,18 +166,28 @@ class PrintingSink : public MotionSink {
   bool jsonl_;
 };
 
-int cmd_moves(const std::string& file, const std::string& settings_path,
-              const std::string& format) {
+int cmd_moves(const std::string& file, const std::string& settings_path, const std::string& format,
+              const LanguageArgs& lang) {
   Settings settings;
   if (!load_profile(settings_path, settings)) return 1;
-  const Program program = parse_file(file);
-  const std::vector<Diagnostic> errors = check_program(program, settings);
-  if (!errors.empty()) {
-    print_errors(errors);
+  JobOptions opt;
+  if (!lang.job_options(settings, opt)) return 1;
+  std::shared_ptr<const Script> script = Script::load(file);
+  PersistentStore scratch = lang.store();
+  const std::vector<Diagnostic> found = check_program(script, settings, scratch, opt);
+  const bool ok = std::none_of(found.begin(), found.end(),
+                               [](const Diagnostic& d) { return d.severity == Severity::Error; });
+  if (!ok) {
+    print_errors(found);
     return 1;
   }
+  // Moves are a preview: PRINT output and operator questions are answered as in a check.
   PrintingSink sink(format == "jsonl");
-  interpret(program, settings, sink);
+  std::string printed;
+  ScriptedIO io(true, opt.inputs, &printed);
+  opt.interpreter.dry_run = true;
+  PersistentStore preview = PersistentStore(scratch);
+  interpret(script, settings, sink, io, preview, opt);
   return 0;
 }
 
@@ -162,11 +231,17 @@ int main(int argc, char** argv) {
       ->default_str("sim");
   run_cmd->add_flag("--json", run.json, "Print the report as one JSON object on stdout");
   run_cmd->add_flag("--realtime", run.realtime, "Play the simulated card in real time");
+  LanguageArgs run_lang, check_lang, moves_lang;
+  run_lang.add_to(run_cmd);
 
   std::string check_file, check_settings;
   CLI::App* check_cmd = app.add_subcommand("check", "Check a part file without motion");
   check_cmd->add_option("file", check_file, "Part file (.sbp)")->required();
   check_cmd->add_option("--settings", check_settings, "Machine profile (TOML)");
+  check_lang.add_to(check_cmd);
+  check_cmd->add_option("--budget", check_lang.budget,
+                        "Statements a check may run before it "
+                        "calls the file a runaway loop");
 
   std::string moves_file, moves_settings, moves_format = "text";
   CLI::App* moves_cmd = app.add_subcommand("moves", "Print the canonical moves of a part file");
@@ -174,6 +249,7 @@ int main(int argc, char** argv) {
   moves_cmd->add_option("--settings", moves_settings, "Machine profile (TOML)");
   moves_cmd->add_option("--format", moves_format, "text or jsonl")
       ->check(CLI::IsMember({"text", "jsonl"}));
+  moves_lang.add_to(moves_cmd);
 
   std::string help_code;
   bool help_markdown = false;
@@ -187,9 +263,9 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 1;
   }
   try {
-    if (*run_cmd) return cmd_run(run);
-    if (*check_cmd) return cmd_check(check_file, check_settings);
-    if (*moves_cmd) return cmd_moves(moves_file, moves_settings, moves_format);
+    if (*run_cmd) return cmd_run(run, run_lang);
+    if (*check_cmd) return cmd_check(check_file, check_settings, check_lang);
+    if (*moves_cmd) return cmd_moves(moves_file, moves_settings, moves_format, moves_lang);
     if (*help_cmd) return cmd_help(help_code, help_markdown);
   } catch (const GantryError& e) {
     fmt::print(stderr, "{}\n", e.what());

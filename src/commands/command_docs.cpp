@@ -6,7 +6,7 @@
 namespace gantry {
 namespace {
 
-constexpr CommandGroup kGroupOrder[] = {CommandGroup::Move, CommandGroup::Jog,
+constexpr CommandGroup kGroupOrder[] = {CommandGroup::File, CommandGroup::Move, CommandGroup::Jog,
                                         CommandGroup::Settings, CommandGroup::Values};
 
 std::string param_default(const ParamSpec& p) {

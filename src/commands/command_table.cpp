@@ -12,6 +12,7 @@ const CommandTable& CommandTable::standard() {
     std::vector<CommandSpec> specs;
     add_move_commands(specs);
     add_mode_commands(specs);
+    add_file_commands(specs);
     return CommandTable(std::move(specs));
   }();
   return table;
@@ -25,6 +26,8 @@ const CommandSpec* CommandTable::find(std::string_view code) const {
 
 const char* group_name(CommandGroup g) {
   switch (g) {
+    case CommandGroup::File:
+      return "File";
     case CommandGroup::Jog:
       return "Jog";
     case CommandGroup::Move:

@@ -36,7 +36,7 @@ void apply_speeds(CommandContext& ctx, const CommandCall& call, size_t first, si
                   GroupSpeeds& speeds) {
   const Settings& s = ctx.settings();
   for (size_t g = 0; g < count; ++g) {
-    const auto& v = call.values[first + g];
+    const std::optional<double> v = call.number(first + g);
     if (!v) continue;
     const double limit = group_limit(s, static_cast<int>(g));
     if (!(*v > 0) || *v > limit)
@@ -46,7 +46,7 @@ void apply_speeds(CommandContext& ctx, const CommandCall& call, size_t first, si
                        kGroups[g].name, *v, limit, units_name(s.units)));
   }
   for (size_t g = 0; g < count; ++g)
-    if (const auto& v = call.values[first + g]) speeds.*kGroups[g].field = *v;
+    if (const std::optional<double> v = call.number(first + g)) speeds.*kGroups[g].field = *v;
 }
 
 void set_move_speed(CommandContext& ctx, const CommandCall& call) {
@@ -61,6 +61,7 @@ void set_speeds(CommandContext& ctx, const CommandCall& call) {
   apply_speeds(ctx, call, 0, 4, next.move);
   apply_speeds(ctx, call, 4, 4, next.jog);
   ctx.state().speeds = next;
+  ctx.speeds_changed_by_values();
 }
 
 // Speed parameters for the groups XY, Z, A, B (and C), named for `suffix` ("", "move" or "jog").

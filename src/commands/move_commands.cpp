@@ -9,12 +9,13 @@ namespace {
 // axis. A blank parameter leaves that axis where it is.
 template <SpeedClass Class, Axis... Axes>
 void move_axes(CommandContext& ctx, const CommandCall& call) {
-  const ModalState& st = ctx.state();
-  Vec6 target = st.position;
+  const Vec6 here = ctx.position();
+  const bool absolute = ctx.state().absolute;
+  Vec6 target = here;
   size_t i = 0;
   for (Axis a : {Axes...}) {
-    if (const auto& v = call.values[i++]) {
-      target[index(a)] = st.absolute ? *v : st.position[index(a)] + *v;
+    if (const std::optional<double> v = call.number(i++)) {
+      target[index(a)] = absolute ? *v : here[index(a)] + *v;
     }
   }
   ctx.line_to(target, Class, call.loc);

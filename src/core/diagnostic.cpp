@@ -7,6 +7,8 @@ namespace gantry {
 
 std::string format(const Diagnostic& d) {
   std::string out;
+  for (const SourceLoc& c : d.via)
+    if (c.file) out += fmt::format("{}:{} -> ", *c.file, c.line);
   if (d.loc.file) {
     out += *d.loc.file;
     if (d.loc.line > 0) out += fmt::format(":{}", d.loc.line);

@@ -1,13 +1,20 @@
-// Statement execution: modal state, parameter evaluation and dispatch through the table.
+// The interpreter's core: files and frames, the statement loop, control flow, variables and
+// command dispatch. Operator and file statements are in io_statements.cpp.
 #include "gantry/interp/interpreter.hpp"
 
 #include <fmt/format.h>  // messages
 
-#include <cmath>  // isfinite
+#include <cmath>       // isfinite, round
+#include <filesystem>  // path joining for FP and C#
+
+#include "interp_private.hpp"  // Frame, UserFile, NeedsOperator
 
 namespace gantry {
 
-void CommandContext::line_to(const Vec6& target, SpeedClass cls, const SourceLoc& loc) {
+// ---- CommandContext -------------------------------------------------------------------
+
+void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
+  const Vec6 target = transform_.to_machine(file_target);
   const char* unit = units_name(settings_.units);
   for (int i = 0; i < kAxisCount; ++i) {
     if (target[i] == state_.position[i]) continue;  // only axes that move are checked
@@ -30,78 +37,368 @@ void CommandContext::line_to(const Vec6& target, SpeedClass cls, const SourceLoc
   ++moves_;
 }
 
-Interpreter::Interpreter(const Settings& settings, MotionSink& sink, const CommandTable& table)
-    : table_(table), sink_(sink), ctx_(state_, settings, sink) {
+void CommandContext::dwell(double seconds, const SourceLoc& loc) {
+  if (!(seconds > 0)) return;
+  CanonMove m;
+  m.kind = MoveKind::Dwell;
+  m.from = m.to = state_.position;
+  m.dwell_s = seconds;
+  m.loc = loc;
+  sink_.move(m);
+  ++moves_;
+}
+
+void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {
+  interp_->pending_call_ = call;
+  interp_->pending_call_loc_ = loc;
+}
+
+void CommandContext::speeds_changed_by_values() {
+  interp_->frames_.back().restore_speeds = true;
+}
+
+// ---- construction, files and frames ---------------------------------------------------
+
+Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO& io,
+                         PersistentStore& store, InterpreterOptions options,
+                         const CommandTable& table)
+    : settings_(settings),
+      table_(table),
+      sink_(sink),
+      io_(io),
+      store_(store),
+      options_(std::move(options)),
+      ctx_(state_, settings, sink) {
+  ctx_.interp_ = this;
   state_.speeds = settings.speeds;
 }
 
-void Interpreter::run(const Program& program) {
-  if (!program.ok()) throw GantryError(program.errors.front());
-  const size_t total = program.statements.size();
-  for (const Statement& st : program.statements) {
-    const bool go_on = execute(st);
-    if (progress_) progress_(executed_, total);
-    if (!go_on) break;
-  }
-  sink_.flush();
+Interpreter::~Interpreter() = default;
+
+std::string Interpreter::file_path(const std::string& name) const {
+  std::filesystem::path p(name);
+  if (p.is_relative() && !parts_dir_.empty()) p = std::filesystem::path(parts_dir_) / p;
+  return p.string();
 }
 
-std::vector<Diagnostic> Interpreter::check(const Program& program) {
-  std::vector<Diagnostic> errors = program.errors;
-  for (const Statement& st : program.statements) {
-    try {
-      if (!execute(st)) break;
-    } catch (const GantryError& e) {
-      errors.push_back(e.diagnostic());
+void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall& call,
+                            SourceLoc from) {
+  if (static_cast<int>(frames_.size()) >= options_.max_file_depth)
+    fail(from, fmt::format("files are nested {} deep, the most allowed; a file may be calling "
+                           "itself",
+                           options_.max_file_depth));
+  if (!script->ok()) {
+    for (const Diagnostic& d : script->errors())
+      if (d.severity == Severity::Error) throw GantryError(d);
+  }
+  Frame f;
+  f.script = std::move(script);
+  f.pc = f.script->start();
+  f.called_from = std::move(from);
+  f.call = call;
+  f.saved_speeds = state_.speeds;
+  const Transform parent = frames_.empty() ? Transform{} : frames_.back().transform;
+  f.transform.scale = parent.scale.cwiseProduct(call.proportion);
+  f.transform.origin = parent.origin;
+  // An offset run places the file's 0 at the current position: X, Y (2D) or X, Y, Z (3D).
+  for (int i = 0; i < (call.offset == 1 ? 3 : call.offset == 2 ? 2 : 0); ++i)
+    f.transform.origin[i] = state_.position[i];
+  frames_.push_back(std::move(f));
+}
+
+// Ends the current pass of the innermost file: another repetition, or back to the caller.
+void Interpreter::end_file() {
+  Frame& f = frames_.back();
+  if (f.restore_speeds) state_.speeds = f.saved_speeds;
+  if (++f.repetition < f.call.repetitions) {
+    f.pc = f.script->start();
+    f.gosubs.clear();
+    f.restore_speeds = false;
+    f.transform.origin[2] += f.call.plunge * f.transform.scale[2];
+    return;
+  }
+  frames_.pop_back();
+}
+
+[[noreturn]] void Interpreter::rethrow_located(const GantryError& e) const {
+  Diagnostic d = e.diagnostic();
+  if (d.via.empty())
+    for (const Frame& f : frames_)
+      if (f.called_from.file) d.via.push_back(f.called_from);
+  if (dynamic_cast<const OperatorStop*>(&e)) throw OperatorStop(std::move(d));
+  throw GantryError(std::move(d));
+}
+
+// ---- the statement loop ---------------------------------------------------------------
+
+void Interpreter::run(std::shared_ptr<const Script> script) {
+  parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
+  try {
+    push_file(std::move(script), FileCall{}, SourceLoc{});
+    loop(nullptr);
+  } catch (...) {
+    sink_.flush();  // the moves already issued complete; the position stays known
+    store_.save();
+    throw;
+  }
+  sink_.flush();
+  store_.save();
+}
+
+std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script) {
+  std::vector<Diagnostic> out = script->errors();
+  parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
+  try {
+    frames_.clear();
+    Frame f;
+    f.script = script;
+    f.pc = script->start();
+    f.saved_speeds = state_.speeds;
+    frames_.push_back(std::move(f));
+    loop(&out);
+  } catch (const NeedsOperator& e) {
+    Diagnostic d = e.diagnostic();
+    d.severity = Severity::Warning;
+    d.message = "checking stopped here: " + d.message;
+    out.push_back(std::move(d));
+  } catch (const OperatorStop&) {
+    // a DIALOG or FAIL that ends the run ends the check too
+  } catch (const GantryError& e) {
+    out.push_back(e.diagnostic());
+  }
+  sink_.flush();
+  return out;
+}
+
+void Interpreter::loop(std::vector<Diagnostic>* collect) {
+  while (!frames_.empty()) {
+    Frame& f = frames_.back();
+    if (f.script->at_end(f.pc)) {
+      end_file();
+      continue;
     }
+    Cursor next;
+    current_ = f.pc;
+    LineParse lp = f.script->parse(f.pc, &next);
+    f.pc = next;
+    if (!lp.statement && !lp.error) continue;
+    if (lp.error && collect) continue;  // already reported by the script's own pass
+    ++executed_;
+    if (options_.statement_budget && executed_ > options_.statement_budget)
+      throw NeedsOperator(
+          Diagnostic{lp.statement ? lp.statement->loc : lp.error->loc, Severity::Warning,
+                     fmt::format("{} statements executed; the file may loop forever (the statement "
+                                 "budget stops it)",
+                                 options_.statement_budget)});
+    try {
+      if (lp.error) throw GantryError(*lp.error);
+      ctx_.transform_ = f.transform;
+      execute(*lp.statement);
+      if (pending_call_) {
+        FileCall call = *pending_call_;
+        pending_call_.reset();
+        push_file(Script::load(file_path(call.path)), call, pending_call_loc_);
+      }
+    } catch (const NeedsOperator&) {
+      throw;
+    } catch (const OperatorStop& e) {
+      rethrow_located(e);
+    } catch (const GantryError& e) {
+      pending_call_.reset();
+      if (!collect) rethrow_located(e);
+      Diagnostic d = e.diagnostic();
+      for (const Frame& fr : frames_)
+        if (fr.called_from.file && d.via.empty()) d.via.push_back(fr.called_from);
+      collect->push_back(std::move(d));
+    }
+    if (stop_all_) {
+      while (!frames_.empty()) {
+        if (frames_.back().restore_speeds) state_.speeds = frames_.back().saved_speeds;
+        frames_.pop_back();
+      }
+      stop_all_ = false;
+    }
+    if (progress_ && !frames_.empty())
+      progress_(static_cast<size_t>(frames_.front().pc.line - 1),
+                static_cast<size_t>(frames_.front().script->line_count()));
   }
-  sink_.flush();
-  return errors;
 }
 
-bool Interpreter::execute(const Statement& st) {
-  ++executed_;
-  return std::visit(
-      [&](const auto& body) -> bool {
-        using T = std::decay_t<decltype(body)>;
-        if constexpr (std::is_same_v<T, CommandStmt>) {
-          execute_command(body, st.loc);
-          return true;
-        } else if constexpr (std::is_same_v<T, EndStmt>) {
-          return false;
-        } else {
-          return true;  // a label does nothing when reached
-        }
-      },
-      st.body);
+void Interpreter::execute(const Statement& st) {
+  std::visit([&](const auto& body) { exec(body, st.loc); }, st.body);
 }
 
-void Interpreter::execute_command(const CommandStmt& cmd, const SourceLoc& loc) {
+// ---- control flow ---------------------------------------------------------------------
+
+void Interpreter::exec(const JumpStmt& s, const SourceLoc& loc) {
+  Frame& f = frames_.back();
+  const std::optional<Cursor> target = f.script->label(s.label);
+  if (!target) fail(s.label_loc, fmt::format("no label {}: in this file", s.label));
+  if (s.gosub) {
+    if (static_cast<int>(f.gosubs.size()) >= options_.max_gosub_depth)
+      fail(loc, fmt::format("GOSUB nested {} deep without RETURN; a subroutine may be calling "
+                            "itself",
+                            options_.max_gosub_depth));
+    f.gosubs.push_back(f.pc);
+  }
+  f.pc = *target;
+}
+
+void Interpreter::exec(const ReturnStmt&, const SourceLoc& loc) {
+  Frame& f = frames_.back();
+  if (f.gosubs.empty())
+    fail(loc,
+         "RETURN without GOSUB; put END before the subroutines so the file does not run "
+         "into them");
+  f.pc = f.gosubs.back();
+  f.gosubs.pop_back();
+}
+
+void Interpreter::exec(const EndStmt& s, const SourceLoc&) {
+  if (s.scope == EndStmt::Scope::File) {
+    Frame& f = frames_.back();
+    f.pc = Cursor{std::string::npos, f.pc.line};  // at_end: the loop ends this pass
+    return;
+  }
+  stop_all_ = true;
+}
+
+void Interpreter::exec(const IfStmt& s, const SourceLoc& loc) {
+  if (is_true(evaluate(s.test, *this), loc)) execute(*s.action);
+}
+
+void Interpreter::exec(const OnInputStmt& s, const SourceLoc& loc) {
+  const double input = evaluate(s.input, *this).to_number(loc, "the input number");
+  const double cond = evaluate(s.condition, *this).to_number(loc, "the state");
+  if (input != std::round(input) || input < 1 || input > 12)
+    fail(loc, fmt::format("input switch {} does not exist; inputs are 1 to 12", input));
+  if (cond != std::round(cond) || cond < 0 || cond > 3)
+    fail(loc, fmt::format("ON INPUT state {} is not 0 (off), 1 (on), 2 (off, ramped) or 3 (on, "
+                          "ramped)",
+                          cond));
+  const std::pair<int, int> key{static_cast<int>(input), static_cast<int>(cond) % 2};
+  if (s.action)
+    on_input_[key] = s.action;
+  else
+    on_input_.erase(key);
+}
+
+// ---- variables ------------------------------------------------------------------------
+
+const Value* Interpreter::user_variable(std::string_view name) const {
+  auto it = vars_.find(std::string(name));
+  return it == vars_.end() ? nullptr : &it->second;
+}
+
+const nlohmann::json* Interpreter::persistent_variable(std::string_view name) const {
+  return store_.variable(name);
+}
+
+Value Interpreter::system_variable(int n, const SourceLoc& loc) {
+  if (std::optional<Value> v = read_system_variable(n, snapshot())) return *v;
+  fail(loc, fmt::format("unknown system variable %({}); docs/system_variables.md lists them", n));
+}
+
+MachineSnapshot Interpreter::snapshot() const {
+  MachineSnapshot m;
+  m.location = state_.position;
+  m.relative = !state_.absolute;
+  m.metric = settings_.units == Units::Millimetres;
+  for (int i = 0; i < kAxisCount; ++i) {
+    m.limit_min[i] = settings_.axes[i].min;
+    m.limit_max[i] = settings_.axes[i].max;
+    m.steps_per_unit[i] = settings_.axes[i].steps_per_unit;
+  }
+  auto groups = [](const GroupSpeeds& g) {
+    return MachineSnapshot::Groups{g.xy, g.z, g.a, g.b, g.c};
+  };
+  m.move_speed = groups(state_.speeds.move);
+  m.jog_speed = groups(state_.speeds.jog);
+  m.move_ramp = groups(settings_.ramps.move_ramp_speed);
+  m.jog_ramp = groups(settings_.ramps.jog_ramp_speed);
+  return m;
+}
+
+Value Interpreter::value_of(const Arg& a) {
+  if (a.expr) return evaluate(*a.expr, *this);
+  return Value::string(a.text);  // a bare word: the text as written
+}
+
+void Interpreter::assign(const LValue& target, const Value& v) {
+  if (!target.persistent) {
+    vars_[target.name] = v;
+    return;
+  }
+  nlohmann::json& root = store_.variables()[target.name];
+  if (target.path.empty()) {
+    root = v.is_number() ? nlohmann::json(v.num()) : nlohmann::json(v.str());
+    return;
+  }
+  assign_path(root, target.path, v, *this, target.loc);
+}
+
+void Interpreter::exec(const AssignStmt& s, const SourceLoc&) {
+  if (s.weak) {  // `:=` keeps an existing value
+    const bool defined = s.target.persistent ? store_.variable(s.target.name) != nullptr
+                                             : vars_.count(s.target.name) > 0;
+    if (defined) return;
+  }
+  assign(s.target, s.value.blank() ? Value::string("") : value_of(s.value));
+}
+
+// ---- commands -------------------------------------------------------------------------
+
+void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
   const CommandSpec* spec = table_.find(cmd.code);
   if (!spec)
     fail(loc, fmt::format("unknown command '{}'; see docs/commands.md for the commands Gantry "
                           "knows",
                           cmd.code));
-  if (cmd.params.size() > spec->params.size()) {
-    fail(cmd.params[spec->params.size()].loc,
+  if (cmd.args.size() > spec->params.size())
+    fail(cmd.args[spec->params.size()].loc,
          fmt::format("{} takes {} parameter{}; this is parameter {}", spec->code,
                      spec->params.size(), spec->params.size() == 1 ? "" : "s",
                      spec->params.size() + 1));
-  }
-  CommandCall call{*spec, loc, cmd.params, {}};
+  CommandCall call{*spec, loc, cmd.args, {}};
   call.values.resize(spec->params.size());
   for (size_t i = 0; i < spec->params.size(); ++i) {
     const ParamSpec& ps = spec->params[i];
-    if (i < cmd.params.size() && !cmd.params[i].blank()) {
-      call.values[i] = evaluate_number(cmd.params[i], fmt::format("{} ({})", ps.name, spec->code));
-    } else if (ps.required) {
-      fail(call.param_loc(i),
-           fmt::format("{} needs its parameter {} ({})", spec->code, i + 1, ps.name));
-    } else {
-      call.values[i] = ps.default_value;
+    const Arg* a = i < cmd.args.size() && !cmd.args[i].blank() ? &cmd.args[i] : nullptr;
+    std::optional<Value> v;
+    if (a) v = value_of(*a);
+    if (v && v->is_string() && v->str().empty()) v.reset();  // "" counts as blank
+    if (!v) {
+      if (ps.required)
+        fail(call.param_loc(i),
+             fmt::format("{} needs its parameter {} ({})", spec->code, i + 1, ps.name));
+      if (ps.default_value) v = Value::number(*ps.default_value);
+    } else if (ps.kind == ParamKind::Number) {
+      if (!a->expr && a->expr_error && v->is_string())
+        fail(a->loc, fmt::format("expected a number for {} ({}), found '{}'", ps.name, spec->code,
+                                 a->text));
+      v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
     }
+    call.values[i] = std::move(v);
   }
   spec->handler(ctx_, call);
+}
+
+void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
+  const std::string dir = options_.macro_dir.empty() ? parts_dir_ : options_.macro_dir;
+  for (const std::string& name :
+       {fmt::format("C{}.sbp", s.number), fmt::format("macro_{}.sbp", s.number)}) {
+    const std::string path = (std::filesystem::path(dir) / name).string();
+    if (std::filesystem::is_regular_file(path)) {
+      FileCall call;
+      call.path = path;
+      pending_call_ = call;
+      pending_call_loc_ = loc;
+      return;
+    }
+  }
+  fail(loc, fmt::format("C{0} runs custom cut {0}, but there is no C{0}.sbp or macro_{0}.sbp in "
+                        "{1}; put the macro there or give its folder with --macros",
+                        s.number, dir.empty() ? "." : dir));
 }
 
 }  // namespace gantry

@@ -1,172 +1,271 @@
-// OpenSBP line syntax: comments, labels, END, and two-letter commands with comma parameters.
+// Line classification and the parsing of commands, labels, assignments and control flow.
+// The other program statements are parsed in statement_parser.cpp.
 #include "gantry/lang/parser.hpp"
 
 #include <fmt/format.h>  // messages
 
-#include <cctype>  // character classes
+#include <algorithm>  // count
 
-#include "gantry/core/text_file.hpp"  // read_text_file
+#include "line_parser.hpp"  // LineParser
+#include "scan.hpp"         // character helpers
 
 namespace gantry {
-namespace {
 
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
-bool is_word(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+using namespace scan;
+
+SourceLoc LineParser::loc(size_t col0) const {
+  return SourceLoc{file_, line_no_, static_cast<int>(col0) + 1};
 }
 
-std::string upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+[[noreturn]] void LineParser::error(size_t col0, std::string message) const {
+  fail(loc(col0), std::move(message));
+}
+
+size_t LineParser::skip_space(size_t i, size_t end) const {
+  while (i < end && is_space(line_[i])) ++i;
+  return i;
+}
+
+Arg LineParser::arg(size_t b, size_t e) const {
+  const size_t start = b;
+  while (b < e && is_space(line_[b])) ++b;
+  while (e > b && is_space(line_[e - 1])) --e;
+  const size_t quote = line_.substr(b, e - b).find('"');
+  if (quote != std::string_view::npos &&
+      std::count(line_.begin() + b, line_.begin() + e, '"') % 2 == 1)
+    error(b + line_.substr(b, e - b).rfind('"'),
+          "this parameter opens a quote (\") that is never closed");
+  Arg a;
+  a.text = std::string(line_.substr(b, e - b));
+  a.loc = loc(b == e ? start : b);
+  if (!a.text.empty()) {
+    ExprParse p = parse_expression(a.text, a.loc);
+    a.expr = std::move(p.expr);
+    a.expr_error = std::move(p.error);
+  }
+  return a;
+}
+
+Expr LineParser::expression(size_t b, size_t e, std::string_view what) const {
+  b = skip_space(b, e);
+  while (e > b && is_space(line_[e - 1])) --e;
+  if (b == e) error(b, fmt::format("expected {}", what));
+  ExprParse p = parse_expression(line_.substr(b, e - b), loc(b));
+  if (!p.expr) throw GantryError(*p.error);
+  return *p.expr;
+}
+
+LValue LineParser::lvalue(size_t b, size_t e) const {
+  b = skip_space(b, e);
+  while (e > b && is_space(line_[e - 1])) --e;
+  std::optional<Diagnostic> err;
+  std::optional<LValue> v = parse_lvalue(line_.substr(b, e - b), loc(b), &err);
+  if (!v) {
+    if (err) throw GantryError(*err);
+    error(b, "expected a variable such as &name");
+  }
+  return *v;
+}
+
+std::vector<std::pair<size_t, size_t>> LineParser::split_commas(size_t b, size_t e) const {
+  std::vector<std::pair<size_t, size_t>> out;
+  const std::string_view s = line_.substr(0, e);
+  while (true) {
+    size_t c = find_top_level(s, ',', b);
+    if (c == std::string_view::npos) c = e;
+    out.emplace_back(b, c);
+    if (c == e) break;
+    b = c + 1;
+  }
   return out;
 }
 
-// Reads one line; `line` excludes the newline. Columns are 1-based byte offsets.
-class LineParser {
- public:
-  LineParser(std::string_view line, int line_no, const Program& prog)
-      : s_(line), line_no_(line_no), prog_(prog) {}
-
-  // Appends the line's statement (if any) or its error to the program.
-  void parse(Program& out) {
-    skip_space();
-    if (at_end() || peek() == '\'') return;  // blank line or comment
-    const size_t start = pos_;
-    while (!at_end() && is_word(peek())) ++pos_;
-    const std::string_view word = s_.substr(start, pos_ - start);
-    const SourceLoc at = loc(start);
-    if (word.empty()) {
-      error(out, start,
-            fmt::format("unexpected '{}' at the start of a statement; a line "
-                        "starts with a two-letter command, a label or a comment",
-                        s_[start]));
-      return;
+std::string LineParser::label_name(size_t b, size_t e, bool* ok) const {
+  std::string name;
+  *ok = b < e;
+  for (size_t i = b; i < e && *ok; ++i) {
+    const char c = line_[i];
+    if (is_word(c)) {
+      name += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    } else if (is_space(c)) {
+      if (!name.empty() && name.back() != ' ') name += ' ';
+    } else {
+      *ok = false;
     }
-    const std::string key = upper(word);
-    if (key == "REM" && (at_end() || is_space(peek()))) return;  // REM comment
-    skip_space();
-    if (!at_end() && peek() == ':') {
-      ++pos_;
-      if (!rest_is_empty()) {
-        error(out, pos_, "unexpected text after the label; put the next statement on its own line");
-        return;
-      }
-      out.statements.push_back({at, LabelStmt{key}});
-      return;
-    }
-    if (key == "END") {
-      if (!rest_is_empty()) {
-        error(out, pos_, "END takes no parameters");
-        return;
-      }
-      out.statements.push_back({at, EndStmt{}});
-      return;
-    }
-    if (key.size() != 2 || !std::isalpha(static_cast<unsigned char>(key[0]))) {
-      error(out, start,
-            fmt::format("unknown statement '{}'; commands are two characters, such as MX or J3",
-                        word));
-      return;
-    }
-    CommandStmt cmd{key, {}};
-    if (!parse_params(out, cmd)) return;
-    out.statements.push_back({at, std::move(cmd)});
   }
-
- private:
-  // After the code: optional spaces, one optional comma, then comma-separated values up to
-  // a comment. `MX 5`, `MX,5` and `MX, 5` are the same; `M3, , 2` leaves X blank.
-  bool parse_params(Program& out, CommandStmt& cmd) {
-    if (at_end() || peek() == '\'') return true;
-    if (peek() == ',') {
-      ++pos_;
-    } else if (pos_ > 0 && !is_space(s_[pos_ - 1])) {
-      std::string_view rest = s_.substr(pos_, s_.find_first_of(",'", pos_) - pos_);
-      while (!rest.empty() && is_space(rest.back())) rest.remove_suffix(1);
-      error(out, pos_,
-            fmt::format("expected a space or a comma after the command {}; write `{}, {}`",
-                        cmd.code, cmd.code, rest));
-      return false;
-    }
-    while (true) {
-      const size_t field_start = pos_;
-      size_t end = pos_;
-      size_t open_quote = std::string_view::npos;
-      while (end < s_.size() &&
-             (open_quote != std::string_view::npos || (s_[end] != ',' && s_[end] != '\''))) {
-        if (s_[end] == '"')
-          open_quote = open_quote == std::string_view::npos ? end : std::string_view::npos;
-        ++end;
-      }
-      if (open_quote != std::string_view::npos) {
-        error(out, open_quote, "this parameter opens a quote (\") that is never closed");
-        return false;
-      }
-      size_t a = field_start, b = end;
-      while (a < b && is_space(s_[a])) ++a;
-      while (b > a && is_space(s_[b - 1])) --b;
-      // A blank parameter is located at its field (just after its comma).
-      cmd.params.push_back({std::string(s_.substr(a, b - a)), loc(a == b ? field_start : a)});
-      pos_ = end;
-      if (at_end() || peek() == '\'') break;
-      ++pos_;  // the comma
-    }
-    // Trailing blank parameters carry no information: `MX, 5,` is `MX, 5`.
-    while (!cmd.params.empty() && cmd.params.back().blank()) cmd.params.pop_back();
-    return true;
-  }
-
-  bool rest_is_empty() {
-    skip_space();
-    return at_end() || peek() == '\'';
-  }
-  void skip_space() {
-    while (!at_end() && is_space(peek())) ++pos_;
-  }
-  bool at_end() const { return pos_ >= s_.size(); }
-  char peek() const { return s_[pos_]; }
-  SourceLoc loc(size_t col0) const {
-    return SourceLoc{prog_.file, line_no_, static_cast<int>(col0) + 1};
-  }
-  void error(Program& out, size_t col0, std::string msg) {
-    out.errors.push_back({loc(col0), Severity::Error, std::move(msg)});
-  }
-
-  std::string_view s_;
-  size_t pos_ = 0;
-  int line_no_;
-  const Program& prog_;
-};
-
-}  // namespace
-
-Program parse_program(std::string_view text, const std::string& file_name) {
-  Program prog;
-  prog.file = std::make_shared<const std::string>(file_name);
-  int line_no = 0;
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t nl = text.find('\n', start);
-    if (nl == std::string_view::npos) nl = text.size();
-    ++line_no;
-    LineParser(text.substr(start, nl - start), line_no, prog).parse(prog);
-    start = nl + 1;
-  }
-  return prog;
+  while (!name.empty() && name.back() == ' ') name.pop_back();
+  *ok = *ok && !name.empty();
+  return name;
 }
 
-Program parse_file(const std::string& path) {
-  const std::optional<std::string> text = read_text_file(path);
-  if (!text) {
-    Program prog;
-    prog.file = std::make_shared<const std::string>(path);
-    prog.errors.push_back({SourceLoc{prog.file, 0, 0}, Severity::Error,
-                           "cannot open the part file; check the name and that it exists"});
-    return prog;
+// Classifies [b, e) (comment removed, trimmed) and parses it as one statement.
+Statement LineParser::statement(size_t b, size_t e) const {
+  const SourceLoc at = loc(b);
+  const char first = line_[b];
+  if (line_[e - 1] == ':') {  // a label stands alone: words (and spaces) then a colon
+    bool ok = false;
+    std::string name = label_name(b, e - 1, &ok);
+    if (ok) return {at, LabelStmt{std::move(name)}};
   }
-  return parse_program(*text, path);
+  if (first == '&' || first == '$') return assignment(b, e);
+  if (first == '%') error(b, "system variables %(n) are read-only; assign to a &variable instead");
+  size_t w = b;
+  while (w < e && is_word(line_[w])) ++w;
+  if (w == b)
+    error(b, fmt::format("unexpected '{}' at the start of a statement; a line starts with a "
+                         "command, a statement, a label or a comment",
+                         first));
+  const std::string word = upper(line_.substr(b, w - b));
+  if (const size_t p = skip_space(w, e); p + 1 < e && line_[p] == ':' && line_[p + 1] != '=')
+    error(skip_space(p + 1, e),
+          "unexpected text after the label; put the next statement on its "
+          "own line");
+  if (std::optional<Statement> st = program_statement(word, b, w, e)) return std::move(*st);
+  if (word.size() >= 2 && word.size() <= 3 && word[0] == 'C' &&
+      word.find_first_not_of("0123456789", 1) == std::string::npos)
+    return custom_cut(word, b, w, e);
+  return command(word, b, w, e);
+}
+
+Statement LineParser::assignment(size_t b, size_t e) const {
+  const std::string_view s = line_.substr(0, e);
+  const size_t eq = find_top_level(s, '=', b);
+  if (eq == std::string_view::npos)
+    error(b, "expected '=' after the variable: write &name = value");
+  const bool weak = eq > b && line_[eq - 1] == ':';
+  AssignStmt st;
+  st.target = lvalue(b, weak ? eq - 1 : eq);
+  st.weak = weak;
+  st.value = arg(eq + 1, e);
+  // A bare word stays text (`&s = Material Surface`), but text that can only be meant as an
+  // expression must be one: `&x = &y +` or `&x = SQR(1, 2)` is an error, not a string.
+  const std::string& t = st.value.text;
+  const bool looks_like_expression =
+      !t.empty() && (std::string_view("&$%(+-.0123456789").find(t[0]) != std::string_view::npos ||
+                     t.find('(') != std::string::npos);
+  if (!st.value.expr && looks_like_expression && st.value.expr_error)
+    throw GantryError(*st.value.expr_error);
+  return {loc(b), std::move(st)};
+}
+
+Statement LineParser::command(const std::string& word, size_t b, size_t w, size_t e) const {
+  const bool letters_only = word.find_first_of("0123456789") == std::string::npos;
+  if (word.size() > 2 && letters_only)
+    error(b, fmt::format("unknown statement '{}'; commands are two characters, such as MX or "
+                         "J3, and statements are words such as IF, GOTO or PAUSE",
+                         line_.substr(b, w - b)));
+  if (!std::isalpha(static_cast<unsigned char>(word[0])) || word.size() < 2)
+    error(b, fmt::format("unknown statement '{}'", line_.substr(b, w - b)));
+  CommandStmt cmd{word.substr(0, 2), {}};
+  size_t p = b + 2;  // just after the two-letter code
+  // The handbook's rule: one comma, or a run of spaces, separates the code from its first
+  // parameter; `M2 , 4.2` therefore leaves X blank.
+  if (p < e) {
+    if (line_[p] == ',') {
+      ++p;
+    } else if (is_space(line_[p])) {
+      p = skip_space(p, e);
+    } else {
+      std::string_view rest = line_.substr(p, e - p);
+      rest = trim(rest.substr(0, rest.find(',')));
+      error(p, fmt::format("expected a space or a comma after the command {}; write `{}, {}`",
+                           cmd.code, cmd.code, rest));
+    }
+    if (p < e || line_[p - 1] == ',')
+      for (auto [fb, fe] : split_commas(p, e)) cmd.args.push_back(arg(fb, fe));
+  }
+  while (!cmd.args.empty() && cmd.args.back().blank()) cmd.args.pop_back();
+  return {loc(b), std::move(cmd)};
+}
+
+Statement LineParser::custom_cut(const std::string& word, size_t b, size_t w, size_t e) const {
+  CustomCutStmt st;
+  st.number = std::stoi(word.substr(1));
+  size_t p = w;
+  if (p < e && line_[p] == ',') ++p;
+  p = skip_space(p, e);
+  if (p < e)
+    for (auto [fb, fe] : split_commas(p, e)) st.args.push_back(arg(fb, fe));
+  while (!st.args.empty() && st.args.back().blank()) st.args.pop_back();
+  return {loc(b), std::move(st)};
+}
+
+Statement LineParser::jump(bool gosub, size_t b, size_t w, size_t e) const {
+  const size_t lb = skip_space(w, e);
+  bool ok = false;
+  JumpStmt st;
+  st.label = label_name(lb, e, &ok);
+  if (!ok)
+    error(lb, fmt::format("{} needs a label name (letters, digits, _ and spaces), written "
+                          "without its colon",
+                          gosub ? "GOSUB" : "GOTO"));
+  st.gosub = gosub;
+  st.label_loc = loc(lb);
+  return {loc(b), std::move(st)};
+}
+
+Statement LineParser::if_statement(size_t b, size_t w, size_t e) const {
+  const std::string_view s = line_.substr(0, e);
+  const size_t then = find_keyword(s, "THEN", w);
+  if (then == std::string_view::npos) error(b, "IF needs THEN: write IF test THEN statement");
+  IfStmt st;
+  st.test = expression(w, then, "a test after IF");
+  const size_t ab = skip_space(then + 4, e);
+  if (ab == e) error(then, "THEN needs a statement after it");
+  st.action = action(ab, e, "IF ... THEN");
+  return {loc(b), std::move(st)};
+}
+
+StatementPtr LineParser::action(size_t b, size_t e, std::string_view owner) const {
+  Statement st = statement(b, e);
+  if (std::holds_alternative<IfStmt>(st.body) || std::holds_alternative<OnInputStmt>(st.body) ||
+      std::holds_alternative<LabelStmt>(st.body))
+    error(b, fmt::format("{} takes one plain statement: not IF, ON INPUT or a label", owner));
+  return std::make_shared<const Statement>(std::move(st));
+}
+
+Statement LineParser::on_input(size_t b, size_t w, size_t e) const {
+  const std::string_view s = line_.substr(0, e);
+  size_t p = skip_space(w, e);
+  if (find_keyword(s, "INPUT", p) != p)
+    error(p, "expected INPUT after ON: ON INPUT(switch, state)");
+  p = skip_space(p + 5, e);
+  if (p >= e || line_[p] != '(') error(p, "expected '(' after ON INPUT");
+  const size_t close = find_top_level(s, ')', p + 1);
+  const size_t comma = find_top_level(s, ',', p + 1);
+  if (close == std::string_view::npos || comma == std::string_view::npos || comma > close)
+    error(p, "ON INPUT needs (switch, state), e.g. ON INPUT(2, 1) GOTO STOPPED");
+  OnInputStmt st;
+  st.input = expression(p + 1, comma, "an input switch number");
+  st.condition = expression(comma + 1, close, "a state: 0, 1, 2 or 3");
+  const size_t ab = skip_space(close + 1, e);
+  if (ab < e) st.action = action(ab, e, "ON INPUT");
+  return {loc(b), std::move(st)};
+}
+
+LineParse parse_line(std::string_view line, const std::shared_ptr<const std::string>& file,
+                     int line_no) {
+  LineParse out;
+  const std::string_view t = trim(line);
+  if (t.empty()) return out;
+  if (t.front() == '\'') {
+    out.comment = std::string(trim(t.substr(1)));
+    return out;
+  }
+  if (t.size() >= 3 && upper(t.substr(0, 3)) == "REM" && (t.size() == 3 || is_space(t[3]))) {
+    out.comment = std::string(trim(t.substr(3)));
+    return out;
+  }
+  size_t e = std::min(line.size(), scan::comment_start(line));
+  while (e > 0 && is_space(line[e - 1])) --e;
+  size_t b = 0;
+  while (b < e && is_space(line[b])) ++b;
+  try {
+    out.statement = LineParser(line, file, line_no).statement(b, e);
+  } catch (const GantryError& err) {
+    out.error = err.diagnostic();
+  }
+  return out;
 }
 
 }  // namespace gantry

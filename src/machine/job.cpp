@@ -1,7 +1,9 @@
 // Wiring of one job through the pipeline: interpreter -> planner -> step generator -> card.
 #include "gantry/machine/job.hpp"
 
-#include "gantry/interp/interpreter.hpp"        // Interpreter
+#include <algorithm>  // stable_sort
+#include <climits>    // INT_MAX
+
 #include "gantry/motion/trapezoid_planner.hpp"  // TrapezoidPlanner
 #include "gantry/step/step_generator.hpp"       // StepGenerator
 
@@ -16,33 +18,49 @@ class NullSink : public MotionSink {
 
 }  // namespace
 
-std::vector<Diagnostic> check_program(const Program& program, const Settings& settings) {
+std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
+                                      const Settings& settings, const PersistentStore& store,
+                                      const JobOptions& options) {
   NullSink sink;
-  Interpreter interp(settings, sink);
-  return interp.check(program);
+  std::string printed;  // a check prints nothing
+  ScriptedIO io(true, options.inputs, &printed);
+  PersistentStore scratch = store;  // a check may assign $variables but never saves them
+  InterpreterOptions opt = options.interpreter;
+  opt.dry_run = true;
+  opt.statement_budget = options.check_budget;
+  Interpreter interp(settings, sink, io, scratch, opt);
+  std::vector<Diagnostic> out = interp.check(std::move(script));
+  for (const Diagnostic& w : io.warnings()) out.push_back(w);
+  // In line order: the script's own pass found the syntax errors, the run the others.
+  // Messages from nested files keep their order after those of the top-level file.
+  auto key = [](const Diagnostic& d) { return d.via.empty() ? d.loc.line : INT_MAX; };
+  std::stable_sort(out.begin(), out.end(),
+                   [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
+  return out;
 }
 
-void interpret(const Program& program, const Settings& settings, MotionSink& sink) {
-  Interpreter interp(settings, sink);
-  interp.run(program);
+void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
+               OperatorIO& io, PersistentStore& store, const JobOptions& options) {
+  Interpreter interp(settings, sink, io, store, options.interpreter);
+  interp.run(std::move(script));
 }
 
-JobResult run_job(const Program& program, const Settings& settings, Card& card,
-                  const JobOptions& options) {
+JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
+                  OperatorIO& io, PersistentStore& store, const JobOptions& options) {
   JobResult result;
-  result.errors = check_program(program, settings);
+  for (Diagnostic& d : check_program(script, settings, store, options))
+    (d.severity == Severity::Error ? result.errors : result.warnings).push_back(std::move(d));
   if (!result.ok()) return result;
 
   card.start(settings.card.pacer_hz());
   StepGenerator steps(settings, card);
   TrapezoidPlanner planner(settings, steps);
-  Interpreter interp(settings, planner);
+  Interpreter interp(settings, planner, io, store, options.interpreter);
   if (options.progress) interp.on_progress(options.progress);
   try {
-    interp.run(program);
+    interp.run(std::move(script));
   } catch (const GantryError& e) {
-    steps.flush();  // let the pulses already planned finish; the position stays known
-    result.errors.push_back(e.diagnostic());
+    result.errors.push_back(e.diagnostic());  // run() has flushed: planned pulses completed
   }
   card.drain();
   result.lines = interp.statements_executed();

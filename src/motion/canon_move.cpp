@@ -5,6 +5,8 @@ namespace gantry {
 
 const char* kind_name(MoveKind k) {
   switch (k) {
+    case MoveKind::Dwell:
+      return "dwell";
     case MoveKind::Line:
       return "line";
   }

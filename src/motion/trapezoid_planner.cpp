@@ -6,6 +6,15 @@
 namespace gantry {
 
 void TrapezoidPlanner::move(const CanonMove& m) {
+  if (m.kind == MoveKind::Dwell) {
+    PlannedSegment seg;
+    seg.from = seg.to = m.to;
+    seg.dwell_s = m.dwell_s;
+    seg.loc = m.loc;
+    planned_time_ += m.dwell_s;
+    out_.segment(seg);
+    return;
+  }
   const PathLimits lim = path_limits(m, settings_);
   if (lim.length == 0) return;
   PlannedSegment seg;

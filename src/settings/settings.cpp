@@ -158,6 +158,8 @@ constexpr Range kSpeed{0, 1e5, true};
 void read_profile(TableReader root, Settings& s) {
   s.name = root.choice("name", {}, "");
   s.units = root.choice("units", {"in", "mm"}, "in") == "mm" ? Units::Millimetres : Units::Inches;
+  s.dialect =
+      root.choice("dialect", {"sb3", "fabmo"}, "sb3") == "fabmo" ? Dialect::FabMo : Dialect::SB3;
 
   TableReader axes = root.table("axes");
   for (int i = 0; i < kAxisCount; ++i) {

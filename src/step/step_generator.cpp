@@ -35,7 +35,7 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
 void StepGenerator::segment(const PlannedSegment& seg) {
   const Trapezoid& p = seg.profile;
   const std::int64_t t0 = segment_end_;
-  std::int64_t end = t0 + std::llround(p.duration() / timing_.tick_s);
+  std::int64_t end = t0 + std::llround((p.duration() + seg.dwell_s) / timing_.tick_s);
   events_.clear();
   for (int i = 0; i < kAxisCount; ++i) {
     const std::int64_t target = std::llround(seg.to[i] * steps_per_unit_[i]);

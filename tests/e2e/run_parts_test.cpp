@@ -166,7 +166,7 @@ TEST(BadInput, MissingPartFile) {
 TEST(BadInput, SettingsWithAWrongValue) {
   const Result r = gantry("run parts/demo.sbp --settings tests/data/bad_value.toml --json");
   expect_rejected(r,
-                  "tests/data/bad_value.toml:11:18: error: axes.x.steps_per_unit = "
+                  "tests/data/bad_value.toml:12:18: error: axes.x.steps_per_unit = "
                   "-916.7324 is out of range; allowed: > 0 and <= 1000000");
   EXPECT_EQ(r.out, "");  // no card was started, so there is no report
 }

@@ -8,7 +8,7 @@
 
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/interpreter.hpp"
-#include "gantry/lang/parser.hpp"
+#include "gantry/lang/script.hpp"
 #include "gantry/motion/canon_move.hpp"
 #include "gantry/settings/settings.hpp"
 
@@ -51,18 +51,19 @@ void expect_speeds(const GroupSpeeds& s, double xy, double z, double a, double b
 
 class InterpreterTest : public ::testing::Test {
  protected:
-  // Parses and runs `text` as part.sbp; parse errors fail the test.
+  // Runs `text` as part.sbp; errors fail the test.
   void run(std::string_view text) {
-    program_ = parse_program(text, "part.sbp");
-    ASSERT_TRUE(program_.ok()) << format(program_.errors.front());
-    interp().run(program_);
+    script_ = Script::from_text(std::string(text), "part.sbp");
+    ASSERT_TRUE(script_->ok()) << format(script_->errors().front());
+    interp().run(script_);
   }
 
   // Runs `text` expecting it to stop with an error; returns that error.
   Diagnostic run_error(std::string_view text) {
-    program_ = parse_program(text, "part.sbp");
+    script_ = Script::from_text(std::string(text), "part.sbp");
     try {
-      interp().run(program_);
+      if (!script_->ok()) throw GantryError(script_->errors().front());
+      interp().run(script_);
     } catch (const GantryError& e) {
       return e.diagnostic();
     }
@@ -71,12 +72,12 @@ class InterpreterTest : public ::testing::Test {
   }
 
   std::vector<Diagnostic> check(std::string_view text) {
-    program_ = parse_program(text, "part.sbp");
-    return interp().check(program_);
+    script_ = Script::from_text(std::string(text), "part.sbp");
+    return interp().check(script_);
   }
 
   Interpreter& interp() {
-    if (!interp_) interp_.emplace(settings, sink);
+    if (!interp_) interp_.emplace(settings, sink, io, store);
     return *interp_;
   }
   const ModalState& state() { return interp().state(); }
@@ -84,9 +85,12 @@ class InterpreterTest : public ::testing::Test {
 
   Settings settings = default_settings();
   RecordingSink sink;
+  std::string printed;
+  ScriptedIO io{true, {}, &printed};
+  PersistentStore store;
 
  private:
-  Program program_;
+  std::shared_ptr<const Script> script_;
   std::optional<Interpreter> interp_;
 };
 
@@ -232,15 +236,25 @@ TEST_F(InterpreterTest, JsSetsJogSpeedsOnly) {
 }
 
 TEST_F(InterpreterTest, VsTakesMoveXyZABThenJogXyZAB) {
-  run("VS, 1, .2, 3, 4, 5, 1.5, 30, 40\n");
-  expect_speeds(state().speeds.move, 1, 0.2, 3, 4, 10);
-  expect_speeds(state().speeds.jog, 5, 1.5, 30, 40, 45);
+  run("VS, 1, .2, 3, 4, 5, 1.5, 30, 40\nMX, 1\nJX, 2\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_speeds(moves()[0].speeds, 1, 0.2, 3, 4, 10);
+  expect_speeds(moves()[1].speeds, 5, 1.5, 30, 40, 45);
 }
 
 TEST_F(InterpreterTest, VsBlanksKeepTheirSpeeds) {
-  run("VS, , , , , 7\n");
+  run("VS, , , , , 7\nMX, 1\nJX, 2\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_speeds(moves()[0].speeds, 2.0, 0.5, 10, 10, 10);
+  expect_speeds(moves()[1].speeds, 7, 3.0, 45, 45, 45);
+}
+
+// The handbook: VS changes made in a file last until that file ends; MS and JS stay.
+TEST_F(InterpreterTest, VsChangesEndWithTheFileButMsStays) {
+  run("VS, 1, .2\nMS, , .3\nMX, 1\n");
   expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
-  expect_speeds(state().speeds.jog, 7, 3.0, 45, 45, 45);
+  run("MS, 1.5\n");
+  expect_speeds(state().speeds.move, 1.5, 0.5, 10, 10, 10);
 }
 
 TEST_F(InterpreterTest, VsHasNoNinthParameter) {
@@ -481,10 +495,10 @@ TEST_F(InterpreterTest, SoftLimitsComeFromTheSettings) {
             "in the profile); nothing was moved");
 }
 
-TEST_F(InterpreterTest, OverflowingNumberIsOutsideTheSoftLimits) {
+TEST_F(InterpreterTest, OverflowingNumberIsNotANumber) {
   const Diagnostic d = run_error("MX, 1e999\n");
-  EXPECT_EQ(where(d.loc), "part.sbp:1:1");
-  EXPECT_NE(d.message.find("is outside the soft limits"), std::string::npos) << d.message;
+  EXPECT_EQ(where(d.loc), "part.sbp:1:5");
+  EXPECT_EQ(d.message, "expected a number for X location (MX), found '1e999'");
   EXPECT_TRUE(moves().empty());
 }
 
@@ -557,9 +571,9 @@ TEST_F(InterpreterTest, CheckStopsAtEnd) {
 
 TEST_F(InterpreterTest, CheckOfTheManyErrorsFileNamesTheFile) {
   const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data/many_errors.sbp";
-  const Program p = parse_file(path);
-  ASSERT_TRUE(p.ok());
-  const std::vector<Diagnostic> errors = interp().check(p);
+  const std::shared_ptr<const Script> script = Script::load(path);
+  ASSERT_TRUE(script->ok());
+  const std::vector<Diagnostic> errors = interp().check(script);
   ASSERT_EQ(errors.size(), 4u);
   EXPECT_EQ(where(errors[0].loc), path + ":3:1");
   EXPECT_EQ(where(errors[1].loc), path + ":4:5");
@@ -568,38 +582,42 @@ TEST_F(InterpreterTest, CheckOfTheManyErrorsFileNamesTheFile) {
   EXPECT_EQ(moves().size(), 2u);
 }
 
-// ---- numbers
+// ---- numbers in parameters (the expression grammar itself is tested in expression_test)
 
-TEST(EvaluateNumber, AcceptsOpenSbpNumerals) {
-  const std::pair<const char*, double> cases[] = {
-      {"5", 5},         {"-.45", -0.45}, {"+3.", 3},     {"1e-3", 0.001}, {".5", 0.5},
-      {"0", 0},         {"-0", 0},       {"007", 7},     {"1E3", 1000},   {"-2.5e+2", -250},
-      {"12.75", 12.75}, {"5.", 5},       {"+.25", 0.25}, {"3e0", 3}};
+TEST_F(InterpreterTest, ParametersAcceptOpenSbpNumerals) {
+  const std::pair<const char*, double> cases[] = {{"5", 5},
+                                                  {"-.45", -0.45},
+                                                  {"+3.", 3},
+                                                  {"1e-3", 0.001},
+                                                  {".5", 0.5},
+                                                  {"0", 0},
+                                                  {"007", 7},
+                                                  {"1E3", 1000},
+                                                  {"12.75", 12.75},
+                                                  {"5.", 5},
+                                                  {"+.25", 0.25},
+                                                  {"12+11/16", 12.6875},
+                                                  {"-(2+7/32)", -2.21875}};
   for (const auto& [text, value] : cases) {
     SCOPED_TRACE(text);
-    EXPECT_DOUBLE_EQ(evaluate_number(Param{text, {}}, "X"), value);
+    settings.axes[2].min = -1e6;
+    settings.axes[2].max = 1e6;
+    sink.moves.clear();
+    run(std::string("SA\nMZ, 777\nMZ, ") + text + "\n");
+    ASSERT_EQ(moves().size(), 2u);
+    EXPECT_DOUBLE_EQ(moves()[1].to[2], value);
   }
 }
 
-TEST(EvaluateNumber, RejectsMalformedNumbers) {
-  for (const char* text : {"1.2.3", "--1", "e5", "5x", ".", "1e", "1e+", "+", "-", "+-1", "0x10",
-                           "inf", "nan", "1 2", ".e5", "5..", "abc"}) {
+TEST_F(InterpreterTest, AParameterThatIsNotANumberIsLocated) {
+  for (const char* text : {"1.2.3", "e5", "5x", "1 2", "5..", "abc"}) {
     SCOPED_TRACE(text);
-    EXPECT_THROW(evaluate_number(Param{text, {}}, "X"), GantryError);
+    const Diagnostic d = run_error(std::string("SA\nMZ, ") + text + "\n");
+    EXPECT_EQ(where(d.loc), "part.sbp:2:5");
   }
-}
-
-TEST(EvaluateNumber, ErrorIsAtTheParameterAndNamesWhatWasExpected) {
-  const Param p{"1.2.3", file_loc("job.sbp", 7, 12)};
-  try {
-    evaluate_number(p, "Z location (MZ)");
-    FAIL() << "no error";
-  } catch (const GantryError& e) {
-    EXPECT_EQ(where(e.diagnostic().loc), "job.sbp:7:12");
-    EXPECT_EQ(e.diagnostic().message, "expected a number for Z location (MZ), found '1.2.3'");
-    EXPECT_STREQ(e.what(),
-                 "job.sbp:7:12: error: expected a number for Z location (MZ), found '1.2.3'");
-  }
+  const Diagnostic d = run_error("MZ, abc\n");
+  EXPECT_EQ(d.message, "expected a number for Z location (MZ), found 'abc'");
+  EXPECT_TRUE(moves().empty());
 }
 
 }  // namespace

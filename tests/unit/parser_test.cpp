@@ -6,12 +6,40 @@
 
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/lang/parser.hpp"
+#include "gantry/lang/script.hpp"
 
 namespace gantry {
 namespace {
 
+// Every line of a text, parsed: its statements in order and the errors of the lines that
+// are not statements (the label index's own checks are tested with Script).
+struct Program {
+  std::shared_ptr<const std::string> file;
+  std::vector<Statement> statements;
+  std::vector<Diagnostic> errors;
+  bool ok() const { return errors.empty(); }
+};
+
+Program parse_lines(const Script& script) {
+  Program p;
+  p.file = script.name();
+  if (!script.ok() && script.line_count() == 0) p.errors = script.errors();
+  for (Cursor c = script.start(); !script.at_end(c);) {
+    Cursor next;
+    LineParse lp = script.parse(c, &next);
+    if (lp.statement) p.statements.push_back(std::move(*lp.statement));
+    if (lp.error) p.errors.push_back(*lp.error);
+    c = next;
+  }
+  return p;
+}
+
 Program parse(std::string_view text) {
-  return parse_program(text, "part.sbp");
+  return parse_lines(*Script::from_text(std::string(text), "part.sbp"));
+}
+
+Program parse_file(const std::string& path) {
+  return parse_lines(*Script::load(path));
 }
 
 // The command of statement i; fails the test if it is not a command.
@@ -31,7 +59,7 @@ const CommandStmt& command(const Program& p, size_t i) {
 
 std::vector<std::string> param_texts(const CommandStmt& cmd) {
   std::vector<std::string> out;
-  for (const Param& p : cmd.params) out.push_back(p.text);
+  for (const Arg& p : cmd.args) out.push_back(p.text);
   return out;
 }
 
@@ -100,11 +128,11 @@ TEST(Parser, CommandWithoutParameters) {
   ASSERT_TRUE(p.ok());
   ASSERT_EQ(p.statements.size(), 1u);
   EXPECT_EQ(command(p, 0).code, "SA");
-  EXPECT_TRUE(command(p, 0).params.empty());
+  EXPECT_TRUE(command(p, 0).args.empty());
 }
 
 TEST(Parser, SpaceCommaAndCommaSpaceSeparatorsAreEquivalent) {
-  for (const char* text : {"MX 5", "MX, 5", "MX,5", "MX ,5", "MX\t5"}) {
+  for (const char* text : {"MX 5", "MX, 5", "MX,5", "MX\t5"}) {
     SCOPED_TRACE(text);
     const Program p = parse(text);
     ASSERT_TRUE(p.ok());
@@ -112,6 +140,18 @@ TEST(Parser, SpaceCommaAndCommaSpaceSeparatorsAreEquivalent) {
     EXPECT_EQ(command(p, 0).code, "MX");
     EXPECT_EQ(param_texts(command(p, 0)), Texts{"5"});
   }
+}
+
+// The handbook's rule: a run of spaces is the separator, so a comma after it opens a blank
+// first field. `M2 , 4.2` moves Y, not X.
+TEST(Parser, SpaceThenCommaLeavesTheFirstParameterBlank) {
+  for (const char* text : {"M2 , 4.2", "M2,, 4.2"}) {
+    SCOPED_TRACE(text);
+    const Program p = parse(text);
+    ASSERT_TRUE(p.ok());
+    EXPECT_EQ(param_texts(command(p, 0)), (Texts{"", "4.2"}));
+  }
+  EXPECT_EQ(param_texts(command(parse("M2 4.2"), 0)), Texts{"4.2"});
 }
 
 TEST(Parser, ParametersAreTrimmed) {
@@ -130,11 +170,11 @@ TEST(Parser, BlankParameterIsKeptAsEmptyText) {
   const Program p = parse("M3, , 2\n");
   ASSERT_TRUE(p.ok());
   const CommandStmt& cmd = command(p, 0);
-  ASSERT_EQ(cmd.params.size(), 2u);
-  EXPECT_TRUE(cmd.params[0].blank());
-  EXPECT_EQ(cmd.params[0].text, "");
-  EXPECT_FALSE(cmd.params[1].blank());
-  EXPECT_EQ(cmd.params[1].text, "2");
+  ASSERT_EQ(cmd.args.size(), 2u);
+  EXPECT_TRUE(cmd.args[0].blank());
+  EXPECT_EQ(cmd.args[0].text, "");
+  EXPECT_FALSE(cmd.args[1].blank());
+  EXPECT_EQ(cmd.args[1].text, "2");
 }
 
 TEST(Parser, AdjacentCommasGiveBlankParameters) {
@@ -149,7 +189,7 @@ TEST(Parser, TrailingBlankParametersAreDropped) {
   ASSERT_EQ(p.statements.size(), 3u);
   EXPECT_EQ(param_texts(command(p, 0)), Texts{"5"});
   EXPECT_EQ(param_texts(command(p, 1)), Texts{"1"});
-  EXPECT_TRUE(command(p, 2).params.empty());
+  EXPECT_TRUE(command(p, 2).args.empty());
 }
 
 TEST(Parser, TrailingCommentAfterParametersIsIgnored) {
@@ -163,9 +203,9 @@ TEST(Parser, CommentDirectlyAfterParameterOrCode) {
   ASSERT_TRUE(p.ok());
   ASSERT_EQ(p.statements.size(), 3u);
   EXPECT_EQ(param_texts(command(p, 0)), Texts{"5"});
-  EXPECT_TRUE(command(p, 1).params.empty());
+  EXPECT_TRUE(command(p, 1).args.empty());
   EXPECT_EQ(command(p, 2).code, "SR");
-  EXPECT_TRUE(command(p, 2).params.empty());
+  EXPECT_TRUE(command(p, 2).args.empty());
 }
 
 TEST(Parser, QuotedParameterKeepsCommasAndApostrophes) {
@@ -230,7 +270,7 @@ TEST(Parser, WindowsLineEndingsParseLikeUnix) {
   ASSERT_TRUE(p.ok()) << format(p.errors.front());
   ASSERT_EQ(p.statements.size(), 5u);
   EXPECT_EQ(command(p, 0).code, "SA");
-  EXPECT_TRUE(command(p, 0).params.empty());
+  EXPECT_TRUE(command(p, 0).args.empty());
   EXPECT_EQ(param_texts(command(p, 1)), Texts{"5"});
   EXPECT_EQ(param_texts(command(p, 2)), (Texts{"1", "", "2"}));
   ASSERT_TRUE(std::holds_alternative<LabelStmt>(p.statements[3].body));
@@ -243,7 +283,7 @@ TEST(Parser, WindowsLineEndingsKeepColumns) {
   const Program p = parse("SA\r\n  MX, 5\r\n");
   ASSERT_TRUE(p.ok());
   EXPECT_EQ(where(p.statements[1].loc), "part.sbp:2:3");
-  EXPECT_EQ(where(command(p, 1).params[0].loc), "part.sbp:2:7");
+  EXPECT_EQ(where(command(p, 1).args[0].loc), "part.sbp:2:7");
 }
 
 TEST(Parser, LastLineWithoutNewlineIsParsed) {
@@ -268,16 +308,16 @@ TEST(Parser, ParameterLocationsAreTheirFirstCharacter) {
   const Program p = parse("SA\nM3, 1.5,  -2 ,3\n");
   ASSERT_TRUE(p.ok());
   const CommandStmt& cmd = command(p, 1);
-  ASSERT_EQ(cmd.params.size(), 3u);
-  EXPECT_EQ(where(cmd.params[0].loc), "part.sbp:2:5");
-  EXPECT_EQ(where(cmd.params[1].loc), "part.sbp:2:11");
-  EXPECT_EQ(where(cmd.params[2].loc), "part.sbp:2:15");
+  ASSERT_EQ(cmd.args.size(), 3u);
+  EXPECT_EQ(where(cmd.args[0].loc), "part.sbp:2:5");
+  EXPECT_EQ(where(cmd.args[1].loc), "part.sbp:2:11");
+  EXPECT_EQ(where(cmd.args[2].loc), "part.sbp:2:15");
 }
 
 TEST(Parser, SpaceSeparatedParameterLocation) {
   const Program p = parse("MX   7\n");
   ASSERT_TRUE(p.ok());
-  EXPECT_EQ(where(command(p, 0).params[0].loc), "part.sbp:1:6");
+  EXPECT_EQ(where(command(p, 0).args[0].loc), "part.sbp:1:6");
 }
 
 TEST(Parser, BlankParameterIsLocatedJustAfterItsComma) {
@@ -285,18 +325,18 @@ TEST(Parser, BlankParameterIsLocatedJustAfterItsComma) {
   const Program p = parse("M3, , 2\n");
   ASSERT_TRUE(p.ok());
   const CommandStmt& cmd = command(p, 0);
-  ASSERT_EQ(cmd.params.size(), 2u);
-  EXPECT_EQ(where(cmd.params[0].loc), "part.sbp:1:4");
-  EXPECT_EQ(where(cmd.params[1].loc), "part.sbp:1:7");
+  ASSERT_EQ(cmd.args.size(), 2u);
+  EXPECT_EQ(where(cmd.args[0].loc), "part.sbp:1:4");
+  EXPECT_EQ(where(cmd.args[1].loc), "part.sbp:1:7");
 }
 
 TEST(Parser, AllLocationsShareTheFileName) {
-  const Program p = parse_program("MX, 1\n", "dir/job.sbp");
+  const Program p = parse_lines(*Script::from_text("MX, 1\n", "dir/job.sbp"));
   ASSERT_TRUE(p.ok());
   ASSERT_TRUE(p.file);
   EXPECT_EQ(*p.file, "dir/job.sbp");
   EXPECT_EQ(p.statements[0].loc.file, p.file);
-  EXPECT_EQ(command(p, 0).params[0].loc.file, p.file);
+  EXPECT_EQ(command(p, 0).args[0].loc.file, p.file);
 }
 
 // ---- errors
@@ -307,7 +347,8 @@ TEST(Parser, UnknownLongStatementIsAnErrorAtItsStart) {
   EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:3");
   EXPECT_EQ(p.errors[0].severity, Severity::Error);
   EXPECT_EQ(p.errors[0].message,
-            "unknown statement 'PAUSEX'; commands are two characters, such as MX or J3");
+            "unknown statement 'PAUSEX'; commands are two characters, such as MX or J3, and "
+            "statements are words such as IF, GOTO or PAUSE");
   ASSERT_EQ(p.statements.size(), 1u);  // only SA
 }
 
@@ -328,13 +369,12 @@ TEST(Parser, OneLetterCodeIsAnError) {
 }
 
 TEST(Parser, CodeRunIntoNumberWithoutSeparatorIsAnError) {
-  // `MX5` reads as one word; it is not taken as `MX, 5`.
+  // `MX5` is not taken as `MX, 5`: the handbook requires a separator (`M23, 4.2` is wrong).
   const Program p = parse("SA\nMX5\n");
   ASSERT_EQ(p.statements.size(), 1u);
   ASSERT_EQ(p.errors.size(), 1u);
-  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:1");
-  EXPECT_EQ(p.errors[0].message,
-            "unknown statement 'MX5'; commands are two characters, such as MX or J3");
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:3");
+  EXPECT_EQ(p.errors[0].message, "expected a space or a comma after the command MX; write `MX, 5`");
 }
 
 TEST(Parser, CodeRunIntoSignedNumberIsAnErrorAtTheNumber) {
@@ -371,8 +411,8 @@ TEST(Parser, UnexpectedCharacterAtStatementStart) {
   ASSERT_EQ(p.errors.size(), 1u);
   EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:3");
   EXPECT_EQ(p.errors[0].message,
-            "unexpected ',' at the start of a statement; a line starts with a two-letter "
-            "command, a label or a comment");
+            "unexpected ',' at the start of a statement; a line starts with a "
+            "command, a statement, a label or a comment");
 }
 
 TEST(Parser, UnclosedQuoteIsAnError) {
@@ -417,7 +457,7 @@ TEST(Parser, EveryBadLineIsReportedAndGoodLinesAreKept) {
       "MY, 2\n");      // 10
   ASSERT_EQ(p.errors.size(), 6u);
   EXPECT_EQ(where(p.errors[0].loc), "part.sbp:2:1");
-  EXPECT_EQ(where(p.errors[1].loc), "part.sbp:4:1");
+  EXPECT_EQ(where(p.errors[1].loc), "part.sbp:4:3");
   EXPECT_EQ(where(p.errors[2].loc), "part.sbp:6:4");
   EXPECT_EQ(where(p.errors[3].loc), "part.sbp:7:8");
   EXPECT_EQ(where(p.errors[4].loc), "part.sbp:8:5");
@@ -434,7 +474,7 @@ TEST(Parser, ErrorFormatsAsFileLineColumn) {
   ASSERT_EQ(p.errors.size(), 1u);
   EXPECT_EQ(format(p.errors[0]),
             "part.sbp:2:1: error: unknown statement 'PAUSEX'; commands are two characters, such "
-            "as MX or J3");
+            "as MX or J3, and statements are words such as IF, GOTO or PAUSE");
 }
 
 // ---- files
@@ -468,7 +508,7 @@ TEST(ParseFile, ReadsAndLocatesAFile) {
   EXPECT_EQ(command(p, 1).code, "QQ");
   EXPECT_EQ(param_texts(command(p, 1)), (Texts{"1", "2"}));
   EXPECT_EQ(where(p.statements[1].loc), path + ":3:1");
-  EXPECT_EQ(where(command(p, 2).params[0].loc), path + ":4:5");
+  EXPECT_EQ(where(command(p, 2).args[0].loc), path + ":4:5");
 }
 
 }  // namespace

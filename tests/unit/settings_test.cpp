@@ -607,7 +607,7 @@ TEST(LoadSettingsFile, ReportsErrorsWithThePath) {
   const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data/bad_value.toml";
   const SettingsLoad l = load_settings_file(path);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
-  EXPECT_EQ(where(l.errors[0].loc), path + ":11:18");
+  EXPECT_EQ(where(l.errors[0].loc), path + ":12:18");
   EXPECT_EQ(l.errors[0].message,
             "axes.x.steps_per_unit = -916.7324 is out of range; allowed: > 0 and <= 1000000");
 }

@@ -7,14 +7,17 @@
 #include <vector>
 
 #include "gantry/core/diagnostic.hpp"  // SourceLoc
-#include "gantry/lang/statement.hpp"   // Param
+#include "gantry/interp/value.hpp"     // Value
+#include "gantry/lang/statement.hpp"   // Arg
 
 namespace gantry {
 
 class CommandContext;
 struct CommandSpec;
 
-enum class CommandGroup { Jog, Move, Settings, Values };
+enum class CommandGroup { File, Jog, Move, Settings, Values };
+
+enum class ParamKind { Number, Text };
 
 struct ParamSpec {
   std::string_view name;                // as the fill-in sheet shows it
@@ -22,17 +25,25 @@ struct ParamSpec {
   bool required = false;                // a blank is an error
   std::optional<double> default_value;  // used when blank (nullopt: the handler decides)
   std::string_view help;
+  ParamKind kind = ParamKind::Number;  // Text: a file name, a letter; bare words allowed
 };
 
 // A command's parameters after evaluation: one slot per ParamSpec, nullopt when blank.
 struct CommandCall {
   const CommandSpec& spec;
-  SourceLoc loc;                     // the command's own location
-  const std::vector<Param>& params;  // as written, for locating errors
-  std::vector<std::optional<double>> values;
+  SourceLoc loc;                 // the command's own location
+  const std::vector<Arg>& args;  // as written, for locating errors
+  std::vector<std::optional<Value>> values;
 
   // The location of parameter i (or of the command when it was not written).
-  SourceLoc param_loc(size_t i) const { return i < params.size() ? params[i].loc : loc; }
+  SourceLoc param_loc(size_t i) const { return i < args.size() ? args[i].loc : loc; }
+  // Parameter i as a number (Number parameters) or text (Text parameters); nullopt if blank.
+  std::optional<double> number(size_t i) const {
+    return values[i] ? std::optional<double>(values[i]->num()) : std::nullopt;
+  }
+  std::optional<std::string> text(size_t i) const {
+    return values[i] ? std::optional<std::string>(values[i]->to_string()) : std::nullopt;
+  }
 };
 
 using CommandHandler = void (*)(CommandContext&, const CommandCall&);
@@ -64,5 +75,6 @@ const char* group_name(CommandGroup g);
 // Registration of each family (one file each in src/commands).
 void add_move_commands(std::vector<CommandSpec>& out);
 void add_mode_commands(std::vector<CommandSpec>& out);
+void add_file_commands(std::vector<CommandSpec>& out);
 
 }  // namespace gantry

@@ -17,12 +17,18 @@ struct SourceLoc {
 enum class Severity { Error, Warning };
 
 struct Diagnostic {
+  Diagnostic() = default;
+  Diagnostic(SourceLoc l, Severity s, std::string m, std::vector<SourceLoc> v = {})
+      : loc(std::move(l)), severity(s), message(std::move(m)), via(std::move(v)) {}
+
   SourceLoc loc;
   Severity severity = Severity::Error;
   std::string message;
+  std::vector<SourceLoc> via;  // the calling lines of nested files, outermost first
 };
 
-// "FILE:LINE:COL: error: MESSAGE", omitting the parts that are unknown.
+// "FILE:LINE:COL: error: MESSAGE", omitting the parts that are unknown; a diagnostic in a
+// nested file starts with its callers: "outer.sbp:12 -> inner.sbp:4:9: error: ...".
 std::string format(const Diagnostic& d);
 
 // Thrown by every layer for an operator-facing error; carries its location.

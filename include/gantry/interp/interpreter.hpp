@@ -1,23 +1,49 @@
-// Runs a parsed program: modal state, dispatch through the command table, moves to a sink.
+// Runs part files: variables, control flow, nested files, and commands through the table.
 #pragma once
 
 #include <cstddef>
 #include <functional>
+#include <map>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 
-#include "gantry/commands/command_table.hpp"  // CommandTable, CommandCall
-#include "gantry/lang/statement.hpp"          // Program
-#include "gantry/motion/canon_move.hpp"       // CanonMove, MotionSink
-#include "gantry/settings/settings.hpp"       // Settings
+#include "gantry/commands/command_table.hpp"   // CommandTable, CommandCall
+#include "gantry/interp/evaluator.hpp"         // EvalEnv
+#include "gantry/interp/operator_io.hpp"       // OperatorIO
+#include "gantry/interp/persistent_store.hpp"  // PersistentStore
+#include "gantry/interp/system_variables.hpp"  // MachineSnapshot
+#include "gantry/lang/script.hpp"              // Script, Cursor
+#include "gantry/motion/canon_move.hpp"        // CanonMove, MotionSink
+#include "gantry/settings/settings.hpp"        // Settings
 
 namespace gantry {
 
 // The state the language defines and commands change.
 struct ModalState {
-  Vec6 position = Vec6::Zero();  // commanded position, units
+  Vec6 position = Vec6::Zero();  // commanded position, machine units
   bool absolute = true;          // SA (true) or SR (false)
   SpeedSettings speeds;          // MS / JS / VS
 };
+
+// How a nested file's coordinates map to the machine's: machine = origin + scale * file.
+struct Transform {
+  Vec6 origin = Vec6::Zero();
+  Vec6 scale = Vec6::Ones();
+  Vec6 to_machine(const Vec6& file) const { return origin + scale.cwiseProduct(file); }
+  Vec6 to_file(const Vec6& machine) const { return (machine - origin).cwiseQuotient(scale); }
+};
+
+// FP's parameters, for running a file as a subroutine.
+struct FileCall {
+  std::string path;
+  Vec6 proportion = Vec6::Ones();
+  int repetitions = 1;
+  int offset = 0;  // 0 none, 1 3D (X, Y, Z from here), 2 2D (X, Y from here)
+  double plunge = 0;
+};
+
+class Interpreter;
 
 // What a command handler may touch: the modal state, the profile, and the move stream.
 class CommandContext {
@@ -28,53 +54,130 @@ class CommandContext {
   ModalState& state() { return state_; }
   const Settings& settings() const { return settings_; }
 
-  // Emits a straight move from the current position to `target` and makes it current.
-  // A target outside the soft limits is an error located at `loc`; nothing is emitted.
+  // The current position in the running file's coordinates (FP may scale and offset them).
+  Vec6 position() const { return transform_.to_file(state_.position); }
+  // A straight move to `target` (file coordinates). A target outside the soft limits is an
+  // error at `loc`, and nothing is emitted.
   void line_to(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
+  // A timed wait in the motion stream.
+  void dwell(double seconds, const SourceLoc& loc);
+  // FP: runs a file as a subroutine once this command returns.
+  void call_file(const FileCall& call, const SourceLoc& loc);
+  // VS changes are undone when the file that made them ends.
+  void speeds_changed_by_values();
 
   std::size_t moves() const { return moves_; }
 
  private:
+  friend class Interpreter;
   ModalState& state_;
   const Settings& settings_;
   MotionSink& sink_;
+  Interpreter* interp_ = nullptr;
+  Transform transform_;
   std::size_t moves_ = 0;
 };
 
-class Interpreter {
+struct InterpreterOptions {
+  bool trig_in_degrees = false;      // dialect "fabmo"
+  bool allow_shell = false;          // SHELL runs programs only when allowed
+  bool dry_run = false;              // check: no files written, no programs started
+  std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
+  std::string macro_dir;             // where C<n> finds its files ("" = beside the file)
+  int max_file_depth = 8;            // FP nesting, the top-level file included
+  int max_gosub_depth = 256;
+};
+
+class Interpreter : private EvalEnv {
  public:
-  Interpreter(const Settings& settings, MotionSink& sink,
+  Interpreter(const Settings& settings, MotionSink& sink, OperatorIO& io, PersistentStore& store,
+              InterpreterOptions options = {},
               const CommandTable& table = CommandTable::standard());
+  ~Interpreter() override;
 
-  // Runs the program to END or its last line; throws GantryError at the first error.
-  void run(const Program& program);
+  // Runs the script to its end (or END/ENDALL); throws GantryError at the first error,
+  // located through every nested file. The motion sink is flushed either way.
+  void run(std::shared_ptr<const Script> script);
 
-  // Runs the program without stopping at errors: returns every error found, each statement
-  // that fails being skipped. Used by `check` and before any motion.
-  std::vector<Diagnostic> check(const Program& program);
+  // Runs without stopping at errors: each statement that fails is reported and skipped.
+  // Includes the script's own syntax errors. Stops (with a warning) where the rest of the
+  // run depends on an operator answer it does not have, or when the budget runs out.
+  std::vector<Diagnostic> check(std::shared_ptr<const Script> script);
 
-  // Called after each statement with (statements done, statements in the program).
+  // Called after each statement with (line reached in the top-level file, its line count).
   void on_progress(std::function<void(std::size_t, std::size_t)> f) { progress_ = std::move(f); }
 
   const ModalState& state() const { return state_; }
   std::size_t statements_executed() const { return executed_; }
   std::size_t moves_emitted() const { return ctx_.moves(); }
+  const Value* variable(std::string_view upper_name) const { return user_variable(upper_name); }
+  MachineSnapshot snapshot() const;
 
  private:
-  // Executes one statement; returns false at END.
-  bool execute(const Statement& st);
-  void execute_command(const CommandStmt& cmd, const SourceLoc& loc);
+  friend class CommandContext;
+  struct Frame;
+  struct UserFile;
 
+  // EvalEnv
+  const Value* user_variable(std::string_view name) const override;
+  const nlohmann::json* persistent_variable(std::string_view name) const override;
+  Value system_variable(int n, const SourceLoc& loc) override;
+  bool trig_in_degrees() const override { return options_.trig_in_degrees; }
+
+  void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from);
+  void end_file();
+  void loop(std::vector<Diagnostic>* collect);
+  void execute(const Statement& st);
+  // One overload per statement kind: control flow and commands in interpreter.cpp, operator
+  // and file statements in io_statements.cpp.
+  void exec(const CommandStmt& s, const SourceLoc& loc);
+  void exec(const CustomCutStmt& s, const SourceLoc& loc);
+  void exec(const LabelStmt&, const SourceLoc&) {}
+  void exec(const AssignStmt& s, const SourceLoc& loc);
+  void exec(const JumpStmt& s, const SourceLoc& loc);
+  void exec(const ReturnStmt& s, const SourceLoc& loc);
+  void exec(const EndStmt& s, const SourceLoc& loc);
+  void exec(const IfStmt& s, const SourceLoc& loc);
+  void exec(const OnInputStmt& s, const SourceLoc& loc);
+  void exec(const PauseStmt& s, const SourceLoc& loc);
+  void exec(const PrintStmt& s, const SourceLoc& loc);
+  void exec(const InputStmt& s, const SourceLoc& loc);
+  void exec(const MsgBoxStmt& s, const SourceLoc& loc);
+  void exec(const DialogStmt& s, const SourceLoc& loc);
+  void exec(const FailStmt& s, const SourceLoc& loc);
+  void exec(const OpenStmt& s, const SourceLoc& loc);
+  void exec(const CloseStmt& s, const SourceLoc& loc);
+  void exec(const ShellStmt& s, const SourceLoc& loc);
+  void exec(const WarningOffStmt& s, const SourceLoc& loc);
+  void exec(const PlayStmt& s, const SourceLoc& loc);
+  void exec(const RegistryStmt& s, const SourceLoc& loc);
+  UserFile& user_file(const Expr& number, const SourceLoc& loc, bool must_be_open);
+  std::string pause_message(const SourceLoc& loc) const;
+  Value value_of(const Arg& a);
+  void assign(const LValue& target, const Value& v);
+  std::string file_path(const std::string& name) const;
+  [[noreturn]] void rethrow_located(const GantryError& e) const;
+
+  const Settings& settings_;
   const CommandTable& table_;
   MotionSink& sink_;
+  OperatorIO& io_;
+  PersistentStore& store_;
+  InterpreterOptions options_;
   ModalState state_;
   CommandContext ctx_;
+  std::vector<Frame> frames_;
+  std::unordered_map<std::string, Value> vars_;
+  std::map<std::pair<int, int>, std::shared_ptr<const Statement>> on_input_;
+  std::vector<std::unique_ptr<UserFile>> files_;
+  std::optional<FileCall> pending_call_;
+  SourceLoc pending_call_loc_;
+  std::string parts_dir_;
+  Cursor current_;  // the line being executed
+  bool warning_off_ = false;
+  bool stop_all_ = false;
   std::size_t executed_ = 0;
   std::function<void(std::size_t, std::size_t)> progress_;
 };
-
-// Parameter text to a number: OpenSBP numerals (`5`, `-.45`, `+3.`, `1e-3`).
-// Anything else is an error at the parameter, naming what was expected.
-double evaluate_number(const Param& p, std::string_view what);
 
 }  // namespace gantry

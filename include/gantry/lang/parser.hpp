@@ -1,17 +1,24 @@
-// OpenSBP text to statements: pure, no I/O beyond reading the file it is given.
+// OpenSBP text to statements, one physical line at a time: pure, no I/O.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
-#include "gantry/lang/statement.hpp"  // Program
+#include "gantry/lang/statement.hpp"  // Statement
 
 namespace gantry {
 
-// Parses part-file text. Every line that cannot be read adds one located diagnostic;
-// parsing continues so that a check reports all of them.
-Program parse_program(std::string_view text, const std::string& file_name);
+// One physical line: nothing (blank or comment), a statement, or the reason it is not one.
+struct LineParse {
+  std::optional<Statement> statement;
+  std::optional<Diagnostic> error;
+  std::optional<std::string> comment;  // the text of a full-line comment (`'` or REM)
+};
 
-// Reads and parses a file; an unreadable file gives a Program with one error.
-Program parse_file(const std::string& path);
+// `line` excludes its line terminator. `file` and `line_no` locate everything in it.
+LineParse parse_line(std::string_view line, const std::shared_ptr<const std::string>& file,
+                     int line_no);
 
 }  // namespace gantry

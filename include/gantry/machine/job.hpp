@@ -3,37 +3,50 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
+#include <memory>
 #include <vector>
 
-#include "gantry/hal/card.hpp"           // Card
-#include "gantry/lang/statement.hpp"     // Program
-#include "gantry/motion/canon_move.hpp"  // MotionSink
-#include "gantry/settings/settings.hpp"  // Settings
+#include "gantry/hal/card.hpp"                 // Card
+#include "gantry/interp/interpreter.hpp"       // InterpreterOptions
+#include "gantry/interp/operator_io.hpp"       // OperatorIO
+#include "gantry/interp/persistent_store.hpp"  // PersistentStore
+#include "gantry/lang/script.hpp"              // Script
+#include "gantry/motion/canon_move.hpp"        // MotionSink
+#include "gantry/settings/settings.hpp"        // Settings
 
 namespace gantry {
 
 struct JobOptions {
-  std::function<void(std::size_t done, std::size_t total)> progress;  // statements
+  std::function<void(std::size_t done, std::size_t total)> progress;  // lines of the top file
+  InterpreterOptions interpreter;
+  std::map<std::string, std::string> inputs;  // --input answers, for the check as well
+  std::size_t check_budget = 10'000'000;      // statements a check may run (loops end there)
 };
 
 struct JobResult {
-  std::vector<Diagnostic> errors;  // empty when the job ran to its end
-  std::size_t lines = 0;           // statements executed
-  std::size_t moves = 0;           // canonical moves issued
-  Steps6 commanded_steps{};        // steps the generator emitted
-  double planned_time_s = 0;       // the planner's sum of segment durations
+  std::vector<Diagnostic> errors;    // empty when the job ran to its end
+  std::vector<Diagnostic> warnings;  // from the check and the run
+  std::size_t lines = 0;             // statements executed
+  std::size_t moves = 0;             // canonical moves issued
+  Steps6 commanded_steps{};          // steps the generator emitted
+  double planned_time_s = 0;         // the planner's sum of segment durations
   bool ok() const { return errors.empty(); }
 };
 
-// Checks every statement first (collecting all errors); only a clean file reaches the card,
-// so a bad file never moves the machine.
-JobResult run_job(const Program& program, const Settings& settings, Card& card,
-                  const JobOptions& options = {});
+// Checks every statement first (collecting all errors) without writing a file or touching
+// the persistent store; only a clean file reaches the card, so a bad file never moves the
+// machine. Then runs it, asking `io` for operator answers.
+JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
+                  OperatorIO& io, PersistentStore& store, const JobOptions& options = {});
 
-// Interprets without motion and returns every error: what `gantry check` reports.
-std::vector<Diagnostic> check_program(const Program& program, const Settings& settings);
+// Interprets without motion and returns every error and warning: what `gantry check` says.
+std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
+                                      const Settings& settings, const PersistentStore& store,
+                                      const JobOptions& options = {});
 
 // Interprets a checked program, handing each canonical move to `sink` (for `gantry moves`).
-void interpret(const Program& program, const Settings& settings, MotionSink& sink);
+void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
+               OperatorIO& io, PersistentStore& store, const JobOptions& options = {});
 
 }  // namespace gantry

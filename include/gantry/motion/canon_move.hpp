@@ -7,7 +7,7 @@
 
 namespace gantry {
 
-enum class MoveKind { Line };
+enum class MoveKind { Line, Dwell };
 
 // Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
 enum class SpeedClass { Move, Jog };
@@ -18,6 +18,7 @@ struct CanonMove {
   Vec6 from = Vec6::Zero();
   Vec6 to = Vec6::Zero();
   GroupSpeeds speeds;  // the class's speeds in force when the move was issued
+  double dwell_s = 0;  // Dwell: how long the machine waits, s
   SourceLoc loc;       // the statement that asked for it
 };
 

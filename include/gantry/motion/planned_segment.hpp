@@ -9,7 +9,8 @@ namespace gantry {
 struct PlannedSegment {
   Vec6 from = Vec6::Zero();  // units
   Vec6 to = Vec6::Zero();
-  Trapezoid profile;  // along |to - from|
+  Trapezoid profile;   // along |to - from|
+  double dwell_s = 0;  // a wait with no motion (profile empty)
   SpeedClass speed_class = SpeedClass::Move;
   SourceLoc loc;
 };

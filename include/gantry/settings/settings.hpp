@@ -12,6 +12,10 @@ namespace gantry {
 
 enum class Units { Inches, Millimetres };
 
+// Which OpenSBP the part files are written in: SB3 (trigonometry in radians) or FabMo
+// (degrees).
+enum class Dialect { SB3, FabMo };
+
 // One speed (or ramp speed) per group, as MS/JS/VS/VR name them: XY is a vector speed.
 struct GroupSpeeds {
   double xy = 0, z = 0, a = 0, b = 0, c = 0;
@@ -59,6 +63,7 @@ struct CardSettings {
 struct Settings {
   std::string name;
   Units units = Units::Inches;
+  Dialect dialect = Dialect::SB3;
   std::array<AxisSettings, kAxisCount> axes{};
   SpeedSettings speeds;
   RampSettings ramps;

@@ -1,0 +1,60 @@
+// A loaded part file: its text, its label index, and the errors one pass over it finds.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "gantry/core/diagnostic.hpp"  // Diagnostic
+#include "gantry/lang/parser.hpp"      // LineParse
+
+namespace gantry {
+
+// The start of a physical line.
+struct Cursor {
+  size_t offset = 0;
+  int line = 1;
+};
+
+// Statements are parsed when they are executed, so memory does not grow with the file: a
+// script holds its text and one entry per label. Loading makes one pass over every line to
+// index the labels and to find every syntax error, duplicate label and jump to a missing
+// label before anything runs.
+class Script {
+ public:
+  // Reads `path`; an unreadable file gives a script with one error and no text.
+  static std::shared_ptr<const Script> load(const std::string& path);
+  static std::shared_ptr<const Script> from_text(std::string text, const std::string& name);
+
+  const std::shared_ptr<const std::string>& name() const { return name_; }
+  const std::vector<Diagnostic>& errors() const { return errors_; }  // all severities
+  bool ok() const;                                                   // no errors (warnings ok)
+  int line_count() const { return lines_; }
+
+  Cursor start() const { return {text_start_, 1}; }
+  bool at_end(Cursor c) const { return c.offset >= text_.size(); }
+  // The line at `c` (without its terminator); `next` receives the following line's cursor.
+  std::string_view line_at(Cursor c, Cursor* next) const;
+  // The physical line just above `c`, if any.
+  std::optional<std::string_view> line_before(Cursor c) const;
+  // The line after `NAME:` (name upper case, inner spaces single), or nullopt.
+  std::optional<Cursor> label(const std::string& name) const;
+
+  LineParse parse(Cursor c, Cursor* next) const;
+
+ private:
+  Script(std::string text, const std::string& name);
+  void index();
+
+  std::string text_;
+  size_t text_start_ = 0;  // past a UTF-8 byte-order mark
+  std::shared_ptr<const std::string> name_;
+  std::unordered_map<std::string, Cursor> labels_;
+  std::vector<Diagnostic> errors_;
+  int lines_ = 0;
+};
+
+}  // namespace gantry

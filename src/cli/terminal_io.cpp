@@ -1,0 +1,65 @@
+// Terminal prompts on stderr, answers from stdin. End of input counts as Cancel.
+#include "terminal_io.hpp"
+
+#include <fmt/format.h>  // prompts
+
+#include <cctype>    // tolower
+#include <iostream>  // getline
+
+namespace gantry {
+namespace {
+
+std::optional<std::string> read_line() {
+  std::string line;
+  if (!std::getline(std::cin, line)) return std::nullopt;
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
+std::string where(const SourceLoc& loc) {
+  return loc.file ? fmt::format("{}:{}", *loc.file, loc.line) : std::string("console");
+}
+
+}  // namespace
+
+void TerminalIO::print(std::string_view text) {
+  fmt::print("{}", text);
+}
+
+bool TerminalIO::confirm(std::string_view message, const SourceLoc& loc) {
+  fmt::print(stderr, "\n[{}] {}\n  Enter to continue, c then Enter to cancel: ", where(loc),
+             message);
+  const std::optional<std::string> a = read_line();
+  return a && (a->empty() || std::tolower(static_cast<unsigned char>((*a)[0])) != 'c');
+}
+
+std::optional<std::string> TerminalIO::ask(std::string_view prompt, std::string_view variable,
+                                           std::string_view default_value, const SourceLoc& loc) {
+  fmt::print(stderr, "\n[{}] {} ({}){}: ", where(loc), prompt.empty() ? "Input" : prompt, variable,
+             default_value.empty() ? "" : fmt::format(" [{}]", default_value));
+  std::optional<std::string> a = read_line();
+  if (a && a->empty() && !default_value.empty()) return std::string(default_value);
+  return a;
+}
+
+std::string TerminalIO::choose(std::string_view text, const std::vector<std::string>& buttons,
+                               size_t default_button, std::string_view title,
+                               const SourceLoc& loc) {
+  while (true) {
+    fmt::print(stderr, "\n[{}] {}: {}\n", where(loc), title, text);
+    for (size_t i = 0; i < buttons.size(); ++i)
+      fmt::print(stderr, "  {}) {}{}\n", i + 1, buttons[i], i == default_button ? " (Enter)" : "");
+    fmt::print(stderr, "  choice: ");
+    const std::optional<std::string> a = read_line();
+    if (!a) return buttons.back();  // end of input: the last button (Cancel or No)
+    if (a->empty()) return buttons[default_button];
+    for (size_t i = 0; i < buttons.size(); ++i)
+      if (*a == std::to_string(i + 1)) return buttons[i];
+  }
+}
+
+void TerminalIO::warn(const Diagnostic& d) {
+  fmt::print(stderr, "{}\n", format(d));
+}
+
+}  // namespace gantry

@@ -1,0 +1,32 @@
+// Interpreter internals shared by its two source files.
+#pragma once
+
+#include <fstream>
+
+#include "gantry/interp/interpreter.hpp"
+
+namespace gantry {
+
+// One running file: where it is, its GOSUB returns, how its coordinates map to the machine.
+struct Interpreter::Frame {
+  std::shared_ptr<const Script> script;
+  Cursor pc;                   // the next line to execute
+  std::vector<Cursor> gosubs;  // return points
+  SourceLoc called_from;       // the FP or C# line in the caller (no file for the top level)
+  Transform transform;
+  FileCall call;
+  int repetition = 0;
+  SpeedSettings saved_speeds;  // restored at the end when VS changed them in this file
+  bool restore_speeds = false;
+};
+
+// A file opened with OPEN ... AS #n.
+struct Interpreter::UserFile {
+  int number = 0;
+  OpenStmt::Mode mode = OpenStmt::Mode::Input;
+  std::string path;
+  std::ifstream in;
+  std::ofstream out;
+};
+
+}  // namespace gantry

@@ -1,0 +1,60 @@
+// Scripted operator answers: --yes and --input, for runs without a person at the machine.
+#include "gantry/interp/operator_io.hpp"
+
+#include <fmt/format.h>  // messages
+
+#include <cstdio>  // stdout
+
+namespace gantry {
+
+void ScriptedIO::print(std::string_view text) {
+  if (out_)
+    out_->append(text);
+  else
+    fmt::print("{}", text);
+}
+
+bool ScriptedIO::confirm(std::string_view message, const SourceLoc& loc) {
+  if (yes_) return true;
+  throw NeedsOperator({loc, Severity::Error,
+                       fmt::format("PAUSE waits for the operator (\"{}\"); run from a terminal, or "
+                                   "with --yes to continue every pause",
+                                   message)});
+}
+
+std::optional<std::string> ScriptedIO::ask(std::string_view, std::string_view variable,
+                                           std::string_view, const SourceLoc& loc) {
+  std::string answer;
+  size_t start = 0;
+  const std::string names(variable);
+  while (start <= names.size()) {  // one value per variable, joined as the operator types them
+    size_t comma = names.find(',', start);
+    if (comma == std::string::npos) comma = names.size();
+    const std::string name = names.substr(start, comma - start);
+    auto it = inputs_.find(name);
+    if (it == inputs_.end())
+      throw NeedsOperator({loc, Severity::Error,
+                           fmt::format("INPUT asks the operator for {}; run from a terminal, or "
+                                       "give it with --input {}=VALUE",
+                                       name, name)});
+    answer += (answer.empty() ? "" : ",") + it->second;
+    start = comma + 1;
+  }
+  return answer;
+}
+
+std::string ScriptedIO::choose(std::string_view text, const std::vector<std::string>& buttons,
+                               size_t default_button, std::string_view, const SourceLoc& loc) {
+  if (yes_ || buttons.size() == 1) return buttons[default_button];
+  throw NeedsOperator(
+      {loc, Severity::Error,
+       fmt::format("MSGBOX asks the operator (\"{}\"); run from a terminal, or with "
+                   "--yes to press its default button",
+                   text)});
+}
+
+void ScriptedIO::warn(const Diagnostic& d) {
+  warnings_.push_back(d);
+}
+
+}  // namespace gantry

@@ -1,0 +1,61 @@
+// The persistent store's file: JSON, loaded strictly, saved atomically.
+#include "gantry/interp/persistent_store.hpp"
+
+#include <fcntl.h>  // open
+#include <fmt/format.h>
+#include <unistd.h>  // fsync, close
+
+#include <cstdio>      // rename
+#include <cstdlib>     // getenv
+#include <filesystem>  // create_directories
+
+#include "gantry/core/text_file.hpp"  // read_text_file
+
+namespace gantry {
+
+PersistentStore::PersistentStore(std::string path) : path_(std::move(path)) {
+  if (!std::filesystem::exists(path_)) return;
+  std::optional<std::string> text = read_text_file(path_);
+  if (!text) fail(file_loc(path_), "cannot read the persistent variables file");
+  try {
+    nlohmann::json j = nlohmann::json::parse(*text);
+    if (!j.is_object()) throw nlohmann::json::type_error::create(302, "not an object", nullptr);
+    for (const char* k : {"variables", "registry"})
+      if (j.contains(k) && j[k].is_object()) data_[k] = j[k];
+  } catch (const nlohmann::json::exception& e) {
+    fail(file_loc(path_), fmt::format("the persistent variables file is damaged ({}); it was "
+                                      "left as it is: repair or move it away",
+                                      e.what()));
+  }
+}
+
+std::string PersistentStore::default_path() {
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  const char* home = std::getenv("HOME");
+  const std::string base = xdg && *xdg ? xdg : std::string(home ? home : ".") + "/.config";
+  return base + "/gantry/persistent.json";
+}
+
+const nlohmann::json* PersistentStore::variable(std::string_view name) const {
+  const nlohmann::json& vars = data_.at("variables");
+  auto it = vars.find(std::string(name));
+  return it == vars.end() ? nullptr : &*it;
+}
+
+void PersistentStore::save() const {
+  if (path_.empty() || !dirty_) return;
+  const std::filesystem::path p(path_);
+  std::error_code ec;
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  const std::string tmp = fmt::format("{}.{}.tmp", path_, ::getpid());  // one per process
+  const std::string text = data_.dump(2) + "\n";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  bool ok = fd >= 0 && ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ok = fd >= 0 && ::fsync(fd) == 0 && ok;
+  if (fd >= 0) ::close(fd);
+  if (!ok || std::rename(tmp.c_str(), path_.c_str()) != 0)
+    fail(file_loc(path_), "cannot save the persistent variables; the previous file is kept");
+  dirty_ = false;
+}
+
+}  // namespace gantry

@@ -1,0 +1,795 @@
+// Parsing expressions and lvalues: a one-token-lookahead lexer and a recursive-descent parser
+// that builds a flat ExprTree.
+#include "gantry/lang/expression.hpp"
+
+#include <fmt/format.h>  // messages
+
+#include <algorithm>  // max
+
+#include "expr_node.hpp"
+#include "number_literal.hpp"  // literal::scan, literal::value
+
+namespace gantry {
+
+namespace {
+
+constexpr FuncInfo kFunctions[] = {
+    {"ABS", ExprFunc::Abs, 1, 1},
+    {"INT", ExprFunc::Int, 1, 1},
+    {"FIX", ExprFunc::Fix, 1, 1},
+    {"SGN", ExprFunc::Sgn, 1, 1},
+    {"SIN", ExprFunc::Sin, 1, 1},
+    {"COS", ExprFunc::Cos, 1, 1},
+    {"TAN", ExprFunc::Tan, 1, 1},
+    {"ATN", ExprFunc::Atn, 1, 1},
+    {"ATAN", ExprFunc::Atn, 1, 1},
+    {"ATAN2", ExprFunc::Atan2, 2, 2},
+    {"EXP", ExprFunc::Exp, 1, 1},
+    {"LOG", ExprFunc::Log, 1, 1},
+    {"SQR", ExprFunc::Sqr, 1, 1},
+    {"SQRT", ExprFunc::Sqr, 1, 1},
+    {"ROUND", ExprFunc::Round, 1, 2},
+    {"MIN", ExprFunc::Min, 2, kMaxCallArgs},
+    {"MAX", ExprFunc::Max, 2, kMaxCallArgs},
+    {"CEIL", ExprFunc::Ceil, 1, 1},
+    {"FLOOR", ExprFunc::Floor, 1, 1},
+};
+
+// Parentheses, calls, indices and signs nested deeper than this are refused rather than
+// risking the parser's stack; no hand-written part file comes close.
+constexpr int kMaxNesting = 200;
+// Evaluation recurses once per tree level; a left-leaning chain `1+1+1+...` grows one level
+// per operator, so the tree's height is bounded too.
+constexpr int kMaxHeight = 1000;
+
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+using literal::is_digit;
+bool is_name_start(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
+}
+bool is_name_char(char c) {
+  return is_name_start(c) || is_digit(c);
+}
+char upper(char c) {
+  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
+
+bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (upper(a[i]) != upper(b[i])) return false;
+  return true;
+}
+
+std::string to_upper(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = upper(c);
+  return out;
+}
+
+enum class Tok : std::uint8_t {
+  End,
+  Number,
+  Text,
+  UserVar,
+  PersistVar,
+  SysVar,  // `%(`
+  Word,
+  LParen,
+  RParen,
+  LBracket,
+  RBracket,
+  Comma,
+  Plus,
+  Minus,
+  Star,
+  Slash,
+  Caret,
+  Amp,
+  Eq,
+  Ne,
+  Lt,
+  Gt,
+  Le,
+  Ge,
+};
+
+struct Token {
+  Tok kind = Tok::End;
+  size_t pos = 0;  // offset in the text
+  size_t len = 0;
+  double number = 0;  // Number
+};
+
+// A node while the tree is being built: children are indices, texts are offsets into the
+// string pool; ExprTree's pointers and views are set once everything has its final address.
+struct Proto {
+  ExprNode node;
+  int a = -1, b = -1;
+  int args_begin = -1;  // into arg_index
+  int path = -1;
+  std::uint32_t text_off = 0, text_len = 0;
+  std::uint32_t spell_off = 0, spell_len = 0;
+  int height = 1;
+};
+
+class Parser {
+ public:
+  // `at` locates text[0]; a location without a column (0) counts text[0] as column 1.
+  Parser(std::string_view text, const SourceLoc& at, size_t pos, int nesting)
+      : text_(text), at_(at), base_(at.column > 0 ? at.column : 1), pos_(pos), nesting_(nesting) {}
+
+  Expr parse_whole() {
+    advance();
+    if (tok_.kind == Tok::End) fail(loc(0), "expected an expression");
+    const int root = parse_or();
+    expect_end("the expression");
+    return finish(root);
+  }
+
+  LValue parse_lvalue() {
+    advance();
+    const Token t = tok_;
+    LValue v;
+    v.loc = loc(t.pos);
+    switch (t.kind) {
+      case Tok::UserVar:
+        v.name = to_upper(text_.substr(t.pos + 1, t.len - 1));
+        reject_user_accessor(t);
+        break;
+      case Tok::PersistVar:
+        v.persistent = true;
+        v.name = to_upper(text_.substr(t.pos + 1, t.len - 1));
+        v.path = accessors();
+        break;
+      case Tok::SysVar:
+        fail(loc(t.pos), "system variables %(n) are read-only; assign to a &variable instead");
+      case Tok::End:
+        fail(loc(t.pos), "expected a variable such as &name");
+      default:
+        fail(loc(t.pos), fmt::format("expected a variable such as &name, found {}", describe(t)));
+    }
+    advance();
+    expect_end("the variable");
+    return v;
+  }
+
+ private:
+  // ---- locations and messages ----
+
+  std::int32_t col(size_t pos) const { return base_ + static_cast<std::int32_t>(pos); }
+  SourceLoc loc(size_t pos) const {
+    SourceLoc l = at_;
+    l.column = col(pos);
+    return l;
+  }
+  std::string_view source(const Token& t) const { return text_.substr(t.pos, t.len); }
+
+  std::string describe(const Token& t) const {
+    if (t.kind == Tok::End) return "the end of the text";
+    std::string_view s = source(t);
+    if (s.size() > 30) return fmt::format("'{}...'", s.substr(0, 30));
+    return fmt::format("'{}'", s);
+  }
+
+  bool is_keyword(const Token& t, std::string_view kw) const {
+    return t.kind == Tok::Word && iequals(source(t), kw);
+  }
+
+  void expect_end(std::string_view what) {
+    if (tok_.kind == Tok::End) return;
+    switch (tok_.kind) {
+      case Tok::RParen:
+        fail(loc(tok_.pos), "unexpected ')' with no matching '('");
+      case Tok::RBracket:
+        fail(loc(tok_.pos), "unexpected ']' with no matching '['");
+      case Tok::Number:
+      case Tok::Text:
+      case Tok::UserVar:
+      case Tok::PersistVar:
+      case Tok::SysVar:
+      case Tok::LParen:
+        fail(loc(tok_.pos),
+             fmt::format("unexpected {} after {}: two values need an operator between them "
+                         "(join text with ' & ')",
+                         describe(tok_), what));
+      default:
+        fail(loc(tok_.pos), fmt::format("unexpected {} after {}", describe(tok_), what));
+    }
+  }
+
+  // ---- lexer ----
+
+  // Reads the token at pos_ into tok_; lexical errors are thrown at their character.
+  void advance() {
+    prev_ = tok_;
+    const size_t n = text_.size();
+    size_t i = pos_;
+    while (i < n && is_space(text_[i])) ++i;
+    tok_ = Token{};
+    tok_.pos = i;
+    if (i >= n) {
+      pos_ = i;
+      return;
+    }
+    const char c = text_[i];
+    const char next = i + 1 < n ? text_[i + 1] : '\0';
+    auto set = [&](Tok k, size_t len) {
+      tok_.kind = k;
+      tok_.len = len;
+    };
+    switch (c) {
+      case '(':
+        set(Tok::LParen, 1);
+        break;
+      case ')':
+        set(Tok::RParen, 1);
+        break;
+      case '[':
+        set(Tok::LBracket, 1);
+        break;
+      case ']':
+        set(Tok::RBracket, 1);
+        break;
+      case ',':
+        set(Tok::Comma, 1);
+        break;
+      case '+':
+        set(Tok::Plus, 1);
+        break;
+      case '-':
+        set(Tok::Minus, 1);
+        break;
+      case '*':
+        set(Tok::Star, 1);
+        break;
+      case '/':
+        set(Tok::Slash, 1);
+        break;
+      case '^':
+        set(Tok::Caret, 1);
+        break;
+      case '"': {
+        const size_t close = text_.find('"', i + 1);
+        if (close == std::string_view::npos)
+          fail(loc(i), "this text has no closing '\"'; add one at its end");
+        set(Tok::Text, close - i + 1);
+        break;
+      }
+      case '&':
+        // `&` followed by a name starts a variable; otherwise it is the join operator, so
+        // `"a"&&x` joins "a" and &x (handbook examples always space the operator).
+        if (is_name_start(next))
+          set(Tok::UserVar, name_end(i + 1) - i);
+        else
+          set(Tok::Amp, 1);
+        break;
+      case '$':
+        if (!is_name_start(next)) fail(loc(i), "'$' must be followed by a name, as in $name");
+        set(Tok::PersistVar, name_end(i + 1) - i);
+        break;
+      case '%':
+        if (next != '(')
+          fail(loc(i),
+               "'%' is not an operator: use MOD for a remainder; %(n) reads a system variable");
+        set(Tok::SysVar, 2);
+        break;
+      case '=':
+        if (next == '>') fail(loc(i), "'=>' is not an operator; write >=");
+        if (next == '<') fail(loc(i), "'=<' is not an operator; write <=");
+        set(Tok::Eq, next == '=' ? 2 : 1);
+        break;
+      case '<':
+        if (next == '>')
+          set(Tok::Ne, 2);
+        else if (next == '=')
+          set(Tok::Le, 2);
+        else
+          set(Tok::Lt, 1);
+        break;
+      case '>':
+        if (next == '=')
+          set(Tok::Ge, 2);
+        else
+          set(Tok::Gt, 1);
+        break;
+      case '!':
+        if (next != '=')
+          fail(loc(i), "unexpected '!': write <> (or !=) for 'not equal' and NOT for negation");
+        set(Tok::Ne, 2);
+        break;
+      default:
+        if (is_digit(c) || (c == '.' && is_digit(next))) {
+          lex_number(i);
+        } else if (is_name_start(c)) {
+          set(Tok::Word, name_end(i) - i);
+        } else if (c == '.') {
+          fail(loc(i), "unexpected '.'");
+        } else {
+          // Show a whole UTF-8 character (`°`), not its first byte.
+          size_t e = i + 1;
+          if (static_cast<unsigned char>(c) >= 0x80)
+            while (e < n && (static_cast<unsigned char>(text_[e]) & 0xC0) == 0x80) ++e;
+          fail(loc(i), fmt::format("unexpected character '{}'", text_.substr(i, e - i)));
+        }
+    }
+    pos_ = i + tok_.len;
+  }
+
+  size_t name_end(size_t i) const {
+    while (i < text_.size() && is_name_char(text_[i])) ++i;
+    return i;
+  }
+
+  void lex_number(size_t i) {
+    const size_t j = literal::scan(text_, i);
+    const std::optional<double> d = literal::value(text_.substr(i, j - i));
+    if (!d) fail(loc(i), fmt::format("the number {} is too large", text_.substr(i, j - i)));
+    tok_.kind = Tok::Number;
+    tok_.len = j - i;
+    tok_.number = *d;
+  }
+
+  // ---- tree building ----
+
+  int add(ExprOp op, size_t pos, int a = -1, int b = -1) {
+    Proto p;
+    p.node.op = op;
+    p.node.col = col(pos);
+    p.node.start = a >= 0 && b >= 0 ? protos_[a].node.start : p.node.col;
+    p.a = a;
+    p.b = b;
+    if (a >= 0) p.height = std::max(p.height, protos_[a].height + 1);
+    if (b >= 0) p.height = std::max(p.height, protos_[b].height + 1);
+    if (p.height > kMaxHeight)
+      fail(loc(pos), "this expression is too long to evaluate; split it using variables");
+    protos_.push_back(std::move(p));
+    return static_cast<int>(protos_.size()) - 1;
+  }
+
+  void set_text(int node, std::string_view s) {
+    protos_[node].text_off = static_cast<std::uint32_t>(strings_.size());
+    protos_[node].text_len = static_cast<std::uint32_t>(s.size());
+    strings_ += s;
+  }
+
+  // Nesting guard for the recursive descent; see kMaxNesting.
+  struct Nest {
+    explicit Nest(Parser& p, size_t pos) : p_(p) {
+      if (++p_.nesting_ > kMaxNesting)
+        fail(p_.loc(pos), "this expression is nested too deeply; split it using variables");
+    }
+    ~Nest() { --p_.nesting_; }
+    Parser& p_;
+  };
+
+  Expr finish(int root) {
+    auto tree = std::make_shared<ExprTree>();
+    tree->at = at_;
+    tree->strings = std::move(strings_);
+    tree->paths = std::move(paths_);
+    tree->nodes.resize(protos_.size());
+    tree->arglist.resize(arg_index_.size());
+    for (size_t k = 0; k < arg_index_.size(); ++k) tree->arglist[k] = &tree->nodes[arg_index_[k]];
+    const std::string_view pool(tree->strings);
+    for (size_t i = 0; i < protos_.size(); ++i) {
+      const Proto& p = protos_[i];
+      ExprNode& n = tree->nodes[i];
+      n = p.node;
+      n.tree = tree.get();
+      if (p.a >= 0) n.a = &tree->nodes[p.a];
+      if (p.b >= 0) n.b = &tree->nodes[p.b];
+      n.text = pool.substr(p.text_off, p.text_len);
+      n.spelling = pool.substr(p.spell_off, p.spell_len);
+      if (p.args_begin >= 0) n.args = tree->arglist.data() + p.args_begin;
+      if (p.path >= 0) n.path = &tree->paths[p.path];
+    }
+    const ExprNode* r = &tree->nodes[root];
+    return Expr(std::shared_ptr<const ExprNode>(std::move(tree), r));
+  }
+
+  // ---- grammar, lowest precedence first ----
+  //   or   := and { OR and }
+  //   and  := not { AND not }
+  //   not  := NOT not | cmp
+  //   cmp  := join [ cmpop join ]           one comparison; a second one is an error
+  //   join := add { "&" add }
+  //   add  := mod { ("+" | "-") mod }
+  //   mod  := mul { MOD mul }               VB's level, between * / and + -
+  //   mul  := unary { ("*" | "/") unary }
+  //   unary:= ("-" | "+") unary | pow        so -2^2 = -(2^2) = -4
+  //   pow  := primary { "^" signed }        LEFT-associative: 2^3^2 = (2^3)^2 = 64
+  //   signed := ("-" | "+") signed | primary   so 2^-1 = 0.5
+  // Every binary operator is left-associative: 8/4/2 = (8/4)/2 = 1.
+
+  int parse_or() {
+    Nest nest(*this, tok_.pos);
+    int x = parse_and();
+    while (is_keyword(tok_, "OR")) {
+      const Token op = tok_;
+      advance();
+      x = add(ExprOp::Or, op.pos, x, parse_and());
+    }
+    return x;
+  }
+
+  int parse_and() {
+    int x = parse_not();
+    while (is_keyword(tok_, "AND")) {
+      const Token op = tok_;
+      advance();
+      x = add(ExprOp::And, op.pos, x, parse_not());
+    }
+    return x;
+  }
+
+  int parse_not() {
+    if (is_keyword(tok_, "NOT")) {
+      const Token op = tok_;
+      Nest nest(*this, op.pos);
+      advance();
+      return add(ExprOp::Not, op.pos, parse_not());
+    }
+    return parse_cmp();
+  }
+
+  static bool comparison(Tok k, ExprOp* op) {
+    switch (k) {
+      case Tok::Eq:
+        *op = ExprOp::Eq;
+        return true;
+      case Tok::Ne:
+        *op = ExprOp::Ne;
+        return true;
+      case Tok::Lt:
+        *op = ExprOp::Lt;
+        return true;
+      case Tok::Gt:
+        *op = ExprOp::Gt;
+        return true;
+      case Tok::Le:
+        *op = ExprOp::Le;
+        return true;
+      case Tok::Ge:
+        *op = ExprOp::Ge;
+        return true;
+      default:
+        return false;
+    }
+  }
+
+  int parse_cmp() {
+    const int x = parse_join();
+    ExprOp op;
+    if (!comparison(tok_.kind, &op)) return x;
+    const Token t = tok_;
+    advance();
+    const int r = add(op, t.pos, x, parse_join());
+    if (comparison(tok_.kind, &op))
+      fail(loc(tok_.pos),
+           "comparisons cannot be chained; combine them with AND, as in &a < &b AND &b < &c");
+    return r;
+  }
+
+  int parse_join() {
+    int x = parse_add();
+    while (tok_.kind == Tok::Amp) {
+      const Token op = tok_;
+      advance();
+      x = add(ExprOp::Join, op.pos, x, parse_add());
+    }
+    return x;
+  }
+
+  int parse_add() {
+    int x = parse_mod();
+    while (tok_.kind == Tok::Plus || tok_.kind == Tok::Minus) {
+      const Token op = tok_;
+      advance();
+      x = add(op.kind == Tok::Plus ? ExprOp::Add : ExprOp::Sub, op.pos, x, parse_mod());
+    }
+    return x;
+  }
+
+  int parse_mod() {
+    int x = parse_mul();
+    while (is_keyword(tok_, "MOD")) {
+      const Token op = tok_;
+      advance();
+      x = add(ExprOp::Mod, op.pos, x, parse_mul());
+    }
+    return x;
+  }
+
+  int parse_mul() {
+    int x = parse_unary();
+    while (tok_.kind == Tok::Star || tok_.kind == Tok::Slash) {
+      const Token op = tok_;
+      advance();
+      x = add(op.kind == Tok::Star ? ExprOp::Mul : ExprOp::Div, op.pos, x, parse_unary());
+    }
+    return x;
+  }
+
+  // A sign applied to `operand`; a sign on a number literal is folded into it, so the
+  // common `-0.5` is a single node.
+  int sign(const Token& op, int operand) {
+    Proto& p = protos_[operand];
+    if (p.node.op == ExprOp::Number) {
+      if (op.kind == Tok::Minus) p.node.number = -p.node.number;
+      p.node.col = p.node.start = col(op.pos);
+      return operand;
+    }
+    return add(op.kind == Tok::Minus ? ExprOp::Neg : ExprOp::Pos, op.pos, operand);
+  }
+
+  int parse_unary() {
+    if (tok_.kind == Tok::Minus || tok_.kind == Tok::Plus) {
+      const Token op = tok_;
+      Nest nest(*this, op.pos);
+      advance();
+      return sign(op, parse_unary());
+    }
+    return parse_pow();
+  }
+
+  int parse_pow() {
+    int x = parse_primary();
+    while (tok_.kind == Tok::Caret) {
+      const Token op = tok_;
+      advance();
+      x = add(ExprOp::Pow, op.pos, x, parse_signed());
+    }
+    return x;
+  }
+
+  int parse_signed() {
+    if (tok_.kind == Tok::Minus || tok_.kind == Tok::Plus) {
+      const Token op = tok_;
+      Nest nest(*this, op.pos);
+      advance();
+      return sign(op, parse_signed());
+    }
+    return parse_primary();
+  }
+
+  [[noreturn]] void missing_value() {
+    if (tok_.kind == Tok::End) {
+      if (prev_.len > 0)
+        fail(loc(tok_.pos), fmt::format("expected a value after {}", describe(prev_)));
+      fail(loc(tok_.pos), "expected an expression");
+    }
+    if (tok_.kind == Tok::Word)
+      fail(loc(tok_.pos), fmt::format("expected a value before {}", to_upper(source(tok_))));
+    fail(loc(tok_.pos), fmt::format("expected a value, found {}", describe(tok_)));
+  }
+
+  void expect_close(Tok close, const Token& open, std::string_view what) {
+    if (tok_.kind == close) return;
+    const char c = close == Tok::RParen ? ')' : ']';
+    if (tok_.kind == Tok::End)
+      fail(loc(open.pos), fmt::format("this '{}' is never closed; add '{}'", source(open), c));
+    fail(loc(tok_.pos),
+         fmt::format("expected '{}' to close {}, found {}", c, what, describe(tok_)));
+  }
+
+  void reject_user_accessor(const Token& t) const {
+    if (pos_ < text_.size() &&
+        (text_[pos_] == '[' ||
+         (text_[pos_] == '.' && pos_ + 1 < text_.size() && is_name_start(text_[pos_ + 1]))))
+      fail(loc(pos_), fmt::format("{} is a plain variable: only $ variables have fields and "
+                                  "indices",
+                                  to_upper(source(t))));
+  }
+
+  // `.field` and `[index]` steps written right after a `$name` (pos_ is just past the name).
+  std::vector<Accessor> accessors() {
+    std::vector<Accessor> path;
+    const size_t n = text_.size();
+    while (pos_ < n && (text_[pos_] == '.' || text_[pos_] == '[')) {
+      Accessor step;
+      if (text_[pos_] == '.') {
+        const size_t b = pos_ + 1;
+        if (b >= n || !is_name_start(text_[b]))
+          fail(loc(pos_), "expected a field name after '.', as in $name.field");
+        const size_t e = name_end(b);
+        step.is_field = true;
+        step.field = to_upper(text_.substr(b, e - b));
+        pos_ = e;
+      } else {
+        Token open;
+        open.kind = Tok::LBracket;
+        open.pos = pos_;
+        open.len = 1;
+        // The index is an expression of its own (an Accessor owns an Expr), parsed in place.
+        Parser sub(text_, at_, pos_ + 1, nesting_ + 1);
+        if (sub.nesting_ > kMaxNesting)
+          fail(loc(pos_), "this expression is nested too deeply; split it using variables");
+        sub.advance();
+        if (sub.tok_.kind != Tok::RBracket) {
+          const int r = sub.parse_or();
+          sub.expect_close(Tok::RBracket, open, "the index");
+          step.index = sub.finish(r);
+        }
+        pos_ = sub.tok_.pos + 1;
+      }
+      path.push_back(std::move(step));
+    }
+    return path;
+  }
+
+  int parse_call(const Token& name) {
+    const std::string up = to_upper(source(name));
+    const FuncInfo* f = find_function(up);
+    if (!f)
+      fail(loc(name.pos),
+           fmt::format("unknown function {}; the functions are ABS, INT, FIX, SGN, SIN, COS, TAN, "
+                       "ATN, ATAN2, EXP, LOG, SQR, ROUND, MIN, MAX, CEIL and FLOOR",
+                       up));
+    const Token open = tok_;
+    Nest nest(*this, open.pos);
+    advance();
+    std::vector<int> args;
+    if (tok_.kind != Tok::RParen) {
+      while (true) {
+        args.push_back(parse_or());
+        if (tok_.kind != Tok::Comma) break;
+        advance();
+      }
+    }
+    expect_close(Tok::RParen, open, fmt::format("the arguments of {}", f->name));
+    advance();
+    const int count = static_cast<int>(args.size());
+    if (count < f->min_args || count > f->max_args) {
+      std::string want;
+      if (f->min_args == f->max_args)
+        want = fmt::format("{} argument{}", f->min_args, f->min_args == 1 ? "" : "s");
+      else if (f->max_args == kMaxCallArgs)
+        want = fmt::format("at least {} arguments (at most {})", f->min_args, kMaxCallArgs);
+      else
+        want = fmt::format("{} or {} arguments", f->min_args, f->max_args);
+      fail(loc(name.pos), fmt::format("{} takes {}, not {}", f->name, want, count));
+    }
+    const int node = add(ExprOp::Call, name.pos);
+    Proto& p = protos_[node];
+    p.node.fn = f->id;
+    p.node.argc = static_cast<std::uint16_t>(count);
+    p.args_begin = static_cast<int>(arg_index_.size());
+    for (int a : args) {
+      arg_index_.push_back(a);
+      p.height = std::max(p.height, protos_[a].height + 1);
+    }
+    if (p.height > kMaxHeight)
+      fail(loc(name.pos), "this expression is too long to evaluate; split it using variables");
+    return node;
+  }
+
+  int parse_primary() {
+    const Token t = tok_;
+    switch (t.kind) {
+      case Tok::Number: {
+        advance();
+        const int node = add(ExprOp::Number, t.pos);
+        protos_[node].node.number = t.number;
+        return node;
+      }
+      case Tok::Text: {
+        advance();
+        const int node = add(ExprOp::Text, t.pos);
+        set_text(node, text_.substr(t.pos + 1, t.len - 2));
+        return node;
+      }
+      case Tok::UserVar: {
+        reject_user_accessor(t);
+        advance();
+        const int node = add(ExprOp::UserVar, t.pos);
+        set_text(node, to_upper(text_.substr(t.pos + 1, t.len - 1)));
+        Proto& p = protos_[node];
+        p.spell_off = static_cast<std::uint32_t>(strings_.size());
+        p.spell_len = static_cast<std::uint32_t>(t.len);
+        strings_ += source(t);
+        return node;
+      }
+      case Tok::PersistVar: {
+        std::vector<Accessor> path = accessors();
+        advance();
+        const int node = add(ExprOp::PersistVar, t.pos);
+        set_text(node, to_upper(text_.substr(t.pos + 1, t.len - 1)));
+        protos_[node].path = static_cast<int>(paths_.size());
+        paths_.push_back(std::move(path));
+        return node;
+      }
+      case Tok::SysVar: {
+        Nest nest(*this, t.pos);
+        advance();
+        if (tok_.kind == Tok::RParen)
+          fail(loc(tok_.pos), "expected the system variable's number, as in %(1)");
+        const int inner = parse_or();
+        expect_close(Tok::RParen, t, "the system variable");
+        advance();
+        return add(ExprOp::SysVar, t.pos, inner);
+      }
+      case Tok::LParen: {
+        Nest nest(*this, t.pos);
+        advance();
+        if (tok_.kind == Tok::RParen) fail(loc(tok_.pos), "expected a value inside '( )'");
+        const int inner = parse_or();
+        expect_close(Tok::RParen, t, "the '(' at column " + std::to_string(col(t.pos)));
+        advance();
+        // A parenthesised sub-expression starts at its '(' (errors about its value point
+        // there); its own tokens keep their columns.
+        protos_[inner].node.start = col(t.pos);
+        return inner;
+      }
+      case Tok::Word: {
+        if (is_keyword(t, "AND") || is_keyword(t, "OR") || is_keyword(t, "MOD")) missing_value();
+        if (is_keyword(t, "NOT"))
+          fail(loc(t.pos),
+               "NOT applies to a whole condition; put it in parentheses, as in "
+               "(NOT &a)");
+        // Peek at the raw text, so that a word followed by something unlexable (`C:\x`) is
+        // reported as the word.
+        size_t next = pos_;
+        while (next < text_.size() && is_space(text_[next])) ++next;
+        if (next < text_.size() && text_[next] == '(') {
+          advance();
+          return parse_call(t);
+        }
+        fail(loc(t.pos), fmt::format("{} is not a value: put text in double quotes, write a "
+                                     "variable as &name, or call a function as NAME(x)",
+                                     describe(t)));
+      }
+      default:
+        missing_value();
+    }
+  }
+
+  std::string_view text_;
+  SourceLoc at_;  // the location of text[0]; columns are base_ + offset
+  std::int32_t base_;
+  size_t pos_;
+  int nesting_;
+  Token tok_, prev_;
+  std::vector<Proto> protos_;
+  std::string strings_;
+  std::vector<int> arg_index_;
+  std::vector<std::vector<Accessor>> paths_;
+};
+
+}  // namespace
+
+const FuncInfo* find_function(std::string_view upper_name) {
+  for (const FuncInfo& f : kFunctions)
+    if (f.name == upper_name) return &f;
+  return nullptr;
+}
+
+std::string_view function_name(ExprFunc f) {
+  for (const FuncInfo& info : kFunctions)
+    if (info.id == f) return info.name;
+  return "?";
+}
+
+ExprParse parse_expression(std::string_view text, const SourceLoc& at) {
+  ExprParse out;
+  try {
+    out.expr = Parser(text, at, 0, 0).parse_whole();
+  } catch (const GantryError& e) {
+    out.error = e.diagnostic();
+  }
+  return out;
+}
+
+std::optional<LValue> parse_lvalue(std::string_view text, const SourceLoc& at,
+                                   std::optional<Diagnostic>* error) {
+  try {
+    return Parser(text, at, 0, 0).parse_lvalue();
+  } catch (const GantryError& e) {
+    if (error) *error = e.diagnostic();
+    return std::nullopt;
+  }
+}
+
+}  // namespace gantry

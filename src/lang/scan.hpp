@@ -1,0 +1,75 @@
+// Character-level helpers shared by the line and statement parsers.
+#pragma once
+
+#include <cctype>
+#include <string>
+#include <string_view>
+
+namespace gantry::scan {
+
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+inline bool is_word(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+inline std::string upper(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+inline std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+// Index of the first `'` outside double quotes (the start of an inline comment), or npos.
+inline size_t comment_start(std::string_view s) {
+  bool quoted = false;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '"') quoted = !quoted;
+    if (s[i] == '\'' && !quoted) return i;
+  }
+  return std::string_view::npos;
+}
+
+// Index of the first `sep` outside quotes and parentheses/brackets at or after `from`.
+inline size_t find_top_level(std::string_view s, char sep, size_t from = 0) {
+  bool quoted = false;
+  int depth = 0;
+  for (size_t i = from; i < s.size(); ++i) {
+    const char c = s[i];
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    if (c == '(' || c == '[') ++depth;
+    if ((c == ')' || c == ']') && depth > 0) --depth;
+    if (c == sep && depth == 0) return i;
+  }
+  return std::string_view::npos;
+}
+
+// Index of keyword `kw` (upper case) as a whole word outside quotes/parentheses, or npos.
+inline size_t find_keyword(std::string_view s, std::string_view kw, size_t from = 0) {
+  bool quoted = false;
+  int depth = 0;
+  for (size_t i = from; i + kw.size() <= s.size(); ++i) {
+    const char c = s[i];
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    if (c == '(' || c == '[') ++depth;
+    if ((c == ')' || c == ']') && depth > 0) --depth;
+    if (depth != 0) continue;
+    if (i > 0 && (is_word(s[i - 1]) || s[i - 1] == '&' || s[i - 1] == '$')) continue;
+    if (i + kw.size() < s.size() && is_word(s[i + kw.size()])) continue;
+    bool match = true;
+    for (size_t k = 0; k < kw.size() && match; ++k)
+      match = std::toupper(static_cast<unsigned char>(s[i + k])) == kw[k];
+    if (match) return i;
+  }
+  return std::string_view::npos;
+}
+
+}  // namespace gantry::scan
