@@ -297,7 +297,12 @@ class Evaluator {
 
   Value persistent(const ExprNode& n) {
     const nlohmann::json* root = env_.persistent_variable(n.text);
-    if (!root) fail(n.token_loc(), fmt::format("undefined persistent variable ${}", n.text));
+    if (!root)
+      fail(n.token_loc(),
+           fmt::format("undefined persistent variable ${0}; set it first (${0} := value keeps an "
+                       "existing value). FabMo machines define such variables in their "
+                       "configuration, which Gantry does not read",
+                       n.text));
     return read_path(*root, *n.path, env_, n.token_loc(), n.text);
   }
 

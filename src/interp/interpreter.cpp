@@ -7,7 +7,8 @@
 #include <cmath>       // isfinite, round
 #include <filesystem>  // path joining for FP and C#
 
-#include "interp_private.hpp"  // Frame, UserFile, NeedsOperator
+#include "../lang/scan.hpp"    // looks_like_expression
+#include "interp_private.hpp"  // Frame, UserFile
 
 namespace gantry {
 
@@ -255,6 +256,7 @@ void Interpreter::exec(const ReturnStmt&, const SourceLoc& loc) {
 }
 
 void Interpreter::exec(const EndStmt& s, const SourceLoc&) {
+  if (s.message) io_.print(value_of(*s.message).to_string() + "\n");
   if (s.scope == EndStmt::Scope::File) {
     Frame& f = frames_.back();
     f.pc = Cursor{std::string::npos, f.pc.line};  // at_end: the loop ends this pass
@@ -373,6 +375,8 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
              fmt::format("{} needs its parameter {} ({})", spec->code, i + 1, ps.name));
       if (ps.default_value) v = Value::number(*ps.default_value);
     } else if (ps.kind == ParamKind::Number) {
+      if (!a->expr && a->expr_error && scan::looks_like_expression(a->text))
+        throw GantryError(*a->expr_error);  // a broken expression: say where it breaks
       if (!a->expr && a->expr_error && v->is_string())
         fail(a->loc, fmt::format("expected a number for {} ({}), found '{}'", ps.name, spec->code,
                                  a->text));

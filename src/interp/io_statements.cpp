@@ -5,6 +5,7 @@
 #include <cmath>       // round
 #include <cstdlib>     // system, for SHELL
 #include <filesystem>  // GetUsrPath, GetAppPath
+#include <functional>  // option values
 
 #include "../lang/scan.hpp"  // upper, trim
 #include "gantry/interp/interpreter.hpp"
@@ -47,7 +48,28 @@ int msgbox_type(const Value& v, const SourceLoc& loc) {
   return t;
 }
 
+// FabMo's dialog options (PAUSE and DIALOG): button captions and a title.
+struct DialogOptions {
+  std::string ok, cancel, title;
+};
+
 }  // namespace
+
+static DialogOptions dialog_options(const std::vector<std::pair<std::string, Arg>>& options,
+                                    const std::function<Value(const Arg&)>& value) {
+  DialogOptions d;
+  for (const auto& [name, a] : options) {
+    if (name == "OKTEXT")
+      d.ok = value(a).to_string();
+    else if (name == "CANCELTEXT")
+      d.cancel = value(a).to_string();
+    else if (name == "TITLE")
+      d.title = value(a).to_string();
+    else if (name != "DETAIL" && name != "NOBUTTON")
+      fail(a.loc, fmt::format("unknown option {}; use OKTEXT, CANCELTEXT or TITLE", name));
+  }
+  return d;
+}
 
 std::string Interpreter::pause_message(const SourceLoc&) const {
   const Frame& f = frames_.back();
@@ -77,6 +99,7 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
       throw OperatorStop({loc, Severity::Error, "stopped by the operator at PAUSE"});
     return;
   }
+  dialog_options(s.options, [&](const Arg& a) { return value_of(a); });  // validated; captions
   const Value v = value_of(*s.value);
   if (v.is_number() && !s.into) {
     ctx_.dwell(v.num(), loc);

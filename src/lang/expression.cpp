@@ -271,6 +271,10 @@ class Parser {
         set(Tok::PersistVar, name_end(i + 1) - i);
         break;
       case '%':
+        if (is_name_start(next))
+          fail(loc(i), fmt::format("{} reads FabMo's configuration tree, which Gantry does not "
+                                   "offer; read %(n) system variables or set a $variable instead",
+                                   text_.substr(i, name_path_end(i + 1) - i)));
         if (next != '(')
           fail(loc(i),
                "'%' is not an operator: use MOD for a remainder; %(n) reads a system variable");
@@ -320,6 +324,11 @@ class Parser {
 
   size_t name_end(size_t i) const {
     while (i < text_.size() && is_name_char(text_[i])) ++i;
+    return i;
+  }
+  // A dotted name such as machine.envelope.ymax.
+  size_t name_path_end(size_t i) const {
+    while (i < text_.size() && (is_name_char(text_[i]) || text_[i] == '.')) ++i;
     return i;
   }
 

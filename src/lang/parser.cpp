@@ -139,11 +139,7 @@ Statement LineParser::assignment(size_t b, size_t e) const {
   st.value = arg(eq + 1, e);
   // A bare word stays text (`&s = Material Surface`), but text that can only be meant as an
   // expression must be one: `&x = &y +` or `&x = SQR(1, 2)` is an error, not a string.
-  const std::string& t = st.value.text;
-  const bool looks_like_expression =
-      !t.empty() && (std::string_view("&$%(+-.0123456789").find(t[0]) != std::string_view::npos ||
-                     t.find('(') != std::string::npos);
-  if (!st.value.expr && looks_like_expression && st.value.expr_error)
+  if (!st.value.expr && looks_like_expression(st.value.text) && st.value.expr_error)
     throw GantryError(*st.value.expr_error);
   return {loc(b), std::move(st)};
 }

@@ -72,4 +72,12 @@ inline size_t find_keyword(std::string_view s, std::string_view kw, size_t from 
   return std::string_view::npos;
 }
 
+// Text that can only be meant as an expression (it starts like one, or calls a function),
+// as opposed to a bare word such as `Material Surface` or a file name.
+inline bool looks_like_expression(std::string_view t) {
+  return !t.empty() &&
+         (std::string_view("&$%(+-.0123456789").find(t[0]) != std::string_view::npos ||
+          t.find('(') != std::string_view::npos);
+}
+
 }  // namespace gantry::scan

@@ -26,12 +26,21 @@ std::optional<Statement> LineParser::program_statement(const std::string& word, 
   };
   if (word == "GOTO" || word == "GOSUB") return jump(word == "GOSUB", b, w, e);
   if (word == "RETURN") return nothing_after("RETURN"), Statement{at, ReturnStmt{}};
-  if (word == "END") return nothing_after("END"), Statement{at, EndStmt{EndStmt::Scope::File}};
-  if (word == "ENDALL") return nothing_after("ENDALL"), Statement{at, EndStmt{EndStmt::Scope::All}};
+  if (word == "END") {
+    EndStmt st{EndStmt::Scope::File, std::nullopt};
+    if (skip_space(w, e) < e) {  // FabMo: END "message" says why the file ended
+      st.message = arg(w, e);
+      if (!st.message->expr)
+        error(skip_space(w, e), "END takes no parameters, or a message in quotes");
+    }
+    return Statement{at, std::move(st)};
+  }
+  if (word == "ENDALL")
+    return nothing_after("ENDALL"), Statement{at, EndStmt{EndStmt::Scope::All, std::nullopt}};
   if (word == "EXIT") {
     const size_t p = skip_space(w, e);
     if (upper(line_.substr(p, e - p)) != "SHOPBOT") error(p, "write EXIT SHOPBOT");
-    return Statement{at, EndStmt{EndStmt::Scope::Exit}};
+    return Statement{at, EndStmt{EndStmt::Scope::Exit, std::nullopt}};
   }
   if (word == "IF") return if_statement(b, w, e);
   if (word == "ON") return on_input(b, w, e);
@@ -97,10 +106,21 @@ Statement LineParser::pause(size_t b, size_t w, size_t e) const {
     return {loc(b), std::move(st)};
   }
   auto fields = split_commas(p, e);
-  if (fields.size() > 2) error(fields[2].first, "PAUSE takes a time or message, and a variable");
   st.kind = PauseStmt::Kind::Timed;
   st.value = arg(fields[0].first, fields[0].second);
-  if (fields.size() == 2) st.into = lvalue(fields[1].first, fields[1].second);
+  for (size_t i = 1; i < fields.size(); ++i) {
+    const auto [fb, fe] = fields[i];
+    const size_t eq = find_top_level(line_.substr(0, fe), '=', fb);
+    const size_t first = skip_space(fb, fe);
+    if (eq != std::string_view::npos && first < fe &&
+        std::isalpha(static_cast<unsigned char>(line_[first]))) {
+      st.options.emplace_back(upper(trim(line_.substr(fb, eq - fb))), arg(eq + 1, fe));
+    } else if (i == 1) {
+      st.into = lvalue(fb, fe);
+    } else {
+      error(fb, "PAUSE takes a time or message, a variable, and options written NAME = value");
+    }
+  }
   return {loc(b), std::move(st)};
 }
 

@@ -29,8 +29,15 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   opt.dry_run = true;
   opt.statement_budget = options.check_budget;
   Interpreter interp(settings, sink, io, scratch, opt);
-  std::vector<Diagnostic> out = interp.check(std::move(script));
-  for (const Diagnostic& w : io.warnings()) out.push_back(w);
+  std::vector<Diagnostic> found = interp.check(std::move(script));
+  for (const Diagnostic& w : io.warnings()) found.push_back(w);
+  // A statement in a loop fails on every pass; say it once.
+  std::vector<Diagnostic> out;
+  for (Diagnostic& d : found) {
+    const bool seen = std::any_of(out.begin(), out.end(),
+                                  [&](const Diagnostic& o) { return format(o) == format(d); });
+    if (!seen) out.push_back(std::move(d));
+  }
   // In line order: the script's own pass found the syntax errors, the run the others.
   // Messages from nested files keep their order after those of the top-level file.
   auto key = [](const Diagnostic& d) { return d.via.empty() ? d.loc.line : INT_MAX; };

@@ -475,7 +475,8 @@ TEST_F(ExpressionTest, PersistentVariablesRead) {
 
 TEST_F(ExpressionTest, PersistentVariableErrors) {
   Diagnostic d = eval_error("1 + $nope");
-  EXPECT_EQ(d.message, "undefined persistent variable $NOPE");
+  EXPECT_EQ(d.message.rfind("undefined persistent variable $NOPE; set it first", 0), 0u)
+      << d.message;
   EXPECT_EQ(d.loc.column, 5);
   d = eval_error("$atc.toolin");
   EXPECT_EQ(d.message, "$ATC.TOOLIN is not set");

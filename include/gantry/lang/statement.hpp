@@ -51,6 +51,7 @@ struct JumpStmt {  // GOTO / GOSUB label
 struct ReturnStmt {};
 struct EndStmt {
   enum class Scope { File, All, Exit } scope = Scope::File;  // END, ENDALL, EXIT SHOPBOT
+  std::optional<Arg> message;                                // FabMo: END "why"
 };
 struct IfStmt {
   Expr test;
@@ -65,6 +66,7 @@ struct PauseStmt {
   std::optional<Arg> value;          // Timed: seconds or a message (decided by its value's type)
   std::optional<Expr> input, state;  // Until
   std::optional<LValue> into;        // PAUSE "message", &var
+  std::vector<std::pair<std::string, Arg>> options;  // FabMo: OKTEXT=..., CANCELTEXT=...
 };
 struct PrintStmt {           // PRINT items / WRITE #n items / PRINT #n items
   std::optional<Expr> file;  // the #n, for WRITE
