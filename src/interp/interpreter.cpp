@@ -207,6 +207,14 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
     } catch (const GantryError& e) {
       pending_call_.reset();
       if (!collect) rethrow_located(e);
+      // A check goes on past errors. A variable whose assignment failed stays unset; what
+      // fails only because of it has been explained already, so it is not reported again.
+      const std::string& m = e.diagnostic().message;
+      const bool cascade = m.rfind("undefined variable &", 0) == 0 &&
+                           failed_vars_.count(m.substr(20, m.find_first_of(" ;", 20) - 20));
+      if (const auto* a = std::get_if<AssignStmt>(&lp.statement->body))
+        if (!a->target.persistent) failed_vars_.insert(a->target.name);
+      if (cascade) continue;
       Diagnostic d = e.diagnostic();
       for (const Frame& fr : frames_)
         if (fr.called_from.file && d.via.empty()) d.via.push_back(fr.called_from);

@@ -30,7 +30,8 @@ std::optional<Statement> LineParser::program_statement(const std::string& word, 
     EndStmt st{EndStmt::Scope::File, std::nullopt};
     if (skip_space(w, e) < e) {  // FabMo: END "message" says why the file ended
       st.message = arg(w, e);
-      if (!st.message->expr)
+      const char first = st.message->text[0];
+      if (!st.message->expr || (first != '"' && first != '&' && first != '$'))
         error(skip_space(w, e), "END takes no parameters, or a message in quotes");
     }
     return Statement{at, std::move(st)};

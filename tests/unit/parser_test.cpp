@@ -253,7 +253,7 @@ TEST(Parser, EndWithParametersIsAnErrorAtTheParameter) {
   EXPECT_TRUE(p.statements.empty());
   ASSERT_EQ(p.errors.size(), 1u);
   EXPECT_EQ(where(p.errors[0].loc), "part.sbp:1:5");
-  EXPECT_EQ(p.errors[0].message, "END takes no parameters");
+  EXPECT_EQ(p.errors[0].message, "END takes no parameters, or a message in quotes");
 }
 
 TEST(Parser, StatementsAfterEndAreStillParsed) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -168,6 +169,7 @@ class Interpreter : private EvalEnv {
   CommandContext ctx_;
   std::vector<Frame> frames_;
   std::unordered_map<std::string, Value> vars_;
+  std::set<std::string> failed_vars_;  // check: assignments that failed
   std::map<std::pair<int, int>, std::shared_ptr<const Statement>> on_input_;
   std::vector<std::unique_ptr<UserFile>> files_;
   std::optional<FileCall> pending_call_;
