@@ -5,8 +5,9 @@
 
 #include <random>  // move generation
 
-#include "gantry/lang/parser.hpp"          // parse_program
-#include "gantry/machine/job.hpp"          // check_program, run_job
+#include "gantry/interp/interpreter.hpp"   // Interpreter
+#include "gantry/lang/script.hpp"          // Script
+#include "gantry/machine/job.hpp"          // run_job
 #include "gantry/step/step_generator.hpp"  // StepGenerator
 #include "sim/sim_card.hpp"                // SimCard
 
@@ -24,18 +25,46 @@ std::string generated_file(int lines) {
   return text;
 }
 
-// Parse + interpret (no motion): statements per second.
-void BM_ParseAndInterpret(benchmark::State& state) {
-  const std::string text = generated_file(static_cast<int>(state.range(0)));
+class NullSink : public MotionSink {
+ public:
+  void move(const CanonMove&) override {}
+  void flush() override {}
+};
+
+// Loads `text` (with its syntax pass) and runs it into a null sink; reports lines per second.
+void interpret_text(benchmark::State& state, const std::string& text, double lines) {
   const Settings settings = default_settings();
   for (auto _ : state) {
-    Program p = parse_program(text, "bench.sbp");
-    benchmark::DoNotOptimize(check_program(p, settings));
+    NullSink sink;
+    std::string printed;
+    ScriptedIO io(true, {}, &printed);
+    PersistentStore store;
+    Interpreter interp(settings, sink, io, store);
+    interp.run(Script::from_text(text, "bench.sbp"));
+    benchmark::DoNotOptimize(interp.statements_executed());
   }
-  state.counters["lines/s"] = benchmark::Counter(
-      static_cast<double>(state.range(0) * state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["lines/s"] = benchmark::Counter(lines * static_cast<double>(state.iterations()),
+                                                 benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_ParseAndInterpret)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// Simple lines: `M3, x, y, z` with literal numbers.
+void BM_InterpretSimpleLines(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  interpret_text(state, generated_file(n), n);
+}
+BENCHMARK(BM_InterpretSimpleLines)->Arg(200000)->Unit(benchmark::kMillisecond);
+
+// Expression-heavy lines in a counted loop with a GOSUB: every line evaluates variables.
+void BM_InterpretExpressionLoop(benchmark::State& state) {
+  const int loops = static_cast<int>(state.range(0));
+  const std::string text = fmt::format(
+      "SA\n&i = 0\n&dx = 0.01\n&x0 = 1\nLOOP:\n&i = &i + 1\nGOSUB STEP\n"
+      "IF &i < {} THEN GOTO LOOP\nEND\nSTEP:\n&x = &x0 + (&i MOD 100) * &dx\n"
+      "M2, &x, 2 + SIN(&i / 10) / 2\nRETURN\n",
+      loops);
+  interpret_text(state, text, 7.0 * loops);  // lines run per pass, labels included
+}
+BENCHMARK(BM_InterpretExpressionLoop)->Arg(50000)->Unit(benchmark::kMillisecond);
 
 class DiscardCard : public Card {
  public:
@@ -55,10 +84,9 @@ void BM_StepGeneratorSixAxesAt100kHz(benchmark::State& state) {
     ax.steps_per_unit = 10000;  // 10 units/s = 100 kHz
     ax.max_speed = 10;
   }
-  const double len = std::sqrt(6.0) * 10;  // one second at 10 units/s per axis
+  const double v = std::sqrt(6.0) * 10;  // one second at 10 units/s per axis
   PlannedSegment seg;
-  seg.profile =
-      Trapezoid::plan(len, std::sqrt(6.0) * 10, std::sqrt(6.0) * 10, std::sqrt(6.0) * 10, 1e9);
+  seg.profile = Trapezoid::plan(v, v, v, v, 1e9);
   std::uint64_t words = 0;
   for (auto _ : state) {
     DiscardCard card;
@@ -71,8 +99,8 @@ void BM_StepGeneratorSixAxesAt100kHz(benchmark::State& state) {
   }
   state.counters["words/s"] =
       benchmark::Counter(static_cast<double>(words), benchmark::Counter::kIsRate);
-  state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(words) / s.card.pacer_hz(),
-                                                    benchmark::Counter::kIsRate);
+  state.counters["x_realtime"] = benchmark::Counter(
+      static_cast<double>(words) / s.card.pacer_hz(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_StepGeneratorSixAxesAt100kHz)->Unit(benchmark::kMillisecond);
 
@@ -80,11 +108,13 @@ BENCHMARK(BM_StepGeneratorSixAxesAt100kHz)->Unit(benchmark::kMillisecond);
 void BM_FullPipeline(benchmark::State& state) {
   const std::string text = generated_file(static_cast<int>(state.range(0)));
   const Settings settings = default_settings();
-  const Program p = parse_program(text, "bench.sbp");
   double machine_s = 0;
   for (auto _ : state) {
     SimCard card(settings);
-    run_job(p, settings, card);
+    std::string printed;
+    ScriptedIO io(true, {}, &printed);
+    PersistentStore store;
+    run_job(Script::from_text(text, "bench.sbp"), settings, card, io, store);
     machine_s += card.time_s();
   }
   state.counters["x_realtime"] = benchmark::Counter(machine_s, benchmark::Counter::kIsRate);
