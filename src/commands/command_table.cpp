@@ -5,7 +5,24 @@
 
 namespace gantry {
 
-CommandTable::CommandTable(std::vector<CommandSpec> specs) : specs_(std::move(specs)) {}
+namespace {
+
+// Two characters of [A-Z0-9] as an index 0..1295, or -1.
+int code_index(std::string_view code) {
+  auto digit = [](char c) {
+    return c >= 'A' && c <= 'Z' ? c - 'A' : c >= '0' && c <= '9' ? 26 + c - '0' : -1;
+  };
+  if (code.size() != 2 || digit(code[0]) < 0 || digit(code[1]) < 0) return -1;
+  return digit(code[0]) * 36 + digit(code[1]);
+}
+
+}  // namespace
+
+CommandTable::CommandTable(std::vector<CommandSpec> specs) : specs_(std::move(specs)) {
+  index_.fill(-1);
+  for (size_t i = 0; i < specs_.size(); ++i)
+    if (const int k = code_index(specs_[i].code); k >= 0) index_[k] = static_cast<int>(i);
+}
 
 const CommandTable& CommandTable::standard() {
   static const CommandTable table = [] {
@@ -19,9 +36,8 @@ const CommandTable& CommandTable::standard() {
 }
 
 const CommandSpec* CommandTable::find(std::string_view code) const {
-  auto it = std::find_if(specs_.begin(), specs_.end(),
-                         [&](const CommandSpec& s) { return s.code == code; });
-  return it == specs_.end() ? nullptr : &*it;
+  const int k = code_index(code);  // every command is looked up once per executed line
+  return k < 0 || index_[k] < 0 ? nullptr : &specs_[index_[k]];
 }
 
 const char* group_name(CommandGroup g) {

@@ -330,6 +330,7 @@ MachineSnapshot Interpreter::snapshot() const {
 }
 
 Value Interpreter::value_of(const Arg& a) {
+  if (a.number) return Value::number(*a.number);
   if (a.expr) return evaluate(*a.expr, *this);
   return Value::string(a.text);  // a bare word: the text as written
 }
@@ -383,12 +384,13 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
              fmt::format("{} needs its parameter {} ({})", spec->code, i + 1, ps.name));
       if (ps.default_value) v = Value::number(*ps.default_value);
     } else if (ps.kind == ParamKind::Number) {
-      if (!a->expr && a->expr_error && scan::looks_like_expression(a->text))
+      if (!a->is_expression() && a->expr_error && scan::looks_like_expression(a->text))
         throw GantryError(*a->expr_error);  // a broken expression: say where it breaks
-      if (!a->expr && a->expr_error && v->is_string())
+      if (!a->is_expression() && a->expr_error && v->is_string())
         fail(a->loc, fmt::format("expected a number for {} ({}), found '{}'", ps.name, spec->code,
                                  a->text));
-      v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
+      if (v->is_string())  // the message is only built when a conversion is needed
+        v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
     }
     call.values[i] = std::move(v);
   }

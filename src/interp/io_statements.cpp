@@ -125,7 +125,7 @@ void Interpreter::exec(const PrintStmt& s, const SourceLoc& loc) {
   for (size_t i = 0; i < s.items.size(); ++i) {
     const Arg& a = s.items[i];
     if (i) text += joint;
-    text += a.expr ? evaluate(*a.expr, *this).to_string() : strip_one_quote_pair(a.text);
+    text += a.is_expression() ? value_of(a).to_string() : strip_one_quote_pair(a.text);
   }
   if (s.newline) text += '\n';
   if (!s.file) {
@@ -154,9 +154,10 @@ void Interpreter::exec(const InputStmt& s, const SourceLoc& loc) {
     std::string names;
     for (const LValue& v : s.vars)
       names += fmt::format("{}{}{}", names.empty() ? "" : ",", v.persistent ? "$" : "&", v.name);
-    const std::string prompt = s.prompt ? (s.prompt->expr ? value_of(*s.prompt).to_string()
-                                                          : strip_one_quote_pair(s.prompt->text))
-                                        : "";
+    const std::string prompt =
+        s.prompt ? (s.prompt->is_expression() ? value_of(*s.prompt).to_string()
+                                              : strip_one_quote_pair(s.prompt->text))
+                 : "";
     std::string def;
     if (s.default_var) {
       const Value* d = s.default_var->persistent ? nullptr : user_variable(s.default_var->name);

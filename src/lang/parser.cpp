@@ -6,8 +6,9 @@
 
 #include <algorithm>  // count
 
-#include "line_parser.hpp"  // LineParser
-#include "scan.hpp"         // character helpers
+#include "gantry/interp/value.hpp"  // parse_number_literal
+#include "line_parser.hpp"          // LineParser
+#include "scan.hpp"                 // character helpers
 
 namespace gantry {
 
@@ -39,6 +40,8 @@ Arg LineParser::arg(size_t b, size_t e) const {
   a.text = std::string(line_.substr(b, e - b));
   a.loc = loc(b == e ? start : b);
   if (!a.text.empty()) {
+    // Most parameters are plain numbers: no tree for them (the parse costs more than a line).
+    if ((a.number = parse_number_literal(a.text))) return a;
     ExprParse p = parse_expression(a.text, a.loc);
     a.expr = std::move(p.expr);
     a.expr_error = std::move(p.error);
@@ -139,7 +142,7 @@ Statement LineParser::assignment(size_t b, size_t e) const {
   st.value = arg(eq + 1, e);
   // A bare word stays text (`&s = Material Surface`), but text that can only be meant as an
   // expression must be one: `&x = &y +` or `&x = SQR(1, 2)` is an error, not a string.
-  if (!st.value.expr && looks_like_expression(st.value.text) && st.value.expr_error)
+  if (!st.value.is_expression() && looks_like_expression(st.value.text) && st.value.expr_error)
     throw GantryError(*st.value.expr_error);
   return {loc(b), std::move(st)};
 }

@@ -31,7 +31,7 @@ std::optional<Statement> LineParser::program_statement(const std::string& word, 
     if (skip_space(w, e) < e) {  // FabMo: END "message" says why the file ended
       st.message = arg(w, e);
       const char first = st.message->text[0];
-      if (!st.message->expr || (first != '"' && first != '&' && first != '$'))
+      if (!st.message->is_expression() || (first != '"' && first != '&' && first != '$'))
         error(skip_space(w, e), "END takes no parameters, or a message in quotes");
     }
     return Statement{at, std::move(st)};

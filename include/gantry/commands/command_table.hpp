@@ -1,6 +1,7 @@
 // The one table of two-letter commands: it drives the parser's checks, dispatch, help and docs.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -68,6 +69,7 @@ class CommandTable {
 
  private:
   std::vector<CommandSpec> specs_;
+  std::array<int, 36 * 36> index_{};  // code -> position in specs_, -1 if none
 };
 
 const char* group_name(CommandGroup g);

@@ -16,11 +16,13 @@ namespace gantry {
 // it; otherwise the text is a bare word (a file name, `T`, `Material Surface`) and
 // `expr_error` says why it is not an expression, for commands that needed a number.
 struct Arg {
-  std::string text;  // trimmed
-  SourceLoc loc;     // its first character (a blank: just after its comma)
+  std::string text;              // trimmed
+  SourceLoc loc;                 // its first character (a blank: just after its comma)
+  std::optional<double> number;  // a plain number literal, kept without an expression tree
   std::optional<Expr> expr;
   std::optional<Diagnostic> expr_error;
   bool blank() const { return text.empty(); }
+  bool is_expression() const { return number || expr; }
 };
 
 struct Statement;
