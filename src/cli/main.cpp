@@ -64,6 +64,7 @@ struct LanguageArgs {
     out.interpreter.macro_dir = macros;
     out.interpreter.trig_in_degrees = settings.dialect == Dialect::FabMo;
     out.check_budget = budget;
+    out.yes = yes;
     for (const std::string& kv : inputs) {
       const size_t eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) {
@@ -94,8 +95,9 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   std::shared_ptr<const Script> script = Script::load(a.file);
   // A person at a terminal answers the file's questions, unless --yes/--input do.
   ScriptedIO scripted(lang.yes, opt.inputs);
-  TerminalIO terminal;
+  TerminalIO terminal(opt.inputs);
   const bool interactive = !lang.yes && isatty(STDIN_FILENO) && isatty(STDERR_FILENO);
+  opt.operator_present = interactive;
   OperatorIO& io = interactive ? static_cast<OperatorIO&>(terminal) : scripted;
 
   if (!a.json)
@@ -173,7 +175,7 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
   std::shared_ptr<const Script> script = Script::load(file);
-  PersistentStore scratch = lang.store();
+  const PersistentStore scratch = lang.store().scratch_copy();
   const std::vector<Diagnostic> found = check_program(script, settings, scratch, opt);
   const bool ok = std::none_of(found.begin(), found.end(),
                                [](const Diagnostic& d) { return d.severity == Severity::Error; });
@@ -186,7 +188,7 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
   std::string printed;
   ScriptedIO io(true, opt.inputs, &printed);
   opt.interpreter.dry_run = true;
-  PersistentStore preview = PersistentStore(scratch);
+  PersistentStore preview = scratch.scratch_copy();  // a preview saves nothing
   interpret(script, settings, sink, io, preview, opt);
   return 0;
 }

@@ -35,6 +35,11 @@ bool TerminalIO::confirm(std::string_view message, const SourceLoc& loc) {
 
 std::optional<std::string> TerminalIO::ask(std::string_view prompt, std::string_view variable,
                                            std::string_view default_value, const SourceLoc& loc) {
+  ScriptedIO given(false, inputs_);  // --input answers first
+  try {
+    return given.ask(prompt, variable, default_value, loc);
+  } catch (const NeedsOperator&) {
+  }
   fmt::print(stderr, "\n[{}] {} ({}){}: ", where(loc), prompt.empty() ? "Input" : prompt, variable,
              default_value.empty() ? "" : fmt::format(" [{}]", default_value));
   std::optional<std::string> a = read_line();

@@ -33,7 +33,7 @@ double group_limit(const Settings& s, int g) {
 
 // Applies values[first .. first+count) to `speeds`, group by group; blanks keep the old speed.
 void apply_speeds(CommandContext& ctx, const CommandCall& call, size_t first, size_t count,
-                  GroupSpeeds& speeds) {
+                  GroupSpeeds& speeds, SpeedClass cls, bool by_values) {
   const Settings& s = ctx.settings();
   for (size_t g = 0; g < count; ++g) {
     const std::optional<double> v = call.number(first + g);
@@ -46,22 +46,25 @@ void apply_speeds(CommandContext& ctx, const CommandCall& call, size_t first, si
                        kGroups[g].name, *v, limit, units_name(s.units)));
   }
   for (size_t g = 0; g < count; ++g)
-    if (const std::optional<double> v = call.number(first + g)) speeds.*kGroups[g].field = *v;
+    if (const std::optional<double> v = call.number(first + g)) {
+      speeds.*kGroups[g].field = *v;
+      ctx.speed_set(cls, static_cast<int>(g), by_values);
+    }
 }
 
 void set_move_speed(CommandContext& ctx, const CommandCall& call) {
-  apply_speeds(ctx, call, 0, 5, ctx.state().speeds.move);
+  apply_speeds(ctx, call, 0, 5, ctx.state().speeds.move, SpeedClass::Move, false);
 }
 void set_jog_speed(CommandContext& ctx, const CommandCall& call) {
-  apply_speeds(ctx, call, 0, 5, ctx.state().speeds.jog);
+  apply_speeds(ctx, call, 0, 5, ctx.state().speeds.jog, SpeedClass::Jog, false);
 }
 // VS (SB3 order): move XY, Z, A, B, then jog XY, Z, A, B.
 void set_speeds(CommandContext& ctx, const CommandCall& call) {
+  // Validate every value before changing any: a bad VS changes nothing.
   SpeedSettings next = ctx.state().speeds;
-  apply_speeds(ctx, call, 0, 4, next.move);
-  apply_speeds(ctx, call, 4, 4, next.jog);
+  apply_speeds(ctx, call, 0, 4, next.move, SpeedClass::Move, true);
+  apply_speeds(ctx, call, 4, 4, next.jog, SpeedClass::Jog, true);
   ctx.state().speeds = next;
-  ctx.speeds_changed_by_values();
 }
 
 // Speed parameters for the groups XY, Z, A, B (and C), named for `suffix` ("", "move" or "jog").

@@ -1,6 +1,7 @@
 // Interpreter internals shared by its two source files.
 #pragma once
 
+#include <array>
 #include <fstream>
 
 #include "gantry/interp/interpreter.hpp"
@@ -16,8 +17,8 @@ struct Interpreter::Frame {
   Transform transform;
   FileCall call;
   int repetition = 0;
-  SpeedSettings saved_speeds;  // restored at the end when VS changed them in this file
-  bool restore_speeds = false;
+  SpeedSettings saved_speeds;       // at the file's start
+  std::array<bool, 10> vs_owned{};  // speeds (move xy..c, jog xy..c) VS set last here
 };
 
 // A file opened with OPEN ... AS #n.

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>  // messages
 
+#include <algorithm>   // all_of
 #include <cmath>       // isfinite, round
 #include <filesystem>  // path joining for FP and C#
 
@@ -54,8 +55,24 @@ void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {
   interp_->pending_call_loc_ = loc;
 }
 
-void CommandContext::speeds_changed_by_values() {
-  interp_->frames_.back().restore_speeds = true;
+void CommandContext::speed_set(SpeedClass cls, int group, bool by_values) {
+  interp_->frames_.back().vs_owned[(cls == SpeedClass::Jog ? 5 : 0) + group] = by_values;
+}
+
+namespace {
+
+double& speed_field(SpeedSettings& s, int i) {  // 0-4 move xy..c, 5-9 jog xy..c
+  GroupSpeeds& g = i < 5 ? s.move : s.jog;
+  double* fields[] = {&g.xy, &g.z, &g.a, &g.b, &g.c};
+  return *fields[i % 5];
+}
+
+}  // namespace
+
+void Interpreter::restore_file_speeds(Frame& f) {
+  for (int i = 0; i < 10; ++i)
+    if (f.vs_owned[i]) speed_field(state_.speeds, i) = speed_field(f.saved_speeds, i);
+  f.vs_owned.fill(false);
 }
 
 // ---- construction, files and frames ---------------------------------------------------
@@ -88,9 +105,14 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
     fail(from, fmt::format("files are nested {} deep, the most allowed; a file may be calling "
                            "itself",
                            options_.max_file_depth));
-  if (!script->ok()) {
-    for (const Diagnostic& d : script->errors())
-      if (d.severity == Severity::Error) throw GantryError(d);
+  if (!script->ok()) {  // a missing or broken file, located through its callers
+    for (Diagnostic d : script->errors())
+      if (d.severity == Severity::Error) {
+        for (const Frame& f : frames_)
+          if (f.called_from.file) d.via.push_back(f.called_from);
+        if (from.file) d.via.push_back(from);
+        throw GantryError(std::move(d));
+      }
   }
   Frame f;
   f.script = std::move(script);
@@ -110,11 +132,10 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
 // Ends the current pass of the innermost file: another repetition, or back to the caller.
 void Interpreter::end_file() {
   Frame& f = frames_.back();
-  if (f.restore_speeds) state_.speeds = f.saved_speeds;
+  restore_file_speeds(f);
   if (++f.repetition < f.call.repetitions) {
     f.pc = f.script->start();
     f.gosubs.clear();
-    f.restore_speeds = false;
     f.transform.origin[2] += f.call.plunge * f.transform.scale[2];
     return;
   }
@@ -134,15 +155,21 @@ void Interpreter::end_file() {
 
 void Interpreter::run(std::shared_ptr<const Script> script) {
   parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
+  auto clear_run_flag = [&] {  // SetUsrValClrd lives for one top-level run
+    if (store_.registry_value("uValueClrd")) store_.registry().erase("uValueClrd");
+  };
+  clear_run_flag();
   try {
     push_file(std::move(script), FileCall{}, SourceLoc{});
     loop(nullptr);
   } catch (...) {
     sink_.flush();  // the moves already issued complete; the position stays known
+    clear_run_flag();
     store_.save();
     throw;
   }
   sink_.flush();
+  clear_run_flag();
   store_.save();
 }
 
@@ -158,9 +185,12 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
     frames_.push_back(std::move(f));
     loop(&out);
   } catch (const NeedsOperator& e) {
+    // The rest depends on an answer. With an operator at the run that is fine (a warning);
+    // without one the run would stop here, part-way through the job: an error now.
     Diagnostic d = e.diagnostic();
-    d.severity = Severity::Warning;
-    d.message = "checking stopped here: " + d.message;
+    const bool fine = d.severity == Severity::Warning || options_.operator_present;
+    d.message = (fine ? "checking stopped here: " : "the run would stop here: ") + d.message;
+    d.severity = fine ? Severity::Warning : Severity::Error;
     out.push_back(std::move(d));
   } catch (const OperatorStop&) {
     // a DIALOG or FAIL that ends the run ends the check too
@@ -216,13 +246,14 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
         if (!a->target.persistent) failed_vars_.insert(a->target.name);
       if (cascade) continue;
       Diagnostic d = e.diagnostic();
-      for (const Frame& fr : frames_)
-        if (fr.called_from.file && d.via.empty()) d.via.push_back(fr.called_from);
+      if (d.via.empty())
+        for (const Frame& fr : frames_)
+          if (fr.called_from.file) d.via.push_back(fr.called_from);
       collect->push_back(std::move(d));
     }
     if (stop_all_) {
       while (!frames_.empty()) {
-        if (frames_.back().restore_speeds) state_.speeds = frames_.back().saved_speeds;
+        restore_file_speeds(frames_.back());
         frames_.pop_back();
       }
       stop_all_ = false;
@@ -242,7 +273,10 @@ void Interpreter::execute(const Statement& st) {
 void Interpreter::exec(const JumpStmt& s, const SourceLoc& loc) {
   Frame& f = frames_.back();
   const std::optional<Cursor> target = f.script->label(s.label);
-  if (!target) fail(s.label_loc, fmt::format("no label {}: in this file", s.label));
+  if (!target)
+    fail(s.label_loc, fmt::format("no label {}: in this file; labels are written on their own "
+                                  "line as NAME:",
+                                  s.label));
   if (s.gosub) {
     if (static_cast<int>(f.gosubs.size()) >= options_.max_gosub_depth)
       fail(loc, fmt::format("GOSUB nested {} deep without RETURN; a subroutine may be calling "
@@ -342,16 +376,30 @@ void Interpreter::assign(const LValue& target, const Value& v) {
   }
   nlohmann::json& root = store_.variables()[target.name];
   if (target.path.empty()) {
-    root = v.is_number() ? nlohmann::json(v.num()) : nlohmann::json(v.str());
+    if (v.is_string())
+      root = v.str();
+    else if (v.num() == std::floor(v.num()) && std::abs(v.num()) < 9e15)
+      root = static_cast<std::int64_t>(v.num());  // whole numbers stay whole in the file
+    else
+      root = v.num();
     return;
   }
   assign_path(root, target.path, v, *this, target.loc);
 }
 
 void Interpreter::exec(const AssignStmt& s, const SourceLoc&) {
-  if (s.weak) {  // `:=` keeps an existing value
-    const bool defined = s.target.persistent ? store_.variable(s.target.name) != nullptr
-                                             : vars_.count(s.target.name) > 0;
+  if (s.weak) {  // `:=` keeps an existing value (for $x.y, the value at that path)
+    bool defined = false;
+    if (!s.target.persistent) {
+      defined = vars_.count(s.target.name) > 0;
+    } else if (const nlohmann::json* root = store_.variable(s.target.name)) {
+      defined = true;
+      if (!s.target.path.empty()) try {
+          read_path(*root, s.target.path, *this, s.target.loc, s.target.name);
+        } catch (const GantryError&) {
+          defined = false;
+        }
+    }
     if (defined) return;
   }
   assign(s.target, s.value.blank() ? Value::string("") : value_of(s.value));
@@ -389,6 +437,11 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
       if (!a->is_expression() && a->expr_error && v->is_string())
         fail(a->loc, fmt::format("expected a number for {} ({}), found '{}'", ps.name, spec->code,
                                  a->text));
+      if (v->is_string() && a->text.size() > 1 && a->text[0] == '&' &&
+          std::all_of(a->text.begin() + 1, a->text.end(), scan::is_word) &&
+          !user_variable(scan::upper(a->text.substr(1))))
+        fail(a->loc, fmt::format("undefined variable {}; set it before this line",
+                                 scan::upper(a->text)));
       if (v->is_string())  // the message is only built when a conversion is needed
         v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
     }
@@ -404,7 +457,7 @@ void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
     const std::string path = (std::filesystem::path(dir) / name).string();
     if (std::filesystem::is_regular_file(path)) {
       FileCall call;
-      call.path = path;
+      call.path = std::filesystem::absolute(path).string();  // already resolved
       pending_call_ = call;
       pending_call_loc_ = loc;
       return;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>  // messages
 
 #include <cmath>       // round
+#include <sys/wait.h>  // WEXITSTATUS
+
 #include <cstdlib>     // system, for SHELL
 #include <filesystem>  // GetUsrPath, GetAppPath
 #include <functional>  // option values
@@ -101,8 +103,11 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
   }
   dialog_options(s.options, [&](const Arg& a) { return value_of(a); });  // validated; captions
   const Value v = value_of(*s.value);
-  if (v.is_number() && !s.into) {
-    ctx_.dwell(v.num(), loc);
+  // A number waits; so does text that is a number (INPUT answers are text).
+  const std::optional<double> secs =
+      v.is_number() ? std::optional<double>(v.num()) : parse_number_literal(v.str());
+  if (secs && !s.into) {
+    ctx_.dwell(*secs, loc);
     return;
   }
   const std::string message = v.to_string();
@@ -241,9 +246,16 @@ void Interpreter::exec(const OpenStmt& s, const SourceLoc& loc) {
   f.path = file_path(name);
   f.mode = s.mode;
   if (s.mode == OpenStmt::Mode::Input) {
+    if (options_.dry_run && dry_written_.count(f.path))
+      throw NeedsOperator({loc, Severity::Warning,
+                           fmt::format("the file reads back {}, which it writes; a check writes "
+                                       "no files, so the rest is checked when it runs",
+                                       f.path)});
     f.in.open(f.path);
     if (!f.in) fail(s.path.loc, fmt::format("cannot open {} for reading", f.path));
-  } else if (!options_.dry_run) {
+  } else if (options_.dry_run) {
+    dry_written_.insert(f.path);
+  } else {
     f.out.open(f.path, s.mode == OpenStmt::Mode::Append ? std::ios::app : std::ios::trunc);
     if (!f.out) fail(s.path.loc, fmt::format("cannot open {} for writing", f.path));
   }
@@ -265,14 +277,15 @@ void Interpreter::exec(const CloseStmt& s, const SourceLoc& loc) {
 }
 
 void Interpreter::exec(const ShellStmt& s, const SourceLoc& loc) {
-  if (options_.dry_run) return;
   if (!options_.allow_shell)
     fail(loc, "SHELL starts other programs and is disabled; run with --allow-shell to permit it");
+  if (options_.dry_run) return;
   const std::string command = value_of(s.command).to_string();
   bool sync = false;
   for (const Arg& a : s.options)
     if (scan::upper(a.text) == "SYNC") sync = true;
-  const int rc = std::system((sync ? command : command + " &").c_str());
+  const int status = std::system((sync ? command : command + " &").c_str());
+  const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : status;
   if (sync && rc != 0)
     io_.warn(
         {loc, Severity::Warning, fmt::format("SHELL: `{}` exited with status {}", command, rc)});

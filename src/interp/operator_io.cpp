@@ -17,8 +17,8 @@ void ScriptedIO::print(std::string_view text) {
 bool ScriptedIO::confirm(std::string_view message, const SourceLoc& loc) {
   if (yes_) return true;
   throw NeedsOperator({loc, Severity::Error,
-                       fmt::format("PAUSE waits for the operator (\"{}\"); run from a terminal, or "
-                                   "with --yes to continue every pause",
+                       fmt::format("the file waits for the operator (\"{}\"); run from a "
+                                   "terminal, or with --yes to continue every pause",
                                    message)});
 }
 
@@ -34,8 +34,8 @@ std::optional<std::string> ScriptedIO::ask(std::string_view, std::string_view va
     auto it = inputs_.find(name);
     if (it == inputs_.end())
       throw NeedsOperator({loc, Severity::Error,
-                           fmt::format("INPUT asks the operator for {}; run from a terminal, or "
-                                       "give it with --input {}=VALUE",
+                           fmt::format("the file asks the operator for {}; run from a "
+                                       "terminal, or give it with --input {}=VALUE",
                                        name, name)});
     answer += (answer.empty() ? "" : ",") + it->second;
     start = comma + 1;

@@ -47,7 +47,7 @@ class LineParser {
   SourceLoc loc(size_t col0) const;
   [[noreturn]] void error(size_t col0, std::string message) const;
   size_t skip_space(size_t i, size_t end) const;
-  Arg arg(size_t b, size_t e) const;
+  Arg arg(size_t b, size_t e, bool whole_quotes = true) const;
   Expr expression(size_t b, size_t e, std::string_view what) const;
   LValue lvalue(size_t b, size_t e) const;
   std::vector<std::pair<size_t, size_t>> split_commas(size_t b, size_t e) const;

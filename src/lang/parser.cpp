@@ -27,12 +27,12 @@ size_t LineParser::skip_space(size_t i, size_t end) const {
   return i;
 }
 
-Arg LineParser::arg(size_t b, size_t e) const {
+Arg LineParser::arg(size_t b, size_t e, bool whole_quotes) const {
   const size_t start = b;
   while (b < e && is_space(line_[b])) ++b;
   while (e > b && is_space(line_[e - 1])) --e;
   const size_t quote = line_.substr(b, e - b).find('"');
-  if (quote != std::string_view::npos &&
+  if (whole_quotes && quote != std::string_view::npos &&
       std::count(line_.begin() + b, line_.begin() + e, '"') % 2 == 1)
     error(b + line_.substr(b, e - b).rfind('"'),
           "this parameter opens a quote (\") that is never closed");
@@ -108,6 +108,8 @@ Statement LineParser::statement(size_t b, size_t e) const {
   if (line_[e - 1] == ':') {  // a label stands alone: words (and spaces) then a colon
     bool ok = false;
     std::string name = label_name(b, e - 1, &ok);
+    if (ok && (name.rfind("GOTO ", 0) == 0 || name.rfind("GOSUB ", 0) == 0))
+      error(e - 1, "write the label after GOTO or GOSUB without its colon");
     if (ok) return {at, LabelStmt{std::move(name)}};
   }
   if (first == '&' || first == '$') return assignment(b, e);

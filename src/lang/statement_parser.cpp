@@ -185,10 +185,10 @@ Statement LineParser::print(size_t b, size_t w, size_t e, bool is_write) const {
             "a ';' inside a comma-separated list: use ',' between items (a ';' may only "
             "end the line)");
     if (!split) continue;
-    st.items.push_back(arg(start, i));
+    st.items.push_back(arg(start, i, !st.comma_mode));
     start = i + 1;
   }
-  st.items.push_back(arg(start, end));
+  st.items.push_back(arg(start, end, !st.comma_mode));
   return {loc(b), std::move(st)};
 }
 

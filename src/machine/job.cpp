@@ -20,17 +20,19 @@ class NullSink : public MotionSink {
 
 std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
                                       const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options) {
+                                      const JobOptions& options, bool runtime_warnings) {
   NullSink sink;
   std::string printed;  // a check prints nothing
-  ScriptedIO io(true, options.inputs, &printed);
-  PersistentStore scratch = store;  // a check may assign $variables but never saves them
+  ScriptedIO io(options.yes || options.operator_present, options.inputs, &printed);
+  PersistentStore scratch = store.scratch_copy();  // a check may assign $variables, never saves
   InterpreterOptions opt = options.interpreter;
   opt.dry_run = true;
   opt.statement_budget = options.check_budget;
+  opt.operator_present = options.operator_present;
   Interpreter interp(settings, sink, io, scratch, opt);
   std::vector<Diagnostic> found = interp.check(std::move(script));
-  for (const Diagnostic& w : io.warnings()) found.push_back(w);
+  if (runtime_warnings)
+    for (const Diagnostic& w : io.warnings()) found.push_back(w);
   // A statement in a loop fails on every pass; say it once.
   std::vector<Diagnostic> out;
   for (Diagnostic& d : found) {
@@ -55,7 +57,7 @@ void interpret(std::shared_ptr<const Script> script, const Settings& settings, M
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options) {
   JobResult result;
-  for (Diagnostic& d : check_program(script, settings, store, options))
+  for (Diagnostic& d : check_program(script, settings, store, options, false))
     (d.severity == Severity::Error ? result.errors : result.warnings).push_back(std::move(d));
   if (!result.ok()) return result;
 

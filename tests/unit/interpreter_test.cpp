@@ -249,12 +249,13 @@ TEST_F(InterpreterTest, VsBlanksKeepTheirSpeeds) {
   expect_speeds(moves()[1].speeds, 7, 3.0, 45, 45, 45);
 }
 
-// The handbook: VS changes made in a file last until that file ends; MS and JS stay.
+// The handbook: VS changes made in a file last until that file ends; MS and JS stay, also
+// when they change a speed VS had set (here Z).
 TEST_F(InterpreterTest, VsChangesEndWithTheFileButMsStays) {
   run("VS, 1, .2\nMS, , .3\nMX, 1\n");
-  expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
+  expect_speeds(state().speeds.move, 2.0, 0.3, 10, 10, 10);
   run("MS, 1.5\n");
-  expect_speeds(state().speeds.move, 1.5, 0.5, 10, 10, 10);
+  expect_speeds(state().speeds.move, 1.5, 0.3, 10, 10, 10);
 }
 
 TEST_F(InterpreterTest, VsHasNoNinthParameter) {

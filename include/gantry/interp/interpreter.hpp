@@ -64,8 +64,9 @@ class CommandContext {
   void dwell(double seconds, const SourceLoc& loc);
   // FP: runs a file as a subroutine once this command returns.
   void call_file(const FileCall& call, const SourceLoc& loc);
-  // VS changes are undone when the file that made them ends.
-  void speeds_changed_by_values();
+  // Records who set a speed group (0 xy .. 4 c): values set by VS are undone when the file
+  // that set them ends; MS and JS values stay.
+  void speed_set(SpeedClass cls, int group, bool by_values);
 
   std::size_t moves() const { return moves_; }
 
@@ -83,6 +84,7 @@ struct InterpreterOptions {
   bool trig_in_degrees = false;      // dialect "fabmo"
   bool allow_shell = false;          // SHELL runs programs only when allowed
   bool dry_run = false;              // check: no files written, no programs started
+  bool operator_present = true;      // check: someone will answer PAUSE/INPUT in the run
   std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
   std::string macro_dir;             // where C<n> finds its files ("" = beside the file)
   int max_file_depth = 8;            // FP nesting, the top-level file included
@@ -127,6 +129,7 @@ class Interpreter : private EvalEnv {
 
   void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from);
   void end_file();
+  void restore_file_speeds(Frame& f);
   void loop(std::vector<Diagnostic>* collect);
   void execute(const Statement& st);
   // One overload per statement kind: control flow and commands in interpreter.cpp, operator
@@ -170,6 +173,7 @@ class Interpreter : private EvalEnv {
   std::vector<Frame> frames_;
   std::unordered_map<std::string, Value> vars_;
   std::set<std::string> failed_vars_;  // check: assignments that failed
+  std::set<std::string> dry_written_;  // check: files the run would write
   std::map<std::pair<int, int>, std::shared_ptr<const Statement>> on_input_;
   std::vector<std::unique_ptr<UserFile>> files_;
   std::optional<FileCall> pending_call_;

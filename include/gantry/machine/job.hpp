@@ -21,6 +21,8 @@ struct JobOptions {
   std::function<void(std::size_t done, std::size_t total)> progress;  // lines of the top file
   InterpreterOptions interpreter;
   std::map<std::string, std::string> inputs;  // --input answers, for the check as well
+  bool yes = false;                           // --yes: PAUSE continues, MSGBOX defaults
+  bool operator_present = true;               // a person answers at a terminal
   std::size_t check_budget = 10'000'000;      // statements a check may run (loops end there)
 };
 
@@ -41,9 +43,12 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
                   OperatorIO& io, PersistentStore& store, const JobOptions& options = {});
 
 // Interprets without motion and returns every error and warning: what `gantry check` says.
+// `runtime_warnings`: also the warnings statements give as they run (PLAY, CLOSE), which
+// a run reports itself.
 std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
                                       const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options = {});
+                                      const JobOptions& options = {},
+                                      bool runtime_warnings = true);
 
 // Interprets a checked program, handing each canonical move to `sink` (for `gantry moves`).
 void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
