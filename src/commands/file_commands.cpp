@@ -49,7 +49,8 @@ void add_file_commands(std::vector<CommandSpec>& out) {
        "Runs another part file, then continues on the next line. Variables are shared; the file "
        "may be scaled, repeated, and placed relative to the current position.",
        {{"file name", "", true, std::nullopt,
-         "The part file; a relative name is found in the parts folder (the top-level file's).", ParamKind::Text},
+         "The part file; a relative name is found in the parts folder (the top-level file's).",
+         ParamKind::Text},
         {"proportion X", "", false, 1.0, "Scale of X."},
         {"proportion Y", "", false, 1.0, "Scale of Y."},
         {"proportion Z", "", false, 1.0, "Scale of Z."},

@@ -22,6 +22,13 @@ std::string format(const Diagnostic& d) {
 
 GantryError::GantryError(Diagnostic d) : std::runtime_error(format(d)), diag_(std::move(d)) {}
 
+void append_once(std::vector<Diagnostic>& list, Diagnostic d) {
+  const std::string text = format(d);
+  for (const Diagnostic& o : list)
+    if (format(o) == text) return;
+  list.push_back(std::move(d));
+}
+
 void fail(const SourceLoc& loc, std::string message) {
   throw GantryError(Diagnostic{loc, Severity::Error, std::move(message)});
 }

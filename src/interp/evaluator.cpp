@@ -3,13 +3,15 @@
 
 #include <fmt/format.h>  // messages
 
-#include <algorithm>  // min
+#include <algorithm>  // min, all_of
 #include <climits>    // INT_MIN, INT_MAX
 #include <cmath>
 
 #include "../lang/expr_node.hpp"
 #include "builtin_functions.hpp"  // apply_function
 #include "persistent_path.hpp"    // describe_path
+
+#include "../lang/scan.hpp"  // upper
 
 namespace gantry {
 
@@ -357,6 +359,13 @@ double evaluate_number(const Expr& e, EvalEnv& env) {
 bool is_true(const Value& v, const SourceLoc& loc) {
   if (v.is_number()) return v.num() != 0;
   if (std::optional<double> d = parse_number_literal(v.str())) return *d != 0;
+  // An undefined &variable reads as its own name.
+  const std::string& t = v.str();
+  if (t.size() > 1 && t[0] == '&' && std::all_of(t.begin() + 1, t.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+      }))
+    fail(loc,
+         fmt::format("undefined variable &{}; set it before this line", scan::upper(t.substr(1))));
   fail(loc, "IF needs a number or a comparison");
 }
 

@@ -17,6 +17,7 @@ struct Interpreter::Frame {
   Transform transform;
   FileCall call;
   int repetition = 0;
+  double plunge_start_z = 0;        // machine Z when FP was called, for the plunge of each pass
   SpeedSettings saved_speeds;       // at the file's start
   std::array<bool, 10> vs_owned{};  // speeds (move xy..c, jog xy..c) VS set last here
 };

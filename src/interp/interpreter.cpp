@@ -93,8 +93,14 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
 
 Interpreter::~Interpreter() = default;
 
-std::string Interpreter::file_path(const std::string& name) const {
-  std::filesystem::path p(name);
+std::string Interpreter::file_path(const std::string& name, const SourceLoc& loc) const {
+  std::string n = name;
+  std::replace(n.begin(), n.end(), '\\', '/');  // part files written on Windows
+  if (n.size() >= 2 && std::isalpha(static_cast<unsigned char>(n[0])) && n[1] == ':')
+    fail(loc, fmt::format("{} names a Windows drive; give a path on this machine, relative to "
+                          "the part file's folder or absolute",
+                          name));
+  std::filesystem::path p(n);
   if (p.is_relative() && !parts_dir_.empty()) p = std::filesystem::path(parts_dir_) / p;
   return p.string();
 }
@@ -126,7 +132,20 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
   // An offset run places the file's 0 at the current position: X, Y (2D) or X, Y, Z (3D).
   for (int i = 0; i < (call.offset == 1 ? 3 : call.offset == 2 ? 2 : 0); ++i)
     f.transform.origin[i] = state_.position[i];
+  f.plunge_start_z = state_.position[2];
   frames_.push_back(std::move(f));
+  plunge_for_pass(frames_.back());
+}
+
+// FP's plunge: pass k (from 1) runs k * plunge lower. The file's Z is shifted, and the tool
+// moves down first, so that a template with no Z moves of its own cuts deeper each pass.
+void Interpreter::plunge_for_pass(Frame& f) {
+  if (f.call.plunge == 0) return;
+  f.transform.origin[2] += f.call.plunge * f.transform.scale[2];
+  Vec6 target = state_.position;
+  target[2] = f.plunge_start_z + (f.repetition + 1) * f.call.plunge * f.transform.scale[2];
+  ctx_.transform_ = Transform{};
+  ctx_.line_to(target, SpeedClass::Move, pending_call_loc_);
 }
 
 // Ends the current pass of the innermost file: another repetition, or back to the caller.
@@ -136,7 +155,7 @@ void Interpreter::end_file() {
   if (++f.repetition < f.call.repetitions) {
     f.pc = f.script->start();
     f.gosubs.clear();
-    f.transform.origin[2] += f.call.plunge * f.transform.scale[2];
+    plunge_for_pass(f);
     return;
   }
   frames_.pop_back();
@@ -159,18 +178,29 @@ void Interpreter::run(std::shared_ptr<const Script> script) {
     if (store_.registry_value("uValueClrd")) store_.registry().erase("uValueClrd");
   };
   clear_run_flag();
+  frames_.clear();
+  // Ends the run whatever happened: files closed, VS speeds of every open file undone
+  // (innermost first), the moves already issued completed, the store saved.
+  auto finish = [&] {
+    while (!frames_.empty()) {
+      restore_file_speeds(frames_.back());
+      frames_.pop_back();
+    }
+    files_.clear();
+    on_input_.clear();
+    pending_call_.reset();
+    sink_.flush();
+    clear_run_flag();
+    store_.save();
+  };
   try {
     push_file(std::move(script), FileCall{}, SourceLoc{});
     loop(nullptr);
   } catch (...) {
-    sink_.flush();  // the moves already issued complete; the position stays known
-    clear_run_flag();
-    store_.save();
+    finish();
     throw;
   }
-  sink_.flush();
-  clear_run_flag();
-  store_.save();
+  finish();
 }
 
 std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script) {
@@ -195,7 +225,7 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
   } catch (const OperatorStop&) {
     // a DIALOG or FAIL that ends the run ends the check too
   } catch (const GantryError& e) {
-    out.push_back(e.diagnostic());
+    append_once(out, e.diagnostic());
   }
   sink_.flush();
   return out;
@@ -228,7 +258,7 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
       if (pending_call_) {
         FileCall call = *pending_call_;
         pending_call_.reset();
-        push_file(Script::load(file_path(call.path)), call, pending_call_loc_);
+        push_file(Script::load(file_path(call.path, pending_call_loc_)), call, pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;
@@ -249,7 +279,10 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
       if (d.via.empty())
         for (const Frame& fr : frames_)
           if (fr.called_from.file) d.via.push_back(fr.called_from);
-      collect->push_back(std::move(d));
+      const std::string text = format(d);
+      if (std::none_of(collect->begin(), collect->end(),
+                       [&](const Diagnostic& o) { return format(o) == text; }))
+        append_once(*collect, std::move(d));
     }
     if (stop_all_) {
       while (!frames_.empty()) {
@@ -360,6 +393,12 @@ MachineSnapshot Interpreter::snapshot() const {
   m.jog_speed = groups(state_.speeds.jog);
   m.move_ramp = groups(settings_.ramps.move_ramp_speed);
   m.jog_ramp = groups(settings_.ramps.jog_ramp_speed);
+  if (!frames_.empty()) {
+    const Frame& f = frames_.back();
+    m.file_path = std::filesystem::absolute(*f.script->name()).string();
+    m.file_offset = f.transform.origin;
+    m.file_proportion = f.transform.scale;
+  }
   return m;
 }
 
@@ -432,7 +471,7 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
              fmt::format("{} needs its parameter {} ({})", spec->code, i + 1, ps.name));
       if (ps.default_value) v = Value::number(*ps.default_value);
     } else if (ps.kind == ParamKind::Number) {
-      if (!a->is_expression() && a->expr_error && scan::looks_like_expression(a->text))
+      if (!a->is_expression() && a->expr_error && scan::looks_like_expression(a->text, true))
         throw GantryError(*a->expr_error);  // a broken expression: say where it breaks
       if (!a->is_expression() && a->expr_error && v->is_string())
         fail(a->loc, fmt::format("expected a number for {} ({}), found '{}'", ps.name, spec->code,
@@ -440,8 +479,8 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
       if (v->is_string() && a->text.size() > 1 && a->text[0] == '&' &&
           std::all_of(a->text.begin() + 1, a->text.end(), scan::is_word) &&
           !user_variable(scan::upper(a->text.substr(1))))
-        fail(a->loc, fmt::format("undefined variable {}; set it before this line",
-                                 scan::upper(a->text)));
+        fail(a->loc,
+             fmt::format("undefined variable {}; set it before this line", scan::upper(a->text)));
       if (v->is_string())  // the message is only built when a conversion is needed
         v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
     }

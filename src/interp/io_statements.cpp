@@ -2,8 +2,8 @@
 // DIALOG, FAIL, OPEN, CLOSE, SHELL, PLAY, WARNING OFF and the registry statements.
 #include <fmt/format.h>  // messages
 
-#include <cmath>       // round
 #include <sys/wait.h>  // WEXITSTATUS
+#include <cmath>       // round
 
 #include <cstdlib>     // system, for SHELL
 #include <filesystem>  // GetUsrPath, GetAppPath
@@ -40,7 +40,7 @@ int msgbox_type(const Value& v, const SourceLoc& loc) {
     const std::string u = scan::upper(scan::trim(v.str()));
     for (auto [n, t] : names)
       if (u == n) return t;
-    if (u.empty()) return 0;
+    if (!parse_number_literal(u)) return 0;  // an unknown name: OK only, as documented
   }
   const double d = v.to_number(loc, "the MSGBOX button type");
   const int t = static_cast<int>(d);
@@ -107,6 +107,8 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
   const std::optional<double> secs =
       v.is_number() ? std::optional<double>(v.num()) : parse_number_literal(v.str());
   if (secs && !s.into) {
+    const std::string note = pause_message(loc);  // the comment line above, if any
+    if (note != "Continue?") io_.print(note + "\n");
     ctx_.dwell(*secs, loc);
     return;
   }
@@ -176,6 +178,8 @@ void Interpreter::exec(const InputStmt& s, const SourceLoc& loc) {
     assign(s.vars[0], Value::string(std::string(scan::trim(answer))));
     return;
   }
+  if (scan::trim(answer).empty())  // an empty box with several variables counts as Cancel
+    throw OperatorStop({loc, Severity::Error, "stopped by the operator at INPUT"});
   std::vector<std::string> fields;
   size_t start = 0;
   for (size_t i = 0; i <= answer.size(); ++i) {
@@ -243,7 +247,7 @@ void Interpreter::exec(const OpenStmt& s, const SourceLoc& loc) {
   UserFile& f = user_file(s.number, loc, false);
   if (!f.path.empty())
     fail(loc, fmt::format("file #{} is already open ({}); CLOSE it first", f.number, f.path));
-  f.path = file_path(name);
+  f.path = file_path(name, s.path.loc);
   f.mode = s.mode;
   if (s.mode == OpenStmt::Mode::Input) {
     if (options_.dry_run && dry_written_.count(f.path))

@@ -144,7 +144,8 @@ Statement LineParser::assignment(size_t b, size_t e) const {
   st.value = arg(eq + 1, e);
   // A bare word stays text (`&s = Material Surface`), but text that can only be meant as an
   // expression must be one: `&x = &y +` or `&x = SQR(1, 2)` is an error, not a string.
-  if (!st.value.is_expression() && looks_like_expression(st.value.text) && st.value.expr_error)
+  if (!st.value.is_expression() && looks_like_expression(st.value.text, false) &&
+      st.value.expr_error)
     throw GantryError(*st.value.expr_error);
   return {loc(b), std::move(st)};
 }

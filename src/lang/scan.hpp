@@ -72,12 +72,14 @@ inline size_t find_keyword(std::string_view s, std::string_view kw, size_t from 
   return std::string_view::npos;
 }
 
-// Text that can only be meant as an expression (it starts like one, or calls a function),
-// as opposed to a bare word such as `Material Surface` or a file name.
-inline bool looks_like_expression(std::string_view t) {
-  return !t.empty() &&
-         (std::string_view("&$%(+-.0123456789").find(t[0]) != std::string_view::npos ||
-          t.find('(') != std::string_view::npos);
+// Text that can only be meant as an expression: it starts with a variable, a system
+// variable or a parenthesis, or calls a function. `numbers_too` also counts text starting
+// like a number (for number parameters, where `1.2.3` is a broken number, not a word);
+// an assignment keeps `12 apples` as text, as the handbook allows.
+inline bool looks_like_expression(std::string_view t, bool numbers_too) {
+  if (t.empty()) return false;
+  const std::string_view starts = numbers_too ? "&$%(+-.0123456789" : "&$%(";
+  return starts.find(t[0]) != std::string_view::npos || t.find('(') != std::string_view::npos;
 }
 
 }  // namespace gantry::scan

@@ -109,6 +109,9 @@ Statement LineParser::pause(size_t b, size_t w, size_t e) const {
   auto fields = split_commas(p, e);
   st.kind = PauseStmt::Kind::Timed;
   st.value = arg(fields[0].first, fields[0].second);
+  if (!st.value->is_expression() && looks_like_expression(st.value->text, false) &&
+      st.value->expr_error)
+    throw GantryError(*st.value->expr_error);  // `PAUSE SQR(4`, `PAUSE time(sec)`
   for (size_t i = 1; i < fields.size(); ++i) {
     const auto [fb, fe] = fields[i];
     const size_t eq = find_top_level(line_.substr(0, fe), '=', fb);

@@ -30,16 +30,9 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   opt.statement_budget = options.check_budget;
   opt.operator_present = options.operator_present;
   Interpreter interp(settings, sink, io, scratch, opt);
-  std::vector<Diagnostic> found = interp.check(std::move(script));
+  std::vector<Diagnostic> out = interp.check(std::move(script));
   if (runtime_warnings)
-    for (const Diagnostic& w : io.warnings()) found.push_back(w);
-  // A statement in a loop fails on every pass; say it once.
-  std::vector<Diagnostic> out;
-  for (Diagnostic& d : found) {
-    const bool seen = std::any_of(out.begin(), out.end(),
-                                  [&](const Diagnostic& o) { return format(o) == format(d); });
-    if (!seen) out.push_back(std::move(d));
-  }
+    for (const Diagnostic& w : io.warnings()) append_once(out, w);
   // In line order: the script's own pass found the syntax errors, the run the others.
   // Messages from nested files keep their order after those of the top-level file.
   auto key = [](const Diagnostic& d) { return d.via.empty() ? d.loc.line : INT_MAX; };

@@ -26,7 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   gantry::ScriptedIO io(true, {}, &printed);
   gantry::PersistentStore store;  // in memory: never saved
   gantry::InterpreterOptions opt;
-  opt.dry_run = true;            // no files written, no programs started
+  opt.dry_run = true;           // no files written, no programs started
   opt.statement_budget = 2000;  // loops end quickly
   gantry::Interpreter interp(settings, sink, io, store, opt);
   interp.check(script);

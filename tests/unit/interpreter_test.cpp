@@ -612,9 +612,11 @@ TEST_F(InterpreterTest, ParametersAcceptOpenSbpNumerals) {
 
 TEST_F(InterpreterTest, AParameterThatIsNotANumberIsLocated) {
   // Broken expressions are located where they break; bare words at the parameter.
-  const std::pair<const char*, const char*> cases[] = {
-      {"1.2.3", "part.sbp:2:8"}, {"5x", "part.sbp:2:6"}, {"1 2", "part.sbp:2:7"},
-      {"e5", "part.sbp:2:5"},    {"abc", "part.sbp:2:5"}};
+  const std::pair<const char*, const char*> cases[] = {{"1.2.3", "part.sbp:2:8"},
+                                                       {"5x", "part.sbp:2:6"},
+                                                       {"1 2", "part.sbp:2:7"},
+                                                       {"e5", "part.sbp:2:5"},
+                                                       {"abc", "part.sbp:2:5"}};
   for (const auto& [text, at] : cases) {
     SCOPED_TRACE(text);
     const Diagnostic d = run_error(std::string("SA\nMZ, ") + text + "\n");

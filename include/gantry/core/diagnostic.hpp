@@ -41,6 +41,10 @@ class GantryError : public std::runtime_error {
   Diagnostic diag_;
 };
 
+// Appends `d` unless the same message at the same place is already there (a statement in a
+// loop fails on every pass; a check says it once).
+void append_once(std::vector<Diagnostic>& list, Diagnostic d);
+
 // Convenience: throw a located error.
 [[noreturn]] void fail(const SourceLoc& loc, std::string message);
 

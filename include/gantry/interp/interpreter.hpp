@@ -130,6 +130,7 @@ class Interpreter : private EvalEnv {
   void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from);
   void end_file();
   void restore_file_speeds(Frame& f);
+  void plunge_for_pass(Frame& f);
   void loop(std::vector<Diagnostic>* collect);
   void execute(const Statement& st);
   // One overload per statement kind: control flow and commands in interpreter.cpp, operator
@@ -159,7 +160,7 @@ class Interpreter : private EvalEnv {
   std::string pause_message(const SourceLoc& loc) const;
   Value value_of(const Arg& a);
   void assign(const LValue& target, const Value& v);
-  std::string file_path(const std::string& name) const;
+  std::string file_path(const std::string& name, const SourceLoc& loc) const;
   [[noreturn]] void rethrow_located(const GantryError& e) const;
 
   const Settings& settings_;

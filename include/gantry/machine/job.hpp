@@ -47,8 +47,7 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
 // a run reports itself.
 std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
                                       const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options = {},
-                                      bool runtime_warnings = true);
+                                      const JobOptions& options = {}, bool runtime_warnings = true);
 
 // Interprets a checked program, handing each canonical move to `sink` (for `gantry moves`).
 void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
