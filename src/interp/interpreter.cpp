@@ -205,6 +205,8 @@ void Interpreter::run(std::shared_ptr<const Script> script) {
 
 std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script) {
   std::vector<Diagnostic> out = script->errors();
+  // As a run would: SetUsrValClrd starts empty (the store is a check's own copy).
+  if (store_.registry_value("uValueClrd")) store_.registry().erase("uValueClrd");
   parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
   try {
     frames_.clear();
@@ -218,6 +220,9 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
     // The rest depends on an answer. With an operator at the run that is fine (a warning);
     // without one the run would stop here, part-way through the job: an error now.
     Diagnostic d = e.diagnostic();
+    if (d.via.empty())
+      for (const Frame& fr : frames_)
+        if (fr.called_from.file) d.via.push_back(fr.called_from);
     const bool fine = d.severity == Severity::Warning || options_.operator_present;
     d.message = (fine ? "checking stopped here: " : "the run would stop here: ") + d.message;
     d.severity = fine ? Severity::Warning : Severity::Error;

@@ -108,7 +108,10 @@ Statement LineParser::statement(size_t b, size_t e) const {
   if (line_[e - 1] == ':') {  // a label stands alone: words (and spaces) then a colon
     bool ok = false;
     std::string name = label_name(b, e - 1, &ok);
-    if (ok && (name.rfind("GOTO ", 0) == 0 || name.rfind("GOSUB ", 0) == 0))
+    // `GOTO DONE:` or `IF 1 THEN GOTO DONE:` is a jump written with a colon, not a label.
+    const std::string first_word = name.substr(0, name.find(' '));
+    if (ok && name.find(' ') != std::string::npos &&
+        (first_word == "GOTO" || first_word == "GOSUB" || first_word == "IF" || first_word == "ON"))
       error(e - 1, "write the label after GOTO or GOSUB without its colon");
     if (ok) return {at, LabelStmt{std::move(name)}};
   }

@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>  // messages
 
-#include "gantry/core/text_file.hpp"  // read_text_file
+#include <fcntl.h>     // open
+#include <sys/stat.h>  // fstat: only regular files
+#include <unistd.h>    // pread, close
 
 namespace gantry {
 namespace {
@@ -16,23 +18,52 @@ void collect_jumps(const Statement& st, std::vector<const JumpStmt*>& out) {
     if (o->action) collect_jumps(*o->action, out);
 }
 
+constexpr size_t kWindow = size_t{1} << 20;  // bytes read at a time from a file
+
 }  // namespace
 
 Script::Script(std::string text, const std::string& name)
-    : text_(std::move(text)), name_(std::make_shared<const std::string>(name)) {
-  if (text_.rfind("\xEF\xBB\xBF", 0) == 0) text_start_ = 3;
+    : size_(text.size()),
+      window_(std::move(text)),
+      name_(std::make_shared<const std::string>(name)) {
+  if (window_.rfind("\xEF\xBB\xBF", 0) == 0) text_start_ = 3;
+}
+
+Script::~Script() {
+  if (fd_ >= 0) ::close(fd_);
 }
 
 std::shared_ptr<const Script> Script::load(const std::string& path) {
-  std::optional<std::string> text = read_text_file(path);
-  std::shared_ptr<Script> s(new Script(text ? std::move(*text) : std::string(), path));
-  if (!text) {
+  std::shared_ptr<Script> s(new Script(std::string(), path));
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd >= 0) ::close(fd);
     s->errors_.push_back({SourceLoc{s->name_, 0, 0}, Severity::Error,
                           "cannot open the part file; check the name and that it exists"});
     return s;
   }
+  s->fd_ = fd;
+  s->size_ = static_cast<size_t>(st.st_size);
+  s->read_window(0, kWindow);
+  if (s->window_.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
   s->index();
   return s;
+}
+
+void Script::read_window(size_t offset, size_t len) const {
+  if (fd_ < 0) return;  // text scripts hold everything already
+  len = std::min(len, size_ - std::min(offset, size_));
+  window_.resize(len);
+  size_t got = 0;
+  while (got < len) {
+    const ssize_t n =
+        ::pread(fd_, window_.data() + got, len - got, static_cast<off_t>(offset + got));
+    if (n <= 0) break;  // the file shrank or failed: what was read is what there is
+    got += static_cast<size_t>(n);
+  }
+  window_.resize(got);
+  window_start_ = offset;
 }
 
 std::shared_ptr<const Script> Script::from_text(std::string text, const std::string& name) {
@@ -47,27 +78,58 @@ bool Script::ok() const {
   return true;
 }
 
-// Lines end at "\n", "\r\n" or a lone "\r" (DOS, Unix and old Mac files alike).
+// Lines end at "\n", "\r\n" or a lone "\r" (DOS, Unix and old Mac files alike). The window
+// is moved (and grown for a very long line) until it holds the whole line and the byte after
+// its terminator, so that "\r\n" is seen as one.
 std::string_view Script::line_at(Cursor c, Cursor* next) const {
-  // A plain scan: find_first_of with a set calls memchr once per character.
-  size_t stop = std::min(c.offset, text_.size());
-  while (stop < text_.size() && text_[stop] != '\n' && text_[stop] != '\r') ++stop;
-  size_t after = stop;
-  if (after < text_.size())
-    after += (text_[after] == '\r' && after + 1 < text_.size() && text_[after + 1] == '\n') ? 2 : 1;
-  if (next) *next = {after, c.line + 1};
-  return std::string_view(text_).substr(c.offset, stop - c.offset);
+  if (c.offset >= size_) {
+    if (next) *next = {size_, c.line + 1};
+    return {};
+  }
+  size_t want = kWindow;
+  while (true) {
+    const size_t end = window_start_ + window_.size();
+    if (c.offset < window_start_ || c.offset >= end) {
+      read_window(c.offset, want);
+      continue;
+    }
+    // A plain scan: find_first_of with a set calls memchr once per character.
+    size_t stop = c.offset - window_start_;
+    while (stop < window_.size() && window_[stop] != '\n' && window_[stop] != '\r') ++stop;
+    const size_t abs_stop = window_start_ + stop;
+    const bool complete = abs_stop + 1 < end || end == size_;  // terminator and next byte seen
+    if (!complete) {
+      if (window_start_ == c.offset) want *= 2;  // a line longer than the window
+      read_window(c.offset, want);
+      continue;
+    }
+    size_t after = abs_stop;
+    if (after < size_)
+      after += (window_[stop] == '\r' && after + 1 < size_ && window_[stop + 1] == '\n') ? 2 : 1;
+    if (next) *next = {after, c.line + 1};
+    return std::string_view(window_).substr(c.offset - window_start_, abs_stop - c.offset);
+  }
 }
 
 std::optional<std::string_view> Script::line_before(Cursor c) const {
-  if (c.offset <= text_start_) return std::nullopt;
-  size_t end = c.offset;  // strip this line's predecessor's terminator
-  if (end > 0 && text_[end - 1] == '\n') --end;
-  if (end > 0 && text_[end - 1] == '\r') --end;
-  size_t begin = text_.find_last_of("\r\n", end == 0 ? 0 : end - 1);
-  begin = (begin == std::string::npos || end == 0) ? text_start_ : begin + 1;
+  if (c.offset <= text_start_ || c.offset > size_) return std::nullopt;
+  // Read back up to 64 KiB: a comment worth showing is never longer.
+  const size_t from = c.offset > 65536 ? c.offset - 65536 : 0;
+  if (from < window_start_ || c.offset > window_start_ + window_.size())
+    read_window(from, c.offset - from);
+  const std::string_view w = std::string_view(window_).substr(0, c.offset - window_start_);
+  size_t end = w.size();  // strip the previous line's terminator
+  if (end > 0 && w[end - 1] == '\n') --end;
+  if (end > 0 && w[end - 1] == '\r') --end;
+  size_t begin = end == 0 ? std::string_view::npos : w.find_last_of("\r\n", end - 1);
+  if (begin == std::string_view::npos) {
+    if (window_start_ > 0) return std::nullopt;  // longer than we look back
+    begin = text_start_;
+  } else {
+    ++begin;
+  }
   if (begin > end) begin = end;
-  return std::string_view(text_).substr(begin, end - begin);
+  return w.substr(begin, end - begin);
 }
 
 std::optional<Cursor> Script::label(const std::string& name) const {

@@ -20,7 +20,8 @@ struct Cursor {
 };
 
 // Statements are parsed when they are executed, so memory does not grow with the file: a
-// script holds its text and one entry per label. Loading makes one pass over every line to
+// script loaded from disk keeps the file open and reads it through a window of about a
+// mebibyte (pread), plus one entry per label. Loading makes one pass over every line to
 // index the labels and to find every syntax error, duplicate label and jump to a missing
 // label before anything runs.
 class Script {
@@ -35,22 +36,32 @@ class Script {
   int line_count() const { return lines_; }
 
   Cursor start() const { return {text_start_, 1}; }
-  bool at_end(Cursor c) const { return c.offset >= text_.size(); }
+  bool at_end(Cursor c) const { return c.offset >= size_; }
   // The line at `c` (without its terminator); `next` receives the following line's cursor.
+  // The view is valid until the next call on this script.
   std::string_view line_at(Cursor c, Cursor* next) const;
-  // The physical line just above `c`, if any.
+  // The physical line just above `c`, if any (same validity).
   std::optional<std::string_view> line_before(Cursor c) const;
   // The line after `NAME:` (name upper case, inner spaces single), or nullopt.
   std::optional<Cursor> label(const std::string& name) const;
 
   LineParse parse(Cursor c, Cursor* next) const;
 
+  ~Script();
+  Script(const Script&) = delete;
+  Script& operator=(const Script&) = delete;
+
  private:
   Script(std::string text, const std::string& name);
   void index();
+  // Makes the window hold [offset, offset + len) or up to the end of the file.
+  void read_window(size_t offset, size_t len) const;
 
-  std::string text_;
-  size_t text_start_ = 0;  // past a UTF-8 byte-order mark
+  int fd_ = -1;                 // the open file; -1 for a script made from text
+  size_t size_ = 0;             // bytes in the file (or text)
+  size_t text_start_ = 0;       // past a UTF-8 byte-order mark
+  mutable std::string window_;  // bytes [window_start_, window_start_ + size())
+  mutable size_t window_start_ = 0;
   std::shared_ptr<const std::string> name_;
   std::unordered_map<std::string, Cursor> labels_;
   std::vector<Diagnostic> errors_;

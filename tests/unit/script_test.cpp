@@ -1,0 +1,97 @@
+// Script reading files through its window: lines across the window's edge, CRLF split by
+// it, lines longer than it, and the line above a cursor far into a file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "gantry/lang/script.hpp"
+
+namespace gantry {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / ("gantry_script_" + name);
+  std::ofstream(p, std::ios::binary) << text;
+  return p.string();
+}
+
+// Every line of a loaded script, in order.
+std::vector<std::string> lines_of(const Script& s) {
+  std::vector<std::string> out;
+  for (Cursor c = s.start(); !s.at_end(c);) {
+    Cursor next;
+    out.emplace_back(s.line_at(c, &next));
+    c = next;
+  }
+  return out;
+}
+
+constexpr size_t kMiB = size_t{1} << 20;
+
+TEST(ScriptFile, LinesAcrossTheWindowEdgeReadWhole) {
+  // Lines of 37 bytes: the 1 MiB edge falls inside one of them.
+  std::string text;
+  int n = 0;
+  while (text.size() < 3 * kMiB)
+    text += "MX, " + std::to_string(1000000 + n++) + ".123456789012345\n";
+  const auto s = Script::load(write_temp("edge.sbp", text));
+  ASSERT_TRUE(s->ok());
+  const std::vector<std::string> lines = lines_of(*s);
+  ASSERT_EQ(lines.size(), static_cast<size_t>(n));
+  for (int i = 0; i < n; i += 997)
+    EXPECT_EQ(lines[i], "MX, " + std::to_string(1000000 + i) + ".123456789012345");
+  EXPECT_EQ(s->line_count(), n);
+}
+
+TEST(ScriptFile, CrLfSplitByTheWindowIsOneTerminator) {
+  std::string text(kMiB - 1, 'x');  // the "\r" is the window's last byte, "\n" the next one
+  text = "'" + text.substr(1) + "\r\nMX, 1\r\n";
+  const auto s = Script::load(write_temp("crlf.sbp", text));
+  ASSERT_TRUE(s->ok());
+  const std::vector<std::string> lines = lines_of(*s);
+  ASSERT_EQ(lines.size(), 2u);  // not 3: no empty line between \r and \n
+  EXPECT_EQ(lines[1], "MX, 1");
+}
+
+TEST(ScriptFile, ALineLongerThanTheWindowReadsWhole) {
+  const std::string comment = "'" + std::string(3 * kMiB, 'c');
+  const auto s = Script::load(write_temp("long.sbp", "SA\n" + comment + "\nMX, 2\n"));
+  ASSERT_TRUE(s->ok());
+  const std::vector<std::string> lines = lines_of(*s);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[1].size(), comment.size());
+  EXPECT_EQ(lines[2], "MX, 2");
+}
+
+TEST(ScriptFile, LabelsFarIntoTheFileAreFoundAndTheLineAboveIsRead) {
+  std::string text = "GOTO FAR\n";
+  while (text.size() < 2 * kMiB) text += "MX, 1\n";
+  text += "' the comment above\nFAR:\nMY, 3\n";
+  const auto s = Script::load(write_temp("far.sbp", text));
+  ASSERT_TRUE(s->ok());
+  const std::optional<Cursor> far = s->label("FAR");
+  ASSERT_TRUE(far);
+  Cursor next;
+  EXPECT_EQ(s->line_at(*far, &next), "MY, 3");
+  const std::optional<std::string_view> above = s->line_before(*far);
+  ASSERT_TRUE(above);
+  EXPECT_EQ(*above, "FAR:");
+  // Back at the start after reading the far end.
+  EXPECT_EQ(s->line_at(s->start(), &next), "GOTO FAR");
+}
+
+TEST(ScriptFile, ByteOrderMarkIsSkippedAndADirectoryIsNotAFile) {
+  const auto s = Script::load(write_temp("bom.sbp", "\xEF\xBB\xBFMX, 1\n"));
+  Cursor next;
+  EXPECT_EQ(s->line_at(s->start(), &next), "MX, 1");
+  const auto dir = Script::load(fs::temp_directory_path().string());
+  ASSERT_EQ(dir->errors().size(), 1u);
+  EXPECT_FALSE(dir->ok());
+}
+
+}  // namespace
+}  // namespace gantry
