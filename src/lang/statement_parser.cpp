@@ -19,6 +19,11 @@ constexpr std::string_view kRegistry[] = {"SETUSRVAL",  "SETUSRVALCLRD",   "SETS
 
 std::optional<Statement> LineParser::program_statement(const std::string& word, size_t b, size_t w,
                                                        size_t e) const {
+  // Most lines are two-letter commands; of the keywords only IF and ON are that short.
+  if (word.size() < 2) return std::nullopt;
+  if (word.size() == 2 && !(word[0] == 'I' && word[1] == 'F') &&
+      !(word[0] == 'O' && word[1] == 'N'))
+    return std::nullopt;
   const SourceLoc at = loc(b);
   auto nothing_after = [&](std::string_view what) {
     const size_t p = skip_space(w, e);
