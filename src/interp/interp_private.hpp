@@ -27,8 +27,8 @@ struct Interpreter::UserFile {
   int number = 0;
   OpenStmt::Mode mode = OpenStmt::Mode::Input;
   std::string path;
-  std::ifstream in;
-  std::ofstream out;
+  std::shared_ptr<std::istream> in;
+  std::shared_ptr<std::ostream> out;
 };
 
 }  // namespace gantry

@@ -89,6 +89,13 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
       ctx_(state_, settings, sink) {
   ctx_.interp_ = this;
   state_.speeds = settings.speeds;
+  if (options_.files) {
+    files_system_ = options_.files;
+  } else {
+    own_files_ = options_.dry_run ? std::unique_ptr<FileSystem>(new SandboxFileSystem())
+                                  : std::unique_ptr<FileSystem>(new DiskFileSystem());
+    files_system_ = own_files_.get();
+  }
 }
 
 Interpreter::~Interpreter() = default;
@@ -263,7 +270,8 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
       if (pending_call_) {
         FileCall call = *pending_call_;
         pending_call_.reset();
-        push_file(Script::load(file_path(call.path, pending_call_loc_)), call, pending_call_loc_);
+        push_file(files_system_->load_script(file_path(call.path, pending_call_loc_)), call,
+                  pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;
@@ -499,7 +507,7 @@ void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
   for (const std::string& name :
        {fmt::format("C{}.sbp", s.number), fmt::format("macro_{}.sbp", s.number)}) {
     const std::string path = (std::filesystem::path(dir) / name).string();
-    if (std::filesystem::is_regular_file(path)) {
+    if (files_system_->is_file(path)) {
       FileCall call;
       call.path = std::filesystem::absolute(path).string();  // already resolved
       pending_call_ = call;

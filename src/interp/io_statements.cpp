@@ -143,7 +143,7 @@ void Interpreter::exec(const PrintStmt& s, const SourceLoc& loc) {
   if (f.mode == OpenStmt::Mode::Input)
     fail(loc, fmt::format("file #{} was opened FOR INPUT; open it FOR OUTPUT or APPEND to write",
                           f.number));
-  if (!options_.dry_run) f.out << text << std::flush;
+  *f.out << text << std::flush;
 }
 
 void Interpreter::exec(const InputStmt& s, const SourceLoc& loc) {
@@ -154,7 +154,7 @@ void Interpreter::exec(const InputStmt& s, const SourceLoc& loc) {
       fail(loc, fmt::format("file #{} was opened for writing; INPUT # reads files opened FOR "
                             "INPUT",
                             f.number));
-    if (!std::getline(f.in, answer))
+    if (!std::getline(*f.in, answer))
       fail(loc, fmt::format("INPUT #{} read past the end of {}", f.number, f.path));
     if (!answer.empty() && answer.back() == '\r') answer.pop_back();
   } else {
@@ -247,22 +247,16 @@ void Interpreter::exec(const OpenStmt& s, const SourceLoc& loc) {
   UserFile& f = user_file(s.number, loc, false);
   if (!f.path.empty())
     fail(loc, fmt::format("file #{} is already open ({}); CLOSE it first", f.number, f.path));
-  f.path = file_path(name, s.path.loc);
-  f.mode = s.mode;
+  const std::string path = file_path(name, s.path.loc);
   if (s.mode == OpenStmt::Mode::Input) {
-    if (options_.dry_run && dry_written_.count(f.path))
-      throw NeedsOperator({loc, Severity::Warning,
-                           fmt::format("the file reads back {}, which it writes; a check writes "
-                                       "no files, so the rest is checked when it runs",
-                                       f.path)});
-    f.in.open(f.path);
-    if (!f.in) fail(s.path.loc, fmt::format("cannot open {} for reading", f.path));
-  } else if (options_.dry_run) {
-    dry_written_.insert(f.path);
+    f.in = files_system_->open_read(path);
+    if (!f.in) fail(s.path.loc, fmt::format("cannot open {} for reading", path));
   } else {
-    f.out.open(f.path, s.mode == OpenStmt::Mode::Append ? std::ios::app : std::ios::trunc);
-    if (!f.out) fail(s.path.loc, fmt::format("cannot open {} for writing", f.path));
+    f.out = files_system_->open_write(path, s.mode == OpenStmt::Mode::Append);
+    if (!f.out) fail(s.path.loc, fmt::format("cannot open {} for writing", path));
   }
+  f.path = path;  // open only once it has opened: a failed OPEN leaves the number free
+  f.mode = s.mode;
 }
 
 void Interpreter::exec(const CloseStmt& s, const SourceLoc& loc) {

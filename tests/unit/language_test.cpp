@@ -1789,6 +1789,19 @@ TEST_F(LanguageTest, CloseOfAFileThatIsNotOpenWarns) {
             "part.sbp:1:1: warning: CLOSE #5: that file is not open");
 }
 
+// A check follows a file that writes a file and reads it back, in a sandbox: it sees what
+// the run would see, and the disk is untouched.
+TEST_F(LanguageTest, DryRunReadsBackWhatItWroteWithoutWritingTheDisk) {
+  options.dry_run = true;
+  run_file(dir().write("rb.sbp",
+                       "OPEN \"rb.txt\" FOR OUTPUT AS #1\nWRITE #1, 3\nCLOSE #1\n"
+                       "OPEN \"rb.txt\" FOR APPEND AS #1\nWRITE #1, 4\nCLOSE #1\n"
+                       "OPEN \"rb.txt\" FOR INPUT AS #2\nINPUT #2, &x\nINPUT #2, &y\nCLOSE\n"));
+  expect_text("X", "3");
+  expect_text("Y", "4");
+  EXPECT_FALSE(dir().exists("rb.txt"));
+}
+
 TEST_F(LanguageTest, DryRunWritesNoFiles) {
   options.dry_run = true;
   run_file(dir().write("w.sbp", "OPEN \"out.txt\" FOR OUTPUT AS #1\nWRITE #1, 1\nCLOSE #1\n"));

@@ -11,6 +11,7 @@
 
 #include "gantry/commands/command_table.hpp"   // CommandTable, CommandCall
 #include "gantry/interp/evaluator.hpp"         // EvalEnv
+#include "gantry/interp/file_system.hpp"       // FileSystem
 #include "gantry/interp/operator_io.hpp"       // OperatorIO
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
 #include "gantry/interp/system_variables.hpp"  // MachineSnapshot
@@ -83,7 +84,9 @@ class CommandContext {
 struct InterpreterOptions {
   bool trig_in_degrees = false;      // dialect "fabmo"
   bool allow_shell = false;          // SHELL runs programs only when allowed
-  bool dry_run = false;              // check: no files written, no programs started
+  bool dry_run = false;              // check: no programs started; files (unless `files`
+                                     // is given) in a sandbox, so nothing is written
+  FileSystem* files = nullptr;       // where files are read and written; null: the disk
   bool operator_present = true;      // check: someone will answer PAUSE/INPUT in the run
   std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
   std::string macro_dir;             // where C<n> finds its files ("" = beside the file)
@@ -173,8 +176,9 @@ class Interpreter : private EvalEnv {
   CommandContext ctx_;
   std::vector<Frame> frames_;
   std::unordered_map<std::string, Value> vars_;
-  std::set<std::string> failed_vars_;  // check: assignments that failed
-  std::set<std::string> dry_written_;  // check: files the run would write
+  std::set<std::string> failed_vars_;      // check: assignments that failed
+  std::unique_ptr<FileSystem> own_files_;  // when options_.files is null
+  FileSystem* files_system_ = nullptr;
   std::map<std::pair<int, int>, std::shared_ptr<const Statement>> on_input_;
   std::vector<std::unique_ptr<UserFile>> files_;
   std::optional<FileCall> pending_call_;

@@ -1,0 +1,48 @@
+// The files a run reads and writes: part files for FP and C<n>, and OPEN's user files.
+#pragma once
+
+#include <istream>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+#include "gantry/lang/script.hpp"  // Script
+
+namespace gantry {
+
+class FileSystem {
+ public:
+  virtual ~FileSystem() = default;
+  virtual std::shared_ptr<const Script> load_script(const std::string& path) = 0;
+  virtual bool is_file(const std::string& path) = 0;
+  // A user file to read (null if it cannot be read) or to write (null if it cannot be made).
+  virtual std::shared_ptr<std::istream> open_read(const std::string& path) = 0;
+  virtual std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) = 0;
+};
+
+// The machine's own files.
+class DiskFileSystem : public FileSystem {
+ public:
+  std::shared_ptr<const Script> load_script(const std::string& path) override;
+  bool is_file(const std::string& path) override;
+  std::shared_ptr<std::istream> open_read(const std::string& path) override;
+  std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
+};
+
+// Reads the disk but keeps every write in memory, where later reads find it: a check or a
+// preview behaves as the run would and changes nothing on disk.
+class SandboxFileSystem : public FileSystem {
+ public:
+  std::shared_ptr<const Script> load_script(const std::string& path) override;
+  bool is_file(const std::string& path) override;
+  std::shared_ptr<std::istream> open_read(const std::string& path) override;
+  std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
+
+ private:
+  DiskFileSystem disk_;
+  std::map<std::string, std::shared_ptr<std::stringstream>> written_;
+};
+
+}  // namespace gantry
