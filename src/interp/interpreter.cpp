@@ -121,8 +121,7 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
   if (!script->ok()) {  // a missing or broken file, located through its callers
     for (Diagnostic d : script->errors())
       if (d.severity == Severity::Error) {
-        for (const Frame& f : frames_)
-          if (f.called_from.file) d.via.push_back(f.called_from);
+        d = located(std::move(d));
         if (from.file) d.via.push_back(from);
         throw GantryError(std::move(d));
       }
@@ -168,13 +167,26 @@ void Interpreter::end_file() {
   frames_.pop_back();
 }
 
-[[noreturn]] void Interpreter::rethrow_located(const GantryError& e) const {
-  Diagnostic d = e.diagnostic();
+// Names the calling lines of the running files, outermost first, unless already named.
+Diagnostic Interpreter::located(Diagnostic d) const {
   if (d.via.empty())
     for (const Frame& f : frames_)
       if (f.called_from.file) d.via.push_back(f.called_from);
+  return d;
+}
+
+[[noreturn]] void Interpreter::rethrow_located(const GantryError& e) const {
+  Diagnostic d = located(e.diagnostic());
   if (dynamic_cast<const OperatorStop*>(&e)) throw OperatorStop(std::move(d));
   throw GantryError(std::move(d));
+}
+
+// Ends every running file at once (ENDALL, the end of a run), innermost first.
+void Interpreter::unwind_all() {
+  while (!frames_.empty()) {
+    restore_file_speeds(frames_.back());
+    frames_.pop_back();
+  }
 }
 
 // ---- the statement loop ---------------------------------------------------------------
@@ -189,10 +201,7 @@ void Interpreter::run(std::shared_ptr<const Script> script) {
   // Ends the run whatever happened: files closed, VS speeds of every open file undone
   // (innermost first), the moves already issued completed, the store saved.
   auto finish = [&] {
-    while (!frames_.empty()) {
-      restore_file_speeds(frames_.back());
-      frames_.pop_back();
-    }
+    unwind_all();
     files_.clear();
     on_input_.clear();
     pending_call_.reset();
@@ -226,10 +235,7 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
   } catch (const NeedsOperator& e) {
     // The rest depends on an answer. With an operator at the run that is fine (a warning);
     // without one the run would stop here, part-way through the job: an error now.
-    Diagnostic d = e.diagnostic();
-    if (d.via.empty())
-      for (const Frame& fr : frames_)
-        if (fr.called_from.file) d.via.push_back(fr.called_from);
+    Diagnostic d = located(e.diagnostic());
     const bool fine = d.severity == Severity::Warning || options_.operator_present;
     d.message = (fine ? "checking stopped here: " : "the run would stop here: ") + d.message;
     d.severity = fine ? Severity::Warning : Severity::Error;
@@ -288,20 +294,10 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
       if (const auto* a = std::get_if<AssignStmt>(&lp.statement->body))
         if (!a->target.persistent) failed_vars_.insert(a->target.name);
       if (cascade) continue;
-      Diagnostic d = e.diagnostic();
-      if (d.via.empty())
-        for (const Frame& fr : frames_)
-          if (fr.called_from.file) d.via.push_back(fr.called_from);
-      const std::string text = format(d);
-      if (std::none_of(collect->begin(), collect->end(),
-                       [&](const Diagnostic& o) { return format(o) == text; }))
-        append_once(*collect, std::move(d));
+      append_once(*collect, located(e.diagnostic()));
     }
     if (stop_all_) {
-      while (!frames_.empty()) {
-        restore_file_speeds(frames_.back());
-        frames_.pop_back();
-      }
+      unwind_all();
       stop_all_ = false;
     }
     if (progress_ && !frames_.empty())

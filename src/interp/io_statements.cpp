@@ -55,10 +55,8 @@ struct DialogOptions {
   std::string ok, cancel, title;
 };
 
-}  // namespace
-
-static DialogOptions dialog_options(const std::vector<std::pair<std::string, Arg>>& options,
-                                    const std::function<Value(const Arg&)>& value) {
+DialogOptions dialog_options(const std::vector<std::pair<std::string, Arg>>& options,
+                             const std::function<Value(const Arg&)>& value) {
   DialogOptions d;
   for (const auto& [name, a] : options) {
     if (name == "OKTEXT")
@@ -72,6 +70,8 @@ static DialogOptions dialog_options(const std::vector<std::pair<std::string, Arg
   }
   return d;
 }
+
+}  // namespace
 
 std::string Interpreter::pause_message(const SourceLoc&) const {
   const Frame& f = frames_.back();

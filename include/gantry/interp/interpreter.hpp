@@ -164,7 +164,9 @@ class Interpreter : private EvalEnv {
   Value value_of(const Arg& a);
   void assign(const LValue& target, const Value& v);
   std::string file_path(const std::string& name, const SourceLoc& loc) const;
+  Diagnostic located(Diagnostic d) const;
   [[noreturn]] void rethrow_located(const GantryError& e) const;
+  void unwind_all();
 
   const Settings& settings_;
   const CommandTable& table_;
