@@ -35,16 +35,32 @@ bool TerminalIO::confirm(std::string_view message, const SourceLoc& loc) {
 
 std::optional<std::string> TerminalIO::ask(std::string_view prompt, std::string_view variable,
                                            std::string_view default_value, const SourceLoc& loc) {
-  ScriptedIO given(false, inputs_);  // --input answers first
-  try {
-    return given.ask(prompt, variable, default_value, loc);
-  } catch (const NeedsOperator&) {
+  // `variable` lists the receiving variables ("&W,&H"). Each one --input gives is taken from
+  // there; the terminal is asked only for the others. A single variable keeps its default.
+  const std::string names(variable);
+  const bool several = names.find(',') != std::string::npos;
+  std::string answer;
+  bool first = true;
+  for (size_t start = 0; start <= names.size();) {
+    size_t comma = names.find(',', start);
+    if (comma == std::string::npos) comma = names.size();
+    const std::string name = names.substr(start, comma - start);
+    start = comma + 1;
+    std::optional<std::string> value;
+    if (auto it = inputs_.find(name); it != inputs_.end()) {
+      value = it->second;
+    } else {
+      fmt::print(stderr, "\n[{}] {} ({}){}: ", where(loc), prompt.empty() ? "Input" : prompt, name,
+                 !several && !default_value.empty() ? fmt::format(" [{}]", default_value) : "");
+      value = read_line();
+      if (!value) return std::nullopt;  // end of input: Cancel
+      if (!several && value->empty() && !default_value.empty()) value = std::string(default_value);
+    }
+    if (!first) answer += ',';
+    answer += *value;
+    first = false;
   }
-  fmt::print(stderr, "\n[{}] {} ({}){}: ", where(loc), prompt.empty() ? "Input" : prompt, variable,
-             default_value.empty() ? "" : fmt::format(" [{}]", default_value));
-  std::optional<std::string> a = read_line();
-  if (a && a->empty() && !default_value.empty()) return std::string(default_value);
-  return a;
+  return answer;
 }
 
 std::string TerminalIO::choose(std::string_view text, const std::vector<std::string>& buttons,
