@@ -276,8 +276,9 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
       if (pending_call_) {
         FileCall call = *pending_call_;
         pending_call_.reset();
-        push_file(files_system_->load_script(file_path(call.path, pending_call_loc_)), call,
-                  pending_call_loc_);
+        const std::string path =
+            call.resolved ? call.path : file_path(call.path, pending_call_loc_);
+        push_file(files_system_->load_script(path), call, pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;
@@ -505,7 +506,8 @@ void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
     const std::string path = (std::filesystem::path(dir) / name).string();
     if (files_system_->is_file(path)) {
       FileCall call;
-      call.path = std::filesystem::absolute(path).string();  // already resolved
+      call.path = path;
+      call.resolved = true;
       pending_call_ = call;
       pending_call_loc_ = loc;
       return;

@@ -43,6 +43,7 @@ struct FileCall {
   int repetitions = 1;
   int offset = 0;  // 0 none, 1 3D (X, Y, Z from here), 2 2D (X, Y from here)
   double plunge = 0;
+  bool resolved = false;  // `path` is final (C<n> found it), not relative to the parts folder
 };
 
 class Interpreter;
