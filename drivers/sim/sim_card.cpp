@@ -72,7 +72,7 @@ void SimCard::decode(std::uint32_t w) {
     if (step_changed && active) {
       if (static_cast<double>(t - last_dir_change_[i]) * tick_us < dir_setup_us_ - eps)
         violation(i, TimingRule::DirSetup);
-      const bool positive = ((w & ap.dir_mask) != 0) == ap.invert_dir;
+      const bool positive = pins_.positive(i, w);
       steps_[i] += positive ? 1 : -1;
       monitor_.on_step(i, t, positive);
       pulse_start_[i] = t;

@@ -3,7 +3,7 @@
 
 #include <map>
 
-#include "gantry/interp/operator_io.hpp"  // OperatorIO, ScriptedIO
+#include "gantry/interp/operator_io.hpp"  // OperatorIO
 
 namespace gantry {
 

@@ -2,7 +2,7 @@
 #pragma once
 
 #include <array>
-#include <fstream>
+#include <memory>
 
 #include "gantry/interp/interpreter.hpp"
 

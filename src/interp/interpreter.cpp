@@ -113,12 +113,12 @@ std::string Interpreter::file_path(const std::string& name, const SourceLoc& loc
 }
 
 void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall& call,
-                            SourceLoc from) {
+                            SourceLoc from, bool refuse_broken) {
   if (static_cast<int>(frames_.size()) >= options_.max_file_depth)
     fail(from, fmt::format("files are nested {} deep, the most allowed; a file may be calling "
                            "itself",
                            options_.max_file_depth));
-  if (!script->ok()) {  // a missing or broken file, located through its callers
+  if (refuse_broken && !script->ok()) {  // a missing or broken file, named with its callers
     for (Diagnostic d : script->errors())
       if (d.severity == Severity::Error) {
         d = located(std::move(d));
@@ -226,11 +226,8 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
   parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
   try {
     frames_.clear();
-    Frame f;
-    f.script = script;
-    f.pc = script->start();
-    f.saved_speeds = state_.speeds;
-    frames_.push_back(std::move(f));
+    // A check goes through a file with syntax errors too (they are reported already).
+    push_file(script, FileCall{}, SourceLoc{}, /*refuse_broken=*/false);
     loop(&out);
   } catch (const NeedsOperator& e) {
     // The rest depends on an answer. With an operator at the run that is fine (a warning);

@@ -299,17 +299,15 @@ void Interpreter::exec(const PlayStmt& s, const SourceLoc& loc) {
 }
 
 void Interpreter::exec(const RegistryStmt& s, const SourceLoc& loc) {
-  nlohmann::json& reg = store_.registry();
-  auto set = [&](const char* key) {
+  auto set = [&](const char* key) {  // only writes mark the store changed
     const Value v = value_of(s.arg);
-    reg[key] = v.is_number() ? nlohmann::json(v.num()) : nlohmann::json(v.str());
+    store_.registry()[key] = v.is_number() ? nlohmann::json(v.num()) : nlohmann::json(v.str());
   };
   auto get = [&](const char* key) {
-    const auto it = reg.find(key);
+    const nlohmann::json* j = store_.registry_value(key);
     Value v = Value::string("");
-    if (it != reg.end())
-      v = it->is_number() ? Value::number(it->get<double>())
-                          : Value::string(it->get<std::string>());
+    if (j)
+      v = j->is_number() ? Value::number(j->get<double>()) : Value::string(j->get<std::string>());
     assign(*s.target, v);
   };
   if (s.name == "SETUSRVAL")

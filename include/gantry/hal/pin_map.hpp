@@ -28,6 +28,11 @@ struct PinMap {
     const AxisPins& p = axes[axis];
     return (positive == p.invert_dir) ? p.dir_mask : 0;
   }
+  // The travel direction a word's direction bit shows: the inverse of dir_bits.
+  bool positive(int axis, std::uint32_t word) const {
+    const AxisPins& p = axes[axis];
+    return ((word & p.dir_mask) != 0) == p.invert_dir;
+  }
 };
 
 }  // namespace gantry

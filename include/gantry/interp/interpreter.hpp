@@ -131,7 +131,8 @@ class Interpreter : private EvalEnv {
   Value system_variable(int n, const SourceLoc& loc) override;
   bool trig_in_degrees() const override { return options_.trig_in_degrees; }
 
-  void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from);
+  void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from,
+                 bool refuse_broken = true);
   void end_file();
   void restore_file_speeds(Frame& f);
   void plunge_for_pass(Frame& f);
