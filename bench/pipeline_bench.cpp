@@ -52,7 +52,17 @@ void BM_InterpretSimpleLines(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   interpret_text(state, generated_file(n), n);
 }
-BENCHMARK(BM_InterpretSimpleLines)->Arg(200000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InterpretSimpleLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+// The load pass alone (label index and syntax check of every line) on the simple file.
+void BM_LoadSimpleLines(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const std::string text = generated_file(n);
+  for (auto _ : state) benchmark::DoNotOptimize(Script::from_text(text, "bench.sbp")->ok());
+  state.counters["lines/s"] = benchmark::Counter(static_cast<double>(n) * state.iterations(),
+                                                 benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_LoadSimpleLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
 // Expression-heavy lines in a counted loop with a GOSUB: every line evaluates variables.
 void BM_InterpretExpressionLoop(benchmark::State& state) {
@@ -65,6 +75,20 @@ void BM_InterpretExpressionLoop(benchmark::State& state) {
   interpret_text(state, text, 7.0 * loops);  // lines run per pass, labels included
 }
 BENCHMARK(BM_InterpretExpressionLoop)->Arg(50000)->Unit(benchmark::kMillisecond);
+
+// A 200k-line file heavy in expressions and GOSUBs: four-line blocks of assignments with
+// arithmetic, a comparison, a function call and a GOSUB to a two-line subroutine.
+void BM_InterpretExpressionFile(benchmark::State& state) {
+  const int blocks = static_cast<int>(state.range(0)) / 4;
+  std::string text = "SA\n&i = 0\n&dx = 0.01\n";
+  for (int k = 0; k < blocks; ++k)
+    text +=
+        "&i = &i + 1\n&x = 1 + (&i MOD 100) * &dx\nIF &x > 1.5 THEN &x = &x - 0.5\n"
+        "GOSUB CUT\n";
+  text += "END\nCUT:\nM2, &x, 2 + SIN(&i / 10) / 2\nRETURN\n";
+  interpret_text(state, text, 6.0 * blocks);  // each block also runs the subroutine's 2 lines
+}
+BENCHMARK(BM_InterpretExpressionFile)->Arg(200000)->Unit(benchmark::kMillisecond);
 
 class DiscardCard : public Card {
  public:

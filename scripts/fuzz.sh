@@ -8,9 +8,12 @@ seconds="${1:-60}"
 cd "$root"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DGANTRY_FUZZ=ON -DGANTRY_TESTS=OFF >/dev/null
-cmake --build build-fuzz --target language_fuzz --parallel "$(nproc)" >/dev/null
 seeds="$(mktemp -d)"
 trap 'rm -rf "$seeds"' EXIT
+# Quiet when it builds; the compiler's messages when it does not.
+cmake --build build-fuzz --target language_fuzz --parallel "$(nproc)" >"$seeds/build.log" ||
+  { cat "$seeds/build.log"; exit 1; }
+rm "$seeds/build.log"
 cp parts/*.sbp tests/data/*.sbp "$seeds"/
 [ -d ../shared/corpus ] && cp ../shared/corpus/*.sbp "$seeds"/ || true
 # -max_len keeps inputs line-sized; any crash or sanitizer report fails this script.

@@ -255,21 +255,28 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
     }
     Cursor next;
     current_ = f.pc;
-    LineParse lp = f.script->parse(f.pc, &next);
+    std::shared_ptr<const LineParse> lp;  // only lines that are not simple commands need one
+    const Statement* st = &simple_;
+    if (!parse_simple_command(f.script->line_at(f.pc, &next), f.script->name(), f.pc.line,
+                              &simple_)) {
+      lp = f.script->parse(f.pc, &next);
+      st = lp->statement ? &*lp->statement : nullptr;
+    }
+    const Diagnostic* error = lp && lp->error ? &*lp->error : nullptr;
     f.pc = next;
-    if (!lp.statement && !lp.error) continue;
-    if (lp.error && collect) continue;  // already reported by the script's own pass
+    if (!st && !error) continue;
+    if (error && collect) continue;  // already reported by the script's own pass
     ++executed_;
     if (options_.statement_budget && executed_ > options_.statement_budget)
       throw NeedsOperator(
-          Diagnostic{lp.statement ? lp.statement->loc : lp.error->loc, Severity::Warning,
+          Diagnostic{st ? st->loc : error->loc, Severity::Warning,
                      fmt::format("{} statements executed; the file may loop forever (the statement "
                                  "budget stops it)",
                                  options_.statement_budget)});
     try {
-      if (lp.error) throw GantryError(*lp.error);
+      if (error) throw GantryError(*error);
       ctx_.transform_ = f.transform;
-      execute(*lp.statement);
+      execute(*st);
       if (pending_call_) {
         FileCall call = *pending_call_;
         pending_call_.reset();
@@ -289,7 +296,7 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
       const std::string& m = e.diagnostic().message;
       const bool cascade = m.rfind("undefined variable &", 0) == 0 &&
                            failed_vars_.count(m.substr(20, m.find_first_of(" ;", 20) - 20));
-      if (const auto* a = std::get_if<AssignStmt>(&lp.statement->body))
+      if (const auto* a = std::get_if<AssignStmt>(&st->body))
         if (!a->target.persistent) failed_vars_.insert(a->target.name);
       if (cascade) continue;
       append_once(*collect, located(e.diagnostic()));
@@ -464,8 +471,10 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
          fmt::format("{} takes {} parameter{}; this is parameter {}", spec->code,
                      spec->params.size(), spec->params.size() == 1 ? "" : "s",
                      spec->params.size() + 1));
-  CommandCall call{*spec, loc, cmd.args, {}};
-  call.values.resize(spec->params.size());
+  // The values' storage is kept from line to line (taken, so a nested call gets its own).
+  std::vector<std::optional<Value>> values = std::move(values_storage_);
+  values.assign(spec->params.size(), std::nullopt);
+  CommandCall call{*spec, loc, cmd.args, values};
   for (size_t i = 0; i < spec->params.size(); ++i) {
     const ParamSpec& ps = spec->params[i];
     const Arg* a = i < cmd.args.size() && !cmd.args[i].blank() ? &cmd.args[i] : nullptr;
@@ -491,9 +500,10 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
       if (v->is_string())  // the message is only built when a conversion is needed
         v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
     }
-    call.values[i] = std::move(v);
+    values[i] = std::move(v);
   }
   spec->handler(ctx_, call);
+  values_storage_ = std::move(values);
 }
 
 void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {

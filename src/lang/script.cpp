@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>  // messages
 
+#include <cstring>  // memchr
+
 #include <fcntl.h>     // open
 #include <sys/stat.h>  // fstat: only regular files
 #include <unistd.h>    // pread, close
@@ -16,6 +18,23 @@ void collect_jumps(const Statement& st, std::vector<const JumpStmt*>& out) {
   if (const auto* i = std::get_if<IfStmt>(&st.body)) collect_jumps(*i->action, out);
   if (const auto* o = std::get_if<OnInputStmt>(&st.body))
     if (o->action) collect_jumps(*o->action, out);
+}
+
+// The index of the first '\r' or '\n' at or after `from`, or s.size(). memchr for each in
+// chunks: find_first_of with a set calls memchr once per character, and one memchr over the
+// whole window for '\n' would read a megabyte per line of a '\r'-only file.
+size_t line_end(std::string_view s, size_t from) {
+  constexpr size_t kChunk = 256;
+  const char* base = s.data();
+  for (size_t at = from; at < s.size(); at += kChunk) {
+    const size_t len = std::min(kChunk, s.size() - at);
+    const void* nl = std::memchr(base + at, '\n', len);
+    const size_t lf = nl ? static_cast<size_t>(static_cast<const char*>(nl) - base) : at + len;
+    if (const void* cr = std::memchr(base + at, '\r', lf - at))
+      return static_cast<size_t>(static_cast<const char*>(cr) - base);
+    if (nl) return lf;
+  }
+  return s.size();
 }
 
 constexpr size_t kWindow = size_t{1} << 20;  // bytes read at a time from a file
@@ -93,9 +112,7 @@ std::string_view Script::line_at(Cursor c, Cursor* next) const {
       read_window(c.offset, want);
       continue;
     }
-    // A plain scan: find_first_of with a set calls memchr once per character.
-    size_t stop = c.offset - window_start_;
-    while (stop < window_.size() && window_[stop] != '\n' && window_[stop] != '\r') ++stop;
+    const size_t stop = line_end(window_, c.offset - window_start_);
     const size_t abs_stop = window_start_ + stop;
     const bool complete = abs_stop + 1 < end || end == size_;  // terminator and next byte seen
     if (!complete) {
@@ -138,8 +155,16 @@ std::optional<Cursor> Script::label(const std::string& name) const {
   return it->second;
 }
 
-LineParse Script::parse(Cursor c, Cursor* next) const {
-  return parse_line(line_at(c, next), name_, c.line);
+std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
+  constexpr size_t kCacheSlots = 1024;
+  if (cache_.empty()) cache_.resize(kCacheSlots);
+  // Fibonacci hashing spreads nearby offsets (consecutive lines) over the slots.
+  CachedParse& slot = cache_[(c.offset * 0x9E3779B97F4A7C15ull) >> 54];
+  const std::string_view text = line_at(c, next);  // also gives `next` on a hit
+  if (slot.parse && slot.offset == c.offset) return slot.parse;
+  slot.offset = c.offset;
+  slot.parse = std::make_shared<const LineParse>(parse_line(text, name_, c.line));
+  return slot.parse;
 }
 
 void Script::index() {
@@ -147,8 +172,13 @@ void Script::index() {
   Cursor c = start();
   while (!at_end(c)) {
     Cursor next;
-    LineParse lp = parse(c, &next);
+    const std::string_view text = line_at(c, &next);
     ++lines_;
+    if (is_simple_command(text)) {  // no error, label or jump in it
+      c = next;
+      continue;
+    }
+    LineParse lp = parse_line(text, name_, c.line);
     if (lp.error) errors_.push_back(*lp.error);
     if (lp.statement) {
       if (const auto* l = std::get_if<LabelStmt>(&lp.statement->body)) {

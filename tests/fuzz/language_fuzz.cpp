@@ -1,8 +1,13 @@
 // libFuzzer target: any bytes as a part file, through the parser, the expression evaluator
-// and a dry-run interpreter. Must never crash, hang or trip a sanitizer.
+// and a dry-run interpreter. Must never crash, hang or trip a sanitizer. Every line the fast
+// simple-command reader accepts must read exactly as the general parser reads it.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>   // the mismatch, before aborting
+#include <cstdlib>  // abort
 #include <string>
+
+#include "../support/same_statement.hpp"  // simple_command_mismatch
 
 #include "gantry/interp/interpreter.hpp"  // Interpreter
 #include "gantry/lang/script.hpp"         // Script
@@ -21,6 +26,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const gantry::Settings settings = gantry::default_settings();
   std::string text(reinterpret_cast<const char*>(data), size);
   auto script = gantry::Script::from_text(std::move(text), "/nonexistent/fuzz.sbp");
+  gantry::Statement fast;  // reused line after line, as the interpreter does
+  for (gantry::Cursor c = script->start(); !script->at_end(c);) {
+    gantry::Cursor next;
+    const std::string line(script->line_at(c, &next));
+    if (gantry::parse_simple_command(line, script->name(), c.line, &fast)) {
+      const std::string why =
+          gantry::testing::simple_command_mismatch(fast, gantry::parse_line(line, script->name(), c.line));
+      if (!why.empty()) {
+        std::fprintf(stderr, "simple command read differently: %s\n  line: %s\n", why.c_str(),
+                     line.c_str());
+        std::abort();
+      }
+    }
+    c = next;
+  }
   NullSink sink;
   std::string printed;
   gantry::ScriptedIO io(true, {}, &printed);

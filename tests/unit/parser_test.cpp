@@ -26,9 +26,9 @@ Program parse_lines(const Script& script) {
   if (!script.ok() && script.line_count() == 0) p.errors = script.errors();
   for (Cursor c = script.start(); !script.at_end(c);) {
     Cursor next;
-    LineParse lp = script.parse(c, &next);
-    if (lp.statement) p.statements.push_back(std::move(*lp.statement));
-    if (lp.error) p.errors.push_back(*lp.error);
+    const std::shared_ptr<const LineParse> lp = script.parse(c, &next);
+    if (lp->statement) p.statements.push_back(*lp->statement);
+    if (lp->error) p.errors.push_back(*lp->error);
     c = next;
   }
   return p;

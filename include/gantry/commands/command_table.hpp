@@ -32,9 +32,9 @@ struct ParamSpec {
 // A command's parameters after evaluation: one slot per ParamSpec, nullopt when blank.
 struct CommandCall {
   const CommandSpec& spec;
-  SourceLoc loc;                 // the command's own location
-  const std::vector<Arg>& args;  // as written, for locating errors
-  std::vector<std::optional<Value>> values;
+  const SourceLoc& loc;                          // the command's own location
+  const std::vector<Arg>& args;                  // as written, for locating errors
+  std::span<const std::optional<Value>> values;  // one per parameter, nullopt when blank
 
   // The location of parameter i (or of the command when it was not written).
   SourceLoc param_loc(size_t i) const { return i < args.size() ? args[i].loc : loc; }

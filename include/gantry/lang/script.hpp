@@ -45,7 +45,10 @@ class Script {
   // The line after `NAME:` (name upper case, inner spaces single), or nullopt.
   std::optional<Cursor> label(const std::string& name) const;
 
-  LineParse parse(Cursor c, Cursor* next) const;
+  // The line at `c` through the general parser. Parses are kept in a small direct-mapped
+  // cache, so the body of a loop or subroutine is parsed once rather than on every pass,
+  // while memory stays bounded.
+  std::shared_ptr<const LineParse> parse(Cursor c, Cursor* next) const;
 
   ~Script();
   Script(const Script&) = delete;
@@ -63,6 +66,11 @@ class Script {
   mutable std::string window_;  // bytes [window_start_, window_start_ + size())
   mutable size_t window_start_ = 0;
   std::shared_ptr<const std::string> name_;
+  struct CachedParse {
+    size_t offset = 0;
+    std::shared_ptr<const LineParse> parse;
+  };
+  mutable std::vector<CachedParse> cache_;  // kCacheSlots entries once the first line is parsed
   std::unordered_map<std::string, Cursor> labels_;
   std::vector<Diagnostic> errors_;
   int lines_ = 0;

@@ -1,0 +1,131 @@
+// The line most part files are made of, read without the general parser: a two-letter command
+// whose parameters are blank or plain numbers (`M3, 1.5, -2, .25`). A CAM file is almost all
+// such lines, and the general parser (quotes, expressions, keywords) costs several times more.
+// Anything else — a comment, a quote, a variable, an exponent, a keyword, a custom cut —
+// is left to parse_line. The result equals parse_line's for every line accepted here; a
+// differential fuzz target checks that.
+#include "gantry/lang/parser.hpp"
+
+#include <cstdint>  // uint64_t
+
+#include "number_literal.hpp"  // literal::scan, literal::value
+#include "scan.hpp"            // is_space, is_word
+
+namespace gantry {
+namespace {
+
+using scan::is_space;
+
+bool is_letter(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+}
+char upper(char c) {
+  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
+
+// Ten to the k, exactly, for k <= 22 (every such power is a double).
+constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                             1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                             1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+// The value of the literal `digits[.digits]` in t (no sign, no exponent). When the digits
+// form an integer m < 2^53 and there are k <= 22 decimals, m and 10^k are both exact doubles
+// and one IEEE division rounds m / 10^k correctly: the same double from_chars gives (Clinger's
+// fast path). Longer literals go through from_chars.
+double literal_value(std::string_view t) {
+  std::uint64_t m = 0;
+  int digits = 0, decimals = -1;
+  for (char c : t) {
+    if (c == '.') {
+      decimals = 0;
+      continue;
+    }
+    m = m * 10 + static_cast<unsigned>(c - '0');
+    ++digits;
+    if (decimals >= 0) ++decimals;
+  }
+  if (digits <= 15 && decimals <= 22)  // 15 digits: m < 10^15 < 2^53
+    return static_cast<double>(m) / kPow10[decimals < 0 ? 0 : decimals];
+  return *literal::value(t);  // at most 40 characters without exponent: always in range
+}
+
+// Walks the line; with `out` it also builds the statement, reusing the storage `out` holds.
+bool scan_line(std::string_view line, const std::shared_ptr<const std::string>* file, int line_no,
+               Statement* out) {
+  size_t b = 0, e = line.size();
+  while (b < e && is_space(line[b])) ++b;
+  while (e > b && is_space(line[e - 1])) --e;
+  if (e - b < 2 || !is_letter(line[b])) return false;
+  const char c0 = upper(line[b]), c1 = upper(line[b + 1]);
+  if (!is_letter(c1) && !literal::is_digit(c1)) return false;
+  if (c0 == 'C' && literal::is_digit(c1)) return false;                     // a custom cut
+  if ((c0 == 'I' && c1 == 'F') || (c0 == 'O' && c1 == 'N')) return false;  // statements
+  size_t p = b + 2;
+  if (p < e) {
+    if (line[p] == ',') {
+      ++p;
+    } else if (is_space(line[p])) {
+      while (p < e && is_space(line[p])) ++p;
+    } else {
+      return false;  // a longer word, a label, or an error for parse_line to explain
+    }
+  }
+  CommandStmt* cmd = nullptr;
+  if (out) {
+    if (out->loc.file != *file) out->loc.file = *file;
+    out->loc.line = line_no;
+    out->loc.column = static_cast<int>(b) + 1;
+    cmd = std::get_if<CommandStmt>(&out->body);
+    if (!cmd) cmd = &out->body.emplace<CommandStmt>();
+    cmd->code.assign({c0, c1});
+  }
+  size_t n = 0;     // parameters so far, blanks included
+  size_t kept = 0;  // parameters up to the last one written
+  const bool has_params = p < e || line[p - 1] == ',';
+  for (size_t i = p; has_params; ++i) {  // one parameter: [spaces] [sign] literal [spaces]
+    const size_t fb = i;
+    while (i < e && is_space(line[i])) ++i;
+    const size_t tb = i;
+    if (i < e && (line[i] == '+' || line[i] == '-')) ++i;
+    const size_t digits_at = i;
+    while (i < e && literal::is_digit(line[i])) ++i;
+    if (i < e && line[i] == '.') ++i;
+    while (i < e && literal::is_digit(line[i])) ++i;
+    const size_t te = i;
+    const std::string_view t = line.substr(tb, te - tb);
+    const std::string_view lit = line.substr(digits_at, te - digits_at);
+    if (!t.empty() && (lit.empty() || lit == "." || t.size() > 40)) return false;
+    while (i < e && is_space(line[i])) ++i;
+    if (i < e && line[i] != ',') return false;  // an expression, a word, an exponent...
+    if (cmd) {
+      if (cmd->args.size() <= n) cmd->args.emplace_back();
+      Arg& a = cmd->args[n];
+      a.text.assign(t);
+      if (a.loc.file != *file) a.loc.file = *file;
+      a.loc.line = line_no;
+      a.loc.column = static_cast<int>(t.empty() ? fb : tb) + 1;
+      a.expr.reset();
+      a.expr_error.reset();
+      a.number.reset();
+      if (!t.empty()) a.number = t[0] == '-' ? -literal_value(lit) : literal_value(lit);
+    }
+    ++n;
+    if (!t.empty()) kept = n;
+    if (i == e) break;
+  }
+  if (cmd) cmd->args.resize(kept);  // trailing blanks are dropped, as parse_line does
+  return true;
+}
+
+}  // namespace
+
+bool is_simple_command(std::string_view line) {
+  return scan_line(line, nullptr, 0, nullptr);
+}
+
+bool parse_simple_command(std::string_view line, const std::shared_ptr<const std::string>& file,
+                          int line_no, Statement* out) {
+  return scan_line(line, &file, line_no, out);
+}
+
+}  // namespace gantry
