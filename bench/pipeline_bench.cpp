@@ -59,8 +59,8 @@ void BM_LoadSimpleLines(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const std::string text = generated_file(n);
   for (auto _ : state) benchmark::DoNotOptimize(Script::from_text(text, "bench.sbp")->ok());
-  state.counters["lines/s"] = benchmark::Counter(static_cast<double>(n) * state.iterations(),
-                                                 benchmark::Counter::kIsRate);
+  state.counters["lines/s"] =
+      benchmark::Counter(static_cast<double>(n) * state.iterations(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_LoadSimpleLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
@@ -123,8 +123,8 @@ void BM_StepGeneratorSixAxesAt100kHz(benchmark::State& state) {
   }
   state.counters["words/s"] =
       benchmark::Counter(static_cast<double>(words), benchmark::Counter::kIsRate);
-  state.counters["x_realtime"] = benchmark::Counter(
-      static_cast<double>(words) / s.card.pacer_hz(), benchmark::Counter::kIsRate);
+  state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(words) / s.card.pacer_hz(),
+                                                    benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_StepGeneratorSixAxesAt100kHz)->Unit(benchmark::kMillisecond);
 

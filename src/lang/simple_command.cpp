@@ -24,9 +24,8 @@ char upper(char c) {
 }
 
 // Ten to the k, exactly, for k <= 22 (every such power is a double).
-constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                             1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                             1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
 // The value of the literal `digits[.digits]` in t (no sign, no exponent). When the digits
 // form an integer m < 2^53 and there are k <= 22 decimals, m and 10^k are both exact doubles
@@ -58,7 +57,7 @@ bool scan_line(std::string_view line, const std::shared_ptr<const std::string>* 
   if (e - b < 2 || !is_letter(line[b])) return false;
   const char c0 = upper(line[b]), c1 = upper(line[b + 1]);
   if (!is_letter(c1) && !literal::is_digit(c1)) return false;
-  if (c0 == 'C' && literal::is_digit(c1)) return false;                     // a custom cut
+  if (c0 == 'C' && literal::is_digit(c1)) return false;                    // a custom cut
   if ((c0 == 'I' && c1 == 'F') || (c0 == 'O' && c1 == 'N')) return false;  // statements
   size_t p = b + 2;
   if (p < e) {

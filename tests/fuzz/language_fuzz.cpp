@@ -31,8 +31,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     gantry::Cursor next;
     const std::string line(script->line_at(c, &next));
     if (gantry::parse_simple_command(line, script->name(), c.line, &fast)) {
-      const std::string why =
-          gantry::testing::simple_command_mismatch(fast, gantry::parse_line(line, script->name(), c.line));
+      const std::string why = gantry::testing::simple_command_mismatch(
+          fast, gantry::parse_line(line, script->name(), c.line));
       if (!why.empty()) {
         std::fprintf(stderr, "simple command read differently: %s\n  line: %s\n", why.c_str(),
                      line.c_str());

@@ -17,11 +17,23 @@ const auto kFile = std::make_shared<const std::string>("part.sbp");
 
 TEST(SimpleCommand, AcceptsCommandsWithPlainNumbersAndReadsThemAsTheParserDoes) {
   const std::vector<std::string> lines = {
-      "M3, 1.5, -2, .25", "mx 5",           "M2 , 4.2",        "MX,",
-      "J2,+.5,-0.",       "  M3,1,,3,, \t", "MS, 4, 2",        "m3,\t1.,  -.5 ,7",
-      "J5,1,2,3,4,5",     "MZ",             "SA",              "VS,,,,,2.5",
-      "M2, 0000012.5",    "M2, 1234567890123456, 0.1234567890123456789",
-      "JH ,",             "Z2",             "MX, 99999999999999999999999999999999999999",
+      "M3, 1.5, -2, .25",
+      "mx 5",
+      "M2 , 4.2",
+      "MX,",
+      "J2,+.5,-0.",
+      "  M3,1,,3,, \t",
+      "MS, 4, 2",
+      "m3,\t1.,  -.5 ,7",
+      "J5,1,2,3,4,5",
+      "MZ",
+      "SA",
+      "VS,,,,,2.5",
+      "M2, 0000012.5",
+      "M2, 1234567890123456, 0.1234567890123456789",
+      "JH ,",
+      "Z2",
+      "MX, 99999999999999999999999999999999999999",
   };
   Statement fast;  // reused line after line, as the interpreter does
   for (size_t i = 0; i < lines.size(); ++i) {
@@ -33,12 +45,40 @@ TEST(SimpleCommand, AcceptsCommandsWithPlainNumbersAndReadsThemAsTheParserDoes) 
 }
 
 TEST(SimpleCommand, LeavesEverythingElseToTheGeneralParser) {
-  for (const std::string line :
-       {"", "   ", "' comment", "REM x", "C3", "c12, 1", "IF 1 THEN MX, 2", "ON INPUT(1,1) END",
-        "M3, 1e3", "M3, 1E-2", "M3, &x", "M3, 1 ' why", "MX:", "START:", "MXY, 1", "M3, - 5",
-        "M3, .", "M3, +", "M3, -", "M3, 1.2.3", "M3, (1)", "M3, \"1\"", "M3, 1 2", "M3,5%",
-        "MX, 1, 2x", "&x = 1", "M", "3M, 1", "M_, 1", "END", "GOTO A", "MX, 0x10", "MX;1",
-        "MX, 123456789012345678901234567890123456789012"}) {
+  for (const std::string line : {"",
+                                 "   ",
+                                 "' comment",
+                                 "REM x",
+                                 "C3",
+                                 "c12, 1",
+                                 "IF 1 THEN MX, 2",
+                                 "ON INPUT(1,1) END",
+                                 "M3, 1e3",
+                                 "M3, 1E-2",
+                                 "M3, &x",
+                                 "M3, 1 ' why",
+                                 "MX:",
+                                 "START:",
+                                 "MXY, 1",
+                                 "M3, - 5",
+                                 "M3, .",
+                                 "M3, +",
+                                 "M3, -",
+                                 "M3, 1.2.3",
+                                 "M3, (1)",
+                                 "M3, \"1\"",
+                                 "M3, 1 2",
+                                 "M3,5%",
+                                 "MX, 1, 2x",
+                                 "&x = 1",
+                                 "M",
+                                 "3M, 1",
+                                 "M_, 1",
+                                 "END",
+                                 "GOTO A",
+                                 "MX, 0x10",
+                                 "MX;1",
+                                 "MX, 123456789012345678901234567890123456789012"}) {
     SCOPED_TRACE(line);
     Statement st;
     EXPECT_FALSE(is_simple_command(line));
@@ -71,11 +111,12 @@ TEST(SimpleCommand, DecimalsRoundLikeTheLibraryConversion) {
 
 TEST(ScriptParseCache, ALineParsedAgainComesFromTheCacheAndEvictionKeepsItRight) {
   std::string text;
-  for (int i = 0; i < 5000; ++i) text += "&x" + std::to_string(i) + " = " + std::to_string(i) + "\n";
+  for (int i = 0; i < 5000; ++i)
+    text += "&x" + std::to_string(i) + " = " + std::to_string(i) + "\n";
   const auto script = Script::from_text(text, "part.sbp");
   Cursor c = script->start(), next;
   const auto first = script->parse(c, &next);
-  EXPECT_EQ(script->parse(c, &next).get(), first.get());  // a hit: the same parse
+  EXPECT_EQ(script->parse(c, &next).get(), first.get());            // a hit: the same parse
   for (Cursor k = next; !script->at_end(k);) script->parse(k, &k);  // fills every slot
   const auto again = script->parse(c, &next);
   ASSERT_TRUE(again->statement);

@@ -188,7 +188,7 @@ class Interpreter : private EvalEnv {
   std::optional<FileCall> pending_call_;
   SourceLoc pending_call_loc_;
   std::string parts_dir_;
-  Cursor current_;  // the line being executed
+  Cursor current_;    // the line being executed
   Statement simple_;  // the last simple command line, its storage reused line after line
   std::vector<std::optional<Value>> values_storage_;  // a command's values, reused likewise
   bool warning_off_ = false;
