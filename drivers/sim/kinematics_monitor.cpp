@@ -38,8 +38,8 @@ void KinematicsMonitor::close(int axis) {
   const double mid = static_cast<double>(w.first + w.last) / 2 * tick_s_;
   w.max_v_ratio = std::max(w.max_v_ratio, std::abs(v) / lim.max_speed);
   if (w.have_prev && mid > w.prev_mid) {
-    const double a = (v - w.prev_v) / (mid - w.prev_mid);
-    w.max_a_ratio = std::max(w.max_a_ratio, std::abs(a) / lim.max_accel);
+    const double beyond_jump = std::max(0.0, std::abs(v - w.prev_v) - lim.max_jump);
+    w.max_a_ratio = std::max(w.max_a_ratio, beyond_jump / (mid - w.prev_mid) / lim.max_accel);
   }
   w.have_prev = true;
   w.prev_v = v;

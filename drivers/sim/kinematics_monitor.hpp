@@ -11,6 +11,7 @@ namespace gantry {
 
 struct AxisLimits {
   double steps_per_unit = 1, max_speed = 1, max_accel = 1;
+  double max_jump = 0;  // a speed change the axis may make at once (a corner), units/s
 };
 
 // Method. Steps are grouped into windows of consecutive steps in one direction spanning at
@@ -21,6 +22,12 @@ struct AxisLimits {
 // over the distance between their mid-times. Windows share their boundary step, so no
 // motion is left out. A long window (10 ms at the default) keeps tick rounding below 0.1 %
 // of the velocity; it averages, so it can hide a brief excess but never invent one.
+//
+// Corners: a planner may change an axis's speed at once by up to max_jump (the corner jump,
+// as steppers start at their start speed). Such a change lands between two windows, so the
+// acceleration ratio counts only the change beyond max_jump: (|dv| - max_jump) / (a dt).
+// With max_jump 0 the ratio is the plain one; with more it is a joint bound on corners and
+// acceleration, which tolerates a sustained excess up to max_jump / dt (docs/planner.md).
 class KinematicsMonitor {
  public:
   KinematicsMonitor(const std::array<AxisLimits, kAxisCount>& limits, double tick_s,

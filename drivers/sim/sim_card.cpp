@@ -12,7 +12,8 @@ constexpr std::int64_t kLongAgo = std::numeric_limits<std::int64_t>::min() / 2;
 std::array<AxisLimits, kAxisCount> limits_of(const Settings& s) {
   std::array<AxisLimits, kAxisCount> out{};
   for (int i = 0; i < kAxisCount; ++i)
-    out[i] = {s.axes[i].steps_per_unit, s.axes[i].max_speed, s.axes[i].max_accel};
+    out[i] = {s.axes[i].steps_per_unit, s.axes[i].max_speed, s.axes[i].max_accel,
+              s.planner.corner_jump * s.axes[i].max_speed};
   return out;
 }
 

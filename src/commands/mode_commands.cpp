@@ -52,11 +52,15 @@ void apply_speeds(CommandContext& ctx, const CommandCall& call, size_t first, si
     }
 }
 
+// MS and JS punctuate the moves around them: the machine ramps down to rest before the new
+// speed and up again after it (SB3's rule; VS changes speed without stopping).
 void set_move_speed(CommandContext& ctx, const CommandCall& call) {
   apply_speeds(ctx, call, 0, 5, ctx.state().speeds.move, SpeedClass::Move, false);
+  ctx.come_to_rest(call.loc);
 }
 void set_jog_speed(CommandContext& ctx, const CommandCall& call) {
   apply_speeds(ctx, call, 0, 5, ctx.state().speeds.jog, SpeedClass::Jog, false);
+  ctx.come_to_rest(call.loc);
 }
 // VS (SB3 order): move XY, Z, A, B, then jog XY, Z, A, B.
 void set_speeds(CommandContext& ctx, const CommandCall& call) {

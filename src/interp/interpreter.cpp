@@ -50,6 +50,14 @@ void CommandContext::dwell(double seconds, const SourceLoc& loc) {
   ++moves_;
 }
 
+void CommandContext::come_to_rest(const SourceLoc& loc) {
+  CanonMove m;
+  m.kind = MoveKind::Stop;
+  m.from = m.to = state_.position;
+  m.loc = loc;
+  sink_.move(m);
+}
+
 void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {
   interp_->pending_call_ = call;
   interp_->pending_call_loc_ = loc;

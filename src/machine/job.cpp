@@ -4,7 +4,7 @@
 #include <algorithm>  // stable_sort
 #include <climits>    // INT_MAX
 
-#include "gantry/motion/trapezoid_planner.hpp"  // TrapezoidPlanner
+#include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
 #include "gantry/step/step_generator.hpp"       // StepGenerator
 
 namespace gantry {
@@ -56,7 +56,7 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
 
   card.start(settings.card.pacer_hz());
   StepGenerator steps(settings, card);
-  TrapezoidPlanner planner(settings, steps);
+  LookAheadPlanner planner(settings, steps);
   Interpreter interp(settings, planner, io, store, options.interpreter);
   if (options.progress) interp.on_progress(options.progress);
   try {

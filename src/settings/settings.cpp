@@ -192,6 +192,17 @@ void read_profile(TableReader root, Settings& s) {
   r.jog_ramp_speed = read_speeds(ramps.table("jog_speed"), kSpeed);
   ramps.finish();
 
+  TableReader planner = root.table("planner");
+  PlannerSettings& pl = s.planner;
+  const std::string mode = planner.choice("mode", {"sb3", "junction", "stop"}, "sb3");
+  pl.mode = mode == "junction" ? PlannerMode::Junction
+            : mode == "stop"   ? PlannerMode::Stop
+                               : PlannerMode::SB3;
+  pl.corner_jump = planner.number("corner_jump", {0, 1}, 0.11);
+  pl.junction_deviation = planner.number("junction_deviation", {0, 1e3}, 0.002);
+  pl.lookahead = planner.integer("lookahead", 2, 1 << 20, 1024);
+  planner.finish();
+
   TableReader card = root.table("card");
   CardSettings& c = s.card;
   c.type = card.choice("type", {"sim"}, "sim");
@@ -299,6 +310,10 @@ Settings default_settings() {
 
 const char* units_name(Units u) {
   return u == Units::Inches ? "in" : "mm";
+}
+
+const char* planner_mode_name(PlannerMode m) {
+  return m == PlannerMode::SB3 ? "sb3" : m == PlannerMode::Junction ? "junction" : "stop";
 }
 
 }  // namespace gantry

@@ -95,7 +95,8 @@ TEST_P(PartRun, EndsOnTheLastCommandedPointToTheStep) {
   EXPECT_EQ(j["timing_violations"], 0);
   EXPECT_GT(j["max_velocity_ratio"].get<double>(), 0.0);
   EXPECT_LE(j["max_velocity_ratio"].get<double>(), 1.0);
-  EXPECT_GT(j["max_accel_ratio"].get<double>(), 0.0);
+  // Acceleration beyond the corner jumps (rotary.sbp's gentle ramps stay within one jump, so
+  // its ratio is 0; the monitor's own tests show the check failing).
   EXPECT_LE(j["max_accel_ratio"].get<double>(), 1.0);
   // The card's clock and the planner agree to within one tick per move.
   EXPECT_NEAR(j["time_s"].get<double>(), j["planned_time_s"].get<double>(), 5e-6 * want.moves);

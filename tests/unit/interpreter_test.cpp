@@ -216,9 +216,10 @@ TEST_F(InterpreterTest, MsSetsMoveSpeedsOnly) {
   run("MS, 3, 1, 20, 30, 40\nMX, 1\nJX, 2\n");
   expect_speeds(state().speeds.move, 3, 1, 20, 30, 40);
   expect_speeds(state().speeds.jog, 6.0, 3.0, 45, 45, 45);
-  ASSERT_EQ(moves().size(), 2u);
-  expect_speeds(moves()[0].speeds, 3, 1, 20, 30, 40);
-  expect_speeds(moves()[1].speeds, 6.0, 3.0, 45, 45, 45);
+  ASSERT_EQ(moves().size(), 3u);
+  EXPECT_EQ(moves()[0].kind, MoveKind::Stop);  // MS punctuates the moves around it
+  expect_speeds(moves()[1].speeds, 3, 1, 20, 30, 40);
+  expect_speeds(moves()[2].speeds, 6.0, 3.0, 45, 45, 45);
 }
 
 TEST_F(InterpreterTest, MsBlankKeepsThatSpeed) {
@@ -230,9 +231,10 @@ TEST_F(InterpreterTest, JsSetsJogSpeedsOnly) {
   run("JS, 7, 2, , , 60\nJY, 1\nMY, 2\n");
   expect_speeds(state().speeds.jog, 7, 2, 45, 45, 60);
   expect_speeds(state().speeds.move, 2.0, 0.5, 10, 10, 10);
-  ASSERT_EQ(moves().size(), 2u);
-  expect_speeds(moves()[0].speeds, 7, 2, 45, 45, 60);
-  expect_speeds(moves()[1].speeds, 2.0, 0.5, 10, 10, 10);
+  ASSERT_EQ(moves().size(), 3u);
+  EXPECT_EQ(moves()[0].kind, MoveKind::Stop);  // so does JS
+  expect_speeds(moves()[1].speeds, 7, 2, 45, 45, 60);
+  expect_speeds(moves()[2].speeds, 2.0, 0.5, 10, 10, 10);
 }
 
 TEST_F(InterpreterTest, VsTakesMoveXyZABThenJogXyZAB) {
@@ -266,10 +268,12 @@ TEST_F(InterpreterTest, VsHasNoNinthParameter) {
 
 TEST_F(InterpreterTest, EachMoveKeepsTheSpeedInForceWhenIssued) {
   run("MX, 1\nMS, 3\nMX, 2\nVS, 1.5\nMX, 3\n");
-  ASSERT_EQ(moves().size(), 3u);
+  ASSERT_EQ(moves().size(), 4u);  // MS stops the machine between its moves; VS does not
   EXPECT_DOUBLE_EQ(moves()[0].speeds.xy, 2.0);
-  EXPECT_DOUBLE_EQ(moves()[1].speeds.xy, 3.0);
-  EXPECT_DOUBLE_EQ(moves()[2].speeds.xy, 1.5);
+  EXPECT_EQ(moves()[1].kind, MoveKind::Stop);
+  EXPECT_DOUBLE_EQ(moves()[2].speeds.xy, 3.0);
+  EXPECT_EQ(moves()[3].kind, MoveKind::Line);
+  EXPECT_DOUBLE_EQ(moves()[3].speeds.xy, 1.5);
 }
 
 TEST_F(InterpreterTest, SpeedEqualToMaxSpeedIsAllowed) {

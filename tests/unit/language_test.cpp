@@ -38,6 +38,10 @@ namespace fs = std::filesystem;
 class RecordingSink : public MotionSink {
  public:
   void move(const CanonMove& m) override {
+    if (m.kind == MoveKind::Stop) {  // MS and JS punctuation: tested in interpreter_test
+      ++stops;
+      return;
+    }
     moves.push_back(m);
     flushes_seen_by_move.push_back(flushes);
   }
@@ -45,6 +49,7 @@ class RecordingSink : public MotionSink {
     ++flushes;
     moves_at_flush.push_back(moves.size());
   }
+  int stops = 0;
 
   std::vector<CanonMove> moves;
   std::vector<int> flushes_seen_by_move;  // flushes so far, when each move arrived

@@ -64,6 +64,8 @@ class CommandContext {
   void line_to(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
   // A timed wait in the motion stream.
   void dwell(double seconds, const SourceLoc& loc);
+  // The machine ramps down to rest here before the next move (MS, JS).
+  void come_to_rest(const SourceLoc& loc);
   // FP: runs a file as a subroutine once this command returns.
   void call_file(const FileCall& call, const SourceLoc& loc);
   // Records who set a speed group (0 xy .. 4 c): values set by VS are undone when the file

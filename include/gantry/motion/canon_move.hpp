@@ -7,7 +7,9 @@
 
 namespace gantry {
 
-enum class MoveKind { Line, Dwell };
+// Line: a straight move. Dwell: a timed wait at rest. Stop: come to rest, then go on (MS and
+// JS punctuate the moves around them this way).
+enum class MoveKind { Line, Dwell, Stop };
 
 // Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
 enum class SpeedClass { Move, Jog };

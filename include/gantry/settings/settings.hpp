@@ -43,6 +43,17 @@ struct RampSettings {  // VR: SB3 ramp model values
   double small_circle = 0.25;
 };
 
+// How the planner joins moves: SB3's ramp model, junction-deviation cornering, or a stop
+// at every move (the baseline that the other two are measured against).
+enum class PlannerMode { SB3, Junction, Stop };
+
+struct PlannerSettings {
+  PlannerMode mode = PlannerMode::SB3;
+  double corner_jump = 0.11;          // largest instant speed change, fraction of max_speed
+  double junction_deviation = 0.002;  // junction mode: corner rounding the speed allows, units
+  int lookahead = 1024;               // moves planned ahead, at least
+};
+
 struct PinSettings {  // one axis's bits in the card's 32-bit output word
   int step_bit = 0;
   int dir_bit = 8;
@@ -67,6 +78,7 @@ struct Settings {
   std::array<AxisSettings, kAxisCount> axes{};
   SpeedSettings speeds;
   RampSettings ramps;
+  PlannerSettings planner;
   CardSettings card;
   std::array<PinSettings, kAxisCount> pins{};
 };
@@ -89,5 +101,6 @@ const std::string& default_profile_text();
 Settings default_settings();
 
 const char* units_name(Units u);
+const char* planner_mode_name(PlannerMode m);
 
 }  // namespace gantry

@@ -1,0 +1,57 @@
+// The look-ahead planner: joins moves at the corner speeds of the configured mode and plans
+// each move's entry, cruise and exit speeds so that the machine can always stop in time.
+#pragma once
+
+#include <deque>
+
+#include "gantry/motion/canon_move.hpp"       // MotionSink, CanonMove
+#include "gantry/motion/planned_segment.hpp"  // SegmentSink
+
+namespace gantry {
+
+// Moves are held until enough path lies ahead of them: at least `planner.lookahead` moves
+// and at least the longest stopping distance seen, up to 64 x lookahead moves (tiny moves
+// beyond that are planned with less look-ahead, never with less safety: the plan always
+// ends at rest after the last move held). Each new move re-plans only the moves whose
+// speeds it can still raise. docs/planner.md gives the model and its derivations.
+class LookAheadPlanner : public MotionSink {
+ public:
+  LookAheadPlanner(const Settings& settings, SegmentSink& out);
+  void move(const CanonMove& m) override;
+  void flush() override;  // brings the machine to rest after the last move
+
+  double planned_time() const { return planned_time_; }  // sum of segment durations, s
+  size_t most_held() const { return most_held_; }         // the largest look-ahead used
+
+ private:
+  struct Block {
+    Vec6 from, to, unit;
+    double length = 0, v_max = 0, accel = 0;
+    double rest = 0;       // the speed it may start or stop at
+    double max_entry = 0;  // the corner speed with the previous block (rest after a stop)
+    double back = 0;       // entry bound from the backward pass: can still stop in time
+    double entry = 0;      // planned entry speed
+    SpeedClass speed_class = SpeedClass::Move;
+    SourceLoc loc;
+  };
+  void add(Block b);
+  // Backward pass from the tail (which ends at `tail_exit`), forward pass over what changed.
+  void replan(double tail_exit);
+  void emit_front(double exit);
+  void stop();  // plans to rest after the last block and emits everything
+  Vec6 incoming_direction(const Vec6& at, const Vec6& fallback) const;
+
+  const Settings& settings_;
+  SegmentSink& out_;
+  std::deque<Block> q_;
+  bool punctuated_ = false;    // an MS or JS came since the last block
+  bool front_locked_ = false;  // the front's entry is the exit of a block already emitted
+  double held_length_ = 0;     // path length held after the front block
+  double stop_distance_ = 0;   // the longest stopping distance of any block seen
+  std::deque<std::pair<Vec6, double>> trail_;  // recent path points and distance travelled
+  double travelled_ = 0;
+  double planned_time_ = 0;
+  size_t most_held_ = 0;
+};
+
+}  // namespace gantry

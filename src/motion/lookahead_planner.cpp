@@ -1,0 +1,181 @@
+// Look-ahead planning over a bounded queue of moves.
+//
+// Each held block k has a corner speed limit c_k at its start (corner_speed with the block
+// before it, or its rest speed after a stop), a length l_k and an acceleration a_k along its
+// path. Speeds are planned in two passes, as in grbl's planner:
+//
+//   backward: b_k = min(c_k, sqrt(b_{k+1}^2 + 2 a_k l_k)), with the tail ending at 0,
+//             so that from every entry speed the machine can still stop by the tail;
+//   forward:  e_k = min(b_k, sqrt(e_{k-1}^2 + 2 a_{k-1} l_{k-1})),
+//             so that every entry speed can be reached from the one before.
+//
+// A block's exit is the next block's entry; its profile is the trapezoid between them.
+// Appending a block only raises the tail's exit (from 0 to its corner speed), so backward
+// bounds only grow, and the backward pass stops at the first bound that does not change:
+// the blocks before it keep their plan (grbl's "planned" pointer, found on the fly). The
+// forward pass starts where the backward one stopped. Ending at 0 while streaming is what
+// makes releasing the front safe: whatever comes later, the plan already held can stop.
+#include "gantry/motion/lookahead_planner.hpp"
+
+#include <algorithm>  // min, max
+#include <cmath>      // sqrt
+
+#include "gantry/motion/corner_speed.hpp"  // corner_speed, rest_speed
+#include "gantry/motion/path_limits.hpp"   // path_limits
+
+namespace gantry {
+namespace {
+
+constexpr size_t kTrailPoints = 4096;  // path points kept for SB3's minimum distance to check
+
+double reach(double v, double accel, double length) {
+  return std::sqrt(v * v + 2 * accel * length);
+}
+
+}  // namespace
+
+LookAheadPlanner::LookAheadPlanner(const Settings& settings, SegmentSink& out)
+    : settings_(settings), out_(out) {}
+
+void LookAheadPlanner::move(const CanonMove& m) {
+  if (m.kind == MoveKind::Stop) {  // the next corner ramps fully down and up again
+    punctuated_ = true;
+    return;
+  }
+  if (m.kind == MoveKind::Dwell) {
+    stop();
+    PlannedSegment seg;
+    seg.from = seg.to = m.to;
+    seg.dwell_s = m.dwell_s;
+    seg.loc = m.loc;
+    planned_time_ += m.dwell_s;
+    out_.segment(seg);
+    return;
+  }
+  const PathLimits lim = path_limits(m, settings_);
+  if (lim.length == 0) return;
+  Block b;
+  b.from = m.from;
+  b.to = m.to;
+  b.length = lim.length;
+  b.unit = (m.to - m.from) / lim.length;
+  b.v_max = lim.speed;
+  b.accel = lim.accel;
+  b.speed_class = m.speed_class;
+  b.loc = m.loc;
+  const bool jog = m.speed_class == SpeedClass::Jog;
+  b.rest = std::min(rest_speed(b.unit, jog, settings_), b.v_max);
+  if (q_.empty()) {
+    b.max_entry = b.rest;
+  } else {
+    const Block& p = q_.back();
+    Junction j;
+    j.u_in = p.unit;
+    j.u_out = b.unit;
+    j.u_in_long = incoming_direction(b.from, p.unit);
+    j.v_in = p.v_max;
+    j.v_out = b.v_max;
+    j.rest_in = p.rest;
+    j.rest_out = b.rest;
+    j.len_in = p.length;
+    j.len_out = b.length;
+    j.a_in = p.accel;
+    j.a_out = b.accel;
+    j.jog_in = p.speed_class == SpeedClass::Jog;
+    j.jog_out = jog;
+    j.punctuated = punctuated_;
+    b.max_entry = corner_speed(j, settings_);
+  }
+  punctuated_ = false;
+  add(std::move(b));
+}
+
+// The direction from the path point at least min_distance back to `at` (SB3 measures
+// direction changes over that much path, so a curve of tiny segments reads as a turn).
+Vec6 LookAheadPlanner::incoming_direction(const Vec6& at, const Vec6& fallback) const {
+  if (settings_.ramps.min_distance <= 0 || trail_.empty()) return fallback;
+  const Vec6 d = at - trail_.front().first;
+  const double n = d.norm();
+  return n > 1e-12 ? Vec6(d / n) : fallback;
+}
+
+void LookAheadPlanner::add(Block b) {
+  if (trail_.empty()) trail_.emplace_back(b.from, travelled_);
+  travelled_ += b.length;
+  trail_.emplace_back(b.to, travelled_);
+  // Keep the newest point at least min_distance back as the front.
+  while (trail_.size() > kTrailPoints ||
+         (trail_.size() >= 2 && travelled_ - trail_[1].second >= settings_.ramps.min_distance))
+    trail_.pop_front();
+
+  stop_distance_ = std::max(stop_distance_, b.v_max * b.v_max / (2 * b.accel));
+  if (!q_.empty()) held_length_ += b.length;
+  q_.push_back(std::move(b));
+  most_held_ = std::max(most_held_, q_.size());
+  replan(0);  // streaming: the plan ends at rest after the last block held
+
+  const size_t lookahead = static_cast<size_t>(settings_.planner.lookahead);
+  while (q_.size() > 64 * lookahead ||
+         (q_.size() > lookahead && held_length_ >= stop_distance_))
+    emit_front(q_[1].entry);
+}
+
+void LookAheadPlanner::replan(double tail_exit) {
+  const size_t n = q_.size();
+  const size_t first = front_locked_ ? 1 : 0;
+  double exit = tail_exit;
+  size_t changed = n;
+  for (size_t k = n; k-- > first;) {
+    Block& b = q_[k];
+    const double bound = std::min(b.max_entry, reach(exit, b.accel, b.length));
+    if (k + 1 < n && bound == b.back) break;  // nothing before it changes either
+    b.back = bound;
+    exit = bound;
+    changed = k;
+  }
+  for (size_t k = changed; k < n; ++k) {
+    Block& b = q_[k];
+    const Block* p = k == 0 ? nullptr : &q_[k - 1];
+    b.entry = p ? std::min(b.back, reach(p->entry, p->accel, p->length)) : b.back;
+  }
+}
+
+void LookAheadPlanner::emit_front(double exit) {
+  Block& b = q_.front();
+  PlannedSegment seg;
+  seg.from = b.from;
+  seg.to = b.to;
+  // SB3 runs short moves (under the minimum distance to check) at a steady speed instead
+  // of speeding up and slowing down within each.
+  const bool steady = settings_.planner.mode == PlannerMode::SB3 &&
+                      b.length < settings_.ramps.min_distance;
+  const double cruise = steady ? std::max(b.entry, exit) : b.v_max;
+  seg.profile = Trapezoid::plan(b.length, b.entry, cruise, exit, b.accel);
+  seg.speed_class = b.speed_class;
+  seg.loc = b.loc;
+  planned_time_ += seg.profile.duration();
+  out_.segment(seg);
+  q_.pop_front();
+  if (!q_.empty()) held_length_ -= q_.front().length;
+  front_locked_ = !q_.empty();
+}
+
+void LookAheadPlanner::stop() {
+  if (!q_.empty()) {
+    // The last block may end at its rest speed (SB3 stops from the ramp speed).
+    replan(q_.back().rest);
+    while (q_.size() > 1) emit_front(q_[1].entry);
+    const Block& last = q_.front();
+    emit_front(std::min(last.rest, reach(last.entry, last.accel, last.length)));
+  }
+  front_locked_ = false;
+  held_length_ = 0;
+  trail_.clear();
+}
+
+void LookAheadPlanner::flush() {
+  stop();
+  out_.flush();
+}
+
+}  // namespace gantry
