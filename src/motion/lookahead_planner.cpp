@@ -115,8 +115,7 @@ void LookAheadPlanner::add(Block b) {
   replan(0);  // streaming: the plan ends at rest after the last block held
 
   const size_t lookahead = static_cast<size_t>(settings_.planner.lookahead);
-  while (q_.size() > 64 * lookahead ||
-         (q_.size() > lookahead && held_length_ >= stop_distance_))
+  while (q_.size() > 64 * lookahead || (q_.size() > lookahead && held_length_ >= stop_distance_))
     emit_front(q_[1].entry);
 }
 
@@ -146,10 +145,11 @@ void LookAheadPlanner::emit_front(double exit) {
   seg.from = b.from;
   seg.to = b.to;
   // SB3 runs short moves (under the minimum distance to check) at a steady speed instead
-  // of speeding up and slowing down within each.
+  // of speeding up and slowing down within each; from rest to rest there is no such speed.
+  const double steady_speed = std::max(b.entry, exit);
   const bool steady = settings_.planner.mode == PlannerMode::SB3 &&
-                      b.length < settings_.ramps.min_distance;
-  const double cruise = steady ? std::max(b.entry, exit) : b.v_max;
+                      b.length < settings_.ramps.min_distance && steady_speed > 0;
+  const double cruise = steady ? steady_speed : b.v_max;
   seg.profile = Trapezoid::plan(b.length, b.entry, cruise, exit, b.accel);
   seg.speed_class = b.speed_class;
   seg.loc = b.loc;

@@ -9,9 +9,9 @@ namespace gantry {
 
 // The two moves meeting at a junction, as the corner laws see them.
 struct Junction {
-  Vec6 u_in, u_out;              // unit directions of the incoming and outgoing moves
-  Vec6 u_in_long;                // sb3: incoming direction over the last min_distance of path
-  double v_in = 0, v_out = 0;    // their cruise speeds (path speed limits), units/s
+  Vec6 u_in, u_out;                  // unit directions of the incoming and outgoing moves
+  Vec6 u_in_long;                    // sb3: incoming direction over the last min_distance of path
+  double v_in = 0, v_out = 0;        // their cruise speeds (path speed limits), units/s
   double rest_in = 0, rest_out = 0;  // speeds each may start or stop at (see rest_speed)
   double len_in = 0, len_out = 0;    // their lengths, units
   double a_in = 0, a_out = 0;        // their accelerations along the path, units/s^2

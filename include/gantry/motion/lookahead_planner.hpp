@@ -21,7 +21,7 @@ class LookAheadPlanner : public MotionSink {
   void flush() override;  // brings the machine to rest after the last move
 
   double planned_time() const { return planned_time_; }  // sum of segment durations, s
-  size_t most_held() const { return most_held_; }         // the largest look-ahead used
+  size_t most_held() const { return most_held_; }        // the largest look-ahead used
 
  private:
   struct Block {

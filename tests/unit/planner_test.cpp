@@ -1,0 +1,401 @@
+// The look-ahead planner: SB3's ramp statements, the junction and stop modes, look-ahead
+// depth, bounded memory, and the limits on generated stress paths (checked analytically on
+// the planned segments and, independently, by the simulated card's kinematics monitor).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "gantry/motion/corner_speed.hpp"
+#include "gantry/motion/lookahead_planner.hpp"
+#include "gantry/motion/path_limits.hpp"
+#include "gantry/step/step_generator.hpp"
+#include "segment_builders.hpp"
+#include "sim/sim_card.hpp"
+
+namespace gantry {
+namespace {
+
+using test::vec;
+
+class Collect : public SegmentSink {
+ public:
+  void segment(const PlannedSegment& s) override { segs.push_back(s); }
+  void flush() override { ++flushes; }
+  std::vector<PlannedSegment> segs;
+  int flushes = 0;
+};
+
+CanonMove line(const Vec6& from, const Vec6& to, const Settings& s,
+               SpeedClass cls = SpeedClass::Move) {
+  CanonMove m;
+  m.from = from;
+  m.to = to;
+  m.speed_class = cls;
+  m.speeds = cls == SpeedClass::Move ? s.speeds.move : s.speeds.jog;
+  return m;
+}
+
+CanonMove stop_here() {
+  CanonMove m;
+  m.kind = MoveKind::Stop;
+  return m;
+}
+
+// Plans a polyline through `points` (one class) and returns the segments.
+std::vector<PlannedSegment> plan(const Settings& s, const std::vector<Vec6>& points,
+                                 SpeedClass cls = SpeedClass::Move) {
+  Collect out;
+  LookAheadPlanner p(s, out);
+  for (size_t i = 1; i < points.size(); ++i) p.move(line(points[i - 1], points[i], s, cls));
+  p.flush();
+  return out.segs;
+}
+
+Settings fast_machine(double xy_speed) {  // room for SB3's 10 in/s statements
+  Settings s = default_settings();
+  for (int i = 0; i < 2; ++i) s.axes[i].max_speed = 12;
+  s.speeds.move.xy = xy_speed;
+  return s;
+}
+
+double deg(double d) {
+  return d * M_PI / 180;
+}
+
+// Two 20-inch moves meeting at a turn of `turn_deg` in XY.
+std::vector<Vec6> corner(double turn_deg) {
+  return {vec(0, 0), vec(20, 0),
+          vec(20 + 20 * std::cos(deg(turn_deg)), 20 * std::sin(deg(turn_deg)))};
+}
+
+double junction_speed(const std::vector<PlannedSegment>& segs, size_t k) {
+  EXPECT_DOUBLE_EQ(segs[k].profile.v_exit, segs[k + 1].profile.v_entry);
+  return segs[k].profile.v_exit;
+}
+
+// ---- SB3 mode: the command reference's ramp statements -------------------------------
+
+TEST(Sb3Ramps, AnIsolatedMoveStartsAndEndsAtTheRampSpeed) {
+  const Settings s = default_settings();
+  const auto segs = plan(s, {vec(0), vec(10)});
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_DOUBLE_EQ(segs[0].profile.v_entry, 0.4);
+  EXPECT_DOUBLE_EQ(segs[0].profile.v_exit, 0.4);
+  EXPECT_DOUBLE_EQ(segs[0].profile.v_cruise, 2.0);
+  EXPECT_DOUBLE_EQ(segs[0].profile.accel, 14.0);  // 2 (0.4 + 1) / 0.2
+}
+
+TEST(Sb3Ramps, ANinetyDegreeCornerRampsFullyDownToTheRampSpeed) {
+  const auto segs = plan(default_settings(), corner(90));
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_NEAR(junction_speed(segs, 0), 0.4, 1e-12);
+  EXPECT_DOUBLE_EQ(segs[0].profile.v_cruise, 2.0);
+  EXPECT_DOUBLE_EQ(segs[1].profile.v_cruise, 2.0);
+}
+
+TEST(Sb3Ramps, ACornerOfMoreThan043RadiansAlwaysRampsFully) {
+  const Settings s = fast_machine(1);  // slow: the graded criterion is above 0.75 rad
+  EXPECT_NEAR(junction_speed(plan(s, corner(44)), 0), 0.4, 1e-12);
+  EXPECT_GT(junction_speed(plan(s, corner(42)), 0), 0.4);
+}
+
+TEST(Sb3Ramps, AThreeDegreeCornerAtOneInchPerSecondDoesNotSlow) {
+  EXPECT_DOUBLE_EQ(junction_speed(plan(fast_machine(1), corner(3)), 0), 1.0);
+}
+
+TEST(Sb3Ramps, AtTenInchesPerSecondASixDegreeCornerSlowsToTheSlowCornerSpeed) {
+  const Settings s = fast_machine(10);
+  const double v = junction_speed(plan(s, corner(6)), 0);
+  // 65 % of the speed at the 5 deg criterion, falling linearly to the ramp speed at 0.75 rad.
+  const double theta_c = deg(5), f = (0.75 - deg(6)) / (0.75 - theta_c);
+  EXPECT_NEAR(v, 0.4 + (6.5 - 0.4) * f, 1e-9);
+  EXPECT_LT(v, 6.5);
+  // Below the criterion (4 deg) it does not slow; a larger slow-corner value slows less.
+  EXPECT_DOUBLE_EQ(junction_speed(plan(s, corner(4)), 0), 10.0);
+  Settings gentler = s;
+  gentler.ramps.slow_corner = 80;
+  EXPECT_GT(junction_speed(plan(gentler, corner(6)), 0), v);
+}
+
+TEST(Sb3Ramps, TheCriterionAngleFallsAsOneOverSpeed) {
+  const Settings s = default_settings();
+  EXPECT_NEAR(sb3_criterion_angle(10, s), deg(5), 1e-12);
+  EXPECT_NEAR(sb3_criterion_angle(5, s), deg(10), 1e-12);
+  EXPECT_DOUBLE_EQ(sb3_criterion_angle(1, s), 0.75);  // the full-ramp angle caps it
+  Settings mm = s;
+  mm.units = Units::Millimetres;
+  EXPECT_NEAR(sb3_criterion_angle(254, mm), deg(5), 1e-12);
+}
+
+TEST(Sb3Ramps, AZSpeedChangeLargerThanTheZRampSpeedTriggersARamp) {
+  // The manual's example: Z has to change speed from 2 to 1.3 in/s (0.7 > 0.4).
+  Settings s = default_settings();
+  s.speeds.move.z = 2;
+  const std::vector<Vec6> path = {vec(0), vec(2, 0, 2), vec(4, 0, 3.3)};
+  const auto segs = plan(s, path);
+  const Vec6 u0 = (path[1] - path[0]).normalized(), u1 = (path[2] - path[1]).normalized();
+  EXPECT_NEAR(segs[0].profile.v_cruise * u0[2], 2.0, 1e-12);
+  EXPECT_NEAR(segs[1].profile.v_cruise * u1[2], 1.3, 1e-12);
+  const double ramped = junction_speed(segs, 0);
+  EXPECT_NEAR(ramped, rest_speed(u1, false, s), 1e-12);
+  // A 3D threshold of 200 % (0.8 in/s) lets the same change pass without the full ramp.
+  s.ramps.threshold_3d = 200;
+  EXPECT_GT(junction_speed(plan(s, path), 0), 3 * ramped);
+}
+
+TEST(Sb3Ramps, MsInsideAFileForcesARampDownAndUpEvenOnAStraightLine) {
+  const Settings s = default_settings();
+  Collect out;
+  LookAheadPlanner p(s, out);
+  p.move(line(vec(0), vec(5), s));
+  p.move(stop_here());
+  p.move(line(vec(5), vec(10), s));
+  p.flush();
+  ASSERT_EQ(out.segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(junction_speed(out.segs, 0), 0.4);
+  // Without the MS the line runs straight through at full speed.
+  EXPECT_DOUBLE_EQ(junction_speed(plan(s, {vec(0), vec(5), vec(10)}), 0), 2.0);
+}
+
+TEST(Sb3Ramps, EveryJogRampsAtBothEnds) {
+  EXPECT_DOUBLE_EQ(
+      junction_speed(plan(default_settings(), {vec(0), vec(5), vec(10)}, SpeedClass::Jog), 0), 0.4);
+}
+
+TEST(Sb3Ramps, MovesShorterThanTheMinimumDistanceRunAtASteadySpeed) {
+  // Tiny zig-zag segments: no segment speeds up and slows down within itself.
+  std::vector<Vec6> pts = {vec(0)};
+  for (int i = 1; i <= 200; ++i) pts.push_back(vec(0.05 * i, (i % 2) * 0.02));
+  for (const PlannedSegment& seg : plan(default_settings(), pts)) {
+    EXPECT_LE(seg.profile.v_cruise,
+              std::max(seg.profile.v_entry, seg.profile.v_exit) * (1 + 1e-12));
+  }
+}
+
+TEST(Sb3Ramps, AReversalAtTheRampSpeedStaysWithinTheCornerJump) {
+  // Back and forth on X: at 0.4 in/s the reversal would change X's speed by 0.8; the corner
+  // jump (0.11 x 8 = 0.88) allows it; a smaller jump halves the junction speed.
+  Settings s = default_settings();
+  EXPECT_NEAR(junction_speed(plan(s, {vec(0), vec(5), vec(1)}), 0), 0.4, 1e-12);
+  s.planner.corner_jump = 0.05;  // 0.4 in/s
+  EXPECT_NEAR(junction_speed(plan(s, {vec(0), vec(5), vec(1)}), 0), 0.2, 1e-12);
+}
+
+// ---- junction and stop modes -------------------------------------------------------------
+
+TEST(JunctionMode, ARightAngleCornerFollowsTheJunctionDeviationFormula) {
+  Settings s = default_settings();
+  s.planner.mode = PlannerMode::Junction;
+  s.planner.corner_jump = 1;  // out of the way
+  const double v = junction_speed(plan(s, corner(90)), 0);
+  // sin(h) = cos 45 deg; R = delta sin h / (1 - sin h); the turn's acceleration is what X
+  // and Y have left after the moves' own 14 in/s^2 along them: 20 - 14 = 6 in/s^2 each,
+  // along du = (-1, 1)/sqrt 2, so a_turn = 6 sqrt 2.
+  const double sin_h = std::cos(deg(45));
+  const double r = 0.002 * sin_h / (1 - sin_h);
+  EXPECT_NEAR(v, std::sqrt(6 * std::sqrt(2.0) * r), 1e-12);
+  // Straight on: no slowing; from and to rest: 0.
+  const auto straight = plan(s, {vec(0), vec(5), vec(10)});
+  EXPECT_DOUBLE_EQ(junction_speed(straight, 0), 2.0);
+  EXPECT_DOUBLE_EQ(straight.front().profile.v_entry, 0.0);
+  EXPECT_DOUBLE_EQ(straight.back().profile.v_exit, 0.0);
+}
+
+TEST(StopMode, EveryMoveStartsAndEndsAtRest) {
+  Settings s = default_settings();
+  s.planner.mode = PlannerMode::Stop;
+  const auto segs = plan(s, {vec(0), vec(5), vec(10), vec(10, 4)});
+  for (const PlannedSegment& seg : segs) {
+    EXPECT_DOUBLE_EQ(seg.profile.v_entry, 0.0);
+    EXPECT_DOUBLE_EQ(seg.profile.v_exit, 0.0);
+  }
+}
+
+// ---- look-ahead ------------------------------------------------------------------------
+
+TEST(LookAhead, TinySegmentsStillReachFullSpeedBecauseItLooksAheadFarEnoughToStop) {
+  // 0.0005 in segments at 6 in/s jog: stopping takes 6^2 / (2 x 14) = 1.29 in, 2571 segments,
+  // far more than the 64 moves asked for: the planner holds what stopping needs.
+  Settings s = default_settings();
+  s.planner.lookahead = 64;
+  std::vector<Vec6> pts;
+  for (int i = 0; i <= 12000; ++i) pts.push_back(vec(1 + i * 0.0005));
+  Collect out;
+  LookAheadPlanner p(s, out);
+  for (size_t i = 1; i < pts.size(); ++i) p.move(line(pts[i - 1], pts[i], s, SpeedClass::Move));
+  p.flush();
+  double top = 0;
+  for (const PlannedSegment& seg : out.segs) top = std::max(top, seg.profile.v_cruise);
+  EXPECT_DOUBLE_EQ(top, 2.0);
+  EXPECT_GE(p.most_held(), 280u);  // 2^2 / 28 = 0.143 in = 286 segments
+  EXPECT_LE(p.most_held(), 64u * 64u + 1);
+}
+
+TEST(LookAhead, MemoryIsBoundedWhateverTheFileLength) {
+  Settings s = default_settings();
+  s.planner.lookahead = 16;
+  Collect out;
+  LookAheadPlanner p(s, out);
+  Vec6 at = vec(1, 1);
+  for (int i = 0; i < 100000; ++i) {
+    const Vec6 next = at + vec(1e-5 * (1 + i % 3), 1e-5 * (i % 2));
+    p.move(line(at, next, s));
+    at = next;
+  }
+  p.flush();
+  EXPECT_LE(p.most_held(), 16u * 64u + 1);
+  EXPECT_EQ(out.segs.back().to, at);
+}
+
+// ---- limits on stress paths --------------------------------------------------------------
+
+struct Stress {
+  const char* name;
+  std::vector<CanonMove> moves;
+};
+
+std::vector<Stress> stress_paths(const Settings& s) {
+  std::vector<Stress> out;
+  auto add = [&](const char* name, std::vector<Vec6> pts, SpeedClass cls) {
+    Stress st{name, {}};
+    pts.insert(pts.begin(), Vec6::Zero());  // the machine starts at the origin
+    for (size_t i = 1; i < pts.size(); ++i) st.moves.push_back(line(pts[i - 1], pts[i], s, cls));
+    out.push_back(std::move(st));
+  };
+  std::vector<Vec6> zig = {vec(1, 1)};
+  for (int i = 1; i <= 400; ++i) zig.push_back(vec(1 + 0.05 * i, 1 + (i % 2) * 0.5));
+  add("zig-zag", zig, SpeedClass::Move);
+  add("zig-zag jog", zig, SpeedClass::Jog);
+  std::vector<Vec6> tiny = {vec(1, 1)};
+  for (int i = 1; i <= 3000; ++i)
+    tiny.push_back(tiny.back() + vec(0.002 * std::cos(i * 0.05), 0.002 * std::sin(i * 0.05)));
+  add("tiny segments", tiny, SpeedClass::Move);
+  std::vector<Vec6> arcs = {vec(1, 8)};  // semicircles of alternating sense, as chords
+  for (int k = 0; k < 6; ++k) {
+    const double r = 0.2 + 0.3 * k;
+    const bool up = k % 2 == 0;
+    const Vec6 c = arcs.back() + vec(r, 0);
+    for (int i = 1; i <= 90; ++i) {
+      const double t = up ? M_PI - M_PI * i / 90 : M_PI + M_PI * i / 90;
+      arcs.push_back(c + vec(r * std::cos(t), r * std::sin(t)));
+    }
+  }
+  add("tangent arcs", arcs, SpeedClass::Move);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> x(1, 20), y(1, 15), z(-1, 1), r(-90, 90);
+  std::vector<Vec6> rnd = {vec(5, 5)};
+  for (int i = 0; i < 200; ++i) rnd.push_back(vec(x(rng), y(rng), z(rng), r(rng), r(rng), r(rng)));
+  add("random 6-axis", rnd, SpeedClass::Move);
+  add("random 6-axis jog", rnd, SpeedClass::Jog);
+  return out;
+}
+
+struct Case {
+  PlannerMode mode;
+  double corner_jump;
+};
+
+class StressLimits : public ::testing::TestWithParam<Case> {
+ protected:
+  Settings settings() const {
+    Settings s = default_settings();
+    s.planner.mode = GetParam().mode;
+    s.planner.corner_jump = GetParam().corner_jump;
+    return s;
+  }
+};
+
+// The planned segments, checked against the limits exactly: speeds, accelerations, every
+// corner's instant speed change, and reachability of each exit from its entry.
+TEST_P(StressLimits, PlannedSegmentsKeepEveryLimit) {
+  const Settings s = settings();
+  for (const Stress& st : stress_paths(s)) {
+    SCOPED_TRACE(st.name);
+    Collect out;
+    LookAheadPlanner p(s, out);
+    for (const CanonMove& m : st.moves) p.move(m);
+    p.flush();
+    ASSERT_EQ(out.segs.size(), st.moves.size());
+    Vec6 prev_v = Vec6::Zero();
+    for (size_t k = 0; k < out.segs.size(); ++k) {
+      const PlannedSegment& seg = out.segs[k];
+      const Trapezoid& t = seg.profile;
+      EXPECT_EQ(seg.from, st.moves[k].from);
+      EXPECT_EQ(seg.to, st.moves[k].to);
+      const Vec6 u = (seg.to - seg.from) / t.length;
+      const PathLimits lim = path_limits(st.moves[k], s);
+      ASSERT_LE(t.v_cruise, lim.speed * (1 + 1e-12)) << k;
+      ASSERT_LE(t.accel, lim.accel * (1 + 1e-12)) << k;
+      ASSERT_LE(std::abs(t.v_exit * t.v_exit - t.v_entry * t.v_entry),
+                2 * t.accel * t.length * (1 + 1e-9) + 1e-12)
+          << k;
+      for (int i = 0; i < kAxisCount; ++i) {
+        const double jump = s.planner.corner_jump * s.axes[i].max_speed;
+        ASSERT_LE(std::abs(t.v_entry * u[i] - prev_v[i]), jump * (1 + 1e-9) + 1e-12)
+            << "corner before segment " << k << ", axis " << i;
+        ASSERT_LE(t.v_cruise * std::abs(u[i]), s.axes[i].max_speed * (1 + 1e-12));
+        ASSERT_LE(t.accel * std::abs(u[i]), s.axes[i].max_accel * (1 + 1e-12));
+      }
+      prev_v = t.v_exit * u;
+    }
+    for (int i = 0; i < kAxisCount; ++i)  // the final stop
+      ASSERT_LE(std::abs(prev_v[i]), s.planner.corner_jump * s.axes[i].max_speed * (1 + 1e-9));
+  }
+}
+
+TEST_P(StressLimits, TheCardSeesEveryAxisWithinItsLimits) {
+  const Settings s = settings();
+  for (const Stress& st : stress_paths(s)) {
+    SCOPED_TRACE(st.name);
+    SimCard card(s);
+    card.start(s.card.pacer_hz());
+    StepGenerator steps(s, card);
+    LookAheadPlanner p(s, steps);
+    for (const CanonMove& m : st.moves) p.move(m);
+    p.flush();
+    card.drain();
+    EXPECT_EQ(card.timing_violations(), 0u);
+    EXPECT_LE(card.kinematics().max_velocity_ratio(), 1.0001);
+    EXPECT_LE(card.kinematics().max_accel_ratio(), 1.001);
+    EXPECT_NEAR(card.time_s(), p.planned_time(), 5e-6 * static_cast<double>(st.moves.size()));
+    for (int i = 0; i < kAxisCount; ++i)
+      EXPECT_EQ(card.steps()[i], std::llround(st.moves.back().to[i] * s.axes[i].steps_per_unit))
+          << "axis " << i;
+  }
+}
+
+TEST_P(StressLimits, PlanningIsDeterministic) {
+  const Settings s = settings();
+  const Stress st = stress_paths(s)[2];
+  auto run = [&] {
+    Collect out;
+    LookAheadPlanner p(s, out);
+    for (const CanonMove& m : st.moves) p.move(m);
+    p.flush();
+    return out.segs;
+  };
+  const auto a = run(), b = run();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].profile.v_entry, b[k].profile.v_entry);
+    EXPECT_EQ(a[k].profile.v_cruise, b[k].profile.v_cruise);
+    EXPECT_EQ(a[k].profile.v_exit, b[k].profile.v_exit);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, StressLimits,
+                         ::testing::Values(Case{PlannerMode::SB3, 0.11},
+                                           Case{PlannerMode::Junction, 0.11},
+                                           Case{PlannerMode::Stop, 0.11},
+                                           // No corner jump: the monitor's plain check.
+                                           Case{PlannerMode::SB3, 0},
+                                           Case{PlannerMode::Junction, 0}),
+                         [](const auto& info) {
+                           return std::string(planner_mode_name(info.param.mode)) +
+                                  (info.param.corner_jump > 0 ? "" : "_no_jump");
+                         });
+
+}  // namespace
+}  // namespace gantry
