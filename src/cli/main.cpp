@@ -2,7 +2,7 @@
 #include <fmt/format.h>  // output
 #include <CLI/CLI.hpp>   // command-line parsing
 
-#include <algorithm>  // none_of
+#include <algorithm>  // any_of, none_of
 #include <cctype>     // toupper
 #include <cstdio>     // stdout, stderr
 #include <iostream>   // JSON to stdout
@@ -118,6 +118,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.moves = job.moves;
   report.commanded_steps = job.commanded_steps;
   report.planned_time_s = job.planned_time_s;
+  report.estimated_time_s = job.estimated_time_s;
   report.steps = card.steps();
   for (int i = 0; i < kAxisCount; ++i)
     report.position[i] = static_cast<double>(card.steps()[i]) / settings.axes[i].steps_per_unit;
@@ -151,6 +152,37 @@ int cmd_check(const std::string& file, const std::string& settings_path, const L
                                [](const Diagnostic& d) { return d.severity == Severity::Error; });
   if (ok) fmt::print("{}: ok, {} lines\n", file, script->line_count());
   return ok ? 0 : 1;
+}
+
+// The cycle time of a file, from the same check and planner a run uses.
+int cmd_estimate(const std::string& file, const std::string& settings_path, bool json,
+                 const LanguageArgs& lang) {
+  Settings settings;
+  if (!load_profile(settings_path, settings)) return 1;
+  JobOptions opt;
+  if (!lang.job_options(settings, opt)) return 1;
+  opt.operator_present = false;  // an estimate answers nothing: --yes and --input do
+  std::shared_ptr<const Script> script = Script::load(file);
+  double seconds = 0;
+  const std::vector<Diagnostic> found =
+      check_program(script, settings, lang.store(), opt, true, &seconds);
+  print_errors(found);
+  if (std::any_of(found.begin(), found.end(),
+                  [](const Diagnostic& d) { return d.severity == Severity::Error; }))
+    return 1;
+  const char* mode = planner_mode_name(settings.planner.mode);
+  if (json) {
+    nlohmann::ordered_json j;
+    j["file"] = file;
+    j["planner"] = mode;
+    j["estimated_time_s"] = seconds;
+    std::cout << j.dump() << "\n";
+  } else {
+    const long whole = static_cast<long>(seconds);
+    fmt::print("{}: {}:{:02}:{:06.3f} ({:.3f} s) with the {} planner\n", file, whole / 3600,
+               whole / 60 % 60, seconds - static_cast<double>(whole - whole % 60), seconds, mode);
+  }
+  return 0;
 }
 
 class PrintingSink : public MotionSink {
@@ -253,6 +285,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "jsonl"}));
   moves_lang.add_to(moves_cmd);
 
+  std::string estimate_file, estimate_settings;
+  bool estimate_json = false;
+  LanguageArgs estimate_lang;
+  CLI::App* estimate_cmd =
+      app.add_subcommand("estimate", "Predict a part file's cycle time without running it");
+  estimate_cmd->add_option("file", estimate_file, "Part file (.sbp)")->required();
+  estimate_cmd->add_option("--settings", estimate_settings, "Machine profile (TOML)");
+  estimate_cmd->add_flag("--json", estimate_json, "Print the estimate as one JSON object");
+  estimate_lang.add_to(estimate_cmd);
+
   std::string help_code;
   bool help_markdown = false;
   CLI::App* help_cmd = app.add_subcommand("help", "List the commands, or describe one");
@@ -268,6 +310,8 @@ int main(int argc, char** argv) {
     if (*run_cmd) return cmd_run(run, run_lang);
     if (*check_cmd) return cmd_check(check_file, check_settings, check_lang);
     if (*moves_cmd) return cmd_moves(moves_file, moves_settings, moves_format, moves_lang);
+    if (*estimate_cmd)
+      return cmd_estimate(estimate_file, estimate_settings, estimate_json, estimate_lang);
     if (*help_cmd) return cmd_help(help_code, help_markdown);
   } catch (const GantryError& e) {
     fmt::print(stderr, "{}\n", e.what());

@@ -40,6 +40,7 @@ nlohmann::ordered_json to_json(const RunReport& r) {
   j["commanded_steps"] = axis_object(r.commanded_steps);
   j["time_s"] = r.time_s;
   j["planned_time_s"] = r.planned_time_s;
+  j["estimated_time_s"] = r.estimated_time_s;
   j["lines"] = r.lines;
   j["moves"] = r.moves;
   j["timing_violations"] = r.timing_violations;
@@ -61,8 +62,8 @@ std::string to_text(const RunReport& r) {
   const bool exact = r.steps == r.commanded_steps;
   out += fmt::format("\n           {} the planner's commanded steps\n",
                      exact ? "equal to" : "DIFFERENT FROM");
-  out += fmt::format("time       {:.3f} s on the card ({:.3f} s planned)\n", r.time_s,
-                     r.planned_time_s);
+  out += fmt::format("time       {:.3f} s on the card ({:.3f} s planned, {:.3f} s estimated)\n",
+                     r.time_s, r.planned_time_s, r.estimated_time_s);
   out += fmt::format("executed   {} statements, {} moves\n", r.lines, r.moves);
   out += fmt::format("timing     {} violations\n", r.timing_violations);
   for (const std::string& n : r.violation_notes) out += fmt::format("           {}\n", n);

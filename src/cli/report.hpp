@@ -21,6 +21,7 @@ struct RunReport {
   Steps6 commanded_steps{};      // emitted by the step generator
   double time_s = 0;             // machine time on the card
   double planned_time_s = 0;
+  double estimated_time_s = 0;  // predicted by the check, before the run
   std::size_t lines = 0, moves = 0;
   std::uint64_t timing_violations = 0;
   std::vector<std::string> violation_notes;

@@ -16,12 +16,22 @@ class NullSink : public MotionSink {
   void flush() override {}
 };
 
+class NullSegments : public SegmentSink {
+ public:
+  void segment(const PlannedSegment&) override {}
+  void flush() override {}
+};
+
 }  // namespace
 
 std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
                                       const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options, bool runtime_warnings) {
-  NullSink sink;
+                                      const JobOptions& options, bool runtime_warnings,
+                                      double* estimated_time_s) {
+  NullSink nothing;
+  NullSegments segments;
+  LookAheadPlanner planner(settings, segments);
+  MotionSink& sink = estimated_time_s ? static_cast<MotionSink&>(planner) : nothing;
   std::string printed;  // a check prints nothing
   ScriptedIO io(options.yes || options.operator_present, options.inputs, &printed);
   PersistentStore scratch = store.scratch_copy();  // a check may assign $variables, never saves
@@ -31,6 +41,7 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   opt.operator_present = options.operator_present;
   Interpreter interp(settings, sink, io, scratch, opt);
   std::vector<Diagnostic> out = interp.check(std::move(script));
+  if (estimated_time_s) *estimated_time_s = planner.planned_time();
   if (runtime_warnings)
     for (const Diagnostic& w : io.warnings()) append_once(out, w);
   // In line order: the script's own pass found the syntax errors, the run the others.
@@ -50,7 +61,8 @@ void interpret(std::shared_ptr<const Script> script, const Settings& settings, M
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options) {
   JobResult result;
-  for (Diagnostic& d : check_program(script, settings, store, options, false))
+  for (Diagnostic& d :
+       check_program(script, settings, store, options, false, &result.estimated_time_s))
     (d.severity == Severity::Error ? result.errors : result.warnings).push_back(std::move(d));
   if (!result.ok()) return result;
 

@@ -98,8 +98,29 @@ TEST_P(PartRun, EndsOnTheLastCommandedPointToTheStep) {
   // Acceleration beyond the corner jumps (rotary.sbp's gentle ramps stay within one jump, so
   // its ratio is 0; the monitor's own tests show the check failing).
   EXPECT_LE(j["max_accel_ratio"].get<double>(), 1.0);
-  // The card's clock and the planner agree to within one tick per move.
-  EXPECT_NEAR(j["time_s"].get<double>(), j["planned_time_s"].get<double>(), 5e-6 * want.moves);
+  // The card's clock and the planner agree to within one tick per move, and the estimate
+  // made before the run to within 1 %.
+  const double card_s = j["time_s"].get<double>();
+  EXPECT_NEAR(card_s, j["planned_time_s"].get<double>(), 5e-6 * want.moves);
+  EXPECT_NEAR(j["estimated_time_s"].get<double>(), card_s, 0.01 * card_s);
+  // `gantry estimate` says the same without running.
+  const Result e = gantry("estimate parts/" + name + " --json");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_EQ(json::parse(e.out)["estimated_time_s"], j["estimated_time_s"]);
+}
+
+TEST(Estimate, BadFileGetsItsErrorsAndNoEstimate) {
+  const Result r = gantry("estimate tests/data/unknown_command.sbp");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown command"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(Estimate, TextGivesHoursMinutesSecondsAndThePlannerMode) {
+  const Result r = gantry("estimate parts/demo.sbp");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("parts/demo.sbp: 0:00:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("with the sb3 planner"), std::string::npos) << r.out;
 }
 
 INSTANTIATE_TEST_SUITE_P(AllParts, PartRun,

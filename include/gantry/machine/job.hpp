@@ -33,6 +33,7 @@ struct JobResult {
   std::size_t moves = 0;             // canonical moves issued
   Steps6 commanded_steps{};          // steps the generator emitted
   double planned_time_s = 0;         // the planner's sum of segment durations
+  double estimated_time_s = 0;       // the cycle time the check predicted before the run
   bool ok() const { return errors.empty(); }
 };
 
@@ -45,9 +46,12 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
 // Interprets without motion and returns every error and warning: what `gantry check` says.
 // `runtime_warnings`: also the warnings statements give as they run (PLAY, CLOSE), which
 // a run reports itself.
+// With `estimated_time_s`, the check also plans the motion it finds and gives its cycle time
+// (what `gantry estimate` prints); operator waits (PAUSE with no time) count as zero.
 std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
                                       const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options = {}, bool runtime_warnings = true);
+                                      const JobOptions& options = {}, bool runtime_warnings = true,
+                                      double* estimated_time_s = nullptr);
 
 // Interprets a checked program, handing each canonical move to `sink` (for `gantry moves`).
 void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
