@@ -49,6 +49,7 @@ struct LanguageArgs {
   std::string macros;
   std::string persistent;  // file of $variables; default in the user's config directory
   std::size_t budget = 10'000'000;
+  double feed_override = 100;  // percent
 
   void add_to(CLI::App* cmd) {
     cmd->add_flag("--yes", yes, "Continue every PAUSE and press each MSGBOX's default button");
@@ -64,6 +65,7 @@ struct LanguageArgs {
     out.interpreter.macro_dir = macros;
     out.interpreter.trig_in_degrees = settings.dialect == Dialect::FabMo;
     out.check_budget = budget;
+    out.feed_override = feed_override / 100;
     out.yes = yes;
     for (const std::string& kv : inputs) {
       const size_t eq = kv.find('=');
@@ -267,6 +269,8 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--realtime", run.realtime, "Play the simulated card in real time");
   LanguageArgs run_lang, check_lang, moves_lang;
   run_lang.add_to(run_cmd);
+  run_cmd->add_option("--feed-override", run_lang.feed_override, "Percent of the file's speeds")
+      ->check(CLI::Range(10.0, 200.0));
 
   std::string check_file, check_settings;
   CLI::App* check_cmd = app.add_subcommand("check", "Check a part file without motion");
@@ -294,6 +298,9 @@ int main(int argc, char** argv) {
   estimate_cmd->add_option("--settings", estimate_settings, "Machine profile (TOML)");
   estimate_cmd->add_flag("--json", estimate_json, "Print the estimate as one JSON object");
   estimate_lang.add_to(estimate_cmd);
+  estimate_cmd
+      ->add_option("--feed-override", estimate_lang.feed_override, "Percent of the file's speeds")
+      ->check(CLI::Range(10.0, 200.0));
 
   std::string help_code;
   bool help_markdown = false;

@@ -31,6 +31,7 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   NullSink nothing;
   NullSegments segments;
   LookAheadPlanner planner(settings, segments);
+  planner.feed_override(options.feed_override);
   MotionSink& sink = estimated_time_s ? static_cast<MotionSink&>(planner) : nothing;
   std::string printed;  // a check prints nothing
   ScriptedIO io(options.yes || options.operator_present, options.inputs, &printed);
@@ -69,6 +70,7 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   card.start(settings.card.pacer_hz());
   StepGenerator steps(settings, card);
   LookAheadPlanner planner(settings, steps);
+  planner.feed_override(options.feed_override);
   Interpreter interp(settings, planner, io, store, options.interpreter);
   if (options.progress) interp.on_progress(options.progress);
   try {

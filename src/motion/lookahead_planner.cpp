@@ -17,7 +17,7 @@
 // makes releasing the front safe: whatever comes later, the plan already held can stop.
 #include "gantry/motion/lookahead_planner.hpp"
 
-#include <algorithm>  // min, max
+#include <algorithm>  // min, max, clamp
 #include <cmath>      // sqrt
 
 #include "gantry/motion/corner_speed.hpp"  // corner_speed, rest_speed
@@ -59,35 +59,101 @@ void LookAheadPlanner::move(const CanonMove& m) {
   b.to = m.to;
   b.length = lim.length;
   b.unit = (m.to - m.from) / lim.length;
-  b.v_max = lim.speed;
+  b.v_commanded = nominal_path_speed(m.to - m.from, m.speeds);
+  b.v_machine = lim.machine_speed;
   b.accel = lim.accel;
   b.speed_class = m.speed_class;
   b.loc = m.loc;
-  const bool jog = m.speed_class == SpeedClass::Jog;
-  b.rest = std::min(rest_speed(b.unit, jog, settings_), b.v_max);
-  if (q_.empty()) {
-    b.max_entry = b.rest;
-  } else {
-    const Block& p = q_.back();
-    Junction j;
-    j.u_in = p.unit;
-    j.u_out = b.unit;
-    j.u_in_long = incoming_direction(b.from, p.unit);
-    j.v_in = p.v_max;
-    j.v_out = b.v_max;
-    j.rest_in = p.rest;
-    j.rest_out = b.rest;
-    j.len_in = p.length;
-    j.len_out = b.length;
-    j.a_in = p.accel;
-    j.a_out = b.accel;
-    j.jog_in = p.speed_class == SpeedClass::Jog;
-    j.jog_out = jog;
-    j.punctuated = punctuated_;
-    b.max_entry = corner_speed(j, settings_);
-  }
+  b.punctuated = punctuated_;
   punctuated_ = false;
+  b.u_in_long = q_.empty() ? b.unit : incoming_direction(b.from, q_.back().unit);
+  set_speeds(b, q_.empty() ? nullptr : &q_.back());
   add(std::move(b));
+}
+
+void LookAheadPlanner::set_speeds(Block& b, const Block* prev) const {
+  b.v_max = std::min(b.v_commanded * override_, b.v_machine);
+  b.rest = std::min(rest_speed(b.unit, b.speed_class == SpeedClass::Jog, settings_), b.v_max);
+  if (!prev) {
+    b.max_entry = b.rest;  // from rest
+    return;
+  }
+  Junction j;
+  j.u_in = prev->unit;
+  j.u_out = b.unit;
+  j.u_in_long = b.u_in_long;
+  j.v_in = prev->v_max;
+  j.v_out = b.v_max;
+  j.rest_in = prev->rest;
+  j.rest_out = b.rest;
+  j.len_in = prev->length;
+  j.len_out = b.length;
+  j.a_in = prev->accel;
+  j.a_out = b.accel;
+  j.jog_in = prev->speed_class == SpeedClass::Jog;
+  j.jog_out = b.speed_class == SpeedClass::Jog;
+  j.punctuated = b.punctuated;
+  b.max_entry = corner_speed(j, settings_);
+}
+
+void LookAheadPlanner::feed_override(double factor) {
+  override_ = std::clamp(factor, 0.1, 2.0);
+  // Every held block gets its new speeds. When they are lower, the machine, already moving
+  // at the front's locked entry speed, can only slow down at its acceleration: the speed
+  // it can get down to by each block (`floor`) stays allowed there. The old plan was at or
+  // above that floor, so the floor is within every corner's old limit.
+  double floor = front_locked_ && !q_.empty() ? q_.front().entry : 0;
+  for (size_t k = 0; k < q_.size(); ++k) {
+    Block& b = q_[k];
+    const double old_max_entry = k == 0 ? b.entry : b.max_entry;
+    set_speeds(b, k == 0 || b.from_rest ? nullptr : &q_[k - 1]);
+    if (floor > 0) {
+      b.max_entry = std::max(b.max_entry, std::min(floor, old_max_entry));
+      b.v_max = std::max(b.v_max, b.max_entry);
+    }
+    floor = std::sqrt(std::max(0.0, floor * floor - 2 * b.accel * b.length));
+    b.back = -1;  // bounds may fall as well as rise: re-plan everything held
+  }
+  replan(0);
+  release();
+}
+
+void LookAheadPlanner::feedhold() {
+  if (held_) return;
+  held_ = true;
+  // From the speed the front is entered at, slow down as fast as each block allows. That is
+  // never faster than the plan anywhere (the plan cannot slow down faster), so every corner
+  // is passed within its limit.
+  double v = front_locked_ && !q_.empty() ? q_.front().entry : 0;
+  while (v > 0) {
+    Block& b = q_.front();
+    const double stop_at = v * v / (2 * b.accel);
+    b.entry = v;
+    b.v_max = v;               // slow down only
+    if (stop_at < b.length) {  // it stops inside this block: split the block there
+      Block rest = b;
+      b.to = b.from + b.unit * stop_at;
+      b.length = stop_at;
+      rest.from = b.to;
+      rest.length -= stop_at;
+      emit_front(0);
+      q_.push_front(std::move(rest));
+      break;
+    }
+    v = std::sqrt(std::max(0.0, v * v - 2 * b.accel * b.length));
+    emit_front(v);
+  }
+  // What is left starts from rest once resumed.
+  if (!q_.empty()) q_.front().from_rest = true;
+  front_locked_ = false;
+  held_length_ = 0;
+  for (size_t k = 1; k < q_.size(); ++k) held_length_ += q_[k].length;
+}
+
+void LookAheadPlanner::resume() {
+  if (!held_) return;
+  held_ = false;
+  feed_override(override_);  // re-plans what was held, the front from rest
 }
 
 // The direction from the path point at least min_distance back to `at` (SB3 measures
@@ -108,12 +174,18 @@ void LookAheadPlanner::add(Block b) {
          (trail_.size() >= 2 && travelled_ - trail_[1].second >= settings_.ramps.min_distance))
     trail_.pop_front();
 
-  stop_distance_ = std::max(stop_distance_, b.v_max * b.v_max / (2 * b.accel));
+  // The longest stop at the highest speed feed override could allow.
+  const double v_top = std::min(2 * b.v_commanded, b.v_machine);
+  stop_distance_ = std::max(stop_distance_, v_top * v_top / (2 * b.accel));
   if (!q_.empty()) held_length_ += b.length;
   q_.push_back(std::move(b));
   most_held_ = std::max(most_held_, q_.size());
   replan(0);  // streaming: the plan ends at rest after the last block held
+  release();
+}
 
+void LookAheadPlanner::release() {
+  if (held_) return;  // the machine waits at rest; moves keep arriving
   const size_t lookahead = static_cast<size_t>(settings_.planner.lookahead);
   while (q_.size() > 64 * lookahead || (q_.size() > lookahead && held_length_ >= stop_distance_))
     emit_front(q_[1].entry);
@@ -161,6 +233,7 @@ void LookAheadPlanner::emit_front(double exit) {
 }
 
 void LookAheadPlanner::stop() {
+  if (held_) return;  // the held moves wait for resume()
   if (!q_.empty()) {
     // The last block may end at its rest speed (SB3 stops from the ramp speed).
     replan(q_.back().rest);

@@ -50,14 +50,15 @@ PathLimits path_limits(const CanonMove& m, const Settings& s) {
   const std::array<double, 5> group_accel = {ramp_accel(rs.xy, rate), ramp_accel(rs.z, rate),
                                              ramp_accel(rs.a, rate), ramp_accel(rs.b, rate),
                                              ramp_accel(rs.c, rate)};
-  out.speed = limit_along(fractions, as_array(m.speeds));
   out.accel = limit_along(fractions, group_accel);
+  out.machine_speed = std::numeric_limits<double>::infinity();
   for (int i = 0; i < kAxisCount; ++i) {
     const double f = std::abs(delta[i]) / out.length;
     if (f <= 1e-12) continue;
-    out.speed = std::min(out.speed, s.axes[i].max_speed / f);
+    out.machine_speed = std::min(out.machine_speed, s.axes[i].max_speed / f);
     out.accel = std::min(out.accel, s.axes[i].max_accel / f);
   }
+  out.speed = std::min(limit_along(fractions, as_array(m.speeds)), out.machine_speed);
   return out;
 }
 

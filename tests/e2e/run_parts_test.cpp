@@ -109,6 +109,28 @@ TEST_P(PartRun, EndsOnTheLastCommandedPointToTheStep) {
   EXPECT_EQ(json::parse(e.out)["estimated_time_s"], j["estimated_time_s"]);
 }
 
+TEST(FeedOverride, FasterAndSlowerRunsStayWithinTheLimitsAndMatchTheirEstimates) {
+  double previous = 1e9;
+  for (int percent : {50, 100, 200}) {
+    SCOPED_TRACE(percent);
+    const std::string opt = fmt::format(" --feed-override {}", percent);
+    const Result r = gantry("run parts/demo.sbp --json" + opt);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json j = json::parse(r.out);
+    const double card_s = j["time_s"].get<double>();
+    EXPECT_LT(card_s, previous);  // a higher override is quicker
+    previous = card_s;
+    // At 200 % the moves run at the axes' max_speed: tick rounding of the step times reads
+    // as up to 0.01 % over it.
+    EXPECT_LE(j["max_velocity_ratio"].get<double>(), 1.0001);
+    EXPECT_LE(j["max_accel_ratio"].get<double>(), 1.001);
+    EXPECT_NEAR(j["estimated_time_s"].get<double>(), card_s, 0.01 * card_s);
+    const Result e = gantry("estimate parts/demo.sbp --json" + opt);
+    EXPECT_EQ(json::parse(e.out)["estimated_time_s"], j["estimated_time_s"]);
+  }
+  EXPECT_NE(gantry("run parts/demo.sbp --feed-override 5").exit_code, 0);  // below 10 %
+}
+
 TEST(Estimate, BadFileGetsItsErrorsAndNoEstimate) {
   const Result r = gantry("estimate tests/data/unknown_command.sbp");
   EXPECT_EQ(r.exit_code, 1);

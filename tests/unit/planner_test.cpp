@@ -307,8 +307,42 @@ class StressLimits : public ::testing::TestWithParam<Case> {
   }
 };
 
-// The planned segments, checked against the limits exactly: speeds, accelerations, every
-// corner's instant speed change, and reachability of each exit from its entry.
+// Planned segments checked against the limits exactly: speeds and accelerations along
+// each path and per axis, every corner's instant speed change (the stop at the end too),
+// reachability of each exit from its entry, and an unbroken path from `start`.
+void expect_within_limits(const std::vector<PlannedSegment>& segs, const Settings& s, Vec6 start) {
+  Vec6 prev_v = Vec6::Zero();
+  auto within_jump = [&](const Vec6& v, size_t k) {
+    for (int i = 0; i < kAxisCount; ++i)
+      ASSERT_LE(std::abs(v[i] - prev_v[i]),
+                s.planner.corner_jump * s.axes[i].max_speed * (1 + 1e-9) + 1e-12)
+          << "corner before segment " << k << ", axis " << i;
+  };
+  for (size_t k = 0; k < segs.size(); ++k) {
+    const PlannedSegment& seg = segs[k];
+    const Trapezoid& t = seg.profile;
+    ASSERT_EQ(seg.from, start) << k;
+    start = seg.to;
+    if (seg.dwell_s > 0) {
+      within_jump(Vec6::Zero(), k);
+      prev_v = Vec6::Zero();
+      continue;
+    }
+    const Vec6 u = (seg.to - seg.from) / t.length;
+    ASSERT_GT(t.v_cruise, 0) << k;
+    ASSERT_LE(std::abs(t.v_exit * t.v_exit - t.v_entry * t.v_entry),
+              2 * t.accel * t.length * (1 + 1e-9) + 1e-12)
+        << k;
+    within_jump(t.v_entry * u, k);
+    for (int i = 0; i < kAxisCount; ++i) {
+      ASSERT_LE(t.v_cruise * std::abs(u[i]), s.axes[i].max_speed * (1 + 1e-12)) << k;
+      ASSERT_LE(t.accel * std::abs(u[i]), s.axes[i].max_accel * (1 + 1e-12)) << k;
+    }
+    prev_v = t.v_exit * u;
+  }
+  within_jump(Vec6::Zero(), segs.size());
+}
+
 TEST_P(StressLimits, PlannedSegmentsKeepEveryLimit) {
   const Settings s = settings();
   for (const Stress& st : stress_paths(s)) {
@@ -318,30 +352,92 @@ TEST_P(StressLimits, PlannedSegmentsKeepEveryLimit) {
     for (const CanonMove& m : st.moves) p.move(m);
     p.flush();
     ASSERT_EQ(out.segs.size(), st.moves.size());
-    Vec6 prev_v = Vec6::Zero();
     for (size_t k = 0; k < out.segs.size(); ++k) {
-      const PlannedSegment& seg = out.segs[k];
-      const Trapezoid& t = seg.profile;
-      EXPECT_EQ(seg.from, st.moves[k].from);
-      EXPECT_EQ(seg.to, st.moves[k].to);
-      const Vec6 u = (seg.to - seg.from) / t.length;
+      EXPECT_EQ(out.segs[k].to, st.moves[k].to);
       const PathLimits lim = path_limits(st.moves[k], s);
-      ASSERT_LE(t.v_cruise, lim.speed * (1 + 1e-12)) << k;
-      ASSERT_LE(t.accel, lim.accel * (1 + 1e-12)) << k;
-      ASSERT_LE(std::abs(t.v_exit * t.v_exit - t.v_entry * t.v_entry),
-                2 * t.accel * t.length * (1 + 1e-9) + 1e-12)
-          << k;
-      for (int i = 0; i < kAxisCount; ++i) {
-        const double jump = s.planner.corner_jump * s.axes[i].max_speed;
-        ASSERT_LE(std::abs(t.v_entry * u[i] - prev_v[i]), jump * (1 + 1e-9) + 1e-12)
-            << "corner before segment " << k << ", axis " << i;
-        ASSERT_LE(t.v_cruise * std::abs(u[i]), s.axes[i].max_speed * (1 + 1e-12));
-        ASSERT_LE(t.accel * std::abs(u[i]), s.axes[i].max_accel * (1 + 1e-12));
-      }
-      prev_v = t.v_exit * u;
+      ASSERT_LE(out.segs[k].profile.v_cruise, lim.speed * (1 + 1e-12)) << k;
+      ASSERT_LE(out.segs[k].profile.accel, lim.accel * (1 + 1e-12)) << k;
     }
-    for (int i = 0; i < kAxisCount; ++i)  // the final stop
-      ASSERT_LE(std::abs(prev_v[i]), s.planner.corner_jump * s.axes[i].max_speed * (1 + 1e-9));
+    expect_within_limits(out.segs, s, Vec6::Zero());
+  }
+}
+
+// Feed hold at random points of each path, then resume: the machine comes to rest within
+// the limits, goes on from rest, and ends exactly where the path ends.
+TEST_P(StressLimits, FeedholdAndResumeAnywhereKeepTheLimitsAndThePath) {
+  Settings s = settings();
+  s.planner.lookahead = 2;  // moves go out early, so the hold finds the machine moving
+  std::mt19937 rng(3);
+  int moving_holds = 0;
+  for (const Stress& st : stress_paths(s)) {
+    SCOPED_TRACE(st.name);
+    std::uniform_int_distribution<size_t> when(1, st.moves.size() - 1);
+    const size_t hold_at = when(rng), resume_at = std::min(st.moves.size(), hold_at + 5);
+    SimCard card(s);
+    card.start(s.card.pacer_hz());
+    StepGenerator steps(s, card);
+    Collect planned;
+    struct Tee : SegmentSink {
+      SegmentSink *a, *b;
+      void segment(const PlannedSegment& x) override { a->segment(x), b->segment(x); }
+      void flush() override { a->flush(), b->flush(); }
+    } tee;
+    tee.a = &steps;
+    tee.b = &planned;
+    LookAheadPlanner p(s, tee);
+    for (size_t k = 0; k < st.moves.size(); ++k) {
+      if (k == hold_at) {
+        const size_t before = planned.segs.size();
+        p.feedhold();
+        EXPECT_TRUE(p.holding());
+        if (planned.segs.size() > before) {  // it was moving: it slowed to rest
+          ++moving_holds;
+          EXPECT_EQ(planned.segs.back().profile.v_exit, 0.0);
+        }
+      }
+      if (k == resume_at) p.resume();
+      p.move(st.moves[k]);
+    }
+    p.resume();
+    p.flush();
+    card.drain();
+    expect_within_limits(planned.segs, s, Vec6::Zero());
+    EXPECT_EQ(planned.segs.back().to, st.moves.back().to);
+    EXPECT_EQ(card.timing_violations(), 0u);
+    EXPECT_LE(card.kinematics().max_velocity_ratio(), 1.0001);
+    EXPECT_LE(card.kinematics().max_accel_ratio(), 1.001);
+    for (int i = 0; i < kAxisCount; ++i)
+      EXPECT_EQ(card.steps()[i], std::llround(st.moves.back().to[i] * s.axes[i].steps_per_unit));
+  }
+  if (GetParam().mode != PlannerMode::Stop && GetParam().corner_jump > 0) {  // else: corners stop
+    EXPECT_GE(moving_holds, 4);
+  }
+}
+
+// Feed override changes every move not yet sent, and never passes an axis's limit.
+TEST_P(StressLimits, FeedOverrideTakesEffectAtOnceWithinTheLimits) {
+  const Settings s = settings();
+  for (double factor : {0.1, 0.5, 1.5, 2.0}) {
+    for (const Stress& st : stress_paths(s)) {
+      SCOPED_TRACE(st.name);
+      SCOPED_TRACE(factor);
+      Collect out;
+      LookAheadPlanner p(s, out);
+      const size_t change_at = st.moves.size() / 2;
+      for (size_t k = 0; k < st.moves.size(); ++k) {
+        if (k == change_at) p.feed_override(factor);
+        p.move(st.moves[k]);
+      }
+      p.flush();
+      expect_within_limits(out.segs, s, Vec6::Zero());
+      // The last move runs at the new speed (or the machine's limit).
+      const PathLimits lim = path_limits(st.moves.back(), s);
+      EXPECT_LE(out.segs.back().profile.v_cruise,
+                std::min(lim.machine_speed,
+                         factor * nominal_path_speed(st.moves.back().to - st.moves.back().from,
+                                                     st.moves.back().speeds)) *
+                    (1 + 1e-12));
+    }
   }
 }
 

@@ -24,6 +24,7 @@ struct JobOptions {
   bool yes = false;                           // --yes: PAUSE continues, MSGBOX defaults
   bool operator_present = true;               // a person answers at a terminal
   std::size_t check_budget = 10'000'000;      // statements a check may run (loops end there)
+  double feed_override = 1;                   // 0.1 to 2: the speeds' factor (estimate too)
 };
 
 struct JobResult {

@@ -20,21 +20,40 @@ class LookAheadPlanner : public MotionSink {
   void move(const CanonMove& m) override;
   void flush() override;  // brings the machine to rest after the last move
 
+  // Feed override, 0.1 to 2 (10 % to 200 %) of the commanded speeds, never above an axis's
+  // max_speed. It applies at once to every move not yet sent.
+  void feed_override(double factor);
+  // Feed hold: the machine slows to rest along the path as fast as the accelerations allow
+  // from the speed it is at, and waits; moves keep arriving and are held. resume() goes on
+  // from that point, from rest, along the same path.
+  void feedhold();
+  void resume();
+  bool holding() const { return held_; }
+
   double planned_time() const { return planned_time_; }  // sum of segment durations, s
   size_t most_held() const { return most_held_; }        // the largest look-ahead used
 
  private:
   struct Block {
     Vec6 from, to, unit;
-    double length = 0, v_max = 0, accel = 0;
-    double rest = 0;       // the speed it may start or stop at
-    double max_entry = 0;  // the corner speed with the previous block (rest after a stop)
-    double back = 0;       // entry bound from the backward pass: can still stop in time
-    double entry = 0;      // planned entry speed
+    Vec6 u_in_long;  // SB3: the incoming direction over the minimum distance to check
+    double length = 0, accel = 0;
+    double v_commanded = 0;   // the file's speed along the path
+    double v_machine = 0;     // the axes' limit along the path
+    double v_max = 0;         // cruise limit: commanded x override, within the machine's
+    bool punctuated = false;  // an MS or JS before it
+    bool from_rest = false;   // starts from rest after a feed hold
+    double rest = 0;          // the speed it may start or stop at
+    double max_entry = 0;     // the corner speed with the previous block (rest after a stop)
+    double back = 0;          // entry bound from the backward pass: can still stop in time
+    double entry = 0;         // planned entry speed
     SpeedClass speed_class = SpeedClass::Move;
     SourceLoc loc;
   };
   void add(Block b);
+  // v_max, rest and the corner speed with `prev` (none: from rest) under the feed override.
+  void set_speeds(Block& b, const Block* prev) const;
+  void release();  // emits the front blocks beyond which enough path is held
   // Backward pass from the tail (which ends at `tail_exit`), forward pass over what changed.
   void replan(double tail_exit);
   void emit_front(double exit);
@@ -45,6 +64,8 @@ class LookAheadPlanner : public MotionSink {
   SegmentSink& out_;
   std::deque<Block> q_;
   bool punctuated_ = false;    // an MS or JS came since the last block
+  bool held_ = false;          // feed hold: nothing is sent until resume()
+  double override_ = 1;        // feed override factor
   bool front_locked_ = false;  // the front's entry is the exit of a block already emitted
   double held_length_ = 0;     // path length held after the front block
   double stop_distance_ = 0;   // the longest stopping distance of any block seen

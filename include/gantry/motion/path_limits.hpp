@@ -11,9 +11,10 @@ namespace gantry {
 // speeds, within the commanded speeds of the move's class, and (2) every axis within its
 // max_speed; likewise its acceleration.
 struct PathLimits {
-  double length = 0;  // units
-  double speed = 0;   // units/s along the path
-  double accel = 0;   // units/s^2 along the path
+  double length = 0;         // units
+  double speed = 0;          // units/s along the path: commanded, within the machine's limit
+  double machine_speed = 0;  // units/s: the axes' max_speed alone (feed override's ceiling)
+  double accel = 0;          // units/s^2 along the path
 };
 
 // The commanded speed along the path, before machine limits: what `gantry moves` reports.
