@@ -9,6 +9,8 @@ const char* kind_name(MoveKind k) {
       return "dwell";
     case MoveKind::Line:
       return "line";
+    case MoveKind::Arc:
+      return "arc";
     case MoveKind::Stop:
       return "stop";
   }

@@ -20,6 +20,7 @@
 #include <algorithm>  // min, max, clamp
 #include <cmath>      // sqrt
 
+#include "gantry/motion/arc_chords.hpp"    // arc_chords
 #include "gantry/motion/corner_speed.hpp"  // corner_speed, rest_speed
 #include "gantry/motion/path_limits.hpp"   // path_limits
 
@@ -52,6 +53,7 @@ void LookAheadPlanner::move(const CanonMove& m) {
     out_.segment(seg);
     return;
   }
+  if (m.kind == MoveKind::Arc) return arc(m);
   const PathLimits lim = path_limits(m, settings_);
   if (lim.length == 0) return;
   Block b;
@@ -69,6 +71,28 @@ void LookAheadPlanner::move(const CanonMove& m) {
   b.u_in_long = q_.empty() ? b.unit : incoming_direction(b.from, q_.back().unit);
   set_speeds(b, q_.empty() ? nullptr : &q_.back());
   add(std::move(b));
+}
+
+// Arcs run as chords. SB3 runs a full circle smaller than the small-circle diameter at the
+// ramp speed rather than the move speed.
+void LookAheadPlanner::arc(const CanonMove& m) {
+  CanonMove chord = m;
+  chord.kind = MoveKind::Line;
+  const bool small_circle = settings_.planner.mode == PlannerMode::SB3 &&
+                            std::abs(m.sweep) >= 2 * M_PI - 1e-9 &&
+                            2 * arc_radius(m) < settings_.ramps.small_circle;
+  if (small_circle) {
+    const GroupSpeeds& ramp = m.speed_class == SpeedClass::Jog ? settings_.ramps.jog_ramp_speed
+                                                               : settings_.ramps.move_ramp_speed;
+    chord.speeds = {std::min(m.speeds.xy, ramp.xy), std::min(m.speeds.z, ramp.z),
+                    std::min(m.speeds.a, ramp.a), std::min(m.speeds.b, ramp.b),
+                    std::min(m.speeds.c, ramp.c)};
+  }
+  for (const Vec6& p : arc_chords(m, settings_.planner.chord_tolerance)) {
+    chord.to = p;
+    move(chord);
+    chord.from = p;
+  }
 }
 
 void LookAheadPlanner::set_speeds(Block& b, const Block* prev) const {

@@ -200,6 +200,7 @@ void read_profile(TableReader root, Settings& s) {
                                : PlannerMode::SB3;
   pl.corner_jump = planner.number("corner_jump", {0, 1}, 0.11);
   pl.junction_deviation = planner.number("junction_deviation", {0, 1e3}, 0.002);
+  pl.chord_tolerance = planner.number("chord_tolerance", {0, 1e3, true}, 0.0005);
   pl.lookahead = planner.integer("lookahead", 2, 1 << 20, 1024);
   planner.finish();
 

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "gantry/motion/arc_chords.hpp"
 #include "gantry/motion/corner_speed.hpp"
 #include "gantry/motion/lookahead_planner.hpp"
 #include "gantry/motion/path_limits.hpp"
@@ -181,6 +182,47 @@ TEST(Sb3Ramps, AReversalAtTheRampSpeedStaysWithinTheCornerJump) {
   EXPECT_NEAR(junction_speed(plan(s, {vec(0), vec(5), vec(1)}), 0), 0.4, 1e-12);
   s.planner.corner_jump = 0.05;  // 0.4 in/s
   EXPECT_NEAR(junction_speed(plan(s, {vec(0), vec(5), vec(1)}), 0), 0.2, 1e-12);
+}
+
+TEST(Sb3Ramps, SmallCirclesRunAtTheRampSpeed) {
+  const Settings s = default_settings();
+  auto top_speed = [&](double diameter) {
+    CanonMove c = line(vec(5, 5), vec(5, 5), s);
+    c.kind = MoveKind::Arc;
+    c.center_x = 5 + diameter / 2;
+    c.center_y = 5;
+    c.sweep = 2 * M_PI;
+    Collect out;
+    LookAheadPlanner p(s, out);
+    p.move(c);
+    p.flush();
+    double top = 0;
+    for (const PlannedSegment& seg : out.segs) top = std::max(top, seg.profile.v_cruise);
+    EXPECT_EQ(out.segs.back().to, vec(5, 5));
+    return top;
+  };
+  EXPECT_LE(top_speed(0.2), 0.4 + 1e-12);  // below the 0.25 in small-circle diameter
+  EXPECT_GT(top_speed(0.3), 0.4);
+}
+
+TEST(ArcChords, EqualChordsWithinTheToleranceEndingExactlyAtTheEnd) {
+  const Settings s = default_settings();
+  CanonMove quarter = line(vec(2, 1, 0), vec(1, 2, -0.5), s);  // centre (1, 1), r = 1, helix
+  quarter.kind = MoveKind::Arc;
+  quarter.center_x = 1;
+  quarter.center_y = 1;
+  quarter.sweep = M_PI / 2;
+  const std::vector<Vec6> pts = arc_chords(quarter, 0.0005);
+  const double step = 2 * std::acos(1 - 0.0005);
+  EXPECT_EQ(pts.size(), static_cast<size_t>(std::ceil(M_PI / 2 / step)));
+  EXPECT_EQ(pts.back(), quarter.to);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    EXPECT_NEAR(std::hypot(pts[i][0] - 1, pts[i][1] - 1), 1, 1e-12);
+    EXPECT_NEAR(pts[i][2], -0.5 * static_cast<double>(i + 1) / pts.size(), 1e-12);  // helix
+  }
+  quarter.sweep = -3 * M_PI / 2;  // the long way round, clockwise
+  EXPECT_GT(arc_chords(quarter, 0.0005).size(), 2 * pts.size());
+  EXPECT_EQ(arc_chords(quarter, 10).size(), 3u);  // a coarse tolerance: quarter turns
 }
 
 // ---- junction and stop modes -------------------------------------------------------------
@@ -479,6 +521,62 @@ TEST_P(StressLimits, PlanningIsDeterministic) {
     EXPECT_EQ(a[k].profile.v_cruise, b[k].profile.v_cruise);
     EXPECT_EQ(a[k].profile.v_exit, b[k].profile.v_exit);
   }
+}
+
+// Semicircles of alternating sense as arc moves, from the origin.
+std::vector<CanonMove> tangent_arc_moves(const Settings& s) {
+  std::vector<CanonMove> out = {line(vec(0), vec(1, 8), s)};
+  for (int k = 0; k < 8; ++k) {
+    const double r = 0.05 + 0.2 * k;
+    CanonMove m = line(out.back().to, out.back().to + vec(2 * r, 0, -0.01), s);
+    m.kind = MoveKind::Arc;
+    m.center_x = m.from[0] + r;
+    m.center_y = m.from[1];
+    m.sweep = k % 2 ? M_PI : -M_PI;  // over the top, then under
+    out.push_back(m);
+  }
+  return out;
+}
+
+TEST_P(StressLimits, ArcsRunAsChordsWithinTheToleranceAndTheLimits) {
+  const Settings s = settings();
+  const std::vector<CanonMove> moves = tangent_arc_moves(s);
+  SimCard card(s);
+  card.start(s.card.pacer_hz());
+  StepGenerator steps(s, card);
+  Collect planned;
+  struct Tee : SegmentSink {
+    SegmentSink *a, *b;
+    void segment(const PlannedSegment& x) override { a->segment(x), b->segment(x); }
+    void flush() override { a->flush(), b->flush(); }
+  } tee;
+  tee.a = &steps;
+  tee.b = &planned;
+  LookAheadPlanner p(s, tee);
+  for (const CanonMove& m : moves) p.move(m);
+  p.flush();
+  card.drain();
+  expect_within_limits(planned.segs, s, Vec6::Zero());
+  // Every chord end lies on its arc; every chord's middle within the tolerance of it.
+  size_t k = 1;  // after the first line
+  for (size_t a = 1; a < moves.size(); ++a) {
+    const CanonMove& m = moves[a];
+    const double r = arc_radius(m);
+    for (; k < planned.segs.size() && planned.segs[k].from != m.to; ++k) {
+      const PlannedSegment& c = planned.segs[k];
+      const Vec6 mid = (c.from + c.to) / 2;
+      EXPECT_NEAR(std::hypot(c.to[0] - m.center_x, c.to[1] - m.center_y), r, 1e-9);
+      EXPECT_LE(r - std::hypot(mid[0] - m.center_x, mid[1] - m.center_y),
+                s.planner.chord_tolerance + 1e-12);
+      // Clockwise from the left end goes over the top; counter-clockwise, under.
+      EXPECT_GE((c.to[1] - m.center_y) * (m.sweep < 0 ? 1 : -1), -1e-9);
+    }
+  }
+  EXPECT_EQ(planned.segs.back().to, moves.back().to);
+  EXPECT_LE(card.kinematics().max_velocity_ratio(), 1.0001);
+  EXPECT_LE(card.kinematics().max_accel_ratio(), 1.001);
+  for (int i = 0; i < kAxisCount; ++i)
+    EXPECT_EQ(card.steps()[i], std::llround(moves.back().to[i] * s.axes[i].steps_per_unit));
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, StressLimits,

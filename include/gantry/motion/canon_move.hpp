@@ -7,9 +7,11 @@
 
 namespace gantry {
 
-// Line: a straight move. Dwell: a timed wait at rest. Stop: come to rest, then go on (MS and
-// JS punctuate the moves around them this way).
-enum class MoveKind { Line, Dwell, Stop };
+// Line: a straight move. Arc: a circular move in the XY plane about `center`, through
+// `sweep` radians (positive: counter-clockwise), the other axes moving in proportion (a
+// helix). Dwell: a timed wait at rest. Stop: come to rest, then go on (MS and JS punctuate
+// the moves around them this way).
+enum class MoveKind { Line, Arc, Dwell, Stop };
 
 // Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
 enum class SpeedClass { Move, Jog };
@@ -19,9 +21,11 @@ struct CanonMove {
   SpeedClass speed_class = SpeedClass::Move;
   Vec6 from = Vec6::Zero();
   Vec6 to = Vec6::Zero();
-  GroupSpeeds speeds;  // the class's speeds in force when the move was issued
-  double dwell_s = 0;  // Dwell: how long the machine waits, s
-  SourceLoc loc;       // the statement that asked for it
+  GroupSpeeds speeds;                 // the class's speeds in force when the move was issued
+  double center_x = 0, center_y = 0;  // Arc: the centre of the circle
+  double sweep = 0;                   // Arc: signed angle, radians; 2 pi is a full circle
+  double dwell_s = 0;                 // Dwell: how long the machine waits, s
+  SourceLoc loc;                      // the statement that asked for it
 };
 
 const char* kind_name(MoveKind k);

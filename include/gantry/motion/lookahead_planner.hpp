@@ -50,6 +50,7 @@ class LookAheadPlanner : public MotionSink {
     SpeedClass speed_class = SpeedClass::Move;
     SourceLoc loc;
   };
+  void arc(const CanonMove& m);
   void add(Block b);
   // v_max, rest and the corner speed with `prev` (none: from rest) under the feed override.
   void set_speeds(Block& b, const Block* prev) const;

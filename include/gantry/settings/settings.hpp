@@ -51,6 +51,7 @@ struct PlannerSettings {
   PlannerMode mode = PlannerMode::SB3;
   double corner_jump = 0.11;          // largest instant speed change, fraction of max_speed
   double junction_deviation = 0.002;  // junction mode: corner rounding the speed allows, units
+  double chord_tolerance = 0.0005;    // arcs run as chords at most this far from the arc, units
   int lookahead = 1024;               // moves planned ahead, at least
 };
 

@@ -1,0 +1,20 @@
+// Arcs as chords: the points a planner runs an arc through, within a chordal tolerance.
+#pragma once
+
+#include <vector>
+
+#include "gantry/motion/canon_move.hpp"  // CanonMove (Arc)
+
+namespace gantry {
+
+// The chord ends of `arc` after its start, the last one exactly arc.to. A chord across an
+// angle t of a circle of radius r strays from the arc by its sagitta r (1 - cos(t / 2)), so
+// chords of at most t = 2 acos(1 - tolerance / r) stay within `tolerance`; the sweep is cut
+// into equal chords no longer than that (at least one; four per full turn at the least, so
+// a coarse tolerance still gives a shape).
+std::vector<Vec6> arc_chords(const CanonMove& arc, double tolerance);
+
+// The arc's radius (from its centre to its start, in XY).
+double arc_radius(const CanonMove& arc);
+
+}  // namespace gantry
