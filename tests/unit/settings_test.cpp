@@ -210,6 +210,34 @@ TEST(DefaultProfile, Pins) {
 
 // ---- values that load
 
+TEST(DefaultProfile, Planner) {
+  const PlannerSettings p = default_settings().planner;
+  EXPECT_EQ(p.mode, PlannerMode::SB3);
+  EXPECT_DOUBLE_EQ(p.corner_jump, 0.11);
+  EXPECT_DOUBLE_EQ(p.junction_deviation, 0.002);
+  EXPECT_DOUBLE_EQ(p.chord_tolerance, 0.0005);
+  EXPECT_EQ(p.lookahead, 1024);
+}
+
+TEST(SettingsLoad, PlannerModesAndTheirErrors) {
+  EXPECT_EQ(load(set_key("planner", "mode", "\"junction\"").text).settings.planner.mode,
+            PlannerMode::Junction);
+  EXPECT_EQ(load(set_key("planner", "mode", "\"stop\"").text).settings.planner.mode,
+            PlannerMode::Stop);
+  const Edited e = set_key("planner", "mode", "\"grbl\"");
+  const SettingsLoad l = load(e.text);
+  ASSERT_EQ(l.errors.size(), 1u) << messages(l);
+  EXPECT_EQ(l.errors[0].message,
+            "planner.mode = \"grbl\" is not allowed; use one of \"sb3\", \"junction\", \"stop\"");
+  EXPECT_EQ(where(l.errors[0].loc), loc_at(e.line, 8));
+  const SettingsLoad jump = load(set_key("planner", "corner_jump", "1.5").text);
+  ASSERT_EQ(jump.errors.size(), 1u) << messages(jump);
+  EXPECT_EQ(jump.errors[0].message,
+            "planner.corner_jump = 1.5 is out of range; allowed: >= 0 and <= 1");
+  EXPECT_EQ(load(set_key("planner", "chord_tolerance", "0.0").text).errors.size(), 1u);
+  EXPECT_EQ(load(set_key("planner", "lookahead", "1").text).errors.size(), 1u);
+}
+
 TEST(SettingsLoad, MillimetreUnits) {
   const SettingsLoad l = load(set_key("", "units", "\"mm\"").text);
   ASSERT_TRUE(l.ok()) << messages(l);
