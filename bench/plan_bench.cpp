@@ -65,11 +65,13 @@ class NullSegments : public SegmentSink {
   std::size_t count = 0;
 };
 
-// Plans `pts` in `mode`; returns the machine time.
-double plan(const std::vector<Vec6>& pts, PlannerMode mode, std::size_t* held = nullptr) {
+// Plans `pts` in `mode` (with S-curve ramps of `jerk`, if above 0); returns the machine time.
+double plan(const std::vector<Vec6>& pts, PlannerMode mode, std::size_t* held = nullptr,
+            double jerk = 0) {
   static const Settings base = default_settings();
   Settings s = base;
   s.planner.mode = mode;
+  s.planner.jerk = jerk;
   NullSegments out;
   LookAheadPlanner planner(s, out);
   CanonMove m;
@@ -84,9 +86,10 @@ double plan(const std::vector<Vec6>& pts, PlannerMode mode, std::size_t* held = 
   return planner.planned_time();
 }
 
-void blocks_per_second(benchmark::State& state, const std::vector<Vec6>& pts, PlannerMode mode) {
+void blocks_per_second(benchmark::State& state, const std::vector<Vec6>& pts, PlannerMode mode,
+                       double jerk = 0) {
   std::size_t held = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(plan(pts, mode, &held));
+  for (auto _ : state) benchmark::DoNotOptimize(plan(pts, mode, &held, jerk));
   state.counters["blocks/s"] = benchmark::Counter(
       static_cast<double>(pts.size() - 1) * static_cast<double>(state.iterations()),
       benchmark::Counter::kIsRate);
@@ -105,24 +108,30 @@ void BM_PlanZigzagSb3(benchmark::State& st) {
 void BM_PlanZigzagJunction(benchmark::State& st) {
   blocks_per_second(st, zigzag_path(), PlannerMode::Junction);
 }
+void BM_PlanAdaptiveJunctionJerk200(benchmark::State& st) {
+  blocks_per_second(st, adaptive_path(), PlannerMode::Junction, 200);
+}
 BENCHMARK(BM_PlanAdaptiveSb3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanAdaptiveJunctionJerk200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanAdaptiveJunction)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanZigzagSb3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanZigzagJunction)->Unit(benchmark::kMillisecond);
 
 // Cycle time of the adaptive path: how many times faster than stopping at every move.
 void BM_CycleTimeVsStopping(benchmark::State& state) {
-  double stop = 0, sb3 = 0, junction = 0;
+  double stop = 0, sb3 = 0, junction = 0, jerk = 0;
   for (auto _ : state) {
     stop = plan(adaptive_path(), PlannerMode::Stop);
     sb3 = plan(adaptive_path(), PlannerMode::SB3);
     junction = plan(adaptive_path(), PlannerMode::Junction);
+    jerk = plan(adaptive_path(), PlannerMode::Junction, nullptr, 200);
   }
   state.counters["stop_s"] = stop;
   state.counters["sb3_s"] = sb3;
   state.counters["junction_s"] = junction;
   state.counters["sb3_x_faster"] = stop / sb3;
   state.counters["junction_x_faster"] = stop / junction;
+  state.counters["junction_jerk200_x_faster"] = stop / jerk;
 }
 BENCHMARK(BM_CycleTimeVsStopping)->Iterations(1)->Unit(benchmark::kMillisecond);
 

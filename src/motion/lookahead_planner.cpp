@@ -29,14 +29,14 @@ namespace {
 
 constexpr size_t kTrailPoints = 4096;  // path points kept for SB3's minimum distance to check
 
-double reach(double v, double accel, double length) {
-  return std::sqrt(v * v + 2 * accel * length);
-}
-
 }  // namespace
 
 LookAheadPlanner::LookAheadPlanner(const Settings& settings, SegmentSink& out)
     : settings_(settings), out_(out) {}
+
+double LookAheadPlanner::reach(double v, const Block& b) const {
+  return ramp_reach(v, b.length, b.accel, settings_.planner.jerk);
+}
 
 void LookAheadPlanner::move(const CanonMove& m) {
   if (m.kind == MoveKind::Stop) {  // the next corner ramps fully down and up again
@@ -135,7 +135,7 @@ void LookAheadPlanner::feed_override(double factor) {
       b.max_entry = std::max(b.max_entry, std::min(floor, old_max_entry));
       b.v_max = std::max(b.v_max, b.max_entry);
     }
-    floor = std::sqrt(std::max(0.0, floor * floor - 2 * b.accel * b.length));
+    floor = ramp_floor(floor, b.length, b.accel, settings_.planner.jerk);
     b.back = -1;  // bounds may fall as well as rise: re-plan everything held
   }
   replan(0);
@@ -145,13 +145,14 @@ void LookAheadPlanner::feed_override(double factor) {
 void LookAheadPlanner::feedhold() {
   if (held_) return;
   held_ = true;
-  // From the speed the front is entered at, slow down as fast as each block allows. That is
-  // never faster than the plan anywhere (the plan cannot slow down faster), so every corner
-  // is passed within its limit.
+  // From the speed the front is entered at, slow down as fast as each block allows, with
+  // linear ramps (the shortest stop; S-curve ramps would stretch it). That is never faster
+  // than the plan anywhere (the plan cannot slow down faster), so every corner is passed
+  // within its limit, and the machine is at rest before the moves held run out.
   double v = front_locked_ && !q_.empty() ? q_.front().entry : 0;
   while (v > 0) {
     Block& b = q_.front();
-    const double stop_at = v * v / (2 * b.accel);
+    const double stop_at = ramp_distance(v, 0, b.accel, 0);
     b.entry = v;
     b.v_max = v;               // slow down only
     if (stop_at < b.length) {  // it stops inside this block: split the block there
@@ -160,12 +161,12 @@ void LookAheadPlanner::feedhold() {
       b.length = stop_at;
       rest.from = b.to;
       rest.length -= stop_at;
-      emit_front(0);
+      emit_front(0, 0);
       q_.push_front(std::move(rest));
       break;
     }
-    v = std::sqrt(std::max(0.0, v * v - 2 * b.accel * b.length));
-    emit_front(v);
+    v = ramp_floor(v, b.length, b.accel, 0);
+    emit_front(v, 0);
   }
   // What is left starts from rest once resumed.
   if (!q_.empty()) q_.front().from_rest = true;
@@ -200,7 +201,8 @@ void LookAheadPlanner::add(Block b) {
 
   // The longest stop at the highest speed feed override could allow.
   const double v_top = std::min(2 * b.v_commanded, b.v_machine);
-  stop_distance_ = std::max(stop_distance_, v_top * v_top / (2 * b.accel));
+  stop_distance_ =
+      std::max(stop_distance_, ramp_distance(v_top, 0, b.accel, settings_.planner.jerk));
   if (!q_.empty()) held_length_ += b.length;
   q_.push_back(std::move(b));
   most_held_ = std::max(most_held_, q_.size());
@@ -222,7 +224,7 @@ void LookAheadPlanner::replan(double tail_exit) {
   size_t changed = n;
   for (size_t k = n; k-- > first;) {
     Block& b = q_[k];
-    const double bound = std::min(b.max_entry, reach(exit, b.accel, b.length));
+    const double bound = std::min(b.max_entry, reach(exit, b));
     if (k + 1 < n && bound == b.back) break;  // nothing before it changes either
     b.back = bound;
     exit = bound;
@@ -231,11 +233,11 @@ void LookAheadPlanner::replan(double tail_exit) {
   for (size_t k = changed; k < n; ++k) {
     Block& b = q_[k];
     const Block* p = k == 0 ? nullptr : &q_[k - 1];
-    b.entry = p ? std::min(b.back, reach(p->entry, p->accel, p->length)) : b.back;
+    b.entry = p ? std::min(b.back, reach(p->entry, *p)) : b.back;
   }
 }
 
-void LookAheadPlanner::emit_front(double exit) {
+void LookAheadPlanner::emit_front(double exit, double jerk) {
   Block& b = q_.front();
   PlannedSegment seg;
   seg.from = b.from;
@@ -246,7 +248,7 @@ void LookAheadPlanner::emit_front(double exit) {
   const bool steady = settings_.planner.mode == PlannerMode::SB3 &&
                       b.length < settings_.ramps.min_distance && steady_speed > 0;
   const double cruise = steady ? steady_speed : b.v_max;
-  seg.profile = Trapezoid::plan(b.length, b.entry, cruise, exit, b.accel);
+  seg.profile = Trapezoid::plan(b.length, b.entry, cruise, exit, b.accel, jerk);
   seg.speed_class = b.speed_class;
   seg.loc = b.loc;
   planned_time_ += seg.profile.duration();
@@ -263,7 +265,7 @@ void LookAheadPlanner::stop() {
     replan(q_.back().rest);
     while (q_.size() > 1) emit_front(q_[1].entry);
     const Block& last = q_.front();
-    emit_front(std::min(last.rest, reach(last.entry, last.accel, last.length)));
+    emit_front(std::min(last.rest, reach(last.entry, last)));
   }
   front_locked_ = false;
   held_length_ = 0;

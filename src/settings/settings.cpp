@@ -201,6 +201,7 @@ void read_profile(TableReader root, Settings& s) {
   pl.corner_jump = planner.number("corner_jump", {0, 1}, 0.11);
   pl.junction_deviation = planner.number("junction_deviation", {0, 1e3}, 0.002);
   pl.chord_tolerance = planner.number("chord_tolerance", {0, 1e3, true}, 0.0005);
+  pl.jerk = planner.number("jerk", {0, 1e9}, 0);
   pl.lookahead = planner.integer("lookahead", 2, 1 << 20, 1024);
   planner.finish();
 

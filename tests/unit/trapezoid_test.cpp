@@ -523,3 +523,60 @@ TEST(NominalPathSpeed, AgreesWithPathLimitsWhenNoAxisLimitBinds) {
 
 }  // namespace
 }  // namespace gantry
+
+namespace gantry {
+namespace {
+
+// S-curve ramps: the speed is continuous, the acceleration within a and continuous (0 at
+// the ends of each ramp), the jerk within j; time_at inverts distance_at.
+struct SCase {
+  double length, v_entry, v_max, v_exit, accel, jerk;
+};
+
+class SCurveProfile : public ::testing::TestWithParam<SCase> {};
+
+TEST_P(SCurveProfile, AccelerationAndJerkStayWithinTheirLimits) {
+  const SCase c = GetParam();
+  const Trapezoid p = Trapezoid::plan(c.length, c.v_entry, c.v_max, c.v_exit, c.accel, c.jerk);
+  EXPECT_NEAR(p.s_accel + p.s_cruise + ramp_distance(p.v_cruise, p.v_exit, p.accel, p.jerk),
+              c.length, 1e-9);
+  EXPECT_LE(p.v_cruise, c.v_max + 1e-12);
+  EXPECT_NEAR(p.distance_at(p.duration()), c.length, 1e-9);
+  const int n = 20000;
+  const double dt = p.duration() / n;
+  double prev_a = 0;
+  for (int i = 1; i < n; ++i) {
+    const double t = i * dt;
+    const double a = (p.speed_at(t + dt / 2) - p.speed_at(t - dt / 2)) / dt;
+    ASSERT_LE(std::abs(a), c.accel * (1 + 1e-3)) << t;
+    if (i > 1) {
+      ASSERT_LE(std::abs(a - prev_a) / dt, c.jerk * 1.01) << t;
+    }
+    prev_a = a;
+    const double s = p.distance_at(t);
+    ASSERT_NEAR(p.time_at(s), t, 1e-9) << t;
+  }
+  EXPECT_NEAR(p.speed_at(p.t_accel * 0.999), p.v_cruise, 1e-3 * p.v_cruise + 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SCurveProfile,
+    ::testing::Values(SCase{2.0, 0, 2.0, 0, 14, 200},        // reaches cruise, accel-limited
+                      SCase{2.0, 0, 2.0, 0, 14, 20},         // jerk-limited ramps
+                      SCase{0.05, 0, 2.0, 0, 14, 200},       // no cruise
+                      SCase{1.0, 0.4, 3.0, 1.2, 14, 500},    // moving entry and exit
+                      SCase{0.3, 1.5, 1.5, 0.2, 10, 300}));  // slowing only
+
+TEST(RampHelpers, ReachAndFloorInvertTheRampDistance) {
+  for (double j : {0.0, 50.0, 500.0}) {
+    const double v = ramp_reach(0.4, 0.3, 14, j);
+    EXPECT_NEAR(ramp_distance(0.4, v, 14, j), 0.3, 1e-9) << j;
+    const double w = ramp_floor(2.0, 0.05, 14, j);
+    EXPECT_NEAR(ramp_distance(w, 2.0, 14, j), 0.05, 1e-9) << j;
+    EXPECT_EQ(ramp_floor(0.5, 10, 14, j), 0.0);  // room to stop
+  }
+  EXPECT_DOUBLE_EQ(ramp_reach(0, 0.5, 14, 0), std::sqrt(14.0));
+}
+
+}  // namespace
+}  // namespace gantry

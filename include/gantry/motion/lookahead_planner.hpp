@@ -55,9 +55,12 @@ class LookAheadPlanner : public MotionSink {
   // v_max, rest and the corner speed with `prev` (none: from rest) under the feed override.
   void set_speeds(Block& b, const Block* prev) const;
   void release();  // emits the front blocks beyond which enough path is held
+  double reach(double v, const Block& b) const;  // the speed reachable from v over b
   // Backward pass from the tail (which ends at `tail_exit`), forward pass over what changed.
   void replan(double tail_exit);
-  void emit_front(double exit);
+  // Sends the front block to `exit` with ramps of `jerk` (the profile's, unless a hold).
+  void emit_front(double exit) { emit_front(exit, settings_.planner.jerk); }
+  void emit_front(double exit, double jerk);
   void stop();  // plans to rest after the last block and emits everything
   Vec6 incoming_direction(const Vec6& at, const Vec6& fallback) const;
 

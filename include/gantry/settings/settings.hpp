@@ -52,6 +52,7 @@ struct PlannerSettings {
   double corner_jump = 0.11;          // largest instant speed change, fraction of max_speed
   double junction_deviation = 0.002;  // junction mode: corner rounding the speed allows, units
   double chord_tolerance = 0.0005;    // arcs run as chords at most this far from the arc, units
+  double jerk = 0;                    // S-curve ramps within this jerk, units/s^3; 0: linear
   int lookahead = 1024;               // moves planned ahead, at least
 };
 
