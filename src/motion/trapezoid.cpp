@@ -26,18 +26,19 @@ double smooth_speed(double u, double dv, double x) {
   return u + dv * x * x * (3 - 2 * x);
 }
 
-// The time in [0, T] at which a ramp from u by dv has covered s: Newton from the linear-ramp
-// guess, kept inside a shrinking bracket (the distance is monotone in time).
+// The time in [0, T] at which a ramp from u by dv has covered s: Newton from the middle,
+// kept inside a shrinking bracket (the distance rises with time), bisecting where Newton
+// would leave it (near a start from rest the speed, Newton's slope, is nearly 0).
 double smooth_time_at(double u, double dv, double T, double s) {
   double lo = 0, hi = T, t = T / 2;
-  for (int i = 0; i < 60; ++i) {
+  for (int i = 0; i < 200 && hi - lo > 1e-14 * T; ++i) {
     const double f = smooth_distance(u, dv, T, t / T) - s;
-    if (std::abs(f) <= 1e-13 * std::max(1.0, s)) break;
+    if (f == 0) return t;
     (f < 0 ? lo : hi) = t;
     const double v = smooth_speed(u, dv, t / T);
-    const double next = v > 0 ? t - f / v : (lo + hi) / 2;
+    const double next = v > 0 ? t - f / v : lo;
+    if (next > lo && next < hi && std::abs(next - t) <= 1e-15 * T) return next;
     t = next > lo && next < hi ? next : (lo + hi) / 2;
-    if (hi - lo < 1e-15 * std::max(1.0, T)) break;
   }
   return t;
 }
@@ -150,14 +151,14 @@ Trapezoid Trapezoid::plan(double length, double v_entry, double v_max, double v_
 
 double Trapezoid::distance_at(double t) const {
   t = std::clamp(t, 0.0, duration());
-  if (t <= t_accel) {
+  if (t <= t_accel && t_accel > 0) {
     if (jerk > 0) return smooth_distance(v_entry, v_cruise - v_entry, t_accel, t / t_accel);
     return v_entry * t + accel * t * t / 2;
   }
   t -= t_accel;
   if (t <= t_cruise) return s_accel + v_cruise * t;
   t -= t_cruise;
-  if (jerk > 0)
+  if (jerk > 0 && t_decel > 0)
     return std::min(length, s_accel + s_cruise +
                                 smooth_distance(v_cruise, v_exit - v_cruise, t_decel, t / t_decel));
   return std::min(length, s_accel + s_cruise + v_cruise * t - accel * t * t / 2);
@@ -188,14 +189,15 @@ double Trapezoid::time_at(double s) const {
 
 double Trapezoid::speed_at(double t) const {
   t = std::clamp(t, 0.0, duration());
-  if (t <= t_accel) {
+  if (t <= t_accel && t_accel > 0) {
     if (jerk > 0) return smooth_speed(v_entry, v_cruise - v_entry, t / t_accel);
     return v_entry + accel * t;
   }
   t -= t_accel;
   if (t <= t_cruise) return v_cruise;
   t -= t_cruise;
-  if (jerk > 0) return smooth_speed(v_cruise, v_exit - v_cruise, t / t_decel);
+  if (jerk > 0)
+    return t_decel > 0 ? smooth_speed(v_cruise, v_exit - v_cruise, t / t_decel) : v_exit;
   return std::max(0.0, v_cruise - accel * t);
 }
 
