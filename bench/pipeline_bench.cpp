@@ -96,6 +96,9 @@ class DiscardCard : public Card {
   void write(std::span<const std::uint32_t> w) override { ticks_ += w.size(); }
   void drain() override {}
   std::uint64_t ticks_played() const override { return ticks_; }
+  void stop(std::uint32_t) override {}
+  std::uint32_t inputs() const override { return 0; }
+  CardFault fault() const override { return CardFault::None; }
 
  private:
   std::uint64_t ticks_ = 0;

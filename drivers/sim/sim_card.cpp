@@ -32,12 +32,20 @@ SimCard::SimCard(const Settings& settings, bool realtime)
 }
 
 void SimCard::start(double pacer_hz) {
+  stopped_ = false;
+  fault_ = CardFault::None;
   tick_s_ = 1.0 / pacer_hz;
   monitor_ = KinematicsMonitor(limits_, tick_s_);
   wall_start_ = std::chrono::steady_clock::now();
 }
 
+void SimCard::stop(std::uint32_t idle_word) {
+  stopped_ = true;
+  if (idle_word != prev_) decode(idle_word);
+}
+
 void SimCard::write(std::span<const std::uint32_t> words) {
+  if (stopped_ || fault_ != CardFault::None) return;
   for (std::uint32_t w : words) {
     if (w != prev_) decode(w);
     ++tick_;

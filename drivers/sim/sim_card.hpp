@@ -33,7 +33,10 @@ class SimCard : public Card {
   void start(double pacer_hz) override;
   void write(std::span<const std::uint32_t> words) override;
   void drain() override {}  // virtual time: every word has played when write returns
+  void stop(std::uint32_t idle_word) override;
   std::uint64_t ticks_played() const override { return tick_; }
+  std::uint32_t inputs() const override { return inputs_; }
+  CardFault fault() const override { return fault_; }
 
   const Steps6& steps() const { return steps_; }  // decoded from the step and dir lines
   double time_s() const { return static_cast<double>(tick_) * tick_s_; }
@@ -52,6 +55,9 @@ class SimCard : public Card {
   double tick_s_ = 0;
   std::uint64_t tick_ = 0;
   std::uint32_t prev_ = 0;
+  std::uint32_t inputs_ = 0;
+  CardFault fault_ = CardFault::None;
+  bool stopped_ = false;
   Steps6 steps_{};
   std::array<std::int64_t, kAxisCount> pulse_start_{};
   std::array<std::int64_t, kAxisCount> last_dir_change_{};

@@ -36,6 +36,9 @@ class RecordingCard : public Card {
   }
   void drain() override {}
   std::uint64_t ticks_played() const override { return words_.size(); }
+  void stop(std::uint32_t) override {}
+  std::uint32_t inputs() const override { return 0; }
+  CardFault fault() const override { return CardFault::None; }
 
   const std::vector<std::uint32_t>& words() const { return words_; }
   int writes() const { return writes_; }
