@@ -207,7 +207,7 @@ void read_profile(TableReader root, Settings& s) {
 
   TableReader card = root.table("card");
   CardSettings& c = s.card;
-  c.type = card.choice("type", {"sim"}, "sim");
+  c.type = card.choice("type", {"sim", "pci7200", "gpiod"}, "sim");
   c.clock_hz = card.number("clock_hz", {1e3, 1e9}, 4e6);
   c.pacer_divisor = card.integer("pacer_divisor", 2, 65535, 20);
   c.step_pulse_us = card.number("step_pulse_us", {0, 1e4, true}, 5);
@@ -225,6 +225,28 @@ void read_profile(TableReader root, Settings& s) {
     p.finish();
   }
   pins.finish();
+
+  TableReader outputs = root.table("outputs");
+  OutputSettings& o = s.outputs;
+  o.charge_pump_bit = outputs.integer("charge_pump_bit", -1, 31, 16);
+  o.charge_pump_hz = outputs.number("charge_pump_hz", {0, 1e6, true}, 10000);
+  o.spindle_bit = outputs.integer("spindle_bit", -1, 31, 17);
+  outputs.finish();
+
+  TableReader inputs = root.table("inputs");
+  InputSettings& in = s.inputs;
+  in.estop_bit = inputs.integer("estop_bit", -1, 31, 0);
+  in.estop_active_low = inputs.boolean("estop_active_low", true);
+  in.probe_bit = inputs.integer("probe_bit", -1, 31, 1);
+  in.limits_active_low = inputs.boolean("limits_active_low", false);
+  for (int i = 0; i < kAxisCount; ++i) {
+    TableReader ax = inputs.table(std::string(1, kAxisLetters[i]));
+    in.min_bit[i] = ax.integer("min_bit", -1, 31, -1);
+    in.max_bit[i] = ax.integer("max_bit", -1, 31, -1);
+    in.home_bit[i] = ax.integer("home_bit", -1, 31, -1);
+    ax.finish();
+  }
+  inputs.finish();
   root.finish();
 }
 
@@ -256,6 +278,28 @@ void check_consistency(const Settings& s, const std::string& origin,
         err(fmt::format("pins.{}: output bit {} is already used by another pin", L, bit));
       used |= 1u << bit;
     }
+  }
+  for (auto [name, bit] : {std::pair{"charge_pump_bit", s.outputs.charge_pump_bit},
+                           std::pair{"spindle_bit", s.outputs.spindle_bit}}) {
+    if (bit < 0) continue;
+    if (used & (1u << bit))
+      err(fmt::format("outputs.{}: output bit {} is already used by another pin", name, bit));
+    used |= 1u << bit;
+  }
+  std::uint32_t inputs_used = 0;
+  auto input = [&](const std::string& name, int bit) {
+    if (bit < 0) return;
+    if (inputs_used & (1u << bit))
+      err(fmt::format("inputs.{}: input bit {} is already used by another input", name, bit));
+    inputs_used |= 1u << bit;
+  };
+  input("estop_bit", s.inputs.estop_bit);
+  input("probe_bit", s.inputs.probe_bit);
+  for (int i = 0; i < kAxisCount; ++i) {
+    const std::string axis(1, kAxisLetters[i]);
+    input(axis + ".min_bit", s.inputs.min_bit[i]);
+    input(axis + ".max_bit", s.inputs.max_bit[i]);
+    input(axis + ".home_bit", s.inputs.home_bit[i]);
   }
   auto check_group = [&](const char* what, const GroupSpeeds& g) {
     const double xy_limit = std::min(s.axes[0].max_speed, s.axes[1].max_speed);

@@ -5,6 +5,8 @@
 #include <cmath>      // llround, ceil
 #include <limits>     // numeric_limits
 
+#include <fmt/format.h>  // the fault message
+
 namespace gantry {
 
 StepTiming StepTiming::from(const CardSettings& card) {
@@ -30,9 +32,58 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
   pulse_end_.fill(0);
   level_word_ = pins_.idle_word();
   block_.reserve(block_words_);
+  if (settings.outputs.charge_pump_bit >= 0) {
+    pump_mask_ = 1u << settings.outputs.charge_pump_bit;
+    pump_half_ticks_ = std::max<std::int64_t>(
+        1, std::llround(settings.card.pacer_hz() / (2 * settings.outputs.charge_pump_hz)));
+  }
+  if (settings.outputs.spindle_bit >= 0) spindle_mask_ = 1u << settings.outputs.spindle_bit;
+  step_log_.resize(kStepLogSize);
+}
+
+void StepGenerator::set_spindle(bool on) {
+  level_word_ = on ? level_word_ | spindle_mask_ : level_word_ & ~spindle_mask_;
+}
+
+Steps6 StepGenerator::played_position() const {
+  const std::uint64_t played = card_.ticks_played();
+  Steps6 p = confirmed_;
+  for (std::size_t k = log_begin_; k != log_end_; k = (k + 1) % step_log_.size()) {
+    const StepRecord& r = step_log_[k];
+    if (static_cast<std::uint64_t>(r.tick) >= played) break;
+    p[r.axis] += r.delta;
+  }
+  return p;
+}
+
+// After each block the card has played up to ticks_played(): steps before it are confirmed.
+// A fault stops everything: the rest of the job is dropped, and the error names where the
+// tool stopped, counted from the pulses the card actually played.
+void StepGenerator::after_write() {
+  const std::uint64_t played = card_.ticks_played();
+  while (log_begin_ != log_end_ &&
+         static_cast<std::uint64_t>(step_log_[log_begin_].tick) < played) {
+    confirmed_[step_log_[log_begin_].axis] += step_log_[log_begin_].delta;
+    log_begin_ = (log_begin_ + 1) % step_log_.size();
+  }
+  const CardFault f = card_.fault();
+  if (f == CardFault::None || faulted_) return;
+  faulted_ = true;
+  const Steps6 at = played_position();
+  std::string where;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (at[i] != 0 || i < 3)
+      where += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'),
+                           static_cast<double>(at[i]) / steps_per_unit_[i]);
+  throw GantryError(Diagnostic{
+      current_loc_, Severity::Error,
+      fmt::format("{}: the card stopped at {:.4f} s; the tool is at{} (the pulses played)",
+                  fault_name(f), static_cast<double>(played) * timing_.tick_s, where)});
 }
 
 void StepGenerator::segment(const PlannedSegment& seg) {
+  if (faulted_) return;
+  current_loc_ = seg.loc;
   const Trapezoid& p = seg.profile;
   const std::int64_t t0 = segment_end_;
   std::int64_t end = t0 + std::llround((p.duration() + seg.dwell_s) / timing_.tick_s);
@@ -74,6 +125,7 @@ void StepGenerator::segment(const PlannedSegment& seg) {
 }
 
 void StepGenerator::flush() {
+  if (faulted_) return;
   std::int64_t end = segment_end_;
   for (std::int64_t pe : pulse_end_) end = std::max(end, pe);
   emit_until(end);
@@ -86,6 +138,7 @@ void StepGenerator::flush() {
   if (!block_.empty()) {
     card_.write(block_);
     block_.clear();
+    after_write();
   }
 }
 
@@ -97,6 +150,13 @@ void StepGenerator::apply(const Event& e) {
   }
   pulse_end_[e.axis] = e.tick + timing_.pulse_ticks;
   position_[e.axis] += e.positive ? 1 : -1;
+  const std::size_t next = (log_end_ + 1) % step_log_.size();
+  if (next == log_begin_) {  // full: the oldest step is taken as played (see kStepLogSize)
+    confirmed_[step_log_[log_begin_].axis] += step_log_[log_begin_].delta;
+    log_begin_ = (log_begin_ + 1) % step_log_.size();
+  }
+  step_log_[log_end_] = {e.tick, e.axis, e.positive ? 1 : -1};
+  log_end_ = next;
 }
 
 std::uint32_t StepGenerator::word_at(std::int64_t tick) const {
@@ -117,15 +177,26 @@ void StepGenerator::emit_until(std::int64_t tick) {
   }
 }
 
+// `count` words from cursor_ on. The charge pump's bit flips every pump_half_ticks_ ticks
+// (by the tick's own number, so the square wave is unbroken across runs and blocks).
 void StepGenerator::write_run(std::uint32_t word, std::int64_t count) {
+  std::int64_t tick = cursor_;
   while (count > 0) {
     const auto room = static_cast<std::int64_t>(block_words_ - block_.size());
-    const std::int64_t n = std::min(room, count);
-    block_.insert(block_.end(), static_cast<std::size_t>(n), word);
+    std::int64_t n = std::min(room, count);
+    std::uint32_t w = word;
+    if (pump_mask_) {
+      const std::int64_t phase = tick / pump_half_ticks_;
+      n = std::min(n, (phase + 1) * pump_half_ticks_ - tick);
+      if (phase & 1) w |= pump_mask_;
+    }
+    block_.insert(block_.end(), static_cast<std::size_t>(n), w);
     count -= n;
+    tick += n;
     if (block_.size() == block_words_) {
       card_.write(block_);
       block_.clear();
+      after_write();
     }
   }
 }

@@ -322,7 +322,8 @@ TEST(SettingsLoad, NumberForAChoice) {
   const Edited e = set_key("card", "type", "1");
   const SettingsLoad l = load(e.text);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
-  EXPECT_EQ(l.errors[0].message, "card.type must be a string, one of \"sim\"");
+  EXPECT_EQ(l.errors[0].message,
+            "card.type must be a string, one of \"sim\", \"pci7200\", \"gpiod\"");
   EXPECT_EQ(where(l.errors[0].loc), loc_at(e.line, 8));
 }
 

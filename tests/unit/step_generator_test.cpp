@@ -337,9 +337,16 @@ TEST(StepTiming, FollowsThePacerRate) {
 // ---------------------------------------------------------------------------------------
 // Single segments.
 
+// Step and direction lines only; the other outputs have their own tests below.
+Settings steps_only() {
+  Settings s = default_settings();
+  s.outputs.charge_pump_bit = -1;
+  return s;
+}
+
 class StepGeneratorTest : public ::testing::Test {
  protected:
-  Settings settings_ = default_settings();
+  Settings settings_ = steps_only();
   RecordingCard card_;
 
   double spu(int axis) const { return settings_.axes[axis].steps_per_unit; }
@@ -709,6 +716,7 @@ struct SequenceRun {
 
 SequenceRun run_sequence(const SequenceCase& c) {
   SequenceRun r;
+  r.settings.outputs.charge_pump_bit = -1;  // step and direction lines only
   r.settings.card.step_pulse_us = c.pulse_us;
   r.settings.card.dir_setup_us = c.dir_setup_us;
   for (int i = 0; i < kAxisCount; i += 2) r.settings.pins[i].invert_dir = c.invert_dir;
@@ -837,6 +845,88 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(SequenceCase{1, 5, 5, false, false}, SequenceCase{2, 5, 5, false, false},
                       SequenceCase{3, 5, 0, false, false}, SequenceCase{4, 10, 15, false, false},
                       SequenceCase{5, 7, 11, true, true}, SequenceCase{6, 5, 5, true, false}));
+
+// ---------------------------------------------------------------------------------------
+// The other outputs, and faults.
+
+TEST(ChargePump, SquareWaveAtItsRateUnbrokenAcrossBlocksWhilePulsesFlow) {
+  Settings s = default_settings();  // bit 16 at 10 kHz on the 200 kHz pacer: 10 ticks each
+  RecordingCard card;
+  StepGenerator gen(s, card, /*block_words=*/7);  // runs and blocks cut across the wave
+  gen.segment(rest_to_rest(Vec6::Zero(), vec(0.05), 1.0));
+  gen.flush();
+  const auto& w = card.words();
+  ASSERT_GT(w.size(), 1000u);
+  for (std::size_t t = 0; t < w.size(); ++t)
+    ASSERT_EQ((w[t] >> 16) & 1u, (t / 10) & 1u) << "tick " << t;
+  EXPECT_EQ(decode(w, PinMap::from(s.pins)).axes[0].net,
+            target_steps(0.05, s.axes[0].steps_per_unit));
+}
+
+TEST(SpindleOutput, FollowsSetSpindleFromTheNextWord) {
+  Settings s = steps_only();
+  RecordingCard card;
+  StepGenerator gen(s, card);
+  gen.segment(rest_to_rest(Vec6::Zero(), vec(0.01), 1.0));
+  gen.set_spindle(true);
+  gen.segment(rest_to_rest(vec(0.01), vec(0.02), 1.0));
+  gen.set_spindle(false);
+  gen.segment(rest_to_rest(vec(0.02), vec(0.03), 1.0));
+  gen.flush();
+  std::vector<int> changes;  // ticks where bit 17 changes
+  for (std::size_t t = 1; t < card.words().size(); ++t)
+    if (((card.words()[t] ^ card.words()[t - 1]) >> 17) & 1u)
+      changes.push_back(static_cast<int>(t));
+  ASSERT_EQ(changes.size(), 2u);
+  EXPECT_EQ((card.words()[0] >> 17) & 1u, 0u);
+}
+
+// A card that plays words until a given tick, then reports a fault and plays no more.
+class FaultAtCard : public RecordingCard {
+ public:
+  explicit FaultAtCard(std::uint64_t at) : at_(at) {}
+  void write(std::span<const std::uint32_t> words) override {
+    if (fault_ != CardFault::None) return;
+    const std::uint64_t room = at_ - played();
+    RecordingCard::write(words.first(std::min<std::uint64_t>(room, words.size())));
+    if (played() >= at_) fault_ = CardFault::EStop;
+  }
+  std::uint64_t ticks_played() const override { return played(); }
+  CardFault fault() const override { return fault_; }
+
+ private:
+  std::uint64_t played() const { return RecordingCard::ticks_played(); }
+  std::uint64_t at_;
+  CardFault fault_ = CardFault::None;
+};
+
+TEST(CardFaults, AFaultStopsGenerationAndThePositionIsThePulsesPlayed) {
+  Settings s = steps_only();
+  for (std::uint64_t at : {1000u, 4096u, 4097u, 33333u}) {
+    SCOPED_TRACE(at);
+    FaultAtCard card(at);
+    StepGenerator gen(s, card, 512);
+    PlannedSegment seg = rest_to_rest(Vec6::Zero(), vec(0.5, -0.25, 0.1), 2.0);
+    seg.loc = SourceLoc{std::make_shared<const std::string>("part.sbp"), 7, 1};
+    std::string message;
+    try {
+      gen.segment(seg);
+      gen.flush();
+    } catch (const GantryError& e) {
+      message = format(e.diagnostic());
+    }
+    EXPECT_NE(message.find("part.sbp:7:1: error: E-stop: the card stopped at"), std::string::npos)
+        << message;
+    EXPECT_TRUE(gen.faulted());
+    EXPECT_EQ(card.words().size(), at);
+    const Trace tr = decode(card.words(), PinMap::from(s.pins));
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(gen.played_position()[i], tr.axes[i].net) << i;
+    EXPECT_LT(std::abs(gen.played_position()[0]), target_steps(0.5, s.axes[0].steps_per_unit));
+    gen.segment(seg);  // nothing more reaches the card, and no second error
+    gen.flush();
+    EXPECT_EQ(card.words().size(), at);
+  }
+}
 
 }  // namespace
 }  // namespace gantry

@@ -63,8 +63,25 @@ struct PinSettings {  // one axis's bits in the card's 32-bit output word
   bool step_active_low = false;  // pulse goes low (negative-edge drives)
 };
 
+// Other bits of the output word. -1: not wired.
+struct OutputSettings {
+  int charge_pump_bit = 16;       // a square wave while the card plays: drives stay enabled
+  double charge_pump_hz = 10000;  // only while pulses flow (WinCNC's `watch=` watchdog)
+  int spindle_bit = 17;           // on while the spindle runs
+};
+
+// Bits of the card's 32-bit input word. -1: not wired. A switch is "active" when its bit
+// reads 1, or 0 for the active-low ones (normally-closed E-stop chains read 0 when broken).
+struct InputSettings {
+  int estop_bit = 0;
+  bool estop_active_low = true;
+  int probe_bit = 1;
+  std::array<int, kAxisCount> min_bit{}, max_bit{}, home_bit{};  // limit and proximity switches
+  bool limits_active_low = false;
+};
+
 struct CardSettings {
-  std::string type = "sim";
+  std::string type = "sim";     // "sim", "pci7200", "gpiod"
   double clock_hz = 4'000'000;  // PCI-7200 8254 timer clock
   int pacer_divisor = 20;       // pacer = clock / divisor
   double step_pulse_us = 5;
@@ -83,6 +100,8 @@ struct Settings {
   PlannerSettings planner;
   CardSettings card;
   std::array<PinSettings, kAxisCount> pins{};
+  OutputSettings outputs;
+  InputSettings inputs;
 };
 
 // The result of loading a profile: settings, or every problem found in it.

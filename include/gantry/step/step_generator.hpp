@@ -40,7 +40,13 @@ class StepGenerator : public SegmentSink {
   void flush() override;  // plays out every pending pulse and hands the last block to the card
 
   const Steps6& position() const { return position_; }  // steps emitted so far
-  std::int64_t tick() const { return cursor_; }         // words emitted so far
+  // Steps the card has actually played (its ticks_played()): where the tool is after a
+  // fault or a stop. Exact for the last kStepLogSize steps not yet confirmed played.
+  Steps6 played_position() const;
+  // The spindle output bit, from the next word on.
+  void set_spindle(bool on);
+  bool faulted() const { return faulted_; }
+  std::int64_t tick() const { return cursor_; }  // words emitted so far
   const StepTiming& timing() const { return timing_; }
 
  private:
@@ -50,6 +56,15 @@ class StepGenerator : public SegmentSink {
     bool is_dir;
     bool positive;
   };
+  struct StepRecord {
+    std::int64_t tick;
+    int axis;
+    int delta;
+  };
+  // Steps generated but maybe not yet played: a card's queue holds well under this many.
+  static constexpr std::size_t kStepLogSize = std::size_t{1} << 20;
+
+  void after_write();                  // confirms played steps; throws on a card fault
   void emit_until(std::int64_t tick);  // words for [cursor_, tick)
   void apply(const Event& e);
   std::uint32_t word_at(std::int64_t tick) const;
@@ -70,6 +85,13 @@ class StepGenerator : public SegmentSink {
   std::int64_t segment_end_ = 0;  // where the next segment starts
   std::vector<Event> events_;
   std::vector<std::uint32_t> block_;
+  std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
+  std::int64_t pump_half_ticks_ = 1;
+  std::vector<StepRecord> step_log_;  // ring [log_begin_, log_end_)
+  std::size_t log_begin_ = 0, log_end_ = 0;
+  Steps6 confirmed_{};  // steps known played
+  bool faulted_ = false;
+  SourceLoc current_loc_;  // the segment being generated, for the fault message
 };
 
 }  // namespace gantry

@@ -1,0 +1,85 @@
+// A step/direction card on Linux GPIO lines: a real-time thread plays one 32-bit word per
+// pacer tick onto the mapped lines, timed in software (see drivers/gpiod/README.md).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <thread>
+
+#include "gantry/hal/card.hpp"
+#include "gpiod/gpio_lines.hpp"
+#include "gpiod/gpio_map.hpp"
+#include "gpiod/pacer_schedule.hpp"
+#include "gpiod/realtime.hpp"
+#include "gpiod/tick_clock.hpp"
+#include "gpiod/tick_player.hpp"
+#include "gpiod/word_ring.hpp"
+
+namespace gantry {
+
+class GpiodCard : public Card {
+ public:
+  // `map` must be valid (validate_gpio_map); throws std::invalid_argument otherwise. The
+  // lines are sampled once here, so inputs() is meaningful before start().
+  GpiodCard(const GpioMap& map, std::unique_ptr<GpioLines> lines,
+            std::unique_ptr<TickClock> clock = std::make_unique<MonotonicClock>());
+  // Stops the player; the lines keep their last level (call stop() for the idle word).
+  ~GpiodCard() override;
+  GpiodCard(const GpiodCard&) = delete;
+  GpiodCard& operator=(const GpiodCard&) = delete;
+
+  // A rate above kGpiodMaxPacerHz is refused: the card faults (Hardware), error() says why
+  // and every word is dropped. A stream starts playing once map.start_words are queued or
+  // drain() is called; running dry after drain() ends it, running dry before is an underrun.
+  void start(double pacer_hz) override;
+  // Blocks while the queue is full. Words written before start() or after stop() or a fault
+  // are dropped. May race stop() from another thread (an E-stop); not start().
+  void write(std::span<const std::uint32_t> words) override;
+  void drain() override;
+  void stop(std::uint32_t idle_word) override;
+  std::uint64_t ticks_played() const override { return player_.ticks_played(); }
+  std::uint32_t inputs() const override { return player_.inputs(); }
+  CardFault fault() const override { return player_.fault(); }
+
+  // Ticks played more than map.late_tolerance_ticks after their deadline, and the worst
+  // lateness of any played tick, since start().
+  std::uint64_t late_ticks() const { return player_.late_ticks(); }
+  std::int64_t worst_late_ns() const { return player_.worst_late_ns(); }
+  std::size_t queued_words() const { return ring_.size(); }
+  // Why start() refused or what failed on a Hardware fault; empty otherwise.
+  std::string error() const;
+  // What real-time set-up the player thread got (after start(), with map.realtime).
+  RealtimeResult realtime() const;
+
+ private:
+  void run();           // the player thread
+  bool play_stream();   // false when the card faulted or is stopping
+  void halt_player();   // ends the thread; lines keep their level
+
+  const GpioMap map_;
+  std::unique_ptr<GpioLines> lines_;
+  std::unique_ptr<TickClock> clock_;
+  WordRing ring_;
+  TickPlayer player_;
+  double pacer_hz_ = 0;
+
+  std::thread thread_;
+  std::atomic<bool> running_{false};         // the thread exists (start() until stop())
+  std::atomic<bool> stop_requested_{false};
+  std::atomic<bool> drain_requested_{false};
+  std::atomic<bool> pacing_{false};          // a stream is playing
+
+  std::mutex producer_mutex_;  // write() against stop() clearing the queue
+  bool accepting_ = false;     // guarded by producer_mutex_
+
+  mutable std::mutex status_mutex_;
+  std::string refusal_;
+  RealtimeResult realtime_;
+  bool memory_locked_ = false;
+};
+
+}  // namespace gantry

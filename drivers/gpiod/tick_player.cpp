@@ -1,0 +1,152 @@
+// The per-tick work of the GPIO card: queue to lines, lines to input word, faults.
+#include "gpiod/tick_player.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+
+namespace gantry {
+namespace {
+
+constexpr int kWriteOperation = 1, kReadOperation = 2;
+
+// Calls f(b) for every set bit b of `bits`, lowest first.
+template <typename F>
+void for_each_bit(std::uint32_t bits, F f) {
+  while (bits) {
+    f(std::countr_zero(bits));
+    bits &= bits - 1;
+  }
+}
+
+}  // namespace
+
+TickPlayer::TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring)
+    : lines_(lines), ring_(ring), map_(map), current_word_(map.initial_word) {
+  for (std::size_t i = 0; i < map.outputs.size() && i < 64; ++i) {
+    lines_of_bit_[map.outputs[i].bit] |= std::uint64_t{1} << i;
+    mapped_bits_ |= 1u << map.outputs[i].bit;
+  }
+  for (std::size_t i = 0; i < map.inputs.size() && i < 64; ++i) bit_of_input_[i] = map.inputs[i].bit;
+  reset(map.pacer_hz);
+}
+
+void TickPlayer::reset(double pacer_hz) {
+  sample_every_ = std::max<std::uint64_t>(1, std::llround(pacer_hz / map_.input_sample_hz));
+  late_tolerance_ns_ = std::llround(map_.late_tolerance_ticks * 1e9 / pacer_hz);
+  next_sample_tick_ = 0;
+  ticks_played_.store(0, std::memory_order_release);
+  fault_.store(CardFault::None, std::memory_order_release);
+  late_ticks_.store(0, std::memory_order_relaxed);
+  worst_late_ns_.store(0, std::memory_order_relaxed);
+  failed_operation_.store(0, std::memory_order_relaxed);
+  failed_errno_.store(0, std::memory_order_relaxed);
+}
+
+void TickPlayer::begin_stream() {
+  next_sample_tick_ = ticks_played_.load(std::memory_order_relaxed);
+}
+
+std::uint64_t TickPlayer::next_event_tick() const {
+  const std::uint64_t tick = ticks_played_.load(std::memory_order_relaxed);
+  // The scan stops at the next sample tick, so it never reads more than sample_every_ words.
+  const std::uint64_t horizon =
+      std::min<std::uint64_t>(ring_.available(), next_sample_tick_ - tick);
+  for (std::uint64_t i = 0; i < horizon; ++i)
+    if ((ring_.peek(i) ^ current_word_) & mapped_bits_) return tick + i;
+  return tick + horizon;
+}
+
+TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t late_ns,
+                                             bool stream_may_end) {
+  // The words before `tick` equal the current output on every mapped bit: nothing to drive.
+  ring_.pop(tick - ticks_played_.load(std::memory_order_relaxed));
+  ticks_played_.store(tick, std::memory_order_release);
+
+  // Inputs first: a tick that finds the E-stop active plays nothing more.
+  if (tick == next_sample_tick_) {
+    if (!read_inputs()) return Outcome::Faulted;
+    next_sample_tick_ += sample_every_;
+    const std::uint32_t active = inputs_.load(std::memory_order_relaxed) ^ map_.active_low_bits;
+    if (active & map_.estop_bits) {
+      fail(CardFault::EStop);
+      return Outcome::Faulted;
+    }
+    if (active & map_.limit_bits) {
+      fail(CardFault::Limit);
+      return Outcome::Faulted;
+    }
+  }
+
+  if (ring_.available() == 0) {
+    if (stream_may_end) return Outcome::StreamEnded;
+    fail(CardFault::Underrun);  // a word was due and the producer had not written it
+    return Outcome::Faulted;
+  }
+  if (!write_word(ring_.peek(0))) return Outcome::Faulted;
+  ring_.pop(1);
+
+  worst_late_ns_.store(std::max(worst_late_ns_.load(std::memory_order_relaxed), late_ns),
+                       std::memory_order_relaxed);
+  if (late_ns > late_tolerance_ns_)
+    late_ticks_.store(late_ticks_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+  ticks_played_.store(tick + 1, std::memory_order_release);
+  return Outcome::Played;
+}
+
+bool TickPlayer::sample_inputs() {
+  return read_inputs();
+}
+
+bool TickPlayer::output(std::uint32_t word) {
+  return write_word(word);
+}
+
+bool TickPlayer::write_word(std::uint32_t word) {
+  const std::uint32_t changed_bits = (word ^ current_word_) & mapped_bits_;
+  if (!changed_bits) {
+    current_word_ = word;
+    return true;
+  }
+  std::uint64_t changed_lines = 0, levels = 0;
+  for_each_bit(changed_bits, [&](int b) { changed_lines |= lines_of_bit_[b]; });
+  for_each_bit(word & mapped_bits_, [&](int b) { levels |= lines_of_bit_[b]; });
+  if (!lines_.set_outputs(changed_lines, levels)) {
+    hardware_fault(kWriteOperation);
+    return false;
+  }
+  current_word_ = word;
+  return true;
+}
+
+bool TickPlayer::read_inputs() {
+  std::uint64_t levels = 0;
+  if (!lines_.read_inputs(levels)) {
+    hardware_fault(kReadOperation);
+    return false;
+  }
+  std::uint32_t word = 0;
+  for (std::size_t i = 0; i < map_.inputs.size() && i < 64; ++i)
+    if ((levels >> i) & 1u) word |= 1u << bit_of_input_[i];
+  inputs_.store(word, std::memory_order_release);
+  return true;
+}
+
+void TickPlayer::hardware_fault(int operation) {
+  failed_errno_.store(errno, std::memory_order_relaxed);
+  failed_operation_.store(operation, std::memory_order_relaxed);
+  fail(CardFault::Hardware);
+}
+
+const char* TickPlayer::failed_operation() const {
+  switch (failed_operation_.load(std::memory_order_relaxed)) {
+    case kWriteOperation:
+      return "write";
+    case kReadOperation:
+      return "read";
+  }
+  return "";
+}
+
+}  // namespace gantry

@@ -1,0 +1,81 @@
+// What happens at a tick, apart from when: the player takes words from the queue, drives the
+// lines whose bits changed, samples the inputs every few ticks and decides when the card
+// faults. The card's thread calls it at each tick's deadline; tests may call it directly.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+
+#include "gantry/hal/card.hpp"
+#include "gpiod/gpio_lines.hpp"
+#include "gpiod/gpio_map.hpp"
+#include "gpiod/word_ring.hpp"
+
+namespace gantry {
+
+class TickPlayer {
+ public:
+  // Keeps references to `lines` and `ring`. The outputs start at map.initial_word.
+  TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring);
+
+  // A new run at `pacer_hz` (start()): tick 0, no fault, no late ticks.
+  void reset(double pacer_hz);
+  // A stream of words begins at the current tick; its first tick samples the inputs.
+  void begin_stream();
+
+  // The first tick, from ticks_played() on, at which anything happens: a word changes a
+  // mapped line, the inputs are due for a sample, or the queue holds no word for it. The
+  // ticks before it repeat the current output, so the thread sleeps through them.
+  std::uint64_t next_event_tick() const;
+
+  enum class Outcome { Played, StreamEnded, Faulted };
+  // Plays through `tick` (from next_event_tick()), `late_ns` after its deadline. With no
+  // word for `tick`, the stream ends when `stream_may_end` (drain() was called) and the
+  // card underruns otherwise. Real-time path: no allocation, no locks.
+  Outcome play_through(std::uint64_t tick, std::int64_t late_ns, bool stream_may_end);
+
+  // Outside a stream only (the thread idle, or stopped): read the inputs now; drive the
+  // lines to `word` now. False (with a Hardware fault) on a device error.
+  bool sample_inputs();
+  bool output(std::uint32_t word);
+  // Faults the card from outside (a refused start).
+  void fail(CardFault fault) { fault_.store(fault, std::memory_order_release); }
+
+  std::uint64_t ticks_played() const { return ticks_played_.load(std::memory_order_acquire); }
+  std::uint32_t inputs() const { return inputs_.load(std::memory_order_acquire); }
+  CardFault fault() const { return fault_.load(std::memory_order_acquire); }
+  std::uint64_t late_ticks() const { return late_ticks_.load(std::memory_order_relaxed); }
+  std::int64_t worst_late_ns() const { return worst_late_ns_.load(std::memory_order_relaxed); }
+  std::uint64_t sample_every_ticks() const { return sample_every_; }
+  // After a Hardware fault: which operation failed ("write" or "read") and its errno.
+  const char* failed_operation() const;
+  int failed_errno() const { return failed_errno_.load(std::memory_order_relaxed); }
+
+ private:
+  bool write_word(std::uint32_t word);
+  bool read_inputs();
+  void hardware_fault(int operation);
+
+  GpioLines& lines_;
+  WordRing& ring_;
+  const GpioMap& map_;
+
+  std::array<std::uint64_t, 32> lines_of_bit_{};  // output lines each word bit drives
+  std::uint32_t mapped_bits_ = 0;                 // bits that drive any line
+  std::array<int, 64> bit_of_input_{};            // input-word bit of each input line
+
+  std::uint64_t sample_every_ = 1;
+  std::int64_t late_tolerance_ns_ = 0;
+  std::uint32_t current_word_ = 0;  // the word the lines show
+  std::uint64_t next_sample_tick_ = 0;
+
+  std::atomic<std::uint64_t> ticks_played_{0};
+  std::atomic<std::uint32_t> inputs_{0};
+  std::atomic<CardFault> fault_{CardFault::None};
+  std::atomic<std::uint64_t> late_ticks_{0};
+  std::atomic<std::int64_t> worst_late_ns_{0};
+  std::atomic<int> failed_operation_{0}, failed_errno_{0};
+};
+
+}  // namespace gantry
