@@ -1,8 +1,10 @@
 // Pulse decoding and timing checks of the simulated card.
 #include "sim/sim_card.hpp"
 
-#include <limits>  // numeric_limits
-#include <thread>  // sleep_until for --realtime
+#include <cmath>    // llround
+#include <iomanip>  // the trace's hex words
+#include <limits>   // numeric_limits
+#include <thread>   // sleep_until for --realtime
 
 namespace gantry {
 namespace {
@@ -19,8 +21,11 @@ std::array<AxisLimits, kAxisCount> limits_of(const Settings& s) {
 
 }  // namespace
 
-SimCard::SimCard(const Settings& settings, bool realtime)
-    : pins_(PinMap::from(settings.pins)),
+SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
+                 const std::string& trace_path)
+    : world_(world),
+      input_bits_(settings.inputs),
+      pins_(PinMap::from(settings.pins)),
       step_pulse_us_(settings.card.step_pulse_us),
       dir_setup_us_(settings.card.dir_setup_us),
       realtime_(realtime),
@@ -29,6 +34,37 @@ SimCard::SimCard(const Settings& settings, bool realtime)
       monitor_(limits_, tick_s_) {
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
+  for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = settings.axes[i].steps_per_unit;
+  // Every switch starts inactive: active-low inputs read 1.
+  set_input(input_bits_.estop_bit, false, input_bits_.estop_active_low);
+  set_input(input_bits_.probe_bit, false, false);
+  for (int i = 0; i < kAxisCount; ++i) update_switches(i);
+  if (!trace_path.empty()) {
+    trace_ = std::make_unique<std::ofstream>(trace_path);
+    if (!*trace_)
+      throw GantryError(Diagnostic{SourceLoc{std::make_shared<const std::string>(trace_path), 0, 0},
+                                   Severity::Error, "cannot write the pin trace here"});
+    *trace_ << "# tick word (hex): the output word from that tick on\n0 " << std::hex
+            << std::setw(8) << std::setfill('0') << prev_ << std::dec << "\n";
+  }
+}
+
+void SimCard::set_input(int bit, bool active, bool active_low) {
+  if (bit < 0) return;
+  const bool high = active != active_low;
+  inputs_ = high ? inputs_ | (1u << bit) : inputs_ & ~(1u << bit);
+}
+
+void SimCard::update_switches(int axis) {
+  const double at = static_cast<double>(steps_[axis]) / steps_per_unit_[axis];
+  const bool low = world_.min_switch[axis] && at <= *world_.min_switch[axis];
+  const bool high = world_.max_switch[axis] && at >= *world_.max_switch[axis];
+  const bool home = world_.home_switch[axis] && at <= *world_.home_switch[axis];
+  set_input(input_bits_.min_bit[axis], low, input_bits_.limits_active_low);
+  set_input(input_bits_.max_bit[axis], high, input_bits_.limits_active_low);
+  set_input(input_bits_.home_bit[axis], home, false);
+  if (axis == 2 && world_.probe_z) set_input(input_bits_.probe_bit, at <= *world_.probe_z, false);
+  if ((low || high) && fault_ == CardFault::None && tick_ > 0) fault_ = CardFault::Limit;
 }
 
 void SimCard::start(double pacer_hz) {
@@ -37,6 +73,11 @@ void SimCard::start(double pacer_hz) {
   tick_s_ = 1.0 / pacer_hz;
   monitor_ = KinematicsMonitor(limits_, tick_s_);
   wall_start_ = std::chrono::steady_clock::now();
+  auto tick_of = [&](const std::optional<double>& s) {
+    return s ? static_cast<std::uint64_t>(std::llround(*s * pacer_hz)) : UINT64_MAX;
+  };
+  estop_tick_ = tick_of(world_.estop_at_s);
+  stall_tick_ = tick_of(world_.stall_at_s);
 }
 
 void SimCard::stop(std::uint32_t idle_word) {
@@ -47,8 +88,18 @@ void SimCard::stop(std::uint32_t idle_word) {
 void SimCard::write(std::span<const std::uint32_t> words) {
   if (stopped_ || fault_ != CardFault::None) return;
   for (std::uint32_t w : words) {
+    if (tick_ >= estop_tick_) {
+      set_input(input_bits_.estop_bit, true, input_bits_.estop_active_low);
+      fault_ = CardFault::EStop;
+      break;
+    }
+    if (tick_ >= stall_tick_) {  // the queue ran dry here while this word was still due
+      fault_ = CardFault::Underrun;
+      break;
+    }
     if (w != prev_) decode(w);
     ++tick_;
+    if (fault_ != CardFault::None) break;  // a limit switch tripped by that word's step
   }
   if (realtime_) {
     std::this_thread::sleep_until(wall_start_ +
@@ -84,11 +135,15 @@ void SimCard::decode(std::uint32_t w) {
       const bool positive = pins_.positive(i, w);
       steps_[i] += positive ? 1 : -1;
       monitor_.on_step(i, t, positive);
+      update_switches(i);
       pulse_start_[i] = t;
       pulse_active_[i] = true;
     }
   }
   prev_ = w;
+  if (trace_)
+    *trace_ << tick_ << ' ' << std::hex << std::setw(8) << std::setfill('0') << w << std::dec
+            << '\n';
 }
 
 void SimCard::violation(int axis, TimingRule rule) {

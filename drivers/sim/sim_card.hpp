@@ -5,6 +5,8 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "gantry/hal/pin_map.hpp"        // PinMap
 #include "gantry/settings/settings.hpp"  // Settings
 #include "sim/kinematics_monitor.hpp"    // KinematicsMonitor
+#include "sim/sim_world.hpp"             // SimWorld
 
 namespace gantry {
 
@@ -25,10 +28,16 @@ struct TimingViolation {
   TimingRule rule;
 };
 
+// Inputs: the switches of `world` read through the profile's [inputs] bits and polarity.
+// An active limit switch or E-stop stops the card (as the driver of a real card stops its
+// pacer on them), after the word that tripped it; a producer stall while words are still due
+// is an underrun. Either way ticks_played() and steps() say exactly what was played.
+// With a trace path, every change of the output word is written as `tick hex-word`.
 class SimCard : public Card {
  public:
   // Checks pulses against the profile's step_pulse_us and dir_setup_us.
-  explicit SimCard(const Settings& settings, bool realtime = false);
+  explicit SimCard(const Settings& settings, bool realtime = false, SimWorld world = {},
+                   const std::string& trace_path = "");
 
   void start(double pacer_hz) override;
   void write(std::span<const std::uint32_t> words) override;
@@ -48,6 +57,14 @@ class SimCard : public Card {
  private:
   void decode(std::uint32_t word);
   void violation(int axis, TimingRule rule);
+  void update_switches(int axis);  // after a step of `axis`
+  void set_input(int bit, bool active, bool active_low);
+
+  SimWorld world_;
+  InputSettings input_bits_;
+  std::array<double, kAxisCount> steps_per_unit_{};
+  std::uint64_t estop_tick_ = UINT64_MAX, stall_tick_ = UINT64_MAX;
+  std::unique_ptr<std::ofstream> trace_;
 
   PinMap pins_;
   double step_pulse_us_, dir_setup_us_;

@@ -4,8 +4,10 @@
 
 #include <algorithm>  // any_of, none_of
 #include <cctype>     // toupper
+#include <charconv>   // from_chars
 #include <cstdio>     // stdout, stderr
 #include <iostream>   // JSON to stdout
+#include <optional>
 
 #include "gantry/commands/command_docs.hpp"  // help text
 #include "gantry/lang/script.hpp"            // Script
@@ -39,6 +41,33 @@ bool load_profile(const std::string& path, Settings& out) {
 struct RunArgs {
   std::string file, settings, card = "sim";
   bool json = false, realtime = false;
+  std::string trace;                         // --trace FILE: the simulated card's pin trace
+  std::optional<double> estop_at, stall_at;  // simulated operator and producer
+  std::optional<double> probe_z;
+  std::vector<std::string> limits;  // AXIS-=POS or AXIS+=POS: simulated limit switches
+
+  // The simulated machine's switches and events; false (after saying why) on a bad --sim-limit.
+  bool world(SimWorld& w) const {
+    w.estop_at_s = estop_at;
+    w.stall_at_s = stall_at;
+    w.probe_z = probe_z;
+    for (const std::string& l : limits) {
+      const size_t eq = l.find('=');
+      const std::string axes = "xyzabc";
+      const size_t axis =
+          l.empty() ? std::string::npos : axes.find(static_cast<char>(std::tolower(l[0])));
+      double pos = 0;
+      const bool ok = eq == 2 && axis != std::string::npos && (l[1] == '-' || l[1] == '+') &&
+                      std::from_chars(l.data() + 3, l.data() + l.size(), pos).ec == std::errc{};
+      if (!ok) {
+        fmt::print(stderr, "error: --sim-limit {} must be AXIS-=POS or AXIS+=POS, e.g. x+=23.5\n",
+                   l);
+        return false;
+      }
+      (l[1] == '-' ? w.min_switch : w.max_switch)[axis] = pos;
+    }
+    return true;
+  }
 };
 
 // Options every command that interprets a file shares.
@@ -105,7 +134,9 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   if (!a.json)
     fmt::print(stderr, "gantry: running {} on the simulated card, profile \"{}\"\n", a.file,
                settings.name);
-  SimCard card(settings, a.realtime);
+  SimWorld world;
+  if (!a.world(world)) return 1;
+  SimCard card(settings, a.realtime, world, a.trace);
   JobResult job;
   {
     ProgressBar bar;
@@ -119,6 +150,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.lines = job.lines;
   report.moves = job.moves;
   report.commanded_steps = job.commanded_steps;
+  report.played_steps = job.played_steps;
+  report.fault = job.fault == CardFault::None ? "none" : fault_name(job.fault);
   report.planned_time_s = job.planned_time_s;
   report.estimated_time_s = job.estimated_time_s;
   report.steps = card.steps();
@@ -267,6 +300,13 @@ int main(int argc, char** argv) {
       ->default_str("sim");
   run_cmd->add_flag("--json", run.json, "Print the report as one JSON object on stdout");
   run_cmd->add_flag("--realtime", run.realtime, "Play the simulated card in real time");
+  run_cmd->add_option("--trace", run.trace, "Write the simulated card's pin trace to FILE");
+  run_cmd->add_option("--sim-estop-at", run.estop_at, "Simulate E-stop at this machine time, s");
+  run_cmd->add_option("--sim-stall-at", run.stall_at,
+                      "Simulate the pulse producer stalling at this machine time, s");
+  run_cmd->add_option("--sim-limit", run.limits,
+                      "Simulate a limit switch: AXIS-=POS (low side) or AXIS+=POS (high side)");
+  run_cmd->add_option("--sim-probe-z", run.probe_z, "Simulate a probe surface at this Z");
   LanguageArgs run_lang, check_lang, moves_lang;
   run_lang.add_to(run_cmd);
   run_cmd->add_option("--feed-override", run_lang.feed_override, "Percent of the file's speeds")

@@ -38,6 +38,8 @@ nlohmann::ordered_json to_json(const RunReport& r) {
   j["position"] = axis_object(r.position);
   j["steps"] = axis_object(r.steps);
   j["commanded_steps"] = axis_object(r.commanded_steps);
+  j["played_steps"] = axis_object(r.played_steps);
+  j["fault"] = r.fault;
   j["time_s"] = r.time_s;
   j["planned_time_s"] = r.planned_time_s;
   j["estimated_time_s"] = r.estimated_time_s;
@@ -59,9 +61,15 @@ std::string to_text(const RunReport& r) {
   out += fmt::format(" ({})\nsteps     ", units_name(r.units));
   for (int i = 0; i < kAxisCount; ++i)
     out += fmt::format(" {}={}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.steps[i]);
-  const bool exact = r.steps == r.commanded_steps;
-  out += fmt::format("\n           {} the planner's commanded steps\n",
-                     exact ? "equal to" : "DIFFERENT FROM");
+  if (r.fault != "none") {
+    out += fmt::format(
+        "\nfault      {}: the card stopped; the tool is where the pulses played put "
+        "it ({} the step generator's count of them)\n",
+        r.fault, r.steps == r.played_steps ? "equal to" : "DIFFERENT FROM");
+  } else {
+    out += fmt::format("\n           {} the planner's commanded steps\n",
+                       r.steps == r.commanded_steps ? "equal to" : "DIFFERENT FROM");
+  }
   out += fmt::format("time       {:.3f} s on the card ({:.3f} s planned, {:.3f} s estimated)\n",
                      r.time_s, r.planned_time_s, r.estimated_time_s);
   out += fmt::format("executed   {} statements, {} moves\n", r.lines, r.moves);

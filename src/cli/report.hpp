@@ -19,6 +19,8 @@ struct RunReport {
   Vec6 position = Vec6::Zero();  // from the steps the card counted
   Steps6 steps{};                // counted by the card from its pulses
   Steps6 commanded_steps{};      // emitted by the step generator
+  Steps6 played_steps{};         // the generator's count of what the card played
+  std::string fault = "none";    // why the card stopped by itself
   double time_s = 0;             // machine time on the card
   double planned_time_s = 0;
   double estimated_time_s = 0;  // predicted by the check, before the run

@@ -79,9 +79,16 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
     result.errors.push_back(e.diagnostic());  // run() has flushed: planned pulses completed
   }
   card.drain();
+  try {
+    steps.check_card();  // a fault while the last words played
+  } catch (const GantryError& e) {
+    result.errors.push_back(e.diagnostic());
+  }
   result.lines = interp.statements_executed();
   result.moves = interp.moves_emitted();
   result.commanded_steps = steps.position();
+  result.played_steps = steps.played_position();
+  result.fault = card.fault();
   result.planned_time_s = planner.planned_time();
   return result;
 }

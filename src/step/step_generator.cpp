@@ -59,7 +59,7 @@ Steps6 StepGenerator::played_position() const {
 // After each block the card has played up to ticks_played(): steps before it are confirmed.
 // A fault stops everything: the rest of the job is dropped, and the error names where the
 // tool stopped, counted from the pulses the card actually played.
-void StepGenerator::after_write() {
+void StepGenerator::check_card() {
   const std::uint64_t played = card_.ticks_played();
   while (log_begin_ != log_end_ &&
          static_cast<std::uint64_t>(step_log_[log_begin_].tick) < played) {
@@ -138,7 +138,7 @@ void StepGenerator::flush() {
   if (!block_.empty()) {
     card_.write(block_);
     block_.clear();
-    after_write();
+    check_card();
   }
 }
 
@@ -196,7 +196,7 @@ void StepGenerator::write_run(std::uint32_t word, std::int64_t count) {
     if (block_.size() == block_words_) {
       card_.write(block_);
       block_.clear();
-      after_write();
+      check_card();
     }
   }
 }

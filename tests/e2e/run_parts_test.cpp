@@ -131,6 +131,65 @@ TEST(FeedOverride, FasterAndSlowerRunsStayWithinTheLimitsAndMatchTheirEstimates)
   EXPECT_NE(gantry("run parts/demo.sbp --feed-override 5").exit_code, 0);  // below 10 %
 }
 
+// The simulated card's pin trace of a tiny file, word change by word change, against a
+// golden trace checked by hand (3 X steps out, then 1 back with 2 Y steps; the charge pump
+// on bit 16 toggling every 10 ticks).
+TEST(PinTrace, TinyFileMatchesTheGoldenTrace) {
+  const fs::path out = fs::temp_directory_path() / fmt::format("gantry_trace_{}.trace", getpid());
+  const Result r = gantry("run tests/data/trace_small.sbp --json --trace '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream got(out), want(kSource / "tests/data/trace_small.trace");
+  std::stringstream g, w;
+  g << got.rdbuf();
+  w << want.rdbuf();
+  fs::remove(out);
+  EXPECT_EQ(g.str(), w.str());
+  EXPECT_GT(w.str().size(), 1000u);
+}
+
+// Faults on the simulated card: the run stops, says why and where, and the position it
+// reports is exactly the pulses the card played (the card's own count and the generator's).
+struct FaultCase {
+  const char* options;
+  const char* fault;
+};
+
+class CardFaultRun : public ::testing::TestWithParam<FaultCase> {};
+
+TEST_P(CardFaultRun, MotionStopsAndThePositionIsThePulsesPlayed) {
+  const FaultCase c = GetParam();
+  const Result r = gantry(std::string("run parts/demo.sbp --json ") + c.options);
+  EXPECT_EQ(r.exit_code, 1);
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["status"], "error");
+  EXPECT_EQ(j["fault"], c.fault);
+  ASSERT_EQ(j["errors"].size(), 1u);
+  EXPECT_EQ(j["errors"][0]["message"].get<std::string>().rfind(
+                std::string(c.fault) + ": the card stopped at", 0),
+            0u)
+      << j["errors"][0]["message"];
+  EXPECT_EQ(j["steps"], j["played_steps"]);
+  EXPECT_NE(j["steps"], j["commanded_steps"]);  // it stopped short of the file's end
+  EXPECT_EQ(j["timing_violations"], 0);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_NEAR(j["position"][kAxes[i]].get<double>(),
+                j["steps"][kAxes[i]].get<double>() / kStepsPerUnit[i], 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(Faults, CardFaultRun,
+                         ::testing::Values(FaultCase{"--sim-estop-at 3.2", "E-stop"},
+                                           FaultCase{"--sim-stall-at 1.5", "underrun"},
+                                           FaultCase{"--sim-limit x+=5", "limit switch"}));
+
+TEST(CardFaultRun, EStopStopsAtItsTickAndALimitAtTheStepThatTripsIt) {
+  const json e = json::parse(gantry("run parts/demo.sbp --json --sim-estop-at 3.2").out);
+  EXPECT_NEAR(e["time_s"].get<double>(), 3.2, 1e-9);
+  const json l = json::parse(gantry("run parts/demo.sbp --json --sim-limit x+=5").out);
+  EXPECT_EQ(l["steps"]["x"], std::llround(std::ceil(5 * kStepsPerUnit[0])));
+  EXPECT_NE(gantry("run parts/demo.sbp --sim-limit q+=5").err.find("--sim-limit q+=5 must be"),
+            std::string::npos);
+}
+
 TEST(Estimate, BadFileGetsItsErrorsAndNoEstimate) {
   const Result r = gantry("estimate tests/data/unknown_command.sbp");
   EXPECT_EQ(r.exit_code, 1);

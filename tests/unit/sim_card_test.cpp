@@ -42,6 +42,76 @@ void play(SimCard& card, const std::vector<std::uint32_t>& words) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Inputs and faults: the simulated switches, operator and producer.
+
+constexpr std::uint32_t kZStep = 1u << 2, kZDir = 1u << 10;
+
+TEST(SimCardInputs, AtRestOnlyTheActiveLowEStopReadsHigh) {
+  SimCard card(default_settings());  // E-stop bit 0 active-low, probe bit 1, limits 2-7
+  EXPECT_EQ(card.inputs(), 1u);
+  EXPECT_EQ(card.fault(), CardFault::None);
+}
+
+TEST(SimCardInputs, ProbeTouchesTheSurfaceWithoutStoppingTheCard) {
+  SimWorld w;
+  w.probe_z = -1.5 / 1018.5916;  // between Z's first and second step down
+  SimCard card(default_settings(), false, w);
+  play(card, {kZDir, kZDir, kZDir | kZStep, kZDir});
+  EXPECT_EQ(card.inputs() & 2u, 0u);
+  play(card, {kZDir | kZStep, kZDir, kZDir});
+  EXPECT_EQ(card.inputs() & 2u, 2u);
+  EXPECT_EQ(card.fault(), CardFault::None);
+  EXPECT_EQ(card.ticks_played(), 7u);
+}
+
+TEST(SimCardInputs, ALimitSwitchStopsTheCardAfterTheStepThatTripsIt) {
+  SimWorld w;
+  w.max_switch[0] = 2 / 916.7324;  // X's second step reaches it
+  SimCard card(default_settings(), false, w);
+  play(card, {kXStep, 0, kXStep, 0, kXStep, 0, kXStep, 0});
+  EXPECT_EQ(card.fault(), CardFault::Limit);
+  EXPECT_EQ(card.ticks_played(), 3u);  // the word with the second step played, no more
+  EXPECT_EQ(card.steps()[0], 2);
+  EXPECT_EQ(card.inputs() & (1u << 3), 1u << 3);  // X max input active
+  play(card, {kXStep, 0});
+  EXPECT_EQ(card.ticks_played(), 3u);
+}
+
+TEST(SimCardInputs, EStopAtItsTimeStopsTheCardAndReadsLow) {
+  SimWorld w;
+  w.estop_at_s = 10 * 5e-6;  // tick 10 on the 200 kHz pacer
+  SimCard card(default_settings(), false, w);
+  card.start(200000);
+  play(card, std::vector<std::uint32_t>(25, 0));
+  EXPECT_EQ(card.fault(), CardFault::EStop);
+  EXPECT_EQ(card.ticks_played(), 10u);
+  EXPECT_EQ(card.inputs() & 1u, 0u);
+}
+
+TEST(SimCardInputs, AProducerStallWithWordsStillDueIsAnUnderrun) {
+  SimWorld w;
+  w.stall_at_s = 7 * 5e-6;
+  SimCard card(default_settings(), false, w);
+  card.start(200000);
+  play(card, {kXStep, 0, 0, 0});
+  EXPECT_EQ(card.fault(), CardFault::None);  // the queue ran dry with nothing due
+  play(card, {kXStep, 0, 0, 0, kXStep, 0});
+  EXPECT_EQ(card.fault(), CardFault::Underrun);
+  EXPECT_EQ(card.ticks_played(), 7u);
+  EXPECT_EQ(card.steps()[0], 2);
+}
+
+TEST(SimCardInputs, StopDropsWhatFollowsAndIdlesTheLines) {
+  SimCard card(default_settings());
+  play(card, {kXStep});
+  card.stop(0);
+  play(card, {kXStep, 0, kXStep});
+  EXPECT_EQ(card.ticks_played(), 1u);
+  EXPECT_EQ(card.steps()[0], 1);
+  EXPECT_EQ(card.fault(), CardFault::None);
+}
+
+// ---------------------------------------------------------------------------------------
 // Step counting.
 
 TEST(SimCardSteps, CountsRisingEdgesAsPositiveSteps) {

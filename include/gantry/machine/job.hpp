@@ -28,13 +28,15 @@ struct JobOptions {
 };
 
 struct JobResult {
-  std::vector<Diagnostic> errors;    // empty when the job ran to its end
-  std::vector<Diagnostic> warnings;  // from the check and the run
-  std::size_t lines = 0;             // statements executed
-  std::size_t moves = 0;             // canonical moves issued
-  Steps6 commanded_steps{};          // steps the generator emitted
-  double planned_time_s = 0;         // the planner's sum of segment durations
-  double estimated_time_s = 0;       // the cycle time the check predicted before the run
+  std::vector<Diagnostic> errors;     // empty when the job ran to its end
+  std::vector<Diagnostic> warnings;   // from the check and the run
+  std::size_t lines = 0;              // statements executed
+  std::size_t moves = 0;              // canonical moves issued
+  Steps6 commanded_steps{};           // steps the generator emitted
+  Steps6 played_steps{};              // steps the card played: where the tool is
+  CardFault fault = CardFault::None;  // why the card stopped by itself, if it did
+  double planned_time_s = 0;          // the planner's sum of segment durations
+  double estimated_time_s = 0;        // the cycle time the check predicted before the run
   bool ok() const { return errors.empty(); }
 };
 

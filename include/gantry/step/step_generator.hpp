@@ -46,6 +46,10 @@ class StepGenerator : public SegmentSink {
   // The spindle output bit, from the next word on.
   void set_spindle(bool on);
   bool faulted() const { return faulted_; }
+  // Confirms the steps the card has played; on a card fault, throws (once) the error naming
+  // the fault and where the tool stopped. Called after every block, and by the job after
+  // the card drains.
+  void check_card();
   std::int64_t tick() const { return cursor_; }  // words emitted so far
   const StepTiming& timing() const { return timing_; }
 
@@ -64,7 +68,6 @@ class StepGenerator : public SegmentSink {
   // Steps generated but maybe not yet played: a card's queue holds well under this many.
   static constexpr std::size_t kStepLogSize = std::size_t{1} << 20;
 
-  void after_write();                  // confirms played steps; throws on a card fault
   void emit_until(std::int64_t tick);  // words for [cursor_, tick)
   void apply(const Event& e);
   std::uint32_t word_at(std::int64_t tick) const;

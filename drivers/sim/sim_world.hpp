@@ -1,0 +1,22 @@
+// What the simulated machine does besides playing pulses: its switches and its operator.
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "gantry/core/axes.hpp"  // kAxisCount
+
+namespace gantry {
+
+struct SimWorld {
+  // Limit switches: active once the axis is at or beyond the position (units), on the low
+  // and on the high side.
+  std::array<std::optional<double>, kAxisCount> min_switch{}, max_switch{};
+  // Proximity (home) switches: active at or below the position (homing runs towards them).
+  std::array<std::optional<double>, kAxisCount> home_switch{};
+  std::optional<double> probe_z;     // a surface: the probe input is active at or below this Z
+  std::optional<double> estop_at_s;  // the operator presses E-stop at this machine time
+  std::optional<double> stall_at_s;  // the producer stalls here: words still due underrun
+};
+
+}  // namespace gantry
