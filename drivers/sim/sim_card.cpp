@@ -1,6 +1,7 @@
 // Pulse decoding and timing checks of the simulated card.
 #include "sim/sim_card.hpp"
 
+#include <algorithm>  // min
 #include <cmath>    // llround
 #include <iomanip>  // the trace's hex words
 #include <limits>   // numeric_limits
@@ -34,7 +35,10 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
       monitor_(limits_, tick_s_) {
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
-  for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = settings.axes[i].steps_per_unit;
+  for (int i = 0; i < kAxisCount; ++i) {
+    steps_per_unit_[i] = settings.axes[i].steps_per_unit;
+    axis_bits_ |= pins_.axes[i].step_mask | pins_.axes[i].dir_mask;
+  }
   // Every switch starts inactive: active-low inputs read 1.
   set_input(input_bits_.estop_bit, false, input_bits_.estop_active_low);
   set_input(input_bits_.probe_bit, false, false);
@@ -87,19 +91,25 @@ void SimCard::stop(std::uint32_t idle_word) {
 
 void SimCard::write(std::span<const std::uint32_t> words) {
   if (stopped_ || fault_ != CardFault::None) return;
+  const std::uint64_t event_tick = std::min(estop_tick_, stall_tick_);
   for (std::uint32_t w : words) {
-    if (tick_ >= estop_tick_) {
-      set_input(input_bits_.estop_bit, true, input_bits_.estop_active_low);
-      fault_ = CardFault::EStop;
+    if (tick_ >= event_tick) {
+      if (tick_ >= estop_tick_) {
+        set_input(input_bits_.estop_bit, true, input_bits_.estop_active_low);
+        fault_ = CardFault::EStop;
+      } else {  // the queue ran dry here while this word was still due
+        fault_ = CardFault::Underrun;
+      }
       break;
     }
-    if (tick_ >= stall_tick_) {  // the queue ran dry here while this word was still due
-      fault_ = CardFault::Underrun;
-      break;
+    if (w != prev_) {
+      decode(w);
+      if (fault_ != CardFault::None) {  // a limit switch tripped by this word's step
+        ++tick_;
+        break;
+      }
     }
-    if (w != prev_) decode(w);
     ++tick_;
-    if (fault_ != CardFault::None) break;  // a limit switch tripped by that word's step
   }
   if (realtime_) {
     std::this_thread::sleep_until(wall_start_ +
@@ -110,6 +120,11 @@ void SimCard::write(std::span<const std::uint32_t> words) {
 
 void SimCard::decode(std::uint32_t w) {
   const std::uint32_t diff = w ^ prev_;
+  if ((diff & axis_bits_) == 0) {  // only other outputs changed (the charge pump, mostly)
+    prev_ = w;
+    trace_word(w);
+    return;
+  }
   const auto t = static_cast<std::int64_t>(tick_);
   const double tick_us = tick_s_ * 1e6;
   constexpr double eps = 1e-6;  // microseconds: tolerance for the tick arithmetic only
@@ -141,6 +156,10 @@ void SimCard::decode(std::uint32_t w) {
     }
   }
   prev_ = w;
+  trace_word(w);
+}
+
+void SimCard::trace_word(std::uint32_t w) {
   if (trace_)
     *trace_ << tick_ << ' ' << std::hex << std::setw(8) << std::setfill('0') << w << std::dec
             << '\n';

@@ -58,6 +58,8 @@ class SimCard : public Card {
   void decode(std::uint32_t word);
   void violation(int axis, TimingRule rule);
   void update_switches(int axis);  // after a step of `axis`
+  void trace_word(std::uint32_t w);
+  std::uint32_t axis_bits_ = 0;  // every step and direction bit
   void set_input(int bit, bool active, bool active_low);
 
   SimWorld world_;

@@ -1,7 +1,7 @@
 // Step placement on the tick clock and packing into pulse words.
 #include "gantry/step/step_generator.hpp"
 
-#include <algorithm>  // sort, max
+#include <algorithm>  // max, min
 #include <cmath>      // llround, ceil
 #include <limits>     // numeric_limits
 
@@ -38,7 +38,7 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
         1, std::llround(settings.card.pacer_hz() / (2 * settings.outputs.charge_pump_hz)));
   }
   if (settings.outputs.spindle_bit >= 0) spindle_mask_ = 1u << settings.outputs.spindle_bit;
-  step_log_.resize(kStepLogSize);
+  step_log_.resize(4096);
 }
 
 void StepGenerator::set_spindle(bool on) {
@@ -88,7 +88,9 @@ void StepGenerator::segment(const PlannedSegment& seg) {
   const std::int64_t t0 = segment_end_;
   std::int64_t end = t0 + std::llround((p.duration() + seg.dwell_s) / timing_.tick_s);
   events_.clear();
+  std::array<std::size_t, kAxisCount> next{}, stop{};  // each axis's run of events
   for (int i = 0; i < kAxisCount; ++i) {
+    next[i] = stop[i] = events_.size();
     const std::int64_t target = std::llround(seg.to[i] * steps_per_unit_[i]);
     const std::int64_t delta = target - position_[i];
     if (delta == 0) continue;
@@ -113,10 +115,17 @@ void StepGenerator::segment(const PlannedSegment& seg) {
     last_step_[i] = last;
     positive_[i] = positive;
     end = std::max(end, last);
+    stop[i] = events_.size();
   }
-  std::stable_sort(events_.begin(), events_.end(),
-                   [](const Event& a, const Event& b) { return a.tick < b.tick; });
-  for (const Event& e : events_) {
+  // Each axis's events are in tick order already: merge the runs (no sort, no allocation).
+  // Within a tick the lower axis goes first, and an axis's direction change before its step.
+  while (true) {
+    int best = -1;
+    for (int i = 0; i < kAxisCount; ++i)
+      if (next[i] < stop[i] && (best < 0 || events_[next[i]].tick < events_[next[best]].tick))
+        best = i;
+    if (best < 0) break;
+    const Event& e = events_[next[best]++];
     emit_until(e.tick);
     apply(e);
   }
@@ -150,13 +159,20 @@ void StepGenerator::apply(const Event& e) {
   }
   pulse_end_[e.axis] = e.tick + timing_.pulse_ticks;
   position_[e.axis] += e.positive ? 1 : -1;
-  const std::size_t next = (log_end_ + 1) % step_log_.size();
-  if (next == log_begin_) {  // full: the oldest step is taken as played (see kStepLogSize)
-    confirmed_[step_log_[log_begin_].axis] += step_log_[log_begin_].delta;
-    log_begin_ = (log_begin_ + 1) % step_log_.size();
+  if ((log_end_ + 1) % step_log_.size() == log_begin_) {
+    // Full: the card's queue holds more steps than ever before. Grow (doubling, so this
+    // happens a few times per job at most), keeping the ring's order.
+    std::vector<StepRecord> bigger;
+    bigger.reserve(step_log_.size() * 2);
+    for (std::size_t k = log_begin_; k != log_end_; k = (k + 1) % step_log_.size())
+      bigger.push_back(step_log_[k]);
+    log_begin_ = 0;
+    log_end_ = bigger.size();
+    bigger.resize(step_log_.size() * 2);
+    step_log_ = std::move(bigger);
   }
   step_log_[log_end_] = {e.tick, e.axis, e.positive ? 1 : -1};
-  log_end_ = next;
+  log_end_ = (log_end_ + 1) % step_log_.size();
 }
 
 std::uint32_t StepGenerator::word_at(std::int64_t tick) const {

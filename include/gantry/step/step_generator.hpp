@@ -41,7 +41,7 @@ class StepGenerator : public SegmentSink {
 
   const Steps6& position() const { return position_; }  // steps emitted so far
   // Steps the card has actually played (its ticks_played()): where the tool is after a
-  // fault or a stop. Exact for the last kStepLogSize steps not yet confirmed played.
+  // fault or a stop. Steps are logged until the card confirms them played.
   Steps6 played_position() const;
   // The spindle output bit, from the next word on.
   void set_spindle(bool on);
@@ -65,8 +65,6 @@ class StepGenerator : public SegmentSink {
     int axis;
     int delta;
   };
-  // Steps generated but maybe not yet played: a card's queue holds well under this many.
-  static constexpr std::size_t kStepLogSize = std::size_t{1} << 20;
 
   void emit_until(std::int64_t tick);  // words for [cursor_, tick)
   void apply(const Event& e);
@@ -90,7 +88,7 @@ class StepGenerator : public SegmentSink {
   std::vector<std::uint32_t> block_;
   std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
   std::int64_t pump_half_ticks_ = 1;
-  std::vector<StepRecord> step_log_;  // ring [log_begin_, log_end_)
+  std::vector<StepRecord> step_log_;  // ring [log_begin_, log_end_) of steps not yet played
   std::size_t log_begin_ = 0, log_end_ = 0;
   Steps6 confirmed_{};  // steps known played
   bool faulted_ = false;
