@@ -28,6 +28,24 @@ class Collect : public SegmentSink {
   int flushes = 0;
 };
 
+// Planned segments go both to the simulated card (through the step generator) and to a list.
+struct CardRun {
+  struct Tee : SegmentSink {
+    SegmentSink *a, *b;
+    void segment(const PlannedSegment& x) override { a->segment(x), b->segment(x); }
+    void flush() override { a->flush(), b->flush(); }
+  };
+  explicit CardRun(const Settings& s) : card(s), steps(s, card) {
+    card.start(s.card.pacer_hz());
+    tee.a = &steps;
+    tee.b = &planned;
+  }
+  SimCard card;
+  StepGenerator steps;
+  Collect planned;
+  Tee tee;
+};
+
 CanonMove line(const Vec6& from, const Vec6& to, const Settings& s,
                SpeedClass cls = SpeedClass::Move) {
   CanonMove m;
@@ -417,18 +435,10 @@ TEST_P(StressLimits, FeedholdAndResumeAnywhereKeepTheLimitsAndThePath) {
     SCOPED_TRACE(st.name);
     std::uniform_int_distribution<size_t> when(1, st.moves.size() - 1);
     const size_t hold_at = when(rng), resume_at = std::min(st.moves.size(), hold_at + 5);
-    SimCard card(s);
-    card.start(s.card.pacer_hz());
-    StepGenerator steps(s, card);
-    Collect planned;
-    struct Tee : SegmentSink {
-      SegmentSink *a, *b;
-      void segment(const PlannedSegment& x) override { a->segment(x), b->segment(x); }
-      void flush() override { a->flush(), b->flush(); }
-    } tee;
-    tee.a = &steps;
-    tee.b = &planned;
-    LookAheadPlanner p(s, tee);
+    CardRun run(s);
+    Collect& planned = run.planned;
+    SimCard& card = run.card;
+    LookAheadPlanner p(s, run.tee);
     for (size_t k = 0; k < st.moves.size(); ++k) {
       if (k == hold_at) {
         const size_t before = planned.segs.size();
@@ -543,18 +553,10 @@ std::vector<CanonMove> tangent_arc_moves(const Settings& s) {
 TEST_P(StressLimits, ArcsRunAsChordsWithinTheToleranceAndTheLimits) {
   const Settings s = settings();
   const std::vector<CanonMove> moves = tangent_arc_moves(s);
-  SimCard card(s);
-  card.start(s.card.pacer_hz());
-  StepGenerator steps(s, card);
-  Collect planned;
-  struct Tee : SegmentSink {
-    SegmentSink *a, *b;
-    void segment(const PlannedSegment& x) override { a->segment(x), b->segment(x); }
-    void flush() override { a->flush(), b->flush(); }
-  } tee;
-  tee.a = &steps;
-  tee.b = &planned;
-  LookAheadPlanner p(s, tee);
+  CardRun run(s);
+  Collect& planned = run.planned;
+  SimCard& card = run.card;
+  LookAheadPlanner p(s, run.tee);
   for (const CanonMove& m : moves) p.move(m);
   p.flush();
   card.drain();
