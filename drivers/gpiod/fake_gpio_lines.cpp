@@ -2,7 +2,9 @@
 #include "gpiod/fake_gpio_lines.hpp"
 
 #include <cerrno>
+#include <iterator>
 #include <stdexcept>
+#include <utility>
 
 namespace gantry {
 

@@ -38,8 +38,8 @@ class FakeGpioLines : public GpioLines {
   void fail_next_read(int error);
 
   std::vector<LineChange> changes() const;
-  int level(unsigned offset) const;        // an output line's current level
-  std::uint64_t write_calls() const;       // set_outputs calls, whether or not they failed
+  int level(unsigned offset) const;   // an output line's current level
+  std::uint64_t write_calls() const;  // set_outputs calls, whether or not they failed
   std::uint64_t read_calls() const;
 
  private:

@@ -54,7 +54,8 @@ std::vector<std::string> validate_gpio_map(const GpioMap& map, std::optional<uns
   std::map<unsigned, std::string> line_users;
   auto use_line = [&](unsigned offset, const std::string& user) {
     auto [it, inserted] = line_users.emplace(offset, user);
-    if (!inserted) error(fmt::format("line {} is used twice ({} and {})", offset, it->second, user));
+    if (!inserted)
+      error(fmt::format("line {} is used twice ({} and {})", offset, it->second, user));
     if (chip_lines && offset >= *chip_lines)
       error(fmt::format("line {} ({}) is not on {}: it has {} lines, 0-{}", offset, user,
                         map.chip_path, *chip_lines, *chip_lines == 0 ? 0 : *chip_lines - 1));
@@ -77,15 +78,17 @@ std::vector<std::string> validate_gpio_map(const GpioMap& map, std::optional<uns
       error(fmt::format("input bit {} (line {}) is out of range 0-31", in.bit, in.offset));
     } else {
       if (input_bits & (1u << in.bit))
-        error(fmt::format("input bit {} is set by two lines; each input bit has one line",
-                          in.bit));
+        error(fmt::format("input bit {} is set by two lines; each input bit has one line", in.bit));
       input_bits |= 1u << in.bit;
     }
     use_line(in.offset, fmt::format("input bit {}", in.bit));
   }
 
   if (std::uint32_t unread = (map.estop_bits | map.limit_bits) & ~input_bits)
-    error(fmt::format("E-stop/limit input bit(s) {} have no input line", bits_text(unread)));
+    error(fmt::format(
+        "E-stop/limit input bit(s) {} have no input line; map a line to each, or set the "
+        "profile's bit to -1 (not wired)",
+        bits_text(unread)));
   if (std::uint32_t both = map.estop_bits & map.limit_bits)
     error(fmt::format("input bit(s) {} are both E-stop and limit bits", bits_text(both)));
   if (std::uint32_t stray = map.active_low_bits & ~(map.estop_bits | map.limit_bits))

@@ -15,13 +15,13 @@ namespace gantry {
 inline constexpr double kGpiodMaxPacerHz = 50'000;
 
 struct OutputLine {
-  int bit = 0;              // bit of the card's output word (0-31)
-  unsigned offset = 0;      // line offset on the chip
+  int bit = 0;          // bit of the card's output word (0-31)
+  unsigned offset = 0;  // line offset on the chip
 };
 
 struct InputLine {
-  unsigned offset = 0;      // line offset on the chip
-  int bit = 0;              // bit of the card's input word (0-31) its level sets
+  unsigned offset = 0;  // line offset on the chip
+  int bit = 0;          // bit of the card's input word (0-31) its level sets
 };
 
 enum class InputBias { AsIs, PullUp, PullDown, Disabled };

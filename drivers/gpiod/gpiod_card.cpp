@@ -16,7 +16,7 @@ using namespace std::chrono_literals;
 // Idle, the thread looks for a new stream (and samples the inputs) this often.
 constexpr auto kIdlePoll = 500us;
 // drain() looks for the end of the stream this often.
-constexpr auto kDrainPoll = 100us;
+constexpr auto kDrainPoll = 250us;
 // A stream's first tick is due this long after the thread sees it, so the first deadline is
 // not already past when the thread gets to sleep on it.
 constexpr std::int64_t kStreamLeadNs = 200'000;
@@ -63,11 +63,8 @@ void GpiodCard::start(double pacer_hz) {
     return;
   }
   if (map_.realtime && !memory_locked_) {
-    std::string note;
-    memory_locked_ = lock_memory(&note);
     std::lock_guard lock(status_mutex_);
-    realtime_.memory_locked = memory_locked_;
-    realtime_.notes = note;
+    memory_locked_ = lock_memory(&memory_note_);
   }
   pacer_hz_ = pacer_hz;
   player_.reset(pacer_hz);
@@ -86,9 +83,9 @@ void GpiodCard::start(double pacer_hz) {
 void GpiodCard::write(std::span<const std::uint32_t> words) {
   // While the queue is full, wait about an eighth of the time it takes to play.
   const auto queue_time = std::chrono::duration<double>(ring_.capacity() / pacer_hz_);
-  const auto wait = std::clamp(
-      std::chrono::duration_cast<std::chrono::microseconds>(queue_time / 8), 100us,
-      std::chrono::microseconds(10ms));
+  const auto wait =
+      std::clamp(std::chrono::duration_cast<std::chrono::microseconds>(queue_time / 8), 100us,
+                 std::chrono::microseconds(10ms));
   while (!words.empty()) {
     std::size_t pushed = 0;
     {
@@ -133,8 +130,9 @@ void GpiodCard::run() {
     RealtimeResult got;
     make_thread_realtime(map_.rt_priority, map_.cpu, got);
     std::lock_guard lock(status_mutex_);
-    got.memory_locked = realtime_.memory_locked;
-    if (!realtime_.notes.empty()) got.notes = realtime_.notes + (got.notes.empty() ? "" : "; ") + got.notes;
+    got.memory_locked = memory_locked_;
+    if (!memory_note_.empty())
+      got.notes = memory_note_ + (got.notes.empty() ? "" : "; ") + got.notes;
     realtime_ = got;
   }
   while (!stop_requested_) {

@@ -56,9 +56,9 @@ class GpiodCard : public Card {
   RealtimeResult realtime() const;
 
  private:
-  void run();           // the player thread
-  bool play_stream();   // false when the card faulted or is stopping
-  void halt_player();   // ends the thread; lines keep their level
+  void run();          // the player thread
+  bool play_stream();  // false when the card faulted or is stopping
+  void halt_player();  // ends the thread; lines keep their level
 
   const GpioMap map_;
   std::unique_ptr<GpioLines> lines_;
@@ -68,10 +68,10 @@ class GpiodCard : public Card {
   double pacer_hz_ = 0;
 
   std::thread thread_;
-  std::atomic<bool> running_{false};         // the thread exists (start() until stop())
+  std::atomic<bool> running_{false};  // the thread exists (start() until stop())
   std::atomic<bool> stop_requested_{false};
   std::atomic<bool> drain_requested_{false};
-  std::atomic<bool> pacing_{false};          // a stream is playing
+  std::atomic<bool> pacing_{false};  // a stream is playing
 
   std::mutex producer_mutex_;  // write() against stop() clearing the queue
   bool accepting_ = false;     // guarded by producer_mutex_
@@ -79,7 +79,8 @@ class GpiodCard : public Card {
   mutable std::mutex status_mutex_;
   std::string refusal_;
   RealtimeResult realtime_;
-  bool memory_locked_ = false;
+  bool memory_locked_ = false;  // mlockall is process-wide: once is enough
+  std::string memory_note_;
 };
 
 }  // namespace gantry

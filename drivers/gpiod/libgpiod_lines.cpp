@@ -52,15 +52,14 @@ std::string chip_open_error(const std::string& path, int err) {
           path, kSeeReadme);
     case EACCES:
     case EPERM:
-      return fmt::format(
-          "{}: permission denied; add the user to the gpio group or a udev rule; {}", path,
-          kSeeReadme);
+      return fmt::format("{}: permission denied; add the user to the gpio group or a udev rule; {}",
+                         path, kSeeReadme);
     case ENOTTY:
     case ENODEV:
     case EISDIR:
       return fmt::format(
-          "{}: not a GPIO character device (expected /dev/gpiochipN; see `gpiodetect`); {}",
-          path, kSeeReadme);
+          "{}: not a GPIO character device (expected /dev/gpiochipN; see `gpiodetect`); {}", path,
+          kSeeReadme);
     default:
       return fmt::format("{}: cannot open the GPIO chip: {}; {}", path, std::strerror(err),
                          kSeeReadme);
@@ -93,15 +92,14 @@ struct LibgpiodLines::Handles {
 namespace {
 
 // Finds the lines at `offsets`, refusing any another consumer holds (naming it).
-bool get_free_lines(gpiod_chip* chip, const std::string& path,
-                    const std::vector<unsigned>& offsets, gpiod_line_bulk* bulk,
-                    std::string* error) {
+bool get_free_lines(gpiod_chip* chip, const std::string& path, const std::vector<unsigned>& offsets,
+                    gpiod_line_bulk* bulk, std::string* error) {
   gpiod_line_bulk_init(bulk);
   if (offsets.empty()) return true;
   if (gpiod_chip_get_lines(chip, const_cast<unsigned*>(offsets.data()),
                            static_cast<unsigned>(offsets.size()), bulk) != 0) {
-    *error = fmt::format("{}: cannot look up lines: {}; {}", path, std::strerror(errno),
-                         kSeeReadme);
+    *error =
+        fmt::format("{}: cannot look up lines: {}; {}", path, std::strerror(errno), kSeeReadme);
     return false;
   }
   for (unsigned i = 0; i < offsets.size(); ++i) {

@@ -7,10 +7,10 @@
 namespace gantry {
 
 struct RealtimeResult {
-  bool fifo = false;          // SCHED_FIFO granted
-  bool memory_locked = false; // mlockall succeeded
-  bool pinned = false;        // affinity set (or not asked for)
-  std::string notes;          // what was refused and why, for the operator
+  bool fifo = false;           // SCHED_FIFO granted
+  bool memory_locked = false;  // mlockall succeeded
+  bool pinned = false;         // affinity set (or not asked for)
+  std::string notes;           // what was refused and why, for the operator
 };
 
 // Locks the process's memory (current and future pages), so the player never waits on a

@@ -28,7 +28,8 @@ TickPlayer::TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring)
     lines_of_bit_[map.outputs[i].bit] |= std::uint64_t{1} << i;
     mapped_bits_ |= 1u << map.outputs[i].bit;
   }
-  for (std::size_t i = 0; i < map.inputs.size() && i < 64; ++i) bit_of_input_[i] = map.inputs[i].bit;
+  for (std::size_t i = 0; i < map.inputs.size() && i < 64; ++i)
+    bit_of_input_[i] = map.inputs[i].bit;
   reset(map.pacer_hz);
 }
 

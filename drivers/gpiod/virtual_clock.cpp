@@ -2,7 +2,6 @@
 #include "gpiod/virtual_clock.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 namespace gantry {
 
@@ -47,11 +46,10 @@ void VirtualClock::make_late(std::int64_t late_ns, int count) {
   late_count_ = count;
 }
 
-std::optional<std::int64_t> VirtualClock::wait_for_sleeper() {
+std::optional<std::int64_t> VirtualClock::wait_for_sleeper(std::chrono::milliseconds limit) {
   std::unique_lock lock(mutex_);
-  const bool slept = changed_.wait_for(lock, std::chrono::seconds(2), [&] {
-    return sleeping_ && sleep_count_ != reported_sleep_;
-  });
+  const bool slept =
+      changed_.wait_for(lock, limit, [&] { return sleeping_ && sleep_count_ != reported_sleep_; });
   if (!slept) return std::nullopt;
   reported_sleep_ = sleep_count_;
   return sleep_deadline_;

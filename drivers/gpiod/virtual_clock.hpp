@@ -2,6 +2,7 @@
 // moves it (gated), so every run of a test sees the same ticks.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -25,9 +26,10 @@ class VirtualClock : public TickClock {
 
   // The next `count` wakes happen `late_ns` after their deadline.
   void make_late(std::int64_t late_ns, int count = 1);
-  // Gated: waits (up to 2 s of real time) for a sleep that began after the last one this
-  // returned; its deadline, or nullopt when the player did not sleep again.
-  std::optional<std::int64_t> wait_for_sleeper();
+  // Gated: waits (up to `limit` of real time) for a sleep that began after the last one
+  // this returned; its deadline, or nullopt when the player did not sleep again.
+  std::optional<std::int64_t> wait_for_sleeper(
+      std::chrono::milliseconds limit = std::chrono::seconds(2));
   // Gated: moves time to `t_ns` (never backwards), waking a sleep whose deadline it reaches.
   void advance_to(std::int64_t t_ns);
   std::uint64_t sleeps() const;  // sleep_until_ns calls so far: the player's wake-ups

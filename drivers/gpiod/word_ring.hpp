@@ -27,7 +27,8 @@ class WordRing {
   std::size_t push(std::span<const std::uint32_t> words) {
     const std::uint64_t head = head_.load(std::memory_order_relaxed);
     const std::uint64_t tail = tail_.load(std::memory_order_acquire);
-    const std::size_t n = std::min(words.size(), capacity() - static_cast<std::size_t>(head - tail));
+    const std::size_t n =
+        std::min(words.size(), capacity() - static_cast<std::size_t>(head - tail));
     for (std::size_t i = 0; i < n; ++i) words_[(head + i) & mask_] = words[i];
     head_.store(head + n, std::memory_order_release);
     return n;

@@ -12,6 +12,7 @@
 #include "gantry/commands/command_docs.hpp"  // help text
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
+#include "open_card.hpp"                     // open_card
 #include "progress.hpp"                      // ProgressBar
 #include "report.hpp"                        // RunReport, to_json, to_text
 #include "sim/sim_card.hpp"                  // SimCard
@@ -39,7 +40,7 @@ bool load_profile(const std::string& path, Settings& out) {
 }
 
 struct RunArgs {
-  std::string file, settings, card = "sim";
+  std::string file, settings, card;  // card: empty = the profile's
   bool json = false, realtime = false;
   std::string trace;                         // --trace FILE: the simulated card's pin trace
   std::optional<double> estop_at, stall_at;  // simulated operator and producer
@@ -131,18 +132,27 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   opt.operator_present = interactive;
   OperatorIO& io = interactive ? static_cast<OperatorIO&>(terminal) : scripted;
 
+  CardChoice choice;
+  choice.type = a.card.empty() ? settings.card.type : a.card;
+  choice.realtime = a.realtime;
+  choice.trace = a.trace;
+  if (!a.world(choice.world)) return 1;
+  std::string why;
+  const std::unique_ptr<Card> card = open_card(choice, settings, &why);
+  if (!card) {
+    fmt::print(stderr, "error: cannot open the {} card: {}\n", choice.type, why);
+    return 1;
+  }
+  auto* sim = dynamic_cast<SimCard*>(card.get());  // the simulated card reports more
   if (!a.json)
-    fmt::print(stderr, "gantry: running {} on the simulated card, profile \"{}\"\n", a.file,
-               settings.name);
-  SimWorld world;
-  if (!a.world(world)) return 1;
-  SimCard card(settings, a.realtime, world, a.trace);
+    fmt::print(stderr, "gantry: running {} on the {} card, profile \"{}\"\n", a.file,
+               sim ? "simulated" : choice.type, settings.name);
   JobResult job;
   {
     ProgressBar bar;
     if (bar.enabled() && !a.json && !interactive)
       opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
-    job = run_job(script, settings, card, io, store, opt);
+    job = run_job(script, settings, *card, io, store, opt);
   }
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));
   for (const Diagnostic& w : scripted.warnings()) fmt::print(stderr, "{}\n", format(w));
@@ -154,17 +164,20 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.fault = job.fault == CardFault::None ? "none" : fault_name(job.fault);
   report.planned_time_s = job.planned_time_s;
   report.estimated_time_s = job.estimated_time_s;
-  report.steps = card.steps();
+  // A real card counts nothing itself: its steps are the generator's count of those played.
+  report.steps = sim ? sim->steps() : job.played_steps;
   for (int i = 0; i < kAxisCount; ++i)
-    report.position[i] = static_cast<double>(card.steps()[i]) / settings.axes[i].steps_per_unit;
-  report.time_s = card.time_s();
-  report.timing_violations = card.timing_violations();
-  for (const TimingViolation& v : card.first_violations())
-    report.violation_notes.push_back(fmt::format("tick {} axis {}: {}", v.tick,
-                                                 static_cast<char>(kAxisLetters[v.axis] - 32),
-                                                 rule_name(v.rule)));
-  report.max_velocity_ratio = card.kinematics().max_velocity_ratio();
-  report.max_accel_ratio = card.kinematics().max_accel_ratio();
+    report.position[i] = static_cast<double>(report.steps[i]) / settings.axes[i].steps_per_unit;
+  report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
+  if (sim) {
+    report.timing_violations = sim->timing_violations();
+    for (const TimingViolation& v : sim->first_violations())
+      report.violation_notes.push_back(fmt::format("tick {} axis {}: {}", v.tick,
+                                                   static_cast<char>(kAxisLetters[v.axis] - 32),
+                                                   rule_name(v.rule)));
+    report.max_velocity_ratio = sim->kinematics().max_velocity_ratio();
+    report.max_accel_ratio = sim->kinematics().max_accel_ratio();
+  }
 
   print_errors(report.errors);
   if (a.json) {
@@ -295,9 +308,8 @@ int main(int argc, char** argv) {
   CLI::App* run_cmd = app.add_subcommand("run", "Run a part file on the card");
   run_cmd->add_option("file", run.file, "Part file (.sbp)")->required();
   run_cmd->add_option("--settings", run.settings, "Machine profile (TOML); default: built-in");
-  run_cmd->add_option("--card", run.card, "Card to run on")
-      ->check(CLI::IsMember({"sim"}))
-      ->default_str("sim");
+  run_cmd->add_option("--card", run.card, "Card to run on (default: the profile's card.type)")
+      ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
   run_cmd->add_flag("--json", run.json, "Print the report as one JSON object on stdout");
   run_cmd->add_flag("--realtime", run.realtime, "Play the simulated card in real time");
   run_cmd->add_option("--trace", run.trace, "Write the simulated card's pin trace to FILE");

@@ -4,8 +4,9 @@
 #include <fmt/format.h>   // messages
 #include <toml++/toml.h>  // the TOML parser
 
-#include <cmath>  // ceil for tick counts
-#include <set>    // keys seen, to reject unknown ones
+#include <charconv>  // from_chars
+#include <cmath>     // ceil for tick counts
+#include <set>       // keys seen, to reject unknown ones
 
 #include "gantry/core/text_file.hpp"  // read_text_file
 
@@ -70,6 +71,44 @@ class TableReader {
       return fallback;
     }
     return *node->value<bool>();
+  }
+
+  // "a:b, c:d" pairs of whole numbers: bits 0-31 and GPIO line offsets. `form` names the
+  // order ("BIT:LINE" or "LINE:BIT") for the result and the message.
+  std::vector<GpioLineBit> line_bits(std::string_view key, std::string_view form) {
+    std::vector<GpioLineBit> out;
+    const toml::node* node = find(key);
+    if (!node) return out;
+    const std::optional<std::string> text = node->value<std::string>();
+    if (!text) {
+      error(*node,
+            fmt::format("{} must be a string of {} pairs, e.g. \"0:17, 8:27\"", full(key), form));
+      return out;
+    }
+    const bool bit_first = form == "BIT:LINE";
+    std::string_view rest = *text;
+    while (!rest.empty()) {
+      const size_t comma = rest.find(',');
+      std::string_view item = rest.substr(0, comma);
+      rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+      while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+      while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+      const size_t colon = item.find(':');
+      unsigned a = 0, b = 0;
+      const char* end = item.data() + item.size();
+      const bool ok =
+          colon != std::string_view::npos && colon > 0 && colon + 1 < item.size() &&
+          std::from_chars(item.data(), item.data() + colon, a).ptr == item.data() + colon &&
+          std::from_chars(item.data() + colon + 1, end, b).ptr == end;
+      const unsigned bit = bit_first ? a : b, line = bit_first ? b : a;
+      if (!ok || bit > 31) {
+        error(*node, fmt::format("{}: \"{}\" is not {} (bits 0-31, line offsets from 0)", full(key),
+                                 item, form));
+        return {};
+      }
+      out.push_back({static_cast<int>(bit), line});
+    }
+    return out;
   }
 
   std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed,
@@ -212,6 +251,9 @@ void read_profile(TableReader root, Settings& s) {
   c.pacer_divisor = card.integer("pacer_divisor", 2, 65535, 20);
   c.step_pulse_us = card.number("step_pulse_us", {0, 1e4, true}, 5);
   c.dir_setup_us = card.number("dir_setup_us", {0, 1e4}, 5);
+  c.gpiod_chip = card.choice("gpiod_chip", {}, "/dev/gpiochip0");
+  c.gpiod_outputs = card.line_bits("gpiod_outputs", "BIT:LINE");
+  c.gpiod_inputs = card.line_bits("gpiod_inputs", "LINE:BIT");
   card.finish();
 
   TableReader pins = root.table("pins");

@@ -190,6 +190,15 @@ TEST(CardFaultRun, EStopStopsAtItsTickAndALimitAtTheStepThatTripsIt) {
             std::string::npos);
 }
 
+TEST(Cards, AGpioCardThatCannotKeepThePacerIsRefusedBeforeAnythingRuns) {
+  const Result r = gantry("run parts/demo.sbp --card gpiod");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("error: cannot open the gpiod card: gpiod: pacer rate 200000 Hz is above"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out, "");  // no report: nothing ran
+}
+
 TEST(Estimate, BadFileGetsItsErrorsAndNoEstimate) {
   const Result r = gantry("estimate tests/data/unknown_command.sbp");
   EXPECT_EQ(r.exit_code, 1);

@@ -238,6 +238,24 @@ TEST(SettingsLoad, PlannerModesAndTheirErrors) {
   EXPECT_EQ(load(set_key("planner", "lookahead", "1").text).errors.size(), 1u);
 }
 
+TEST(SettingsLoad, GpioLinePairsAreReadAndCheckedWithTheirForm) {
+  const Settings d = default_settings();
+  ASSERT_EQ(d.card.gpiod_outputs.size(), 6u);
+  EXPECT_EQ(d.card.gpiod_outputs[1].bit, 8);  // "8:27": bit 8 on line 27
+  EXPECT_EQ(d.card.gpiod_outputs[1].line, 27u);
+  ASSERT_EQ(d.card.gpiod_inputs.size(), 3u);
+  EXPECT_EQ(d.card.gpiod_inputs[0].line, 5u);  // "5:0": line 5 sets bit 0
+  EXPECT_EQ(d.card.gpiod_inputs[0].bit, 0);
+  const Edited e = set_key("card", "gpiod_outputs", "\"0:17, 40:3\"");
+  const SettingsLoad l = load(e.text);
+  ASSERT_EQ(l.errors.size(), 1u) << messages(l);
+  EXPECT_EQ(l.errors[0].message,
+            "card.gpiod_outputs: \"40:3\" is not BIT:LINE (bits 0-31, line offsets from 0)");
+  EXPECT_EQ(load(set_key("card", "gpiod_inputs", "\"5-0\"").text).errors.size(), 1u);
+  EXPECT_EQ(load(set_key("card", "gpiod_inputs", "7").text).errors[0].message,
+            "card.gpiod_inputs must be a string of LINE:BIT pairs, e.g. \"0:17, 8:27\"");
+}
+
 TEST(SettingsLoad, MillimetreUnits) {
   const SettingsLoad l = load(set_key("", "units", "\"mm\"").text);
   ASSERT_TRUE(l.ok()) << messages(l);

@@ -80,10 +80,19 @@ struct InputSettings {
   bool limits_active_low = false;
 };
 
+// A GPIO line and the bit of the card's word it carries (type = "gpiod").
+struct GpioLineBit {
+  int bit = 0;
+  unsigned line = 0;
+};
+
 struct CardSettings {
-  std::string type = "sim";     // "sim", "pci7200", "gpiod"
-  double clock_hz = 4'000'000;  // PCI-7200 8254 timer clock
-  int pacer_divisor = 20;       // pacer = clock / divisor
+  std::string type = "sim";  // "sim", "pci7200", "gpiod"
+  std::string gpiod_chip = "/dev/gpiochip0";
+  std::vector<GpioLineBit> gpiod_outputs;  // output-word bit -> line
+  std::vector<GpioLineBit> gpiod_inputs;   // line -> input-word bit
+  double clock_hz = 4'000'000;             // PCI-7200 8254 timer clock
+  int pacer_divisor = 20;                  // pacer = clock / divisor
   double step_pulse_us = 5;
   double dir_setup_us = 5;
 
