@@ -199,6 +199,15 @@ TEST(Cards, AGpioCardThatCannotKeepThePacerIsRefusedBeforeAnythingRuns) {
   EXPECT_EQ(r.out, "");  // no report: nothing ran
 }
 
+TEST(Cards, AMissingPci7200IsNamedBeforeAnythingRuns) {
+  const Result r = gantry("run parts/demo.sbp --card pci7200");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("error: cannot open the pci7200 card: no PCI-7200 found"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("is the card fitted?"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
 TEST(Estimate, BadFileGetsItsErrorsAndNoEstimate) {
   const Result r = gantry("estimate tests/data/unknown_command.sbp");
   EXPECT_EQ(r.exit_code, 1);

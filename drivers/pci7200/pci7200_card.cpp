@@ -1,0 +1,289 @@
+// The PCI-7200 card: pacer programming, the feeder thread's state machine, faults and stop.
+#include "pci7200/pci7200_card.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+#include "pci7200/pacer_divisor.hpp"
+
+namespace gantry::pci7200 {
+namespace {
+
+constexpr auto kProducerWait = std::chrono::microseconds(50);
+constexpr std::size_t kPioPrimeWords = 64;
+
+}  // namespace
+
+Pci7200Card::Pci7200Card(std::shared_ptr<Pci7200Bus> bus, Pci7200Options options)
+    : bus_(std::move(bus)), options_(options), ring_(options.ring_words), output_(*bus_) {
+  {
+    // Whatever the card was doing (a previous run that crashed), it stops here.
+    std::lock_guard lock(hardware_);
+    bus_->write32(Bar::Card, card::kCounterControl,
+                  i8254::control_word(i8254::kPacerCounter, i8254::kPacerMode));
+    output_.reset();
+    bus_->write32(Bar::Card, card::kDioCsr, card::kDioDoClearFifo | card::kDioDoUnderrun);
+    bus_->write32(Bar::Card, card::kDioCsr, 0);
+    bus_->write32(Bar::Card, card::kDoPort, options_.idle_word);
+    inputs_.store(bus_->read32(Bar::Card, card::kDiPort), std::memory_order_release);
+  }
+  bus_->attach_feeder();
+  feeder_thread_ = std::thread(&Pci7200Card::feeder_loop, this);
+  while (!feeder_ready_.load(std::memory_order_acquire)) std::this_thread::yield();
+}
+
+Pci7200Card::~Pci7200Card() {
+  close();
+}
+
+void Pci7200Card::close() {
+  if (closed_) return;
+  closed_ = true;
+  {
+    std::lock_guard lock(hardware_);
+    const Phase phase = phase_.load(std::memory_order_acquire);
+    if (active()) halt_output(true);
+    output_.reset();
+    if (phase != Phase::Idle) bus_->write32(Bar::Card, card::kDoPort, options_.idle_word);
+    phase_.store(Phase::Idle, std::memory_order_release);
+  }
+  exit_.store(true, std::memory_order_release);
+  bus_->detach_feeder();
+  if (feeder_thread_.joinable()) feeder_thread_.join();
+}
+
+void Pci7200Card::start(double pacer_hz) {
+  if (closed_) throw std::logic_error("PCI-7200: start() after close()");
+  const PacerDivisor divisor = pacer_divisor(options_.clock_hz, pacer_hz);
+  if (!divisor.ok()) throw std::invalid_argument(divisor.error);
+
+  std::lock_guard lock(hardware_);
+  if (active()) halt_output(false);
+  output_.reset();
+  ring_.discard_readable();
+  bus_->write32(Bar::Card, card::kDioCsr, card::kDioDoClearFifo | card::kDioDoUnderrun);
+  bus_->write32(Bar::Card, card::kDioCsr, 0);
+  // Counter 1 alone sets the rate: pacer = clock / divisor.
+  const std::uint32_t int_csr = bus_->read32(Bar::Card, card::kIntCsr);
+  bus_->write32(Bar::Card, card::kIntCsr, int_csr & ~card::kIntT1T2Cascade);
+  const auto count = static_cast<std::uint32_t>(divisor.divisor);
+  const std::uint32_t counter = i8254::counter_offset(i8254::kPacerCounter);
+  bus_->write32(Bar::Card, card::kCounterControl,
+                i8254::control_word(i8254::kPacerCounter, i8254::kPacerMode));
+  bus_->write32(Bar::Card, counter, count & 0xff);
+  bus_->write32(Bar::Card, counter, count >> 8);
+
+  tick_seconds_ = divisor.divisor / options_.clock_hz;
+  pacer_hz_.store(options_.clock_hz / divisor.divisor, std::memory_order_release);
+  pump_ = ChargePump();
+  if (options_.charge_pump_bit >= 0 && options_.charge_pump_bit < 32) {
+    const double half = std::round(pacer_hz / (2 * options_.charge_pump_hz));
+    pump_ = ChargePump(options_.charge_pump_bit, static_cast<std::uint32_t>(std::max(1.0, half)));
+  }
+  stream_position_ = 0;
+  prime_words_ = options_.prime_words > 0 ? options_.prime_words
+                 : output_.uses_dma()     ? output_.half_words()
+                                          : kPioPrimeWords;
+  prime_words_ = std::min(prime_words_, ring_.capacity());
+  ticks_.store(0, std::memory_order_release);
+  fault_.store(CardFault::None, std::memory_order_release);
+  drains_done_.store(drains_requested_.load(std::memory_order_acquire), std::memory_order_release);
+  phase_.store(Phase::Armed, std::memory_order_release);
+}
+
+void Pci7200Card::write(std::span<const std::uint32_t> words) {
+  while (!words.empty()) {
+    const Phase phase = phase_.load(std::memory_order_acquire);
+    if (phase == Phase::Idle || phase == Phase::Faulted) return;  // dropped
+    const std::size_t n = ring_.push(words);
+    words = words.subspan(n);
+    if (n == 0) std::this_thread::sleep_for(kProducerWait);
+  }
+}
+
+void Pci7200Card::drain() {
+  const std::uint64_t mine = drains_requested_.fetch_add(1, std::memory_order_acq_rel) + 1;
+  for (;;) {
+    const Phase phase = phase_.load(std::memory_order_acquire);
+    if (phase == Phase::Idle || phase == Phase::Faulted) return;
+    if (drains_done_.load(std::memory_order_acquire) >= mine) return;
+    std::this_thread::sleep_for(kProducerWait);
+  }
+}
+
+void Pci7200Card::stop(std::uint32_t idle_word) {
+  std::lock_guard lock(hardware_);
+  if (active()) halt_output(true);
+  bus_->write32(Bar::Card, card::kDoPort, pump_.idle(idle_word));
+  ring_.discard_readable();
+  phase_.store(Phase::Idle, std::memory_order_release);
+}
+
+std::size_t Pci7200Card::take(std::span<std::uint32_t> out) {
+  const std::size_t n = ring_.pop(out);
+  pump_.stamp(out.first(n), stream_position_);
+  stream_position_ += n;
+  return n;
+}
+
+void Pci7200Card::feeder_loop() {
+  realtime_report_ = make_current_thread_realtime(options_.realtime);
+  feeder_running_.store(true, std::memory_order_release);
+  feeder_ready_.store(true, std::memory_order_release);
+  for (;;) {
+    bus_->pause();
+    if (exit_.load(std::memory_order_acquire)) break;
+    std::lock_guard lock(hardware_);
+    pass();
+  }
+  feeder_running_.store(false, std::memory_order_release);
+}
+
+// One look at the card: sample the inputs, then move the state machine on. Allocation-free.
+void Pci7200Card::pass() {
+  // The drain request is read before the ring: the producer queues its words before it asks,
+  // so a request seen here comes with all the words it covers.
+  const std::uint64_t drain_request = drains_requested_.load(std::memory_order_acquire);
+  const bool drain_pending = drain_request > drains_done_.load(std::memory_order_acquire);
+  const std::uint32_t inputs = bus_->read32(Bar::Card, card::kDiPort);
+  inputs_.store(inputs, std::memory_order_release);
+  const Phase phase = phase_.load(std::memory_order_acquire);
+  switch (phase) {
+    case Phase::Idle:
+    case Phase::Faulted:
+      ring_.discard_readable();  // late writes are dropped, never played
+      return;
+    case Phase::Armed: {
+      if (bus_->failed()) return trip(CardFault::Hardware, false);
+      if (options_.estop.tripped(inputs)) return trip(CardFault::EStop, false);
+      if (options_.limits.tripped(inputs)) return trip(CardFault::Limit, false);
+      const std::size_t queued = ring_.readable();
+      if (queued == 0) {
+        if (drain_pending) acknowledge_drain(drain_request);
+        return;
+      }
+      if (queued >= prime_words_ || drain_pending) begin_output();
+      return;
+    }
+    case Phase::Running:
+    case Phase::Starved:
+    case Phase::Drained:
+      return run_output(phase, inputs, drain_request, drain_pending);
+  }
+}
+
+void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, std::uint64_t drain_request,
+                             bool drain_pending) {
+  const FeederSnapshot s = output_.poll();
+  const std::uint64_t into_card = output_.words_into_card();
+  if (s.device_lost || s.dma_error) return trip(CardFault::Hardware, false);
+  if (options_.estop.tripped(inputs)) return trip(CardFault::EStop, true);
+  if (options_.limits.tripped(inputs)) return trip(CardFault::Limit, true);
+
+  // The card flags a pacer tick that found its FIFO empty.
+  const bool underran = (bus_->read32(Bar::Card, card::kDioCsr) & card::kDioDoUnderrun) != 0;
+  const std::size_t queued = ring_.readable();
+  const bool words_waiting = s.words_staged || queued > 0;  // not yet handed to the card
+  const bool words_due = s.in_flight || words_waiting;
+  const bool all_played = s.fifo_empty && !words_due;
+  // An empty FIFO with words still waiting is the reload deadline missed: counted as an
+  // underrun even if the next tick has not come yet, so detection does not rest on the
+  // card's flag alone.
+  const bool ran_dry = s.fifo_empty && !s.in_flight && words_waiting;
+
+  switch (phase) {
+    case Phase::Running:
+      if ((underran && words_due) || ran_dry) return trip(CardFault::Underrun, true);
+      if (all_played) {
+        ticks_.store(into_card, std::memory_order_release);
+        if (drain_pending) {
+          acknowledge_drain(drain_request);
+          phase_.store(Phase::Drained, std::memory_order_release);
+        } else if (underran) {
+          // Ran out with nothing asked for: a word written from now on is late.
+          phase_.store(Phase::Starved, std::memory_order_release);
+        }
+        return;
+      }
+      output_.feed(*this);
+      if (s.fifo_empty) {
+        ticks_.store(into_card, std::memory_order_release);
+      } else {
+        // Up to a FIFO's worth has entered but not yet played.
+        const std::uint64_t lower =
+            into_card - std::min<std::uint64_t>(into_card, amcc::kFifoWords);
+        if (lower > ticks_.load(std::memory_order_relaxed))
+          ticks_.store(lower, std::memory_order_release);
+      }
+      return;
+    case Phase::Starved:
+      if (queued > 0) return trip(CardFault::Underrun, false);
+      if (drain_pending) {
+        acknowledge_drain(drain_request);
+        phase_.store(Phase::Drained, std::memory_order_release);
+      }
+      return;
+    case Phase::Drained:
+      // After a drain the next words start a new stretch of output, as at start().
+      if (queued > 0 && (queued >= prime_words_ || drain_pending)) return begin_output();
+      if (queued == 0 && drain_pending) acknowledge_drain(drain_request);
+      return;
+    default:
+      return;
+  }
+}
+
+void Pci7200Card::begin_output() {
+  output_.feed(*this);
+  // The FIFO is filled first, so the first paced tick already has a word.
+  bus_->write32(Bar::Card, card::kDioCsr, card::kDioDoTimerPaced | card::kDioDoUnderrun);
+  phase_.store(Phase::Running, std::memory_order_release);
+}
+
+void Pci7200Card::halt_output(bool play_out) {
+  output_.stop_transfers();
+  bool empty = output_.fifo_empty();
+  if (play_out) {
+    const auto tick =
+        std::chrono::nanoseconds(static_cast<std::int64_t>(std::ceil(tick_seconds_ * 1e9)));
+    for (std::uint32_t i = 0; !empty && i <= amcc::kFifoWords; ++i) {
+      bus_->sleep_for(tick);
+      empty = output_.fifo_empty();
+    }
+  }
+  // A control word alone stops the counter until a new count is written.
+  bus_->write32(Bar::Card, card::kCounterControl,
+                i8254::control_word(i8254::kPacerCounter, i8254::kPacerMode));
+  bus_->write32(Bar::Card, card::kDioCsr, card::kDioDoUnderrun);
+  const std::uint64_t into_card = output_.words_into_card();
+  if (empty) {
+    ticks_.store(into_card, std::memory_order_release);
+  } else {
+    const std::uint64_t lower = into_card - std::min<std::uint64_t>(into_card, amcc::kFifoWords);
+    ticks_.store(std::max(lower, ticks_.load(std::memory_order_relaxed)),
+                 std::memory_order_release);
+  }
+  bus_->write32(Bar::Amcc, amcc::kMcsr, amcc::kMcsrP2aFifoReset | amcc::kMcsrReadPriority);
+  bus_->write32(Bar::Amcc, amcc::kMcsr, amcc::kMcsrReadPriority);
+}
+
+void Pci7200Card::trip(CardFault fault, bool play_out) {
+  halt_output(play_out);
+  ring_.discard_readable();
+  fault_.store(fault, std::memory_order_release);
+  phase_.store(Phase::Faulted, std::memory_order_release);
+}
+
+bool Pci7200Card::active() const {
+  const Phase phase = phase_.load(std::memory_order_acquire);
+  return phase != Phase::Idle && phase != Phase::Faulted;
+}
+
+void Pci7200Card::acknowledge_drain(std::uint64_t request) {
+  drains_done_.store(request, std::memory_order_release);
+}
+
+}  // namespace gantry::pci7200

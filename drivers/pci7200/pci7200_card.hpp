@@ -1,0 +1,119 @@
+// The PCI-7200 as a gantry::Card. The card's 8254 counter 1 paces the output, one 32-bit word
+// per tick, with no software jitter; a real-time feeder thread keeps the card's FIFO fed (a
+// DMA double buffer, or programmed I/O) from a lock-free ring that write() fills.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <thread>
+
+#include "gantry/hal/card.hpp"            // Card, CardFault
+#include "pci7200/charge_pump.hpp"        // ChargePump
+#include "pci7200/output_feeder.hpp"      // OutputFeeder, WordSource
+#include "pci7200/pci7200_bus.hpp"        // Pci7200Bus
+#include "pci7200/pci7200_registers.hpp"  // i8254::kClockHz
+#include "pci7200/pi_mutex.hpp"           // PiMutex
+#include "pci7200/realtime_thread.hpp"    // RealtimeRequest
+#include "pci7200/spsc_word_ring.hpp"     // SpscWordRing
+
+namespace gantry::pci7200 {
+
+// Input bits that stop the card: it trips when any masked bit is at its active level.
+struct InputTrip {
+  std::uint32_t mask = 0;         // 0: never trips
+  std::uint32_t active_high = 0;  // per masked bit: 1 active when high, 0 active when low
+  bool tripped(std::uint32_t inputs) const { return (~(inputs ^ active_high) & mask) != 0; }
+};
+
+struct Pci7200Options {
+  double clock_hz = i8254::kClockHz;
+  std::size_t ring_words = std::size_t{1} << 18;  // write() to feeder: 1.3 s at 200 kHz
+  std::size_t prime_words = 0;  // queued before output starts; 0: one DMA half (PIO: 64)
+  int charge_pump_bit = -1;     // -1: no charge pump
+  double charge_pump_hz = 12'500;
+  std::uint32_t idle_word = 0;  // the output word when the card is opened and closed
+  InputTrip estop;              // trips CardFault::EStop
+  InputTrip limits;             // trips CardFault::Limit
+  RealtimeRequest realtime;     // for the feeder thread
+};
+
+class Pci7200Card : public Card, private WordSource {
+ public:
+  // Quiesces the card (pacer halted, transfers off, idle word out) and starts the feeder.
+  Pci7200Card(std::shared_ptr<Pci7200Bus> bus, Pci7200Options options = {});
+  ~Pci7200Card() override;
+  Pci7200Card(const Pci7200Card&) = delete;
+  Pci7200Card& operator=(const Pci7200Card&) = delete;
+
+  // Throws std::invalid_argument when the pacer is not clock / N with N in 2..65535 (and
+  // std::logic_error after close()). Output begins once `prime_words` are queued, or at
+  // drain().
+  void start(double pacer_hz) override;
+  // Blocks while the ring is full; the feeder makes room as words play.
+  void write(std::span<const std::uint32_t> words) override;
+  void drain() override;
+  // The words already inside the card's FIFO (at most 8) play out first, so that
+  // ticks_played() is exact and no pulse is cut; then the pacer halts.
+  void stop(std::uint32_t idle_word) override;
+  // Exact once output has stopped (drained, stopped, underrun); while words play it may lag
+  // by up to the FIFO depth.
+  std::uint64_t ticks_played() const override { return ticks_.load(std::memory_order_acquire); }
+  std::uint32_t inputs() const override { return inputs_.load(std::memory_order_acquire); }
+  CardFault fault() const override { return fault_.load(std::memory_order_acquire); }
+
+  double pacer_hz() const { return pacer_hz_.load(std::memory_order_acquire); }
+  bool uses_dma() const { return output_.uses_dma(); }
+  bool feeder_running() const { return feeder_running_.load(std::memory_order_acquire); }
+  // What the feeder thread was granted (scheduling, CPU, locked memory).
+  const std::string& realtime_report() const { return realtime_report_; }
+  std::string describe() const { return bus_->describe(); }
+
+  // Halts output, writes the idle word and joins the feeder. Idempotent.
+  void close();
+
+ private:
+  enum class Phase { Idle, Armed, Running, Starved, Drained, Faulted };
+
+  std::size_t take(std::span<std::uint32_t> out) override;  // WordSource, for the feeder
+  void feeder_loop();
+  void pass();
+  void run_output(Phase phase, std::uint32_t inputs, std::uint64_t drain_request,
+                  bool drain_pending);
+  void begin_output();
+  void halt_output(bool play_out);
+  void trip(CardFault fault, bool play_out);
+  bool active() const;
+  void acknowledge_drain(std::uint64_t request);
+
+  std::shared_ptr<Pci7200Bus> bus_;
+  Pci7200Options options_;
+  SpscWordRing ring_;
+  OutputFeeder output_;
+
+  PiMutex hardware_;  // held by a feeder pass and by start, stop and close
+  // Under hardware_:
+  ChargePump pump_;
+  std::uint64_t stream_position_ = 0;  // words taken from the ring since start()
+  std::size_t prime_words_ = 0;
+  double tick_seconds_ = 0;
+
+  std::atomic<Phase> phase_{Phase::Idle};
+  std::atomic<CardFault> fault_{CardFault::None};
+  std::atomic<std::uint64_t> ticks_{0};
+  std::atomic<std::uint32_t> inputs_{0};
+  std::atomic<double> pacer_hz_{0};
+  std::atomic<std::uint64_t> drains_requested_{0};
+  std::atomic<std::uint64_t> drains_done_{0};
+  std::atomic<bool> exit_{false};
+  std::atomic<bool> feeder_ready_{false};
+  std::atomic<bool> feeder_running_{false};
+  std::string realtime_report_;  // written by the feeder before feeder_ready_
+  std::thread feeder_thread_;
+  bool closed_ = false;
+};
+
+}  // namespace gantry::pci7200
