@@ -2,10 +2,10 @@
 #include "sim/sim_card.hpp"
 
 #include <algorithm>  // min
-#include <cmath>    // llround
-#include <iomanip>  // the trace's hex words
-#include <limits>   // numeric_limits
-#include <thread>   // sleep_until for --realtime
+#include <cmath>      // llround
+#include <iomanip>    // the trace's hex words
+#include <limits>     // numeric_limits
+#include <thread>     // sleep_until for --realtime
 
 namespace gantry {
 namespace {
@@ -82,6 +82,15 @@ void SimCard::start(double pacer_hz) {
   };
   estop_tick_ = tick_of(world_.estop_at_s);
   stall_tick_ = tick_of(world_.stall_at_s);
+  input_ticks_.clear();
+  for (const SimInputEvent& e : world_.input_events) input_ticks_.push_back(tick_of(e.at_s));
+  next_input_ = 0;
+}
+
+std::uint64_t SimCard::next_event_tick() const {
+  const std::uint64_t input =
+      next_input_ < input_ticks_.size() ? input_ticks_[next_input_] : UINT64_MAX;
+  return std::min({estop_tick_, stall_tick_, input});
 }
 
 void SimCard::stop(std::uint32_t idle_word) {
@@ -91,8 +100,13 @@ void SimCard::stop(std::uint32_t idle_word) {
 
 void SimCard::write(std::span<const std::uint32_t> words) {
   if (stopped_ || fault_ != CardFault::None) return;
-  const std::uint64_t event_tick = std::min(estop_tick_, stall_tick_);
+  std::uint64_t event_tick = next_event_tick();
   for (std::uint32_t w : words) {
+    while (next_input_ < input_ticks_.size() && tick_ >= input_ticks_[next_input_]) {
+      const SimInputEvent& e = world_.input_events[next_input_++];
+      set_input(e.bit, e.high, false);
+      event_tick = next_event_tick();
+    }
     if (tick_ >= event_tick) {
       if (tick_ >= estop_tick_) {
         set_input(input_bits_.estop_bit, true, input_bits_.estop_active_low);

@@ -59,6 +59,9 @@ class SimCard : public Card {
   void violation(int axis, TimingRule rule);
   void update_switches(int axis);  // after a step of `axis`
   void trace_word(std::uint32_t w);
+  std::uint64_t next_event_tick() const;  // the next E-stop, stall or input event
+  std::vector<std::uint64_t> input_ticks_;
+  std::size_t next_input_ = 0;
   std::uint32_t axis_bits_ = 0;  // every step and direction bit
   void set_input(int bit, bool active, bool active_low);
 

@@ -3,10 +3,18 @@
 
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "gantry/core/axes.hpp"  // kAxisCount
 
 namespace gantry {
+
+// An input bit set to a level at a machine time (an operator's button, a sensor).
+struct SimInputEvent {
+  double at_s = 0;
+  int bit = 0;
+  bool high = true;
+};
 
 struct SimWorld {
   // Limit switches: active once the axis is at or beyond the position (units), on the low
@@ -17,6 +25,7 @@ struct SimWorld {
   std::optional<double> probe_z;     // a surface: the probe input is active at or below this Z
   std::optional<double> estop_at_s;  // the operator presses E-stop at this machine time
   std::optional<double> stall_at_s;  // the producer stalls here: words still due underrun
+  std::vector<SimInputEvent> input_events;  // in time order
 };
 
 }  // namespace gantry

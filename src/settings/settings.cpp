@@ -73,6 +73,34 @@ class TableReader {
     return *node->value<bool>();
   }
 
+  // "a, b, c": whole numbers in [lo, hi].
+  std::vector<int> int_list(std::string_view key, int lo, int hi) {
+    std::vector<int> out;
+    const toml::node* node = find(key);
+    if (!node) return out;
+    const std::optional<std::string> text = node->value<std::string>();
+    std::string_view rest = text ? std::string_view(*text) : std::string_view{};
+    while (text && !rest.empty()) {
+      const size_t comma = rest.find(',');
+      std::string_view item = rest.substr(0, comma);
+      rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+      while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+      while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+      int v = 0;
+      const char* end = item.data() + item.size();
+      const auto r = std::from_chars(item.data(), end, v);
+      if (r.ptr != end || r.ec != std::errc{} || item.empty() || v < lo || v > hi) {
+        error(*node, fmt::format("{}: \"{}\" is not a whole number from {} to {}", full(key), item,
+                                 lo, hi));
+        return {};
+      }
+      out.push_back(v);
+    }
+    if (!text)
+      error(*node, fmt::format("{} must be a string of whole numbers, e.g. \"18, 19\"", full(key)));
+    return out;
+  }
+
   // "a:b, c:d" pairs of whole numbers: bits 0-31 and GPIO line offsets. `form` names the
   // order ("BIT:LINE" or "LINE:BIT") for the result and the message.
   std::vector<GpioLineBit> line_bits(std::string_view key, std::string_view form) {
@@ -273,6 +301,7 @@ void read_profile(TableReader root, Settings& s) {
   o.charge_pump_bit = outputs.integer("charge_pump_bit", -1, 31, 16);
   o.charge_pump_hz = outputs.number("charge_pump_hz", {0, 1e6, true}, 10000);
   o.spindle_bit = outputs.integer("spindle_bit", -1, 31, 17);
+  o.aux_bits = outputs.int_list("aux_bits", -1, 31);
   outputs.finish();
 
   TableReader inputs = root.table("inputs");
@@ -321,8 +350,11 @@ void check_consistency(const Settings& s, const std::string& origin,
       used |= 1u << bit;
     }
   }
-  for (auto [name, bit] : {std::pair{"charge_pump_bit", s.outputs.charge_pump_bit},
-                           std::pair{"spindle_bit", s.outputs.spindle_bit}}) {
+  std::vector<std::pair<std::string, int>> outputs = {
+      {"charge_pump_bit", s.outputs.charge_pump_bit}, {"spindle_bit", s.outputs.spindle_bit}};
+  for (size_t k = 0; k < s.outputs.aux_bits.size(); ++k)
+    outputs.emplace_back(fmt::format("aux_bits (output {})", k + 1), s.outputs.aux_bits[k]);
+  for (const auto& [name, bit] : outputs) {
     if (bit < 0) continue;
     if (used & (1u << bit))
       err(fmt::format("outputs.{}: output bit {} is already used by another pin", name, bit));

@@ -38,11 +38,19 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
         1, std::llround(settings.card.pacer_hz() / (2 * settings.outputs.charge_pump_hz)));
   }
   if (settings.outputs.spindle_bit >= 0) spindle_mask_ = 1u << settings.outputs.spindle_bit;
+  aux_bits_ = settings.outputs.aux_bits;
   step_log_.resize(4096);
 }
 
 void StepGenerator::set_spindle(bool on) {
   level_word_ = on ? level_word_ | spindle_mask_ : level_word_ & ~spindle_mask_;
+}
+
+bool StepGenerator::set_output(int n, bool on) {
+  if (n < 1 || n > static_cast<int>(aux_bits_.size()) || aux_bits_[n - 1] < 0) return false;
+  const std::uint32_t mask = 1u << aux_bits_[n - 1];
+  level_word_ = on ? level_word_ | mask : level_word_ & ~mask;
+  return true;
 }
 
 Steps6 StepGenerator::played_position() const {

@@ -256,6 +256,18 @@ TEST(SettingsLoad, GpioLinePairsAreReadAndCheckedWithTheirForm) {
             "card.gpiod_inputs must be a string of LINE:BIT pairs, e.g. \"0:17, 8:27\"");
 }
 
+TEST(SettingsLoad, AuxOutputBitsAreAListAndMayNotCollide) {
+  EXPECT_EQ(default_settings().outputs.aux_bits,
+            (std::vector<int>{18, 19, 20, 21, 22, 23, 24, 25}));
+  const SettingsLoad clash = load(set_key("outputs", "aux_bits", "\"18, 0\"").text);
+  ASSERT_EQ(clash.errors.size(), 1u) << messages(clash);
+  EXPECT_EQ(clash.errors[0].message,
+            "outputs.aux_bits (output 2): output bit 0 is already used by another pin");
+  const SettingsLoad bad = load(set_key("outputs", "aux_bits", "\"18, x\"").text);
+  ASSERT_EQ(bad.errors.size(), 1u) << messages(bad);
+  EXPECT_EQ(bad.errors[0].message, "outputs.aux_bits: \"x\" is not a whole number from -1 to 31");
+}
+
 TEST(SettingsLoad, MillimetreUnits) {
   const SettingsLoad l = load(set_key("", "units", "\"mm\"").text);
   ASSERT_TRUE(l.ok()) << messages(l);

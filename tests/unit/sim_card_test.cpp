@@ -101,6 +101,22 @@ TEST(SimCardInputs, AProducerStallWithWordsStillDueIsAnUnderrun) {
   EXPECT_EQ(card.steps()[0], 2);
 }
 
+TEST(SimCardInputs, InputEventsSetTheirBitsAtTheirTimes) {
+  SimWorld w;
+  w.input_events = {{3 * 5e-6, 12, true}, {6 * 5e-6, 12, false}};
+  SimCard card(default_settings(), false, w);
+  card.start(200000);
+  play(card, {0, 0, 0});
+  EXPECT_EQ(card.inputs() & (1u << 12), 0u);
+  play(card, {0});
+  EXPECT_EQ(card.inputs() & (1u << 12), 1u << 12);
+  EXPECT_EQ(card.sample_inputs().tick, 4u);
+  EXPECT_EQ(card.sample_inputs().bits, card.inputs());
+  play(card, {0, 0, 0});
+  EXPECT_EQ(card.inputs() & (1u << 12), 0u);
+  EXPECT_EQ(card.fault(), CardFault::None);
+}
+
 TEST(SimCardInputs, StopDropsWhatFollowsAndIdlesTheLines) {
   SimCard card(default_settings());
   play(card, {kXStep});

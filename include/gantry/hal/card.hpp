@@ -19,6 +19,12 @@ enum class CardFault {
 
 const char* fault_name(CardFault f);
 
+// The input port as sampled, and the tick of the sample.
+struct InputSample {
+  std::uint64_t tick = 0;
+  std::uint32_t bits = 0;
+};
+
 class Card {
  public:
   virtual ~Card() = default;
@@ -35,6 +41,9 @@ class Card {
   virtual std::uint64_t ticks_played() const = 0;
   // The input port's 32 bits as last sampled, raw (polarity is the profile's business).
   virtual std::uint32_t inputs() const = 0;
+  // The same with its tick. Exact on the simulated card (virtual time); a card that samples
+  // in its own thread may lag by its sampling interval.
+  virtual InputSample sample_inputs() const { return {ticks_played(), inputs()}; }
   // Why the card stopped by itself; None while it plays or after a clean stop.
   virtual CardFault fault() const = 0;
 };

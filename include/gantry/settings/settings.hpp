@@ -68,6 +68,7 @@ struct OutputSettings {
   int charge_pump_bit = 16;       // a square wave while the card plays: drives stay enabled
   double charge_pump_hz = 10000;  // only while pulses flow (WinCNC's `watch=` watchdog)
   int spindle_bit = 17;           // on while the spindle runs
+  std::vector<int> aux_bits;      // output switches 1, 2, ... (SO); -1: that one not wired
 };
 
 // Bits of the card's 32-bit input word. -1: not wired. A switch is "active" when its bit

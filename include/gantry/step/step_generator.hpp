@@ -45,6 +45,9 @@ class StepGenerator : public SegmentSink {
   Steps6 played_position() const;
   // The spindle output bit, from the next word on.
   void set_spindle(bool on);
+  // Output switch n (1-based, as SO numbers them), from the next word on; false when the
+  // profile does not wire it.
+  bool set_output(int n, bool on);
   bool faulted() const { return faulted_; }
   // Confirms the steps the card has played; on a card fault, throws (once) the error naming
   // the fault and where the tool stopped. Called after every block, and by the job after
@@ -87,6 +90,7 @@ class StepGenerator : public SegmentSink {
   std::vector<Event> events_;
   std::vector<std::uint32_t> block_;
   std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
+  std::vector<int> aux_bits_;
   std::int64_t pump_half_ticks_ = 1;
   std::vector<StepRecord> step_log_;  // ring [log_begin_, log_end_) of steps not yet played
   std::size_t log_begin_ = 0, log_end_ = 0;
