@@ -131,14 +131,20 @@ TEST(FeedOverride, FasterAndSlowerRunsStayWithinTheLimitsAndMatchTheirEstimates)
   EXPECT_NE(gantry("run parts/demo.sbp --feed-override 5").exit_code, 0);  // below 10 %
 }
 
-// The simulated card's pin trace of a tiny file, word change by word change, against a
-// golden trace checked by hand (3 X steps out, then 1 back with 2 Y steps; the charge pump
-// on bit 16 toggling every 10 ticks).
-TEST(PinTrace, TinyFileMatchesTheGoldenTrace) {
-  const fs::path out = fs::temp_directory_path() / fmt::format("gantry_trace_{}.trace", getpid());
-  const Result r = gantry("run tests/data/trace_small.sbp --json --trace '" + out.string() + "'");
+// The simulated card's pin trace of tiny files, word change by word change, against golden
+// traces checked by hand: trace_small (3 X steps out, then 1 back with 2 Y steps),
+// trace_reversal (3 X steps out, 2 back: the direction bit 8 rises between the pulses, at
+// least the setup time before the first step back). The charge pump toggles bit 16 every
+// 10 ticks throughout.
+class PinTrace : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PinTrace, MatchesTheGoldenTrace) {
+  const std::string name = GetParam();
+  const fs::path out =
+      fs::temp_directory_path() / fmt::format("gantry_{}_{}.trace", name, getpid());
+  const Result r = gantry("run tests/data/" + name + ".sbp --json --trace '" + out.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream got(out), want(kSource / "tests/data/trace_small.trace");
+  std::ifstream got(out), want(kSource / "tests/data" / (name + ".trace"));
   std::stringstream g, w;
   g << got.rdbuf();
   w << want.rdbuf();
@@ -146,6 +152,8 @@ TEST(PinTrace, TinyFileMatchesTheGoldenTrace) {
   EXPECT_EQ(g.str(), w.str());
   EXPECT_GT(w.str().size(), 1000u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Golden, PinTrace, ::testing::Values("trace_small", "trace_reversal"));
 
 // Faults on the simulated card: the run stops, says why and where, and the position it
 // reports is exactly the pulses the card played (the card's own count and the generator's).
