@@ -73,70 +73,66 @@ class TableReader {
     return *node->value<bool>();
   }
 
-  // "a, b, c": whole numbers in [lo, hi].
-  std::vector<int> int_list(std::string_view key, int lo, int hi) {
-    std::vector<int> out;
+  // A string key holding a comma-separated list, e.g. "18, 19" or "0:17, 8:27": each item,
+  // trimmed, goes to `item`, which returns false (and the reading stops) when it is bad; the
+  // message is then "KEY: \"ITEM\" is not WHAT". A key that is not a string says `example`.
+  template <class Item>
+  void list(std::string_view key, std::string_view what, std::string_view example, Item item) {
     const toml::node* node = find(key);
-    if (!node) return out;
-    const std::optional<std::string> text = node->value<std::string>();
-    std::string_view rest = text ? std::string_view(*text) : std::string_view{};
-    while (text && !rest.empty()) {
-      const size_t comma = rest.find(',');
-      std::string_view item = rest.substr(0, comma);
-      rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
-      while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-      while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-      int v = 0;
-      const char* end = item.data() + item.size();
-      const auto r = std::from_chars(item.data(), end, v);
-      if (r.ptr != end || r.ec != std::errc{} || item.empty() || v < lo || v > hi) {
-        error(*node, fmt::format("{}: \"{}\" is not a whole number from {} to {}", full(key), item,
-                                 lo, hi));
-        return {};
-      }
-      out.push_back(v);
-    }
-    if (!text)
-      error(*node, fmt::format("{} must be a string of whole numbers, e.g. \"18, 19\"", full(key)));
-    return out;
-  }
-
-  // "a:b, c:d" pairs of whole numbers: bits 0-31 and GPIO line offsets. `form` names the
-  // order ("BIT:LINE" or "LINE:BIT") for the result and the message.
-  std::vector<GpioLineBit> line_bits(std::string_view key, std::string_view form) {
-    std::vector<GpioLineBit> out;
-    const toml::node* node = find(key);
-    if (!node) return out;
+    if (!node) return;
     const std::optional<std::string> text = node->value<std::string>();
     if (!text) {
-      error(*node,
-            fmt::format("{} must be a string of {} pairs, e.g. \"0:17, 8:27\"", full(key), form));
-      return out;
+      error(*node, fmt::format("{} must be a string such as \"{}\"", full(key), example));
+      return;
     }
-    const bool bit_first = form == "BIT:LINE";
     std::string_view rest = *text;
     while (!rest.empty()) {
       const size_t comma = rest.find(',');
-      std::string_view item = rest.substr(0, comma);
+      std::string_view one = rest.substr(0, comma);
       rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
-      while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-      while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-      const size_t colon = item.find(':');
-      unsigned a = 0, b = 0;
-      const char* end = item.data() + item.size();
-      const bool ok =
-          colon != std::string_view::npos && colon > 0 && colon + 1 < item.size() &&
-          std::from_chars(item.data(), item.data() + colon, a).ptr == item.data() + colon &&
-          std::from_chars(item.data() + colon + 1, end, b).ptr == end;
-      const unsigned bit = bit_first ? a : b, line = bit_first ? b : a;
-      if (!ok || bit > 31) {
-        error(*node, fmt::format("{}: \"{}\" is not {} (bits 0-31, line offsets from 0)", full(key),
-                                 item, form));
-        return {};
+      while (!one.empty() && one.front() == ' ') one.remove_prefix(1);
+      while (!one.empty() && one.back() == ' ') one.remove_suffix(1);
+      if (!item(one)) {
+        error(*node, fmt::format("{}: \"{}\" is not {}", full(key), one, what));
+        return;
       }
-      out.push_back({static_cast<int>(bit), line});
     }
-    return out;
+  }
+
+  // "a, b, c": whole numbers in [lo, hi].
+  std::vector<int> int_list(std::string_view key, int lo, int hi) {
+    std::vector<int> out;
+    bool ok = true;
+    list(key, fmt::format("a whole number from {} to {}", lo, hi), "18, 19",
+         [&](std::string_view one) {
+           int v = 0;
+           const auto r = std::from_chars(one.data(), one.data() + one.size(), v);
+           ok = !one.empty() && r.ptr == one.data() + one.size() && v >= lo && v <= hi;
+           if (ok) out.push_back(v);
+           return ok;
+         });
+    return ok ? out : std::vector<int>{};
+  }
+
+  // "a:b, c:d" pairs of whole numbers: bits 0-31 and GPIO line offsets. `form` names the
+  // order ("BIT:LINE" or "LINE:BIT").
+  std::vector<GpioLineBit> line_bits(std::string_view key, std::string_view form) {
+    std::vector<GpioLineBit> out;
+    const bool bit_first = form == "BIT:LINE";
+    bool ok = true;
+    list(key, fmt::format("{} (bits 0-31, line offsets from 0)", form), "0:17, 8:27",
+         [&](std::string_view one) {
+           const size_t colon = one.find(':');
+           unsigned a = 0, b = 0;
+           const char* end = one.data() + one.size();
+           ok = colon != std::string_view::npos && colon > 0 && colon + 1 < one.size() &&
+                std::from_chars(one.data(), one.data() + colon, a).ptr == one.data() + colon &&
+                std::from_chars(one.data() + colon + 1, end, b).ptr == end &&
+                (bit_first ? a : b) <= 31;
+           if (ok) out.push_back({static_cast<int>(bit_first ? a : b), bit_first ? b : a});
+           return ok;
+         });
+    return ok ? out : std::vector<GpioLineBit>{};
   }
 
   std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed,
