@@ -30,6 +30,7 @@ const CommandTable& CommandTable::standard() {
     add_move_commands(specs);
     add_mode_commands(specs);
     add_file_commands(specs);
+    add_output_commands(specs);
     return CommandTable(std::move(specs));
   }();
   return table;

@@ -50,6 +50,18 @@ void CommandContext::dwell(double seconds, const SourceLoc& loc) {
   ++moves_;
 }
 
+void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
+  CanonMove m;
+  m.kind = MoveKind::Output;
+  m.from = m.to = state_.position;
+  m.output = n;
+  m.output_on = on;
+  m.loc = loc;
+  sink_.move(m);
+  const std::uint32_t bit = 1u << (n - 1);
+  state_.outputs = on ? state_.outputs | bit : state_.outputs & ~bit;
+}
+
 void CommandContext::come_to_rest(const SourceLoc& loc) {
   CanonMove m;
   m.kind = MoveKind::Stop;
@@ -213,6 +225,9 @@ void Interpreter::run(std::shared_ptr<const Script> script) {
     files_.clear();
     on_input_.clear();
     pending_call_.reset();
+    // Output switches go off when the job ends, however it ends (SB3's standard mode).
+    for (int n = 1; state_.outputs != 0; ++n)
+      if (state_.outputs & (1u << (n - 1))) ctx_.set_output(n, false, SourceLoc{});
     sink_.flush();
     clear_run_flag();
     store_.save();

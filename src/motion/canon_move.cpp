@@ -13,6 +13,8 @@ const char* kind_name(MoveKind k) {
       return "arc";
     case MoveKind::Stop:
       return "stop";
+    case MoveKind::Output:
+      return "output";
   }
   return "?";
 }

@@ -43,11 +43,13 @@ void LookAheadPlanner::move(const CanonMove& m) {
     punctuated_ = true;
     return;
   }
-  if (m.kind == MoveKind::Dwell) {
-    stop();
+  if (m.kind == MoveKind::Dwell || m.kind == MoveKind::Output) {
+    stop();  // an output switches with the machine at rest, between the moves around it
     PlannedSegment seg;
     seg.from = seg.to = m.to;
     seg.dwell_s = m.dwell_s;
+    seg.output = m.kind == MoveKind::Output ? m.output : 0;
+    seg.output_on = m.output_on;
     seg.loc = m.loc;
     planned_time_ += m.dwell_s;
     out_.segment(seg);

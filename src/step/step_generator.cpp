@@ -92,6 +92,12 @@ void StepGenerator::check_card() {
 void StepGenerator::segment(const PlannedSegment& seg) {
   if (faulted_) return;
   current_loc_ = seg.loc;
+  if (seg.output > 0) {  // at rest: the words so far keep the old level, one word the new
+    emit_until(segment_end_);
+    set_output(seg.output, seg.output_on);  // checked by SO: it is wired
+    emit_until(++segment_end_);
+    return;
+  }
   const Trapezoid& p = seg.profile;
   const std::int64_t t0 = segment_end_;
   std::int64_t end = t0 + std::llround((p.duration() + seg.dwell_s) / timing_.tick_s);

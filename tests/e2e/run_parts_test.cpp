@@ -134,7 +134,8 @@ TEST(FeedOverride, FasterAndSlowerRunsStayWithinTheLimitsAndMatchTheirEstimates)
 // The simulated card's pin trace of tiny files, word change by word change, against golden
 // traces checked by hand: trace_small (3 X steps out, then 1 back with 2 Y steps),
 // trace_reversal (3 X steps out, 2 back: the direction bit 8 rises between the pulses, at
-// least the setup time before the first step back). The charge pump toggles bit 16 every
+// least the setup time before the first step back), trace_output (output 1, bit 18, on from
+// the first word, off one word after X's two steps). The charge pump toggles bit 16 every
 // 10 ticks throughout.
 class PinTrace : public ::testing::TestWithParam<std::string> {};
 
@@ -153,7 +154,8 @@ TEST_P(PinTrace, MatchesTheGoldenTrace) {
   EXPECT_GT(w.str().size(), 1000u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Golden, PinTrace, ::testing::Values("trace_small", "trace_reversal"));
+INSTANTIATE_TEST_SUITE_P(Golden, PinTrace,
+                         ::testing::Values("trace_small", "trace_reversal", "trace_output"));
 
 // Faults on the simulated card: the run stops, says why and where, and the position it
 // reports is exactly the pulses the card played (the card's own count and the generator's).

@@ -212,6 +212,47 @@ TEST_F(InterpreterTest, MovesCarryMoveSpeedsAndJogsCarryJogSpeeds) {
   expect_speeds(moves()[1].speeds, 6.0, 3.0, 45, 45, 45);
 }
 
+// ---- SO: output switches
+
+TEST_F(InterpreterTest, SoSwitchesAnOutputBetweenMovesAndTheJobsEndTurnsItOff) {
+  run("SO, 1, 1\nMX, 1\nSO, 3, 1\nSO, 1\nMX, 2\n");
+  ASSERT_EQ(moves().size(), 6u);
+  auto is_output = [&](size_t k, int n, bool on) {
+    EXPECT_EQ(moves()[k].kind, MoveKind::Output) << k;
+    EXPECT_EQ(moves()[k].output, n) << k;
+    EXPECT_EQ(moves()[k].output_on, on) << k;
+  };
+  is_output(0, 1, true);
+  EXPECT_EQ(moves()[1].kind, MoveKind::Line);
+  is_output(2, 3, true);
+  is_output(3, 1, false);  // a blank state is off
+  EXPECT_EQ(moves()[4].kind, MoveKind::Line);
+  is_output(5, 3, false);  // still on at the end: switched off
+  EXPECT_EQ(state().outputs, 0u);
+  EXPECT_EQ(where(moves()[2].loc), "part.sbp:3:1");
+}
+
+TEST_F(InterpreterTest, SoRefusesSwitchesThatDoNotExistOrAreNotWired) {
+  Diagnostic d = run_error("SO, 13, 1\n");
+  EXPECT_EQ(d.message, "output switch 13 does not exist; switches are 1 to 12");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:5");
+  EXPECT_EQ(run_error("SO, 2, 5\n").message, "SO state 5 is not 0 (off) or 1 (on)");
+  EXPECT_EQ(run_error("SO, 1.5, 1\n").message,
+            "output switch 1.5 does not exist; switches are 1 to 12");
+  EXPECT_NE(run_error("SO, 4, -1\n").message.find("automatic modes"), std::string::npos);
+  EXPECT_EQ(run_error("SO\n").message, "SO needs its parameter 1 (switch)");
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(InterpreterTest, SoRefusesASwitchTheProfileDoesNotWire) {
+  settings.outputs.aux_bits = {18, 19, 20, 21, 22, 23, 24, 25};  // SB3's eight
+  const Diagnostic d = run_error("SO, 9, 1\n");
+  EXPECT_EQ(d.message,
+            "output switch 9 is not wired in this profile (outputs.aux_bits wires 8); nothing "
+            "was switched");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:5");
+}
+
 TEST_F(InterpreterTest, MsSetsMoveSpeedsOnly) {
   run("MS, 3, 1, 20, 30, 40\nMX, 1\nJX, 2\n");
   expect_speeds(state().speeds.move, 3, 1, 20, 30, 40);

@@ -243,6 +243,28 @@ TEST(ArcChords, EqualChordsWithinTheToleranceEndingExactlyAtTheEnd) {
   EXPECT_EQ(arc_chords(quarter, 10).size(), 3u);  // a coarse tolerance: quarter turns
 }
 
+TEST(Outputs, AnOutputSwitchesAtRestBetweenTheMovesAroundIt) {
+  const Settings s = default_settings();
+  CardRun run(s);
+  LookAheadPlanner p(s, run.tee);
+  p.move(line(vec(0), vec(1), s));
+  CanonMove on;
+  on.kind = MoveKind::Output;
+  on.from = on.to = vec(1);
+  on.output = 2;
+  on.output_on = true;
+  p.move(on);
+  p.move(line(vec(1), vec(2), s));
+  p.flush();
+  ASSERT_EQ(run.planned.segs.size(), 3u);
+  EXPECT_EQ(run.planned.segs[0].profile.v_exit, 0.4);  // the move ends at its rest speed
+  EXPECT_EQ(run.planned.segs[1].output, 2);
+  EXPECT_TRUE(run.planned.segs[1].output_on);
+  EXPECT_EQ(run.planned.segs[2].profile.v_entry, 0.4);  // and the next starts from rest
+  EXPECT_EQ(run.card.steps()[0], std::llround(2 * s.axes[0].steps_per_unit));
+  EXPECT_EQ(run.card.timing_violations(), 0u);
+}
+
 // ---- junction and stop modes -------------------------------------------------------------
 
 TEST(JunctionMode, ARightAngleCornerFollowsTheJunctionDeviationFormula) {

@@ -258,7 +258,7 @@ TEST(SettingsLoad, GpioLinePairsAreReadAndCheckedWithTheirForm) {
 
 TEST(SettingsLoad, AuxOutputBitsAreAListAndMayNotCollide) {
   EXPECT_EQ(default_settings().outputs.aux_bits,
-            (std::vector<int>{18, 19, 20, 21, 22, 23, 24, 25}));
+            (std::vector<int>{18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29}));
   const SettingsLoad clash = load(set_key("outputs", "aux_bits", "\"18, 0\"").text);
   ASSERT_EQ(clash.errors.size(), 1u) << messages(clash);
   EXPECT_EQ(clash.errors[0].message,

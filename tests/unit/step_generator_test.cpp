@@ -882,19 +882,19 @@ TEST(SpindleOutput, FollowsSetSpindleFromTheNextWord) {
 }
 
 TEST(AuxOutputs, OutputSwitchesSetTheirBitsAndUnwiredOnesSaySo) {
-  Settings s = steps_only();  // outputs 1-8 on bits 18-25
+  Settings s = steps_only();  // outputs 1-12 on bits 18-29
   RecordingCard card;
   StepGenerator gen(s, card);
   EXPECT_TRUE(gen.set_output(3, true));  // bit 20
-  EXPECT_FALSE(gen.set_output(9, true));
+  EXPECT_FALSE(gen.set_output(13, true));
   EXPECT_FALSE(gen.set_output(0, true));
   gen.segment(rest_to_rest(Vec6::Zero(), vec(0.01), 1.0));
   EXPECT_TRUE(gen.set_output(3, false));
   gen.segment(rest_to_rest(vec(0.01), vec(0.02), 1.0));
   gen.flush();
   const auto& w = card.words();
-  EXPECT_EQ(w.front() & (0xFFu << 18), 1u << 20);
-  EXPECT_EQ(w.back() & (0xFFu << 18), 0u);
+  EXPECT_EQ(w.front() & (0xFFFu << 18), 1u << 20);
+  EXPECT_EQ(w.back() & (0xFFFu << 18), 0u);
 }
 
 // A card that plays words until a given tick, then reports a fault and plays no more.

@@ -78,5 +78,6 @@ const char* group_name(CommandGroup g);
 void add_move_commands(std::vector<CommandSpec>& out);
 void add_mode_commands(std::vector<CommandSpec>& out);
 void add_file_commands(std::vector<CommandSpec>& out);
+void add_output_commands(std::vector<CommandSpec>& out);
 
 }  // namespace gantry

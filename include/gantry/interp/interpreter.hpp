@@ -26,6 +26,7 @@ struct ModalState {
   Vec6 position = Vec6::Zero();  // commanded position, machine units
   bool absolute = true;          // SA (true) or SR (false)
   SpeedSettings speeds;          // MS / JS / VS
+  std::uint32_t outputs = 0;     // SO: bit n-1 set while output switch n is on
 };
 
 // How a nested file's coordinates map to the machine's: machine = origin + scale * file.
@@ -66,6 +67,8 @@ class CommandContext {
   void dwell(double seconds, const SourceLoc& loc);
   // The machine ramps down to rest here before the next move (MS, JS).
   void come_to_rest(const SourceLoc& loc);
+  // Output switch n (1-based) on or off, at rest between the moves around it (SO).
+  void set_output(int n, bool on, const SourceLoc& loc);
   // FP: runs a file as a subroutine once this command returns.
   void call_file(const FileCall& call, const SourceLoc& loc);
   // Records who set a speed group (0 xy .. 4 c): values set by VS are undone when the file

@@ -10,8 +10,8 @@ namespace gantry {
 // Line: a straight move. Arc: a circular move in the XY plane about `center`, through
 // `sweep` radians (positive: counter-clockwise), the other axes moving in proportion (a
 // helix). Dwell: a timed wait at rest. Stop: come to rest, then go on (MS and JS punctuate
-// the moves around them this way).
-enum class MoveKind { Line, Arc, Dwell, Stop };
+// the moves around them this way). Output: at rest, switch output `output` on or off (SO).
+enum class MoveKind { Line, Arc, Dwell, Stop, Output };
 
 // Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
 enum class SpeedClass { Move, Jog };
@@ -25,7 +25,9 @@ struct CanonMove {
   double center_x = 0, center_y = 0;  // Arc: the centre of the circle
   double sweep = 0;                   // Arc: signed angle, radians; 2 pi is a full circle
   double dwell_s = 0;                 // Dwell: how long the machine waits, s
-  SourceLoc loc;                      // the statement that asked for it
+  int output = 0;                     // Output: the switch, 1-based as SO numbers it
+  bool output_on = false;
+  SourceLoc loc;  // the statement that asked for it
 };
 
 const char* kind_name(MoveKind k);

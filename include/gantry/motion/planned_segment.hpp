@@ -11,6 +11,8 @@ struct PlannedSegment {
   Vec6 to = Vec6::Zero();
   Trapezoid profile;   // along |to - from|
   double dwell_s = 0;  // a wait with no motion (profile empty)
+  int output = 0;      // > 0: switch this output (1-based) at this point, at rest
+  bool output_on = false;
   SpeedClass speed_class = SpeedClass::Move;
   SourceLoc loc;
 };
