@@ -6,8 +6,9 @@
 namespace gantry {
 namespace {
 
-constexpr CommandGroup kGroupOrder[] = {CommandGroup::File, CommandGroup::Move, CommandGroup::Jog,
-                                        CommandGroup::Settings, CommandGroup::Values};
+constexpr CommandGroup kGroupOrder[] = {CommandGroup::File,   CommandGroup::Move,
+                                        CommandGroup::Jog,    CommandGroup::Settings,
+                                        CommandGroup::Values, CommandGroup::Zero};
 
 std::string param_default(const ParamSpec& p) {
   if (p.required) return "required";

@@ -31,6 +31,7 @@ const CommandTable& CommandTable::standard() {
     add_mode_commands(specs);
     add_file_commands(specs);
     add_output_commands(specs);
+    add_zero_commands(specs);
     return CommandTable(std::move(specs));
   }();
   return table;
@@ -53,6 +54,8 @@ const char* group_name(CommandGroup g) {
       return "Settings";
     case CommandGroup::Values:
       return "Values";
+    case CommandGroup::Zero:
+      return "Zero";
   }
   return "?";
 }

@@ -18,20 +18,25 @@ namespace gantry {
 void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
   const Vec6 target = transform_.to_machine(file_target);
   const char* unit = units_name(settings_.units);
+  // Soft limits are the table's envelope, in table base coordinates.
+  const Vec6 table = target + state_.zero;
   for (int i = 0; i < kAxisCount; ++i) {
     if (target[i] == state_.position[i]) continue;  // only axes that move are checked
     const AxisSettings& ax = settings_.axes[i];
-    if (!std::isfinite(target[i]) || target[i] < ax.min || target[i] > ax.max)
-      fail(loc, fmt::format("move to {}={:.4f} is outside the soft limits {:.4f} to {:.4f} {} "
+    if (!std::isfinite(table[i]) || table[i] < ax.min || table[i] > ax.max) {
+      const char letter = static_cast<char>(std::toupper(kAxisLetters[i]));
+      const std::string base =
+          state_.zero[i] == 0 ? "" : fmt::format(" (table base {}={:.4f})", letter, table[i]);
+      fail(loc, fmt::format("move to {}={:.4f}{} is outside the soft limits {:.4f} to {:.4f} {} "
                             "(axes.{}.min/max in the profile); nothing was moved",
-                            static_cast<char>(std::toupper(kAxisLetters[i])), target[i], ax.min,
-                            ax.max, unit, kAxisLetters[i]));
+                            letter, target[i], base, ax.min, ax.max, unit, kAxisLetters[i]));
+    }
   }
   if (target == state_.position) return;  // no motion, no move
   CanonMove m;
   m.speed_class = cls;
-  m.from = state_.position;
-  m.to = target;
+  m.from = state_.position + state_.zero;  // the machine moves in table base coordinates
+  m.to = table;
   m.speeds = cls == SpeedClass::Move ? state_.speeds.move : state_.speeds.jog;
   m.loc = loc;
   sink_.move(m);
@@ -43,17 +48,25 @@ void CommandContext::dwell(double seconds, const SourceLoc& loc) {
   if (!(seconds > 0)) return;
   CanonMove m;
   m.kind = MoveKind::Dwell;
-  m.from = m.to = state_.position;
+  m.from = m.to = state_.position + state_.zero;
   m.dwell_s = seconds;
   m.loc = loc;
   sink_.move(m);
   ++moves_;
 }
 
+void CommandContext::zero_axes(unsigned axes) {
+  for (int i = 0; i < kAxisCount; ++i)
+    if (axes & (1u << i)) {
+      state_.zero[i] += state_.position[i];
+      state_.position[i] = 0;
+    }
+}
+
 void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
   CanonMove m;
   m.kind = MoveKind::Output;
-  m.from = m.to = state_.position;
+  m.from = m.to = state_.position + state_.zero;
   m.output = n;
   m.output_on = on;
   m.loc = loc;
@@ -65,7 +78,7 @@ void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
 void CommandContext::come_to_rest(const SourceLoc& loc) {
   CanonMove m;
   m.kind = MoveKind::Stop;
-  m.from = m.to = state_.position;
+  m.from = m.to = state_.position + state_.zero;
   m.loc = loc;
   sink_.move(m);
 }
@@ -416,6 +429,7 @@ Value Interpreter::system_variable(int n, const SourceLoc& loc) {
 MachineSnapshot Interpreter::snapshot() const {
   MachineSnapshot m;
   m.location = state_.position;
+  m.table_base = state_.position + state_.zero;
   m.relative = !state_.absolute;
   m.metric = settings_.units == Units::Millimetres;
   for (int i = 0; i < kAxisCount; ++i) {

@@ -212,6 +212,50 @@ TEST_F(InterpreterTest, MovesCarryMoveSpeedsAndJogsCarryJogSpeeds) {
   expect_speeds(moves()[1].speeds, 6.0, 3.0, 45, 45, 45);
 }
 
+// ---- Zero commands
+
+TEST_F(InterpreterTest, ZeroingMakesTheCurrentLocationWorkingZeroAndTheMachineMovesOn) {
+  run("M3, 5, 4, 1\nZX\nMX, 1\n&x = %(1)\n&tx = %(6)\n");
+  ASSERT_EQ(moves().size(), 2u);
+  expect_vec(moves()[1].from, at(5, 4, 1));  // the machine moves in table base coordinates
+  expect_vec(moves()[1].to, at(6, 4, 1));
+  expect_vec(state().position, at(1, 4, 1));
+  expect_vec(state().zero, at(5));
+}
+
+TEST_F(InterpreterTest, EachZeroCommandZeroesItsAxes) {
+  const std::pair<const char*, unsigned> cases[] = {
+      {"Z2", 0b11}, {"Z3", 0b111}, {"Z4", 0b1111}, {"Z5", 0b11111}, {"Z6", 0b111111}, {"ZX", 0b1},
+      {"ZY", 0b10}, {"ZZ", 0b100}, {"ZA", 0b1000}, {"ZB", 0b10000}, {"ZC", 0b100000}};
+  for (const auto& [code, axes] : cases) {
+    SCOPED_TRACE(code);
+    run("M5, 1, 1, 0.5, 2, 3\n");  // C has no move command yet: it stays at 0
+    const Vec6 before = state().position, table = state().position + state().zero;
+    run(std::string(code) + "\n");
+    for (int i = 0; i < kAxisCount; ++i)
+      EXPECT_EQ(state().position[i], (axes >> i) & 1 ? 0 : before[i]) << kAxisLetters[i];
+    expect_vec(state().position + state().zero, table);  // the machine did not move
+  }
+}
+
+TEST_F(InterpreterTest, SoftLimitsStayTheTablesAfterZeroing) {
+  const Diagnostic d = run_error("MX, 20\nZX\nMX, 5\n");
+  EXPECT_EQ(d.message,
+            "move to X=5.0000 (table base X=25.0000) is outside the soft limits 0.0000 to "
+            "24.0000 in (axes.x.min/max in the profile); nothing was moved");
+  EXPECT_EQ(moves().size(), 1u);
+  run("MX, -19\n");  // working -19 is table 1: inside
+  expect_vec(state().position + state().zero, at(1));
+}
+
+TEST_F(InterpreterTest, SystemVariablesReadWorkingAndTableBaseLocations) {
+  run("M2, 3, 2\nZ2\nM2, 1, 1\n&wx = %(1)\n&wy = %(2)\n&bx = %(6)\n&by = %(7)\n");
+  EXPECT_EQ(interp().variable("WX")->num(), 1);
+  EXPECT_EQ(interp().variable("WY")->num(), 1);
+  EXPECT_EQ(interp().variable("BX")->num(), 4);
+  EXPECT_EQ(interp().variable("BY")->num(), 3);
+}
+
 // ---- SO: output switches
 
 TEST_F(InterpreterTest, SoSwitchesAnOutputBetweenMovesAndTheJobsEndTurnsItOff) {

@@ -16,7 +16,7 @@ namespace gantry {
 class CommandContext;
 struct CommandSpec;
 
-enum class CommandGroup { File, Jog, Move, Settings, Values };
+enum class CommandGroup { File, Jog, Move, Settings, Values, Zero };
 
 enum class ParamKind { Number, Text };
 
@@ -79,5 +79,6 @@ void add_move_commands(std::vector<CommandSpec>& out);
 void add_mode_commands(std::vector<CommandSpec>& out);
 void add_file_commands(std::vector<CommandSpec>& out);
 void add_output_commands(std::vector<CommandSpec>& out);
+void add_zero_commands(std::vector<CommandSpec>& out);
 
 }  // namespace gantry

@@ -23,7 +23,8 @@ namespace gantry {
 
 // The state the language defines and commands change.
 struct ModalState {
-  Vec6 position = Vec6::Zero();  // commanded position, machine units
+  Vec6 position = Vec6::Zero();  // commanded position: working coordinates, machine units
+  Vec6 zero = Vec6::Zero();      // where working 0 is in table base coordinates (Z commands)
   bool absolute = true;          // SA (true) or SR (false)
   SpeedSettings speeds;          // MS / JS / VS
   std::uint32_t outputs = 0;     // SO: bit n-1 set while output switch n is on
@@ -69,6 +70,9 @@ class CommandContext {
   void come_to_rest(const SourceLoc& loc);
   // Output switch n (1-based) on or off, at rest between the moves around it (SO).
   void set_output(int n, bool on, const SourceLoc& loc);
+  // Makes the current location of `axes` (bits 0 X .. 5 C) working 0; the table base
+  // location stays where it is.
+  void zero_axes(unsigned axes);
   // FP: runs a file as a subroutine once this command returns.
   void call_file(const FileCall& call, const SourceLoc& loc);
   // Records who set a speed group (0 xy .. 4 c): values set by VS are undone when the file
