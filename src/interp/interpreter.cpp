@@ -46,11 +46,8 @@ void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const Sour
 
 void CommandContext::dwell(double seconds, const SourceLoc& loc) {
   if (!(seconds > 0)) return;
-  CanonMove m;
-  m.kind = MoveKind::Dwell;
-  m.from = m.to = state_.position + state_.zero;
+  CanonMove m = here(MoveKind::Dwell, loc);
   m.dwell_s = seconds;
-  m.loc = loc;
   sink_.move(m);
   ++moves_;
 }
@@ -64,23 +61,24 @@ void CommandContext::zero_axes(unsigned axes) {
 }
 
 void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
-  CanonMove m;
-  m.kind = MoveKind::Output;
-  m.from = m.to = state_.position + state_.zero;
+  CanonMove m = here(MoveKind::Output, loc);
   m.output = n;
   m.output_on = on;
-  m.loc = loc;
   sink_.move(m);
   const std::uint32_t bit = 1u << (n - 1);
   state_.outputs = on ? state_.outputs | bit : state_.outputs & ~bit;
 }
 
 void CommandContext::come_to_rest(const SourceLoc& loc) {
+  sink_.move(here(MoveKind::Stop, loc));
+}
+
+CanonMove CommandContext::here(MoveKind kind, const SourceLoc& loc) const {
   CanonMove m;
-  m.kind = MoveKind::Stop;
-  m.from = m.to = state_.position + state_.zero;
+  m.kind = kind;
+  m.from = m.to = state_.position + state_.zero;  // table base coordinates
   m.loc = loc;
-  sink_.move(m);
+  return m;
 }
 
 void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {

@@ -82,6 +82,8 @@ class CommandContext {
   std::size_t moves() const { return moves_; }
 
  private:
+  // A motion-stream item at the current location, in table base coordinates.
+  CanonMove here(MoveKind kind, const SourceLoc& loc) const;
   friend class Interpreter;
   ModalState& state_;
   const Settings& settings_;
