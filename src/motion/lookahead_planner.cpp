@@ -8,6 +8,7 @@
 //             so that from every entry speed the machine can still stop by the tail;
 //   forward:  e_k = min(b_k, sqrt(e_{k-1}^2 + 2 a_{k-1} l_{k-1})),
 //             so that every entry speed can be reached from the one before.
+// (With a jerk limit the square roots become the S-curve reach, ramp_reach.)
 //
 // A block's exit is the next block's entry; its profile is the trapezoid between them.
 // Appending a block only raises the tail's exit (from 0 to its corner speed), so backward
@@ -18,7 +19,8 @@
 #include "gantry/motion/lookahead_planner.hpp"
 
 #include <algorithm>  // min, max, clamp
-#include <cmath>      // sqrt
+#include <cmath>      // abs, M_PI
+#include <vector>
 
 #include "gantry/motion/arc_chords.hpp"    // arc_chords
 #include "gantry/motion/corner_speed.hpp"  // corner_speed, rest_speed
@@ -39,6 +41,12 @@ double LookAheadPlanner::reach(double v, const Block& b) const {
 }
 
 void LookAheadPlanner::move(const CanonMove& m) {
+  // During a hold, a dwell or an output cannot go out before the held moves ahead of it:
+  // it and everything after it wait in arrival order until resume().
+  if (held_ && (!deferred_.empty() || m.kind == MoveKind::Dwell || m.kind == MoveKind::Output)) {
+    deferred_.push_back(m);
+    return;
+  }
   if (m.kind == MoveKind::Stop) {  // the next corner ramps fully down and up again
     punctuated_ = true;
     return;
@@ -181,6 +189,9 @@ void LookAheadPlanner::resume() {
   if (!held_) return;
   held_ = false;
   feed_override(override_);  // re-plans what was held, the front from rest
+  std::vector<CanonMove> waiting;
+  waiting.swap(deferred_);
+  for (const CanonMove& m : waiting) move(m);
 }
 
 // The direction from the path point at least min_distance back to `at` (SB3 measures

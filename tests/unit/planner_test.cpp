@@ -407,7 +407,7 @@ void expect_within_limits(const std::vector<PlannedSegment>& segs, const Setting
     const Trapezoid& t = seg.profile;
     ASSERT_EQ(seg.from, start) << k;
     start = seg.to;
-    if (seg.dwell_s > 0) {
+    if (seg.dwell_s > 0 || seg.output > 0) {  // at rest
       within_jump(Vec6::Zero(), k);
       prev_v = Vec6::Zero();
       continue;
@@ -617,6 +617,33 @@ INSTANTIATE_TEST_SUITE_P(
       return std::string(planner_mode_name(info.param.mode)) +
              (info.param.corner_jump > 0 ? "" : "_no_jump") + (info.param.jerk > 0 ? "_jerk" : "");
     });
+
+TEST(Outputs, AnOutputDuringAHoldWaitsForTheHeldMovesAheadOfIt) {
+  Settings s = default_settings();
+  s.planner.lookahead = 2;
+  Collect out;
+  LookAheadPlanner p(s, out);
+  for (int i = 0; i < 40; ++i) p.move(line(vec(i * 0.5), vec((i + 1) * 0.5), s));
+  p.feedhold();
+  const Vec6 held_from = out.segs.back().to;
+  CanonMove on;
+  on.kind = MoveKind::Output;
+  on.output = 1;
+  on.output_on = true;
+  on.from = on.to = vec(20);
+  p.move(on);
+  p.move(line(vec(20), vec(21), s));
+  EXPECT_EQ(out.segs.back().to, held_from);  // nothing went out while held
+  p.resume();
+  p.flush();
+  size_t output_at = 0;
+  for (size_t k = 0; k < out.segs.size(); ++k)
+    if (out.segs[k].output) output_at = k;
+  ASSERT_GT(output_at, 0u);
+  EXPECT_EQ(out.segs[output_at - 1].to, vec(20));  // after every move before it
+  EXPECT_EQ(out.segs[output_at + 1].to, vec(21));
+  expect_within_limits(out.segs, s, Vec6::Zero());
+}
 
 }  // namespace
 }  // namespace gantry

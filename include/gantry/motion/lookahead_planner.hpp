@@ -3,6 +3,7 @@
 #pragma once
 
 #include <deque>
+#include <vector>
 
 #include "gantry/motion/canon_move.hpp"       // MotionSink, CanonMove
 #include "gantry/motion/planned_segment.hpp"  // SegmentSink
@@ -67,12 +68,13 @@ class LookAheadPlanner : public MotionSink {
   const Settings& settings_;
   SegmentSink& out_;
   std::deque<Block> q_;
-  bool punctuated_ = false;    // an MS or JS came since the last block
-  bool held_ = false;          // feed hold: nothing is sent until resume()
-  double override_ = 1;        // feed override factor
-  bool front_locked_ = false;  // the front's entry is the exit of a block already emitted
-  double held_length_ = 0;     // path length held after the front block
-  double stop_distance_ = 0;   // the longest stopping distance of any block seen
+  bool punctuated_ = false;          // an MS or JS came since the last block
+  bool held_ = false;                // feed hold: nothing is sent until resume()
+  std::vector<CanonMove> deferred_;  // a dwell or output during a hold, and what follows it
+  double override_ = 1;              // feed override factor
+  bool front_locked_ = false;        // the front's entry is the exit of a block already emitted
+  double held_length_ = 0;           // path length held after the front block
+  double stop_distance_ = 0;         // the longest stopping distance of any block seen
   std::deque<std::pair<Vec6, double>> trail_;  // recent path points and distance travelled
   double travelled_ = 0;
   double planned_time_ = 0;
