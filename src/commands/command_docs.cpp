@@ -6,9 +6,15 @@
 namespace gantry {
 namespace {
 
-constexpr CommandGroup kGroupOrder[] = {CommandGroup::File,   CommandGroup::Move,
-                                        CommandGroup::Jog,    CommandGroup::Settings,
-                                        CommandGroup::Values, CommandGroup::Zero};
+// SB3's menu order, with FabMo's probe commands after the moves.
+constexpr CommandGroup kGroupOrder[] = {
+    CommandGroup::Cuts,  CommandGroup::File,      CommandGroup::Help,   CommandGroup::Jog,
+    CommandGroup::Move,  CommandGroup::Probe,     CommandGroup::Record, CommandGroup::Settings,
+    CommandGroup::Tools, CommandGroup::Utilities, CommandGroup::Values, CommandGroup::Zero};
+
+std::string coverage(const CommandSpec& s) {
+  return s.coverage.empty() ? "complete" : std::string(s.coverage);
+}
 
 std::string param_default(const ParamSpec& p) {
   if (p.required) return "required";
@@ -48,11 +54,23 @@ std::string commands_markdown(const CommandTable& table) {
       "Generated from the command table by `gantry help --markdown`; do not edit by hand.\n"
       "Parameters are listed in part-file order. A blank parameter (nothing between two "
       "commas) keeps the current value unless the table says otherwise.\n";
+  size_t complete = 0;
+  for (const CommandSpec& s : table.all()) complete += s.coverage.empty();
+  out += fmt::format(
+      "\n{} of {} codes complete. A code that is not implemented yet stops the file with an "
+      "error naming it; nothing else happens.\n\n| Code | Name | Group | Coverage |\n"
+      "|---|---|---|---|\n",
+      complete, table.all().size());
+  for (CommandGroup g : kGroupOrder)
+    for (const CommandSpec& s : table.all())
+      if (s.group == g)
+        out += fmt::format("| {} | {} | {} | {} |\n", s.code, s.name, group_name(g), coverage(s));
   for (CommandGroup g : kGroupOrder) {
     out += fmt::format("\n## {}\n", group_name(g));
     for (const CommandSpec& s : table.all()) {
       if (s.group != g) continue;
-      out += fmt::format("\n### {} - {}\n\n{}\n", s.code, s.name, s.help);
+      out += fmt::format("\n### {} - {}\n\n{}\n\nCoverage: {}.\n", s.code, s.name, s.help,
+                         coverage(s));
       if (s.params.empty()) {
         out += "\nNo parameters.\n";
         continue;

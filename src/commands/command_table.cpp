@@ -32,6 +32,7 @@ const CommandTable& CommandTable::standard() {
     add_file_commands(specs);
     add_output_commands(specs);
     add_zero_commands(specs);
+    add_catalogue_commands(specs, specs);  // last: it fills in every code not yet there
     return CommandTable(std::move(specs));
   }();
   return table;
@@ -44,6 +45,18 @@ const CommandSpec* CommandTable::find(std::string_view code) const {
 
 const char* group_name(CommandGroup g) {
   switch (g) {
+    case CommandGroup::Cuts:
+      return "Cuts";
+    case CommandGroup::Help:
+      return "Help";
+    case CommandGroup::Probe:
+      return "Probe";
+    case CommandGroup::Record:
+      return "Record";
+    case CommandGroup::Tools:
+      return "Tools";
+    case CommandGroup::Utilities:
+      return "Utilities";
     case CommandGroup::File:
       return "File";
     case CommandGroup::Jog:

@@ -59,7 +59,8 @@ void add_file_commands(std::vector<CommandSpec>& out) {
         {"plunge", "units", false, 0.0, "Z added at each repetition (negative goes down)."},
         {"tab feature", "", false, 0.0, "1 adds tabs on the last pass (not offered yet)."},
         {"plunge from Z 0", "", false, 0.0, "1 plunges from Z 0 (not offered yet)."}},
-       file_part});
+       file_part,
+       "tabs (parameter 8) and plunge from Z 0 (parameter 9)"});
 }
 
 }  // namespace gantry

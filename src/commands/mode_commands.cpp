@@ -113,7 +113,8 @@ void add_mode_commands(std::vector<CommandSpec>& out) {
   std::vector<ParamSpec> vs = speed_params("move", 4);
   for (ParamSpec& p : speed_params("jog", 4)) vs.push_back(p);
   out.push_back({"VS", "Values for speeds", CommandGroup::Values,
-                 "Sets move and jog speeds together without interrupting motion.", vs, set_speeds});
+                 "Sets move and jog speeds together without interrupting motion.", vs, set_speeds,
+                 "FabMo's 10-value form with C move and jog speeds"});
 }
 
 }  // namespace gantry

@@ -44,7 +44,8 @@ void add_output_commands(std::vector<CommandSpec>& out) {
                  "job ends.",
                  {{"switch", "", true, std::nullopt, "Output switch number, 1 to 12."},
                   {"state", "", false, 0.0, "1 turns it on, 0 (or blank) off."}},
-                 set_output_switch});
+                 set_output_switch,
+                 "switch 4's automatic modes (SO, 4, -1 to -4)"});
 }
 
 }  // namespace gantry

@@ -756,7 +756,10 @@ TEST_F(LanguageTest, Example11PassesTheSyntaxPassAndStopsAtCr) {
   EXPECT_EQ(script->line_count(), 13);
   const Outcome o = execute(script);
   EXPECT_EQ(o.ending, Ending::Error);
-  EXPECT_EQ(format(o.diag), "part.sbp:10:1: error: unknown command 'CR'" + kUnknownSuffix);
+  EXPECT_EQ(
+      format(o.diag).rfind("part.sbp:10:1: error: CR (cut rectangle) is not implemented yet", 0),
+      0u)
+      << format(o.diag);
   expect_path(moves(), {{kJog, at(0, 0, .5)}, {kJog, at(10, 10, .5)}});
 }
 
@@ -814,8 +817,10 @@ TEST_F(LanguageTest, Example13VirtualToolIsNotImplementedYet) {
   EXPECT_EQ(format(o.diag), "part.sbp:2:1: error: unknown command 'TR'" + kUnknownSuffix);
   expect_number("SPEED", 11500);
   EXPECT_TRUE(Script::from_text("TC, 1500, small, 2\nTC, &some_value\n", "p.sbp")->ok());
-  EXPECT_EQ(format(run_error("TC, 1500, small, 2\n")),
-            "part.sbp:1:1: error: unknown command 'TC'" + kUnknownSuffix);
+  // TC is a known code (the copy machine tool), named as not implemented yet.
+  EXPECT_EQ(format(run_error("TC, 1500, small, 2\n"))
+                .rfind("part.sbp:1:1: error: TC (tools: copy machine) is not implemented yet", 0),
+            0u);
 }
 
 // Example 14 — WRITE. §7.77-79: all three forms write `M2, 23.5, 23.5`-style lines.
@@ -843,7 +848,10 @@ TEST_F(LanguageTest, Example15PassesTheSyntaxPassAndStopsAtVc) {
   const auto script = Script::from_text(kExample15, "part.sbp");
   EXPECT_TRUE(script->errors().empty()) << all(script->errors());
   const Outcome o = execute(script);
-  EXPECT_EQ(format(o.diag), "part.sbp:3:3: error: unknown command 'VC'" + kUnknownSuffix);
+  EXPECT_EQ(format(o.diag).rfind(
+                "part.sbp:3:3: error: VC (values for the cutter) is not implemented yet", 0),
+            0u)
+      << format(o.diag);
 }
 
 TEST_F(LanguageTest, Example15WithoutVcSetsSpeedsThatRevertAtTheEnd) {

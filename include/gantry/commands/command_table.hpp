@@ -16,7 +16,20 @@ namespace gantry {
 class CommandContext;
 struct CommandSpec;
 
-enum class CommandGroup { File, Jog, Move, Settings, Values, Zero };
+enum class CommandGroup {
+  Cuts,
+  File,
+  Help,
+  Jog,
+  Move,
+  Probe,
+  Record,
+  Settings,
+  Tools,
+  Utilities,
+  Values,
+  Zero
+};
 
 enum class ParamKind { Number, Text };
 
@@ -56,6 +69,8 @@ struct CommandSpec {
   std::string_view help;
   std::vector<ParamSpec> params;
   CommandHandler handler;
+  // Empty when the command does all the references describe; otherwise what it lacks.
+  std::string_view coverage = {};
 };
 
 class CommandTable {
@@ -80,5 +95,9 @@ void add_mode_commands(std::vector<CommandSpec>& out);
 void add_file_commands(std::vector<CommandSpec>& out);
 void add_output_commands(std::vector<CommandSpec>& out);
 void add_zero_commands(std::vector<CommandSpec>& out);
+// Every other code of the SB3 and FabMo references, not in `implemented` (which may be `out`):
+// each says by name that it is not implemented yet, and does nothing else.
+void add_catalogue_commands(std::vector<CommandSpec>& out,
+                            const std::vector<CommandSpec>& implemented);
 
 }  // namespace gantry
