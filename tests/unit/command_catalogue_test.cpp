@@ -2,18 +2,12 @@
 // cannot honour yet says so by name and does nothing else.
 #include <gtest/gtest.h>
 
-#include <memory>
 #include <set>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/core/diagnostic.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/lang/script.hpp"
-#include "gantry/motion/canon_move.hpp"
-#include "gantry/settings/settings.hpp"
 
 namespace gantry {
 namespace {
@@ -70,81 +64,6 @@ TEST(CommandCatalogue, EveryIncompleteEntrySaysWhatIsMissing) {
       EXPECT_EQ(s.coverage, "not implemented") << s.code;
     }
   }
-}
-
-// ---- running one
-
-class RecordingSink : public MotionSink {
- public:
-  void move(const CanonMove& m) override { moves.push_back(m); }
-  void flush() override {}
-  std::vector<CanonMove> moves;
-};
-
-class CatalogueRunTest : public ::testing::Test {
- protected:
-  Diagnostic run_error(std::string_view text) {
-    script_ = Script::from_text(std::string(text), "part.sbp");
-    try {
-      if (!script_->ok()) throw GantryError(script_->errors().front());
-      interp().run(script_);
-    } catch (const GantryError& e) {
-      return e.diagnostic();
-    }
-    ADD_FAILURE() << "no error from:\n" << text;
-    return {};
-  }
-  std::vector<Diagnostic> check(std::string_view text) {
-    script_ = Script::from_text(std::string(text), "part.sbp");
-    return interp().check(script_);
-  }
-  Interpreter& interp() {
-    if (!interp_) interp_.emplace(settings, sink, io, store);
-    return *interp_;
-  }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
-
- private:
-  std::shared_ptr<const Script> script_;
-  std::optional<Interpreter> interp_;
-};
-
-TEST_F(CatalogueRunTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
-  const ModalState before = interp().state();
-  const Diagnostic d = run_error("SA\n  VR, .5, .5\nMX, 1\n");
-  EXPECT_EQ(d.loc.line, 2);
-  EXPECT_EQ(d.loc.column, 3);
-  EXPECT_EQ(d.message,
-            "VR (values for ramps) is not implemented yet in Gantry; the ramps come from "
-            "[ramps] in the machine profile (docs/settings.md)");
-  EXPECT_TRUE(sink.moves.empty());  // the file stopped there: MX never ran
-  EXPECT_EQ(interp().state().position, before.position);
-  EXPECT_EQ(interp().state().speeds.move.xy, before.speeds.move.xy);
-}
-
-TEST_F(CatalogueRunTest, TextParametersReachTheMessage) {
-  // O/I/T is a word; the line still fails only because CR is not implemented.
-  EXPECT_EQ(
-      run_error("CR, 10, 5, O\n").message.rfind("CR (cut rectangle) is not implemented yet", 0),
-      0u);
-  EXPECT_EQ(run_error("M0\n").message.rfind("M0 (motors off", 0), 0u);
-}
-
-TEST_F(CatalogueRunTest, CheckCountsEachSuchLineAndEveryOtherError) {
-  const std::vector<Diagnostic> errors = check("MX, 1\nVC, .25\nQQ\nTD\nMY, 2\n");
-  ASSERT_EQ(errors.size(), 3u);
-  EXPECT_EQ(errors[0].loc.line, 2);
-  EXPECT_EQ(errors[0].message.rfind("VC (values for the cutter) is not implemented yet", 0), 0u);
-  EXPECT_EQ(errors[1].loc.line, 3);
-  EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
-  EXPECT_EQ(errors[2].loc.line, 4);
-  EXPECT_EQ(errors[2].message.rfind("TD (tools: drill press) is not implemented yet", 0), 0u);
-  EXPECT_EQ(sink.moves.size(), 2u);  // the good lines still ran dry
 }
 
 }  // namespace

@@ -716,5 +716,40 @@ TEST_F(InterpreterTest, AParameterThatIsNotANumberIsLocated) {
   EXPECT_TRUE(moves().empty());
 }
 
+// ---- codes catalogued but not implemented yet (command_catalogue_test.cpp lists them)
+
+TEST_F(InterpreterTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
+  const ModalState before = interp().state();
+  const Diagnostic d = run_error("SA\n  VR, .5, .5\nMX, 1\n");
+  EXPECT_EQ(d.loc.line, 2);
+  EXPECT_EQ(d.loc.column, 3);
+  EXPECT_EQ(d.message,
+            "VR (values for ramps) is not implemented yet in Gantry; the ramps come from "
+            "[ramps] in the machine profile (docs/settings.md)");
+  EXPECT_TRUE(moves().empty());  // the file stopped there: MX never ran
+  EXPECT_EQ(interp().state().position, before.position);
+  EXPECT_EQ(interp().state().speeds.move.xy, before.speeds.move.xy);
+}
+
+TEST_F(InterpreterTest, TextParametersReachTheMessage) {
+  // O/I/T is a word; the line still fails only because CR is not implemented.
+  EXPECT_EQ(
+      run_error("CR, 10, 5, O\n").message.rfind("CR (cut rectangle) is not implemented yet", 0),
+      0u);
+  EXPECT_EQ(run_error("M0\n").message.rfind("M0 (motors off", 0), 0u);
+}
+
+TEST_F(InterpreterTest, CheckCountsEachSuchLineAndEveryOtherError) {
+  const std::vector<Diagnostic> errors = check("MX, 1\nVC, .25\nQQ\nTD\nMY, 2\n");
+  ASSERT_EQ(errors.size(), 3u);
+  EXPECT_EQ(errors[0].loc.line, 2);
+  EXPECT_EQ(errors[0].message.rfind("VC (values for the cutter) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[1].loc.line, 3);
+  EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
+  EXPECT_EQ(errors[2].loc.line, 4);
+  EXPECT_EQ(errors[2].message.rfind("TD (tools: drill press) is not implemented yet", 0), 0u);
+  EXPECT_EQ(moves().size(), 2u);  // the good lines still ran dry
+}
+
 }  // namespace
 }  // namespace gantry
