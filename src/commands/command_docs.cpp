@@ -38,12 +38,23 @@ std::string command_help(const CommandSpec& spec) {
   return out;
 }
 
+namespace {
+
+// How the plain list marks a command that is not complete.
+std::string coverage_note(const CommandSpec& s) {
+  if (s.coverage.empty()) return "";
+  if (s.coverage == "not implemented") return " (not implemented)";
+  return fmt::format(" (partial; missing: {})", s.coverage);
+}
+
+}  // namespace
+
 std::string command_list(const CommandTable& table) {
   std::string out;
   for (CommandGroup g : kGroupOrder) {
     out += fmt::format("{}:\n", group_name(g));
     for (const CommandSpec& s : table.all())
-      if (s.group == g) out += fmt::format("  {}  {}\n", s.code, s.name);
+      if (s.group == g) out += fmt::format("  {}  {}{}\n", s.code, s.name, coverage_note(s));
   }
   return out + "Type `gantry help CODE` for a command's parameters.\n";
 }

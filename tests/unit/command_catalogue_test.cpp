@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gantry/commands/command_docs.hpp"
 #include "gantry/commands/command_table.hpp"
 
 namespace gantry {
@@ -64,6 +65,14 @@ TEST(CommandCatalogue, EveryIncompleteEntrySaysWhatIsMissing) {
       EXPECT_EQ(s.coverage, "not implemented") << s.code;
     }
   }
+}
+
+TEST(CommandCatalogue, ThePlainListMarksWhatIsNotComplete) {
+  const std::string list = command_list(CommandTable::standard());
+  EXPECT_NE(list.find("  VR  "), std::string::npos);
+  EXPECT_NE(list.find(" (not implemented)\n"), std::string::npos);
+  EXPECT_NE(list.find("  FP  File: run a part file (partial; missing: "), std::string::npos);
+  EXPECT_NE(list.find("  MX  Move X axis\n"), std::string::npos) << list;  // complete: unmarked
 }
 
 }  // namespace
