@@ -8,6 +8,7 @@
 #include <cstdio>     // stdout, stderr
 #include <iostream>   // JSON to stdout
 #include <optional>
+#include <set>
 
 #include "gantry/commands/command_docs.hpp"  // help text
 #include "gantry/lang/script.hpp"            // Script
@@ -273,6 +274,37 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
   return 0;
 }
 
+// The command table, whole or one menu group, as text or JSON (for scripts and front ends).
+int cmd_commands(const std::string& group, bool json) {
+  const CommandTable& table = CommandTable::standard();
+  auto lower = [](std::string t) {
+    for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return t;
+  };
+  std::vector<const CommandSpec*> chosen;
+  std::set<std::string> groups;
+  for (const CommandSpec& s : table.all()) {
+    groups.insert(group_name(s.group));
+    if (group.empty() || lower(group_name(s.group)) == lower(group)) chosen.push_back(&s);
+  }
+  if (chosen.empty()) {
+    std::string names;
+    for (const std::string& g : groups) names += (names.empty() ? "" : ", ") + g;
+    fmt::print(stderr, "error: no command group '{}'; the groups are {}\n", group, names);
+    return 1;
+  }
+  if (!json) {
+    for (const CommandSpec* s : chosen)
+      fmt::print("{}  {:<10} {}{}\n", s->code, group_name(s->group), s->name,
+                 s->coverage.empty() ? "" : fmt::format(" [{}]", s->coverage));
+    return 0;
+  }
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const CommandSpec* s : chosen) out.push_back(to_json(*s));
+  std::cout << out.dump() << "\n";
+  return 0;
+}
+
 int cmd_help(const std::string& code, bool markdown) {
   const CommandTable& table = CommandTable::standard();
   if (markdown) {
@@ -354,6 +386,13 @@ int main(int argc, char** argv) {
       ->add_option("--feed-override", estimate_lang.feed_override, "Percent of the file's speeds")
       ->check(CLI::Range(10.0, 200.0));
 
+  std::string commands_group;
+  bool commands_json = false;
+  CLI::App* commands_cmd = app.add_subcommand("commands", "List the command table");
+  commands_cmd->add_option("--group", commands_group, "Only this menu group, e.g. Move or Values");
+  commands_cmd->add_flag("--json", commands_json,
+                         "One JSON array: codes, names, groups, coverage, parameters");
+
   std::string help_code;
   bool help_markdown = false;
   CLI::App* help_cmd = app.add_subcommand("help", "List the commands, or describe one");
@@ -372,6 +411,7 @@ int main(int argc, char** argv) {
     if (*estimate_cmd)
       return cmd_estimate(estimate_file, estimate_settings, estimate_json, estimate_lang);
     if (*help_cmd) return cmd_help(help_code, help_markdown);
+    if (*commands_cmd) return cmd_commands(commands_group, commands_json);
   } catch (const GantryError& e) {
     fmt::print(stderr, "{}\n", e.what());
     return 1;

@@ -92,6 +92,25 @@ nlohmann::ordered_json to_json(const CanonMove& m) {
           {"speed", nominal_path_speed(m.to - m.from, m.speeds)}};
 }
 
+nlohmann::ordered_json to_json(const CommandSpec& s) {
+  nlohmann::ordered_json params = nlohmann::ordered_json::array();
+  for (const ParamSpec& p : s.params) {
+    nlohmann::ordered_json j = {{"name", p.name},
+                                {"unit", p.unit},
+                                {"kind", p.kind == ParamKind::Number ? "number" : "text"},
+                                {"required", p.required}};
+    j["default"] = p.default_value ? nlohmann::ordered_json(*p.default_value) : nullptr;
+    j["help"] = p.help;
+    params.push_back(std::move(j));
+  }
+  return {{"code", s.code},
+          {"name", s.name},
+          {"group", group_name(s.group)},
+          {"coverage", s.coverage.empty() ? std::string_view("complete") : s.coverage},
+          {"help", s.help},
+          {"parameters", std::move(params)}};
+}
+
 std::string to_text(const CanonMove& m) {
   auto v = [](const Vec6& p) {
     return fmt::format("{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", p[0], p[1], p[2], p[3], p[4],

@@ -6,10 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "gantry/core/axes.hpp"          // Vec6, Steps6
-#include "gantry/core/diagnostic.hpp"    // Diagnostic
-#include "gantry/motion/canon_move.hpp"  // CanonMove
-#include "gantry/settings/settings.hpp"  // Units
+#include "gantry/commands/command_table.hpp"  // CommandSpec
+#include "gantry/core/axes.hpp"               // Vec6, Steps6
+#include "gantry/core/diagnostic.hpp"         // Diagnostic
+#include "gantry/motion/canon_move.hpp"       // CanonMove
+#include "gantry/settings/settings.hpp"       // Units
 
 namespace gantry {
 
@@ -36,6 +37,8 @@ std::string to_text(const RunReport& r);
 nlohmann::ordered_json to_json(const Diagnostic& d);
 // One canonical move as `gantry moves` prints it.
 nlohmann::ordered_json to_json(const CanonMove& m);
+// One command of the table, with its parameters, as `gantry commands --json` prints it.
+nlohmann::ordered_json to_json(const CommandSpec& s);
 std::string to_text(const CanonMove& m);
 
 }  // namespace gantry

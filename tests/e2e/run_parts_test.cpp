@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -216,6 +217,25 @@ TEST(Cards, AMissingPci7200IsNamedBeforeAnythingRuns) {
       << r.err;
   EXPECT_NE(r.err.find("is the card fitted?"), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
+}
+
+TEST(Commands, TheTableAsJsonHasEveryCodeWithItsParametersAndCoverage) {
+  const Result r = gantry("commands --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json all = json::parse(r.out);
+  EXPECT_EQ(all.size(), 126u);  // 125 codes and the M0 alias
+  const auto mx =
+      std::find_if(all.begin(), all.end(), [](const json& c) { return c["code"] == "MX"; });
+  ASSERT_NE(mx, all.end());
+  EXPECT_EQ((*mx)["group"], "Move");
+  EXPECT_EQ((*mx)["coverage"], "complete");
+  EXPECT_EQ((*mx)["parameters"][0]["name"], "X location");
+  const json zero = json::parse(gantry("commands --json --group zero").out);
+  EXPECT_EQ(zero.size(), 12u);
+  for (const json& c : zero) EXPECT_EQ(c["group"], "Zero");
+  const Result bad = gantry("commands --group bogus");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("no command group 'bogus'; the groups are Cuts, File"), std::string::npos);
 }
 
 TEST(Estimate, BadFileGetsItsErrorsAndNoEstimate) {
