@@ -32,6 +32,7 @@ const CommandTable& CommandTable::standard() {
     add_file_commands(specs);
     add_output_commands(specs);
     add_zero_commands(specs);
+    add_move_distance(specs);
     add_catalogue_commands(specs, specs);  // last: it fills in every code not yet there
     return CommandTable(std::move(specs));
   }();

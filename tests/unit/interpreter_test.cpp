@@ -212,6 +212,34 @@ TEST_F(InterpreterTest, MovesCarryMoveSpeedsAndJogsCarryJogSpeeds) {
   expect_speeds(moves()[1].speeds, 6.0, 3.0, 45, 45, 45);
 }
 
+// ---- MD: move distance
+
+TEST_F(InterpreterTest, MdMovesItsLengthAlongTheHeadingFromTheToolAndTurnsFromTheLastMove) {
+  run("M2, 5, 5\nMD, 2, 90\nMD, 1, 90R\nMD, 1, N, 0.5\nMD, 1, 3:00, 0.25D\nMD, 2, SSW, 1U\n");
+  ASSERT_EQ(moves().size(), 6u);
+  expect_vec(moves()[1].to, at(7, 5));                       // 90: +X
+  expect_vec(moves()[2].to, at(7, 4));                       // 90 right of +X: -Y
+  expect_vec(moves()[3].to, at(7, 5, 0.5));                  // N, Z to 0.5
+  expect_vec(moves()[4].to, at(8, 5, 0.25));                 // 3:00, Z down 0.25
+  EXPECT_NEAR(moves()[5].to[0], 8 - 2 * 0.382683432, 1e-9);  // SSW = 202.5 degrees
+  EXPECT_NEAR(moves()[5].to[1], 5 - 2 * 0.923879533, 1e-9);
+  EXPECT_NEAR(moves()[5].to[2], 1.25, 1e-12);
+  EXPECT_EQ(moves()[5].speed_class, SpeedClass::Move);
+}
+
+TEST_F(InterpreterTest, MdSaysWhatIsWrongWithItsAngleOrZChange) {
+  Diagnostic d = run_error("MD, 1, NS\n");
+  EXPECT_EQ(where(d.loc), "part.sbp:1:8");
+  EXPECT_EQ(d.message,
+            "MD angle 'NS' is not degrees (90), degrees right or left of the last move (30R, "
+            "45L), a clock time (3:00) or a compass point (N, NE, SSW)");
+  d = run_error("MD, 1, 90, 2X\n");
+  EXPECT_EQ(d.message,
+            "MD Z change '2X' is not a Z location (0.5) or an amount up or down (0.25U, 0.1D)");
+  EXPECT_EQ(run_error("MD, 1\n").message, "MD needs its parameter 2 (angle)");
+  EXPECT_TRUE(moves().empty());
+}
+
 // ---- Zero commands
 
 TEST_F(InterpreterTest, ZeroingMakesTheCurrentLocationWorkingZeroAndTheMachineMovesOn) {

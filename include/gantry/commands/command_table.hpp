@@ -95,6 +95,7 @@ void add_mode_commands(std::vector<CommandSpec>& out);
 void add_file_commands(std::vector<CommandSpec>& out);
 void add_output_commands(std::vector<CommandSpec>& out);
 void add_zero_commands(std::vector<CommandSpec>& out);
+void add_move_distance(std::vector<CommandSpec>& out);
 // Every other code of the SB3 and FabMo references, not in `implemented` (which may be `out`):
 // each says by name that it is not implemented yet, and does nothing else.
 void add_catalogue_commands(std::vector<CommandSpec>& out,
