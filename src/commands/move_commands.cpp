@@ -21,6 +21,20 @@ void move_axes(CommandContext& ctx, const CommandCall& call) {
   ctx.line_to(target, Class, call.loc);
 }
 
+// MH / JH: up to Safe-Z first when the tool is below it, then to working X 0, Y 0 (SA or SR
+// alike). SB3 does not say how fast the Z leg goes (AMB-9): both legs use the command's class.
+template <SpeedClass Class>
+void go_home(CommandContext& ctx, const CommandCall& call) {
+  Vec6 at = ctx.position();
+  const double safe_z = ctx.settings().machine.safe_z;
+  if (at[2] < safe_z) {
+    at[2] = safe_z;
+    ctx.line_to(at, Class, call.loc);
+  }
+  at[0] = at[1] = 0;
+  ctx.line_to(at, Class, call.loc);
+}
+
 // Parameters named after each letter of `axes` ("XYZ"), in part-file order.
 std::vector<ParamSpec> axis_params(std::string_view axes, bool required) {
   static const std::string names[] = {"X location", "Y location", "Z location",
@@ -74,6 +88,20 @@ void add_move_commands(std::vector<CommandSpec>& out) {
                  move_axes<Jog, X, Y, Z, A>});
   out.push_back({"J5", "Jog 5 dimensions", J, multi_jog, axis_params("XYZAB", false),
                  move_axes<Jog, X, Y, Z, A, B>});
+  out.push_back({"MH",
+                 "Move home",
+                 M,
+                 "Raises Z to Safe-Z ([machine] safe_z) if it is below it, then moves to X 0, "
+                 "Y 0; both at move speed. SR does not apply.",
+                 {},
+                 go_home<Move>});
+  out.push_back({"JH",
+                 "Jog home",
+                 J,
+                 "Raises Z to Safe-Z ([machine] safe_z) if it is below it, then jogs to X 0, "
+                 "Y 0; both at jog speed. SR does not apply.",
+                 {},
+                 go_home<Jog>});
 }
 
 }  // namespace gantry

@@ -292,6 +292,10 @@ void read_profile(TableReader root, Settings& s) {
   }
   pins.finish();
 
+  TableReader machine = root.table("machine");
+  s.machine.safe_z = machine.number("safe_z", {-1e6, 1e6}, 1.0);
+  machine.finish();
+
   TableReader outputs = root.table("outputs");
   OutputSettings& o = s.outputs;
   o.charge_pump_bit = outputs.integer("charge_pump_bit", -1, 31, 16);

@@ -212,6 +212,26 @@ TEST_F(InterpreterTest, MovesCarryMoveSpeedsAndJogsCarryJogSpeeds) {
   expect_speeds(moves()[1].speeds, 6.0, 3.0, 45, 45, 45);
 }
 
+// ---- MH / JH
+
+TEST_F(InterpreterTest, MhRaisesToSafeZOnlyWhenBelowItThenGoesToXY0) {
+  run("M3, 5, 4, 0.25\nMH\n");
+  ASSERT_EQ(moves().size(), 3u);
+  expect_vec(moves()[1].to, at(5, 4, 1));  // Safe-Z 1.0 first
+  expect_vec(moves()[2].to, at(0, 0, 1));
+  EXPECT_EQ(moves()[2].speed_class, SpeedClass::Move);
+  run("SR\nM3, 3, 2, 1\nJH\n");  // above Safe-Z: Z stays; SR does not apply
+  ASSERT_EQ(moves().size(), 5u);
+  expect_vec(moves()[4].to, at(0, 0, 2));
+  EXPECT_EQ(moves()[4].speed_class, SpeedClass::Jog);
+}
+
+TEST_F(InterpreterTest, HomeIsWorkingZeroAfterZeroing) {
+  run("M2, 5, 5\nZ2\nM2, 1, 1\nMH\n");
+  expect_vec(moves().back().to, at(5, 5, 1));  // table base of working 0,0 at Safe-Z
+  expect_vec(state().position, at(0, 0, 1));
+}
+
 // ---- MD: move distance
 
 TEST_F(InterpreterTest, MdMovesItsLengthAlongTheHeadingFromTheToolAndTurnsFromTheLastMove) {

@@ -210,6 +210,10 @@ TEST(DefaultProfile, Pins) {
 
 // ---- values that load
 
+TEST(DefaultProfile, MachineValues) {
+  EXPECT_DOUBLE_EQ(default_settings().machine.safe_z, 1.0);
+}
+
 TEST(DefaultProfile, Planner) {
   const PlannerSettings p = default_settings().planner;
   EXPECT_EQ(p.mode, PlannerMode::SB3);

@@ -100,6 +100,11 @@ struct CardSettings {
   double pacer_hz() const { return clock_hz / pacer_divisor; }
 };
 
+// The machine's own values that commands read (and issue 6's V commands will set).
+struct MachineSettings {
+  double safe_z = 1.0;  // working Z that MH and JH raise the tool to first (VC's Safe-Z)
+};
+
 struct Settings {
   std::string name;
   Units units = Units::Inches;
@@ -112,6 +117,7 @@ struct Settings {
   std::array<PinSettings, kAxisCount> pins{};
   OutputSettings outputs;
   InputSettings inputs;
+  MachineSettings machine;
 };
 
 // The result of loading a profile: settings, or every problem found in it.
