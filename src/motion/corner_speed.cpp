@@ -3,23 +3,19 @@
 #include "gantry/motion/corner_speed.hpp"
 
 #include <algorithm>  // min, max, clamp
-#include <cmath>      // sqrt, acos, sin
-#include <limits>     // infinity
+#include <cmath>      // sqrt, acos, hypot
+#include <span>
 
-#include "gantry/motion/path_limits.hpp"  // nominal_path_speed
+#include "gantry/motion/path_limits.hpp"  // limit_along, nominal_path_speed
 
 namespace gantry {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kFullRampAngle = 0.75;  // rad (43 deg): SB3 always ramps fully beyond it
 
-// The largest s with s * |d_i| <= limit_i for every axis.
+// limit_along for a direction over the six axes.
 double along(const Vec6& d, const std::array<double, kAxisCount>& limit) {
-  double v = kInf;
-  for (int i = 0; i < kAxisCount; ++i)
-    if (std::abs(d[i]) > 1e-12) v = std::min(v, limit[i] / std::abs(d[i]));
-  return v;
+  return limit_along(std::span<const double>(d.data(), kAxisCount), limit);
 }
 
 // Angle between the XY projections of two directions; 0 when either has no XY part.

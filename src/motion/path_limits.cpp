@@ -18,15 +18,14 @@ std::array<double, 5> as_array(const GroupSpeeds& g) {
   return {g.xy, g.z, g.a, g.b, g.c};
 }
 
-// min over groups/axes with a non-zero share of limit / share.
-double limit_along(const std::array<double, 5>& fractions, const std::array<double, 5>& limits) {
+}  // namespace
+
+double limit_along(std::span<const double> shares, std::span<const double> limits) {
   double v = std::numeric_limits<double>::infinity();
-  for (size_t g = 0; g < fractions.size(); ++g)
-    if (fractions[g] > 1e-12) v = std::min(v, limits[g] / fractions[g]);
+  for (size_t g = 0; g < shares.size(); ++g)
+    if (std::abs(shares[g]) > 1e-12) v = std::min(v, limits[g] / std::abs(shares[g]));
   return v;
 }
-
-}  // namespace
 
 double nominal_path_speed(const Vec6& delta, const GroupSpeeds& speeds) {
   const double length = delta.norm();
@@ -50,14 +49,15 @@ PathLimits path_limits(const CanonMove& m, const Settings& s) {
   const std::array<double, 5> group_accel = {ramp_accel(rs.xy, rate), ramp_accel(rs.z, rate),
                                              ramp_accel(rs.a, rate), ramp_accel(rs.b, rate),
                                              ramp_accel(rs.c, rate)};
-  out.accel = limit_along(fractions, group_accel);
-  out.machine_speed = std::numeric_limits<double>::infinity();
+  const Vec6 unit = delta / out.length;
+  std::array<double, kAxisCount> max_speed{}, max_accel{};
   for (int i = 0; i < kAxisCount; ++i) {
-    const double f = std::abs(delta[i]) / out.length;
-    if (f <= 1e-12) continue;
-    out.machine_speed = std::min(out.machine_speed, s.axes[i].max_speed / f);
-    out.accel = std::min(out.accel, s.axes[i].max_accel / f);
+    max_speed[i] = s.axes[i].max_speed;
+    max_accel[i] = s.axes[i].max_accel;
   }
+  const std::span<const double> shares(unit.data(), kAxisCount);
+  out.accel = std::min(limit_along(fractions, group_accel), limit_along(shares, max_accel));
+  out.machine_speed = limit_along(shares, max_speed);
   out.speed = std::min(limit_along(fractions, as_array(m.speeds)), out.machine_speed);
   return out;
 }

@@ -7,17 +7,6 @@
 namespace gantry {
 namespace {
 
-// The largest x in [lo, hi] with ok(x), for ok true at lo and monotone (true, then false).
-template <class Ok>
-double bisect_last(double lo, double hi, Ok ok) {
-  if (ok(hi)) return hi;
-  for (int i = 0; i < 60 && hi - lo > 1e-12 * std::max(1.0, hi); ++i) {
-    const double mid = (lo + hi) / 2;
-    (ok(mid) ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 // Distance along an S-curve ramp at x = t / T in [0, 1]: the integral of the smoothstep.
 double smooth_distance(double u, double dv, double T, double x) {
   return u * x * T + dv * T * (x * x * x - x * x * x * x / 2);

@@ -1,6 +1,8 @@
 // Speed and acceleration along a straight path, from per-axis and per-group limits.
 #pragma once
 
+#include <span>
+
 #include "gantry/motion/canon_move.hpp"  // CanonMove, SpeedClass
 #include "gantry/settings/settings.hpp"  // Settings
 
@@ -16,6 +18,10 @@ struct PathLimits {
   double machine_speed = 0;  // units/s: the axes' max_speed alone (feed override's ceiling)
   double accel = 0;          // units/s^2 along the path
 };
+
+// The largest s with s |share_i| <= limit_i for every component with a share (infinity when
+// none has one): how fast (or hard) a path may go when each component takes its share.
+double limit_along(std::span<const double> shares, std::span<const double> limits);
 
 // The commanded speed along the path, before machine limits: what `gantry moves` reports.
 double nominal_path_speed(const Vec6& delta, const GroupSpeeds& speeds);
