@@ -5,7 +5,7 @@
 
 #include <array>
 #include <charconv>  // from_chars
-#include <cmath>     // sin, cos, fmod
+#include <cmath>     // sin, cos, atan2, fmod
 #include <string>
 
 #include "gantry/commands/command_table.hpp"
@@ -30,7 +30,9 @@ constexpr std::array<std::string_view, 16> kCompass = {"N",  "NNE", "NE", "ENE",
 void move_distance(CommandContext& ctx, const CommandCall& call) {
   const double length = *call.number(0);
   const std::string angle = call.text(1).value_or("");
-  const std::optional<double> heading = md_heading(angle, ctx.state().heading);
+  std::optional<double> last;  // the last XY move's heading, clockwise from +Y
+  if (const auto& d = ctx.state().last_xy_move) last = std::atan2((*d)[0], (*d)[1]) * 180 / M_PI;
+  const std::optional<double> heading = md_heading(angle, last);
   if (!heading)
     fail(call.param_loc(1),
          fmt::format("MD angle '{}' is not degrees (90), degrees right or left of the last move "

@@ -40,9 +40,8 @@ void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const Sour
   m.speeds = cls == SpeedClass::Move ? state_.speeds.move : state_.speeds.jog;
   m.loc = loc;
   sink_.move(m);
-  if (target[0] != state_.position[0] || target[1] != state_.position[1])  // MD's R and L
-    state_.heading =
-        std::atan2(target[0] - state_.position[0], target[1] - state_.position[1]) * 180 / M_PI;
+  if (target[0] != state_.position[0] || target[1] != state_.position[1])  // for MD's R and L
+    state_.last_xy_move = {target[0] - state_.position[0], target[1] - state_.position[1]};
   state_.position = target;
   ++moves_;
 }

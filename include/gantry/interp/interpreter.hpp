@@ -1,6 +1,7 @@
 // Runs part files: variables, control flow, nested files, and commands through the table.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -23,12 +24,12 @@ namespace gantry {
 
 // The state the language defines and commands change.
 struct ModalState {
-  Vec6 position = Vec6::Zero();   // commanded position: working coordinates, machine units
-  Vec6 zero = Vec6::Zero();       // where working 0 is in table base coordinates (Z commands)
-  bool absolute = true;           // SA (true) or SR (false)
-  SpeedSettings speeds;           // MS / JS / VS
-  std::uint32_t outputs = 0;      // SO: bit n-1 set while output switch n is on
-  std::optional<double> heading;  // the last XY move's direction, degrees clockwise from +Y
+  Vec6 position = Vec6::Zero();  // commanded position: working coordinates, machine units
+  Vec6 zero = Vec6::Zero();      // where working 0 is in table base coordinates (Z commands)
+  bool absolute = true;          // SA (true) or SR (false)
+  SpeedSettings speeds;          // MS / JS / VS
+  std::uint32_t outputs = 0;     // SO: bit n-1 set while output switch n is on
+  std::optional<std::array<double, 2>> last_xy_move;  // its X, Y displacement (for MD)
 };
 
 // How a nested file's coordinates map to the machine's: machine = origin + scale * file.
