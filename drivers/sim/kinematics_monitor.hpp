@@ -35,6 +35,12 @@ class KinematicsMonitor {
 
   void on_step(int axis, std::int64_t tick, bool positive);
   void finish();  // closes the open windows at the end of a run
+  // New limits (a recalibration at rest): the open windows close under the old ones.
+  void set_limits(const std::array<AxisLimits, kAxisCount>& limits) {
+    finish();
+    for (Window& w : axes_) w.have_prev = false;
+    limits_ = limits;
+  }
 
   double max_velocity_ratio() const;
   double max_accel_ratio() const;

@@ -71,6 +71,13 @@ void SimCard::update_switches(int axis) {
   if ((low || high) && fault_ == CardFault::None && tick_ > 0) fault_ = CardFault::Limit;
 }
 
+// The monitor checks what follows against the new calibration; the simulated switches stay
+// where they are on the table (their positions are in the profile's units).
+void SimCard::calibration_changed(const Settings& s) {
+  limits_ = limits_of(s);
+  monitor_.set_limits(limits_);
+}
+
 void SimCard::start(double pacer_hz) {
   stopped_ = false;
   fault_ = CardFault::None;

@@ -46,6 +46,7 @@ class SimCard : public Card {
   std::uint64_t ticks_played() const override { return tick_; }
   std::uint32_t inputs() const override { return inputs_; }
   CardFault fault() const override { return fault_; }
+  void calibration_changed(const Settings& s) override;
 
   const Steps6& steps() const { return steps_; }  // decoded from the step and dir lines
   double time_s() const { return static_cast<double>(tick_) * tick_s_; }

@@ -2,17 +2,20 @@
 #include <fmt/format.h>  // output
 #include <CLI/CLI.hpp>   // command-line parsing
 
-#include <algorithm>  // any_of, none_of
-#include <cctype>     // toupper
-#include <charconv>   // from_chars
-#include <cstdio>     // stdout, stderr
-#include <iostream>   // JSON to stdout
+#include <algorithm>   // any_of, none_of
+#include <cctype>      // toupper
+#include <charconv>    // from_chars
+#include <cstdio>      // stdout, stderr
+#include <filesystem>  // exists
+#include <iostream>    // JSON to stdout
 #include <optional>
 #include <set>
 
 #include "gantry/commands/command_docs.hpp"  // help text
+#include "gantry/core/text_file.hpp"         // read_text_file
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
+#include "gantry/settings/values_file.hpp"   // the values file
 #include "open_card.hpp"                     // open_card
 #include "progress.hpp"                      // ProgressBar
 #include "report.hpp"                        // RunReport, to_json, to_text
@@ -28,15 +31,42 @@ void print_errors(const std::vector<Diagnostic>& errors) {  // and warnings
   for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));
 }
 
-// Loads --settings, or the compiled-in default profile.
-bool load_profile(const std::string& path, Settings& out) {
-  SettingsLoad load = path.empty() ? parse_settings(default_profile_text(), "settings/default.toml")
-                                   : load_settings_file(path);
-  if (!load.ok()) {
-    print_errors(load.errors);
+// The machine profile (--settings, or the compiled-in default) and the operator's values
+// laid over it (--values, or the values file of that profile in the config folder).
+struct Profile {
+  Settings bare;      // the profile alone: the values file holds what differs from it
+  Settings settings;  // with the values
+  std::string values_path;
+};
+
+bool load_profile(const std::string& path, const std::string& values, Profile& out) {
+  const std::optional<std::string> text =
+      path.empty() ? std::optional<std::string>(default_profile_text()) : read_text_file(path);
+  const std::string origin = path.empty() ? "settings/default.toml" : path;
+  SettingsLoad bare = text ? parse_settings(*text, origin) : load_settings_file(path);
+  if (!bare.ok()) {
+    print_errors(bare.errors);
     return false;
   }
-  out = load.settings;
+  out.bare = bare.settings;
+  out.values_path = values.empty() ? default_values_path(bare.settings.name) : values;
+  const std::optional<std::string> values_text =
+      std::filesystem::exists(out.values_path) ? read_text_file(out.values_path) : std::nullopt;
+  if (std::filesystem::exists(out.values_path) && !values_text) {
+    fmt::print(stderr, "{}: error: cannot read the values file; check its permissions\n",
+               out.values_path);
+    return false;
+  }
+  const SettingsLoad load = parse_settings(*text, origin, values_text, out.values_path);
+  if (!load.ok()) {
+    print_errors(load.errors);
+    fmt::print(stderr,
+               "the values file {} holds the V commands' changes; fix the key named "
+               "above, or delete the file to return to the profile's values\n",
+               out.values_path);
+    return false;
+  }
+  out.settings = load.settings;
   return true;
 }
 
@@ -79,6 +109,7 @@ struct LanguageArgs {
   std::vector<std::string> inputs;  // NAME=VALUE
   std::string macros;
   std::string persistent;  // file of $variables; default in the user's config directory
+  std::string values;      // the values file; default in the user's config directory
   std::size_t budget = 10'000'000;
   double feed_override = 100;  // percent
 
@@ -88,6 +119,9 @@ struct LanguageArgs {
     cmd->add_flag("--allow-shell", allow_shell, "Let SHELL start programs");
     cmd->add_option("--macros", macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
     cmd->add_option("--persistent", persistent, "File of persistent $variables (JSON)");
+    cmd->add_option("--values", values,
+                    "File of the V commands' values (TOML); default: the profile's in "
+                    "~/.config/gantry/values");
   }
 
   // Options for the job; false (after printing why) when an --input is malformed.
@@ -118,9 +152,10 @@ struct LanguageArgs {
 };
 
 int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
-  Settings settings;
+  Profile profile;
   RunReport report;
-  if (!load_profile(a.settings, settings)) return 1;
+  if (!load_profile(a.settings, lang.values, profile)) return 1;
+  const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
   PersistentStore store = lang.store();
@@ -153,6 +188,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
     ProgressBar bar;
     if (bar.enabled() && !a.json && !interactive)
       opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
+    opt.profile = &profile.bare;
+    opt.values_path = profile.values_path;
     job = run_job(script, settings, *card, io, store, opt);
   }
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));
@@ -167,8 +204,10 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.estimated_time_s = job.estimated_time_s;
   // A real card counts nothing itself: its steps are the generator's count of those played.
   report.steps = sim ? sim->steps() : job.played_steps;
+  // In the calibration and units the run left in force (VU, VD may have changed them).
+  report.units = job.settings.units;
   for (int i = 0; i < kAxisCount; ++i)
-    report.position[i] = static_cast<double>(report.steps[i]) / settings.axes[i].steps_per_unit;
+    report.position[i] = static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
   report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
   if (sim) {
     report.timing_violations = sim->timing_violations();
@@ -190,8 +229,9 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
 }
 
 int cmd_check(const std::string& file, const std::string& settings_path, const LanguageArgs& lang) {
-  Settings settings;
-  if (!load_profile(settings_path, settings)) return 1;
+  Profile profile;
+  if (!load_profile(settings_path, lang.values, profile)) return 1;
+  const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
   std::shared_ptr<const Script> script = Script::load(file);
@@ -206,8 +246,9 @@ int cmd_check(const std::string& file, const std::string& settings_path, const L
 // The cycle time of a file, from the same check and planner a run uses.
 int cmd_estimate(const std::string& file, const std::string& settings_path, bool json,
                  const LanguageArgs& lang) {
-  Settings settings;
-  if (!load_profile(settings_path, settings)) return 1;
+  Profile profile;
+  if (!load_profile(settings_path, lang.values, profile)) return 1;
+  const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
   opt.operator_present = false;  // an estimate answers nothing: --yes and --input do
@@ -251,8 +292,9 @@ class PrintingSink : public MotionSink {
 
 int cmd_moves(const std::string& file, const std::string& settings_path, const std::string& format,
               const LanguageArgs& lang) {
-  Settings settings;
-  if (!load_profile(settings_path, settings)) return 1;
+  Profile profile;
+  if (!load_profile(settings_path, lang.values, profile)) return 1;
+  const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
   std::shared_ptr<const Script> script = Script::load(file);

@@ -103,14 +103,6 @@ const std::vector<Entry>& catalogue() {
   using G = CommandGroup;
   static const std::vector<Entry> entries = [] {
     const std::string_view ui = "A screen of the ShopBot console; Gantry has no console screens.";
-    const std::string_view help_instead =
-        "`gantry help` lists the commands and docs/commands.md describes them";
-    const std::string_view tool =
-        "A virtual tool: a separate program, called with its own parameters.";
-    const std::string_view tool_instead =
-        "virtual tools are separate programs; generate the part file with the tool and run it";
-    const std::vector<ParamSpec> tool_params =
-        free_params("tool parameter", 6, "Passed to the tool.");
     std::vector<Entry> e;
     // Cuts
     e.push_back({"CA", "Cut arch", G::Cuts,
@@ -197,25 +189,6 @@ const std::vector<Entry>& catalogue() {
                  {text("folder", "Path (blank: the program folder)."),
                   text("mask", "File selector mask (default *.sb?).")},
                  "FP finds relative names beside the top-level file; give FP a path instead"});
-    // Help
-    const std::pair<std::string_view, std::string_view> helps[] = {
-        {"HA", "Help: about"},
-        {"HB", "Help: technical bulletins"},
-        {"HC", "Help: command reference"},
-        {"HE", "Help: quick reference (parameters)"},
-        {"HN", "Help: request for support"},
-        {"HQ", "Help: quick start"},
-        {"HR", "Help: quick reference"},
-        {"HT", "Help: troubleshooting"},
-        {"HU", "Help: user guide"},
-        {"HW", "Help: ShopBot website"}};
-    for (const auto& [code, name] : helps)
-      e.push_back({code,
-                   name,
-                   G::Help,
-                   ui,
-                   {},
-                   code == "HA" ? "`gantry --version` gives the version" : help_instead});
     // Jog and move
     e.push_back({"J6", "Jog 6 dimensions", G::Jog, "Jogs X, Y, Z, A, B and C together (FabMo).",
                  axes("XYZABC"), "use J5 for X, Y, Z, A and B"});
@@ -362,14 +335,6 @@ const std::vector<Entry>& catalogue() {
                  "Seconds of warning before any movement starts.",
                  {num("duration", "s", 2.0, "0 turns the warning off.")},
                  ""});
-    // Tools
-    const std::pair<std::string_view, std::string_view> tools[] = {
-        {"TC", "Tools: copy machine"},  {"TD", "Tools: drill press"},
-        {"TF", "Tools: Forney fluter"}, {"TH", "Tools: header writer"},
-        {"TI", "Tools: indexer"},       {"TS", "Tools: ShopBot setup"},
-        {"TT", "Tools: typesetter"},    {"TU", "Tools: tabletop surfacer"}};
-    for (const auto& [code, name] : tools)
-      e.push_back({code, name, G::Tools, tool, tool_params, tool_instead});
     // Utilities
     e.push_back({"UD",
                  "Utilities: diagnostic display",

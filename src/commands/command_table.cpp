@@ -1,6 +1,8 @@
 // The standard command table, assembled from each command family's registration.
 #include "gantry/commands/command_table.hpp"
 
+#include <fmt/format.h>  // ranges in words
+
 #include <algorithm>  // find_if
 
 namespace gantry {
@@ -20,6 +22,7 @@ int code_index(std::string_view code) {
 
 CommandTable::CommandTable(std::vector<CommandSpec> specs) : specs_(std::move(specs)) {
   index_.fill(-1);
+  for (CommandSpec& s : specs_) s.immediate |= s.params.empty();  // nothing to ask for
   for (size_t i = 0; i < specs_.size(); ++i)
     if (const int k = code_index(specs_[i].code); k >= 0) index_[k] = static_cast<int>(i);
 }
@@ -33,6 +36,10 @@ const CommandTable& CommandTable::standard() {
     add_output_commands(specs);
     add_zero_commands(specs);
     add_move_distance(specs);
+    add_values_commands(specs);
+    add_settings_commands(specs);
+    add_help_commands(specs);
+    add_tool_commands(specs);
     add_catalogue_commands(specs, specs);  // last: it fills in every code not yet there
     return CommandTable(std::move(specs));
   }();
@@ -42,6 +49,36 @@ const CommandTable& CommandTable::standard() {
 const CommandSpec* CommandTable::find(std::string_view code) const {
   const int k = code_index(code);  // every command is looked up once per executed line
   return k < 0 || index_[k] < 0 ? nullptr : &specs_[index_[k]];
+}
+
+std::string_view param_type(const ParamSpec& p) {
+  if (p.kind == ParamKind::Text)
+    return !p.choices.empty()                              ? "choice"
+           : p.name.find("file") != std::string_view::npos ? "filename"
+                                                           : "text";
+  if (p.whole) return p.min == 0 && p.max == 1 ? "flag" : "int";
+  if (p.unit == "units") return "distance";
+  if (p.unit == "units/s") return "speed";
+  if (p.unit == "deg") return "angle";
+  return "number";
+}
+
+std::string param_range(const ParamSpec& p) {
+  if (!p.choices.empty()) {
+    std::string out;
+    std::string_view rest = p.choices;
+    while (!rest.empty()) {
+      const size_t space = rest.find(' ');
+      const std::string_view word = rest.substr(0, space);
+      rest = space == std::string_view::npos ? std::string_view{} : rest.substr(space + 1);
+      out += fmt::format("{}{}", out.empty() ? "" : rest.empty() ? " or " : ", ", word);
+    }
+    return out;
+  }
+  if (p.min && p.max) return fmt::format("{} to {}", *p.min, *p.max);
+  if (p.min) return fmt::format(">= {}", *p.min);
+  if (p.max) return fmt::format("<= {}", *p.max);
+  return "";
 }
 
 const char* group_name(CommandGroup g) {

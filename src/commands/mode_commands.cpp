@@ -62,12 +62,13 @@ void set_jog_speed(CommandContext& ctx, const CommandCall& call) {
   apply_speeds(ctx, call, 0, 5, ctx.state().speeds.jog, SpeedClass::Jog, false);
   ctx.come_to_rest(call.loc);
 }
-// VS (SB3 order): move XY, Z, A, B, then jog XY, Z, A, B.
+// VS: move XY, Z, A, B, then jog XY, Z, A, B (SB3); FabMo adds C to each group.
 void set_speeds(CommandContext& ctx, const CommandCall& call) {
   // Validate every value before changing any: a bad VS changes nothing.
+  const size_t groups = ctx.settings().dialect == Dialect::FabMo ? 5 : 4;
   SpeedSettings next = ctx.state().speeds;
-  apply_speeds(ctx, call, 0, 4, next.move, SpeedClass::Move, true);
-  apply_speeds(ctx, call, 4, 4, next.jog, SpeedClass::Jog, true);
+  apply_speeds(ctx, call, 0, groups, next.move, SpeedClass::Move, true);
+  apply_speeds(ctx, call, groups, groups, next.jog, SpeedClass::Jog, true);
   ctx.state().speeds = next;
 }
 
@@ -110,11 +111,15 @@ void add_mode_commands(std::vector<CommandSpec>& out) {
   out.push_back({"JS", "Jog speed", CommandGroup::Jog,
                  "Sets the jog (rapid) speeds; a blank keeps that speed.", speed_params("", 5),
                  set_jog_speed});
-  std::vector<ParamSpec> vs = speed_params("move", 4);
-  for (ParamSpec& p : speed_params("jog", 4)) vs.push_back(p);
+  auto vs = [](int groups) {
+    std::vector<ParamSpec> out = speed_params("move", groups);
+    for (ParamSpec& p : speed_params("jog", groups)) out.push_back(p);
+    return out;
+  };
   out.push_back({"VS", "Values for speeds", CommandGroup::Values,
-                 "Sets move and jog speeds together without interrupting motion.", vs, set_speeds,
-                 "FabMo's 10-value form with C move and jog speeds"});
+                 "Sets move and jog speeds together without interrupting motion. In a part "
+                 "file they last until the file ends, unless SV.",
+                 vs(4), set_speeds, "", vs(5)});
 }
 
 }  // namespace gantry

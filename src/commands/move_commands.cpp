@@ -1,4 +1,4 @@
-// Straight moves at move speed (M…) and jog speed (J…) on one to five axes.
+// Straight moves at move speed (M…) and jog speed (J…) on one to six axes.
 #include "gantry/commands/command_table.hpp"
 #include "gantry/interp/interpreter.hpp"
 
@@ -26,7 +26,7 @@ void move_axes(CommandContext& ctx, const CommandCall& call) {
 template <SpeedClass Class>
 void go_home(CommandContext& ctx, const CommandCall& call) {
   Vec6 at = ctx.position();
-  const double safe_z = ctx.settings().machine.safe_z;
+  const double safe_z = ctx.settings().cutter.safe_z;
   if (at[2] < safe_z) {
     at[2] = safe_z;
     ctx.line_to(at, Class, call.loc);
@@ -75,6 +75,9 @@ void add_move_commands(std::vector<CommandSpec>& out) {
                  move_axes<Move, X, Y, Z, A>});
   out.push_back({"M5", "Move 5 dimensions", M, multi_move, axis_params("XYZAB", false),
                  move_axes<Move, X, Y, Z, A, B>});
+  out.push_back({"M6", "Move 6 dimensions", M, multi_move, axis_params("XYZABC", false),
+                 move_axes<Move, X, Y, Z, A, B, C>});
+  out.push_back({"MC", "Move C axis", M, single_move, axis_params("C", true), move_axes<Move, C>});
   out.push_back({"JX", "Jog X axis", J, single_jog, axis_params("X", true), move_axes<Jog, X>});
   out.push_back({"JY", "Jog Y axis", J, single_jog, axis_params("Y", true), move_axes<Jog, Y>});
   out.push_back({"JZ", "Jog Z axis", J, single_jog, axis_params("Z", true), move_axes<Jog, Z>});
@@ -88,17 +91,20 @@ void add_move_commands(std::vector<CommandSpec>& out) {
                  move_axes<Jog, X, Y, Z, A>});
   out.push_back({"J5", "Jog 5 dimensions", J, multi_jog, axis_params("XYZAB", false),
                  move_axes<Jog, X, Y, Z, A, B>});
+  out.push_back({"J6", "Jog 6 dimensions", J, multi_jog, axis_params("XYZABC", false),
+                 move_axes<Jog, X, Y, Z, A, B, C>});
+  out.push_back({"JC", "Jog C axis", J, single_jog, axis_params("C", true), move_axes<Jog, C>});
   out.push_back({"MH",
                  "Move home",
                  M,
-                 "Raises Z to Safe-Z ([machine] safe_z) if it is below it, then moves to X 0, "
+                 "Raises Z to Safe-Z ([cutter] safe_z, VC) if it is below it, then moves to X 0, "
                  "Y 0; both at move speed. SR does not apply.",
                  {},
                  go_home<Move>});
   out.push_back({"JH",
                  "Jog home",
                  J,
-                 "Raises Z to Safe-Z ([machine] safe_z) if it is below it, then jogs to X 0, "
+                 "Raises Z to Safe-Z ([cutter] safe_z, VC) if it is below it, then jogs to X 0, "
                  "Y 0; both at jog speed. SR does not apply.",
                  {},
                  go_home<Jog>});

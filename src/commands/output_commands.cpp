@@ -1,4 +1,4 @@
-// Output switches: SO.
+// Output switches: SO, and MO (M0) which turns them all off.
 #include <fmt/format.h>  // messages
 
 #include <cmath>  // trunc
@@ -33,6 +33,14 @@ void set_output_switch(CommandContext& ctx, const CommandCall& call) {
   ctx.set_output(k, state == 1, call.loc);
 }
 
+// MO / M0: every output switch off with the machine at rest. Motor power follows the
+// charge pump, which stops whenever no pulses flow: the drives are off at rest already.
+void motors_off(CommandContext& ctx, const CommandCall& call) {
+  ctx.come_to_rest(call.loc);
+  for (int n = 1; n <= 12; ++n)
+    if (ctx.state().outputs & (1u << (n - 1))) ctx.set_output(n, false, call.loc);
+}
+
 }  // namespace
 
 void add_output_commands(std::vector<CommandSpec>& out) {
@@ -46,6 +54,17 @@ void add_output_commands(std::vector<CommandSpec>& out) {
                   {"state", "", false, 0.0, "1 turns it on, 0 (or blank) off."}},
                  set_output_switch,
                  "switch 4's automatic modes (SO, 4, -1 to -4)"});
+  for (std::string_view code : {"MO", "M0"})
+    out.push_back({code,
+                   "Motors off",
+                   CommandGroup::Move,
+                   "Stops at rest and turns every output switch off. The drives lose their "
+                   "enable with the charge pump, which only runs while pulses flow.",
+                   {},
+                   motors_off,
+                   "",
+                   {},
+                   true});
 }
 
 }  // namespace gantry

@@ -12,6 +12,26 @@ void zero(CommandContext& ctx, const CommandCall&) {
   ctx.zero_axes(Axes);
 }
 
+constexpr unsigned kAll = kX | kY | kZ | kA | kB | kC;
+
+// ZT: the tool's position becomes table base 0; working values keep their numbers.
+void zero_table_base(CommandContext& ctx, const CommandCall&) {
+  ctx.set_table_base(kAll, Vec6::Zero());
+}
+
+// UZ: working locations and table base both 0 here.
+void zero_everything(CommandContext& ctx, const CommandCall&) {
+  ctx.set_table_base(kAll, Vec6::Zero());
+  ctx.zero_axes(kAll);
+}
+
+// ST: working coordinates become table base coordinates again (offsets removed).
+void to_table_base(CommandContext& ctx, const CommandCall&) {
+  ModalState& st = ctx.state();
+  st.position += st.zero;
+  st.zero = Vec6::Zero();
+}
+
 }  // namespace
 
 // SB3 documents ZX ZY ZZ ZA ZB and Z2-Z5 (AMB-28: Z3 = X, Y, Z; Z4 adds A); FabMo adds ZC
@@ -49,7 +69,40 @@ void add_zero_commands(std::vector<CommandSpec>& out) {
                  Z,
                  "The current locations of all axes become 0.",
                  {},
-                 zero<kX | kY | kZ | kA | kB | kC>});
+                 zero<kAll>});
+  out.push_back({"ZT",
+                 "Zero table base coordinates",
+                 Z,
+                 "The current position becomes table base 0 on every axis; nothing moves, "
+                 "working locations keep their values, and the soft limits (table base) move "
+                 "with it.",
+                 {},
+                 zero_table_base,
+                 "",
+                 {},
+                 true,
+                 "%(6)-%(10)"});
+  out.push_back({"UZ",
+                 "Zero working and table base locations",
+                 CommandGroup::Utilities,
+                 "The current position becomes 0 in working and table base coordinates on "
+                 "every axis.",
+                 {},
+                 zero_everything,
+                 "",
+                 {},
+                 true,
+                 "%(1)-%(10)"});
+  out.push_back({"ST",
+                 "Set working to table base coordinates",
+                 CommandGroup::Settings,
+                 "Removes the working offsets: locations read in table base coordinates again.",
+                 {},
+                 to_table_base,
+                 "",
+                 {},
+                 true,
+                 "%(1)-%(5)"});
 }
 
 }  // namespace gantry

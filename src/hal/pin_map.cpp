@@ -3,13 +3,15 @@
 
 namespace gantry {
 
-PinMap PinMap::from(const std::array<PinSettings, kAxisCount>& pins) {
+PinMap PinMap::from(const std::array<PinSettings, kAxisCount>& pins,
+                    const std::array<int, kAxisCount>& channel_axis) {
   PinMap m;
-  for (int i = 0; i < kAxisCount; ++i) {
-    m.axes[i].step_mask = 1u << pins[i].step_bit;
-    m.axes[i].dir_mask = 1u << pins[i].dir_bit;
-    m.axes[i].invert_dir = pins[i].invert_dir;
-    m.axes[i].step_active_low = pins[i].step_active_low;
+  for (int k = 0; k < kAxisCount; ++k) {
+    AxisPins& a = m.axes[channel_axis[k]];
+    a.step_mask = 1u << pins[k].step_bit;
+    a.dir_mask = 1u << pins[k].dir_bit;
+    a.invert_dir = pins[k].invert_dir;
+    a.step_active_low = pins[k].step_active_low;
   }
   return m;
 }

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 
 #include "gantry/interp/interpreter.hpp"
 
@@ -20,6 +21,8 @@ struct Interpreter::Frame {
   double plunge_start_z = 0;        // machine Z when FP was called, for the plunge of each pass
   SpeedSettings saved_speeds;       // at the file's start
   std::array<bool, 10> vs_owned{};  // speeds (move xy..c, jog xy..c) VS set last here
+  std::optional<Settings> saved_values;  // before this file's first file-scoped change
+  std::optional<Units> saved_units;      // before this file's SU
 };
 
 // A file opened with OPEN ... AS #n.

@@ -18,28 +18,35 @@ namespace gantry {
 void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
   const Vec6 target = transform_.to_machine(file_target);
   const char* unit = units_name(settings_.units);
-  // Soft limits are the table's envelope, in table base coordinates.
-  const Vec6 table = target + state_.zero;
-  for (int i = 0; i < kAxisCount; ++i) {
-    if (target[i] == state_.position[i]) continue;  // only axes that move are checked
+  // Soft limits are the table's envelope, in table base coordinates (VO's offset included:
+  // it is where the tool really goes).
+  const Vec6 table = target + state_.zero + state_.tool_offset;
+  const Vec6 now = state_.position + state_.zero + state_.applied_offset;
+  for (int i = 0; settings_.machine.limit_checking && i < kAxisCount; ++i) {
+    if (table[i] == now[i]) continue;  // only axes that move are checked
     const AxisSettings& ax = settings_.axes[i];
     if (!std::isfinite(table[i]) || table[i] < ax.min || table[i] > ax.max) {
       const char letter = static_cast<char>(std::toupper(kAxisLetters[i]));
       const std::string base =
-          state_.zero[i] == 0 ? "" : fmt::format(" (table base {}={:.4f})", letter, table[i]);
+          table[i] == target[i] ? "" : fmt::format(" (table base {}={:.4f})", letter, table[i]);
       fail(loc, fmt::format("move to {}={:.4f}{} is outside the soft limits {:.4f} to {:.4f} {} "
                             "(axes.{}.min/max in the profile); nothing was moved",
                             letter, target[i], base, ax.min, ax.max, unit, kAxisLetters[i]));
     }
   }
-  if (target == state_.position) return;  // no motion, no move
+  if (!std::isfinite(table.sum()))
+    fail(loc, "a move target is not a finite number; nothing was moved");
+  if (table == now) return;  // no motion, no move
   CanonMove m;
   m.speed_class = cls;
-  m.from = state_.position + state_.zero;  // the machine moves in table base coordinates
-  m.to = table;
+  m.from = now + state_.machine_origin;
+  m.to = table + state_.machine_origin;
+  state_.applied_offset = state_.tool_offset;
   m.speeds = cls == SpeedClass::Move ? state_.speeds.move : state_.speeds.jog;
+  if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15: 1/n of every speed
+    for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c}) *v /= n;
   m.loc = loc;
-  sink_.move(m);
+  if (!state_.preview) sink_.move(m);  // SP: the location changes, no motor moves
   if (target[0] != state_.position[0] || target[1] != state_.position[1])  // for MD's R and L
     state_.last_xy_move = {target[0] - state_.position[0], target[1] - state_.position[1]};
   state_.position = target;
@@ -47,7 +54,7 @@ void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const Sour
 }
 
 void CommandContext::dwell(double seconds, const SourceLoc& loc) {
-  if (!(seconds > 0)) return;
+  if (!(seconds > 0) || state_.preview) return;
   CanonMove m = here(MoveKind::Dwell, loc);
   m.dwell_s = seconds;
   sink_.move(m);
@@ -63,6 +70,7 @@ void CommandContext::zero_axes(unsigned axes) {
 }
 
 void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
+  if (state_.preview) return;  // a preview switches nothing
   CanonMove m = here(MoveKind::Output, loc);
   m.output = n;
   m.output_on = on;
@@ -72,15 +80,110 @@ void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
 }
 
 void CommandContext::come_to_rest(const SourceLoc& loc) {
+  if (state_.preview) return;
   sink_.move(here(MoveKind::Stop, loc));
 }
 
 CanonMove CommandContext::here(MoveKind kind, const SourceLoc& loc) const {
   CanonMove m;
   m.kind = kind;
-  m.from = m.to = state_.position + state_.zero;  // table base coordinates
+  m.from = m.to = state_.machine_origin + state_.zero + state_.position + state_.applied_offset;
   m.loc = loc;
   return m;
+}
+
+Settings& CommandContext::change_values(ValueScope scope) {
+  if (scope == ValueScope::File && in_file()) {
+    Interpreter::Frame& f = interp_->frames_.back();
+    if (!f.saved_values) f.saved_values = settings_;
+  }
+  return settings_;
+}
+
+void CommandContext::values_reach_motion(const SourceLoc& loc) {
+  come_to_rest(loc);
+  sink_.settings_changed(settings_);
+}
+
+void CommandContext::make_values_permanent() {
+  for (Interpreter::Frame& f : interp_->frames_) {
+    f.saved_values.reset();
+    f.vs_owned.fill(false);
+  }
+}
+
+void CommandContext::call_macro(int number, const SourceLoc& loc) {
+  interp_->call_macro(number, loc);
+}
+
+void CommandContext::change_units(Units to, ValueScope scope, const SourceLoc& loc) {
+  if (to == settings_.units) return;
+  if (scope == ValueScope::File && in_file()) {
+    Interpreter::Frame& f = interp_->frames_.back();
+    if (!f.saved_units) f.saved_units = settings_.units;
+  }
+  const double f = units_factor(settings_.units, to);
+  Vec6 scale = Vec6::Ones();
+  for (int i = 0; i < kAxisCount; ++i)
+    scale[i] = i < 3 || settings_.display.rotary_units[i - 3] != AxisUnit::Degrees ? f : 1.0;
+  convert_units(settings_, to);
+  ModalState& st = state_;
+  for (Vec6* v : {&st.position, &st.zero, &st.machine_origin, &st.tool_offset, &st.applied_offset,
+                  &st.tool_offset_values})
+    *v = v->cwiseProduct(scale);
+  for (GroupSpeeds* g : {&st.speeds.move, &st.speeds.jog}) {
+    g->xy *= f;
+    g->z *= f;
+    g->a *= scale[3];
+    g->b *= scale[4];
+    g->c *= scale[5];
+  }
+  if (st.last_xy_move) {
+    (*st.last_xy_move)[0] *= f;
+    (*st.last_xy_move)[1] *= f;
+  }
+  // What running files will restore is in the new units too.
+  for (Interpreter::Frame& fr : interp_->frames_) {
+    for (GroupSpeeds* g : {&fr.saved_speeds.move, &fr.saved_speeds.jog}) {
+      g->xy *= f;
+      g->z *= f;
+      g->a *= scale[3];
+      g->b *= scale[4];
+      g->c *= scale[5];
+    }
+    if (fr.saved_values) convert_units(*fr.saved_values, to);
+  }
+  // The tool stays where it is: the planner and the step generator take the new values.
+  values_reach_motion(loc);
+}
+
+void CommandContext::end_preview() {
+  if (!state_.preview) return;
+  const PreviewReturn r = *state_.preview;
+  state_.preview.reset();
+  state_.position = r.position;
+  state_.zero = r.zero;
+  state_.machine_origin = r.machine_origin;
+  state_.applied_offset = r.applied_offset;
+  state_.tool_offset = r.tool_offset;
+}
+
+void CommandContext::clear_variables() {
+  interp_->vars_.clear();
+}
+
+bool CommandContext::in_file() const {
+  return !interp_->frames_.empty();
+}
+
+void CommandContext::set_table_base(unsigned axes, const Vec6& location) {
+  for (int i = 0; i < kAxisCount; ++i)
+    if (axes & (1u << i)) {
+      // The tool stays where it is in the machine's frame; only the numbers change.
+      const double machine = state_.machine_origin[i] + state_.zero[i] + state_.position[i];
+      state_.zero[i] = location[i] - state_.position[i];
+      state_.machine_origin[i] = machine - location[i];
+    }
 }
 
 void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {
@@ -90,6 +193,45 @@ void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {
 
 void CommandContext::speed_set(SpeedClass cls, int group, bool by_values) {
   interp_->frames_.back().vs_owned[(cls == SpeedClass::Jog ? 5 : 0) + group] = by_values;
+}
+
+void CommandContext::print(std::string_view text) {
+  interp_->io_.print(text);
+}
+
+void CommandContext::warn(const SourceLoc& loc, std::string message) {
+  interp_->io_.warn({loc, Severity::Warning, std::move(message)});
+}
+
+std::string CommandContext::write_file(const std::string& name, std::string_view text,
+                                       const SourceLoc& loc) {
+  const std::string path = interp_->file_path(name, loc);
+  auto canonical = [](const std::string& p) {  // "" when it cannot be resolved
+    std::error_code ec;
+    std::filesystem::path c = std::filesystem::weakly_canonical(p, ec);
+    return ec ? std::filesystem::path() : c;
+  };
+  const std::filesystem::path target = canonical(path);
+  for (const Interpreter::Frame& f : interp_->frames_)
+    if (f.script->name() && !target.empty() && canonical(*f.script->name()) == target)
+      fail(loc, fmt::format("{} is running; a command cannot rewrite a running part file", path));
+  std::shared_ptr<std::ostream> out = interp_->files_system_->open_write(path, false);
+  if (!out) fail(loc, fmt::format("cannot open {} for writing", path));
+  out->write(text.data(), static_cast<std::streamsize>(text.size()));
+  out->flush();
+  if (!*out) fail(loc, fmt::format("could not write {}", path));
+  return path;
+}
+
+std::optional<std::string> CommandContext::read_file(const std::string& name, const SourceLoc& loc,
+                                                     std::string* path) {
+  const std::string p = interp_->file_path(name, loc);
+  if (path) *path = p;
+  std::shared_ptr<std::istream> in = interp_->files_system_->open_read(p);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in->rdbuf();
+  return text.str();
 }
 
 namespace {
@@ -102,10 +244,31 @@ double& speed_field(SpeedSettings& s, int i) {  // 0-4 move xy..c, 5-9 jog xy..c
 
 }  // namespace
 
-void Interpreter::restore_file_speeds(Frame& f) {
+// Undoes what the file's VS, VU, VI, VL and SF changed (SV keeps them). Steps per unit and
+// driver channels reach the motion stream again; limits and the checking flag need not.
+void Interpreter::restore_file_values(Frame& f) {
   for (int i = 0; i < 10; ++i)
     if (f.vs_owned[i]) speed_field(state_.speeds, i) = speed_field(f.saved_speeds, i);
   f.vs_owned.fill(false);
+  if (f.saved_values) {
+    const Settings& was = *f.saved_values;
+    bool motion = settings_.drivers.channel_axis != was.drivers.channel_axis;
+    for (int i = 0; i < kAxisCount; ++i) {
+      AxisSettings& ax = settings_.axes[i];
+      motion |= ax.steps_per_unit != was.axes[i].steps_per_unit;
+      ax.steps_per_unit = was.axes[i].steps_per_unit;
+      ax.min = was.axes[i].min;
+      ax.max = was.axes[i].max;
+    }
+    settings_.calibration = was.calibration;
+    settings_.drivers = was.drivers;
+    settings_.machine.limit_checking = was.machine.limit_checking;
+    f.saved_values.reset();
+    if (motion) ctx_.values_reach_motion(SourceLoc{});
+  }
+  if (f.saved_units)  // SU: back to the units the file started in
+    ctx_.change_units(*std::exchange(f.saved_units, std::nullopt), ValueScope::Permanent,
+                      SourceLoc{});
 }
 
 // ---- construction, files and frames ---------------------------------------------------
@@ -119,7 +282,7 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
       io_(io),
       store_(store),
       options_(std::move(options)),
-      ctx_(state_, settings, sink) {
+      ctx_(state_, settings_, sink) {
   ctx_.interp_ = this;
   state_.speeds = settings.speeds;
   if (options_.files) {
@@ -190,7 +353,7 @@ void Interpreter::plunge_for_pass(Frame& f) {
 // Ends the current pass of the innermost file: another repetition, or back to the caller.
 void Interpreter::end_file() {
   Frame& f = frames_.back();
-  restore_file_speeds(f);
+  restore_file_values(f);
   if (++f.repetition < f.call.repetitions) {
     f.pc = f.script->start();
     f.gosubs.clear();
@@ -217,7 +380,7 @@ Diagnostic Interpreter::located(Diagnostic d) const {
 // Ends every running file at once (ENDALL, the end of a run), innermost first.
 void Interpreter::unwind_all() {
   while (!frames_.empty()) {
-    restore_file_speeds(frames_.back());
+    restore_file_values(frames_.back());
     frames_.pop_back();
   }
 }
@@ -238,10 +401,14 @@ void Interpreter::run(std::shared_ptr<const Script> script) {
     files_.clear();
     on_input_.clear();
     pending_call_.reset();
+    ctx_.end_preview();  // first: a preview switches no output
     // Output switches go off when the job ends, however it ends (SB3's standard mode).
     for (int n = 1; state_.outputs != 0; ++n)
       if (state_.outputs & (1u << (n - 1))) ctx_.set_output(n, false, SourceLoc{});
+    state_.tool_offset = Vec6::Zero();  // VO lasts until the part file is exited
     sink_.flush();
+    settings_.speeds = state_.speeds;  // MS and JS changes stay; VS ones were undone above
+    if (!options_.dry_run && options_.save_values) options_.save_values(settings_);
     clear_run_flag();
     store_.save();
   };
@@ -428,10 +595,32 @@ Value Interpreter::system_variable(int n, const SourceLoc& loc) {
 
 MachineSnapshot Interpreter::snapshot() const {
   MachineSnapshot m;
-  m.location = state_.position;
-  m.table_base = state_.position + state_.zero;
+  const Settings& s = settings_;
+  m.location = state_.position + state_.applied_offset;  // VO: the tool's true position
+  m.table_base = m.location + state_.zero;
   m.relative = !state_.absolute;
-  m.metric = settings_.units == Units::Millimetres;
+  m.preview = state_.preview.has_value();
+  m.metric = s.units == Units::Millimetres;
+  m.axis_count = s.display.axes;
+  m.limit_check_axes = s.machine.limit_checking ? s.display.axes : 0;
+  m.cutter_diameter = s.cutter.diameter;
+  m.safe_z = s.cutter.safe_z;
+  m.safe_a = s.cutter.safe_a;
+  m.trigger_on_threshold = s.cutter.trigger_on;
+  m.trigger_off_threshold = s.cutter.trigger_off;
+  m.warning_delay = s.machine.warning_s;
+  m.tab_pull_up = s.tabs.pull_up;
+  m.tab_spacing = s.tabs.spacing;
+  m.tab_size = s.tabs.size;
+  m.tab_lead = s.tabs.leads;
+  for (int k = 0; k < 5; ++k)
+    m.resolution_multiplier[k] = static_cast<int>(s.calibration.resolution_multiplier[k]);
+  m.step_interval_divider = s.calibration.step_divider;
+  for (int k = 0; k < kAxisCount; ++k)
+    m.driver_channel_axis[k] = static_cast<char>("XYZABC"[s.drivers.channel_axis[k]]);
+  m.input_mode = s.switches.input_modes;
+  m.output_mode = s.switches.output_modes;
+  m.input4_mode = s.switches.stop_normally_open ? 1 : 0;
   for (int i = 0; i < kAxisCount; ++i) {
     m.limit_min[i] = settings_.axes[i].min;
     m.limit_max[i] = settings_.axes[i].max;
@@ -497,23 +686,55 @@ void Interpreter::exec(const AssignStmt& s, const SourceLoc&) {
 
 // ---- commands -------------------------------------------------------------------------
 
+namespace {
+
+std::string param_what(const CommandSpec& spec, const ParamSpec& ps, size_t i) {
+  return fmt::format("{} parameter {} ({})", spec.code, i + 1, ps.name);
+}
+
+// The table's range for a number; most parameters have none, so this costs a test.
+void check_param(const CommandSpec& spec, const ParamSpec& ps, size_t i, double v,
+                 const SourceLoc& at) {
+  if (!ps.min && !ps.max && !ps.whole) return;
+  if ((ps.min && !(v >= *ps.min)) || (ps.max && !(v <= *ps.max)))
+    fail(at, fmt::format("{} is {}; allowed: {}", param_what(spec, ps, i), format_number(v),
+                         param_range(ps)));
+  if (ps.whole && v != std::round(v))
+    fail(at, fmt::format("{} must be a whole number, not {}", param_what(spec, ps, i),
+                         format_number(v)));
+}
+
+void check_choice(const CommandSpec& spec, const ParamSpec& ps, size_t i, const std::string& v,
+                  const SourceLoc& at) {
+  std::string_view rest = ps.choices;
+  while (!rest.empty()) {
+    const size_t space = rest.find(' ');
+    const std::string_view word = rest.substr(0, space);
+    rest = space == std::string_view::npos ? std::string_view{} : rest.substr(space + 1);
+    if (scan::upper(v) == scan::upper(word)) return;
+  }
+  fail(at, fmt::format("{} is '{}'; allowed: {}", param_what(spec, ps, i), v, param_range(ps)));
+}
+
+}  // namespace
+
 void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
   const CommandSpec* spec = table_.find(cmd.code);
   if (!spec)
     fail(loc, fmt::format("unknown command '{}'; see docs/commands.md for the commands Gantry "
                           "knows",
                           cmd.code));
-  if (cmd.args.size() > spec->params.size())
-    fail(cmd.args[spec->params.size()].loc,
-         fmt::format("{} takes {} parameter{}; this is parameter {}", spec->code,
-                     spec->params.size(), spec->params.size() == 1 ? "" : "s",
-                     spec->params.size() + 1));
+  const std::vector<ParamSpec>& params = spec->params_for(settings_.dialect);
+  if (cmd.args.size() > params.size())
+    fail(cmd.args[params.size()].loc,
+         fmt::format("{} takes {} parameter{}; this is parameter {}", spec->code, params.size(),
+                     params.size() == 1 ? "" : "s", params.size() + 1));
   // The values' storage is kept from line to line (taken, so a nested call gets its own).
   std::vector<std::optional<Value>> values = std::move(values_storage_);
-  values.assign(spec->params.size(), std::nullopt);
+  values.assign(params.size(), std::nullopt);
   CommandCall call{*spec, loc, cmd.args, values};
-  for (size_t i = 0; i < spec->params.size(); ++i) {
-    const ParamSpec& ps = spec->params[i];
+  for (size_t i = 0; i < params.size(); ++i) {
+    const ParamSpec& ps = params[i];
     const Arg* a = i < cmd.args.size() && !cmd.args[i].blank() ? &cmd.args[i] : nullptr;
     std::optional<Value> v;
     if (a) v = value_of(*a);
@@ -536,6 +757,9 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
              fmt::format("undefined variable {}; set it before this line", scan::upper(a->text)));
       if (v->is_string())  // the message is only built when a conversion is needed
         v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
+      check_param(*spec, ps, i, v->num(), a->loc);
+    } else if (!ps.choices.empty()) {
+      check_choice(*spec, ps, i, v->to_string(), a->loc);
     }
     values[i] = std::move(v);
   }
@@ -544,9 +768,13 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
 }
 
 void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
+  call_macro(s.number, loc);
+}
+
+void Interpreter::call_macro(int number, const SourceLoc& loc) {
   const std::string dir = options_.macro_dir.empty() ? parts_dir_ : options_.macro_dir;
   for (const std::string& name :
-       {fmt::format("C{}.sbp", s.number), fmt::format("macro_{}.sbp", s.number)}) {
+       {fmt::format("C{}.sbp", number), fmt::format("macro_{}.sbp", number)}) {
     const std::string path = (std::filesystem::path(dir) / name).string();
     if (files_system_->is_file(path)) {
       FileCall call;
@@ -559,7 +787,7 @@ void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
   }
   fail(loc, fmt::format("C{0} runs custom cut {0}, but there is no C{0}.sbp or macro_{0}.sbp in "
                         "{1}; put the macro there or give its folder with --macros",
-                        s.number, dir.empty() ? "." : dir));
+                        number, dir.empty() ? "." : dir));
 }
 
 }  // namespace gantry

@@ -1,15 +1,13 @@
 // The persistent store's file: JSON, loaded strictly, saved atomically.
 #include "gantry/interp/persistent_store.hpp"
 
-#include <fcntl.h>  // open
 #include <fmt/format.h>
-#include <unistd.h>  // fsync, close
 
-#include <cstdio>      // rename
 #include <cstdlib>     // getenv
 #include <filesystem>  // create_directories
 
-#include "gantry/core/text_file.hpp"  // read_text_file
+#include "gantry/core/text_file.hpp"        // read_text_file
+#include "gantry/settings/values_file.hpp"  // write_file_atomically
 
 namespace gantry {
 
@@ -44,16 +42,7 @@ const nlohmann::json* PersistentStore::variable(std::string_view name) const {
 
 void PersistentStore::save() const {
   if (path_.empty() || !dirty_) return;
-  const std::filesystem::path p(path_);
-  std::error_code ec;
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  const std::string tmp = fmt::format("{}.{}.tmp", path_, ::getpid());  // one per process
-  const std::string text = data_.dump(2) + "\n";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  bool ok = fd >= 0 && ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
-  ok = fd >= 0 && ::fsync(fd) == 0 && ok;
-  if (fd >= 0) ::close(fd);
-  if (!ok || std::rename(tmp.c_str(), path_.c_str()) != 0)
+  if (!write_file_atomically(path_, data_.dump(2) + "\n"))
     fail(file_loc(path_), "cannot save the persistent variables; the previous file is kept");
   dirty_ = false;
 }

@@ -4,7 +4,9 @@
 #include <algorithm>  // stable_sort
 #include <climits>    // INT_MAX
 
+#include "gantry/core/text_file.hpp"            // read_text_file
 #include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
+#include "gantry/settings/values_file.hpp"      // values_text, write_file_atomically
 #include "gantry/step/step_generator.hpp"       // StepGenerator
 
 namespace gantry {
@@ -62,6 +64,7 @@ void interpret(std::shared_ptr<const Script> script, const Settings& settings, M
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options) {
   JobResult result;
+  result.settings = settings;
   for (Diagnostic& d :
        check_program(script, settings, store, options, false, &result.estimated_time_s))
     (d.severity == Severity::Error ? result.errors : result.warnings).push_back(std::move(d));
@@ -71,7 +74,18 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   StepGenerator steps(settings, card);
   LookAheadPlanner planner(settings, steps);
   planner.feed_override(options.feed_override);
-  Interpreter interp(settings, planner, io, store, options.interpreter);
+  InterpreterOptions interp_options = options.interpreter;
+  interp_options.save_values = [&](const Settings& s) {
+    result.settings = s;
+    if (options.values_path.empty() || !options.profile) return;
+    const std::string text = values_text(s, *options.profile);
+    if (read_text_file(options.values_path) == text) return;  // unchanged: no write
+    if (!write_file_atomically(options.values_path, text))
+      result.warnings.push_back({file_loc(options.values_path), Severity::Warning,
+                                 "cannot save the values this run changed; the previous values "
+                                 "file is kept"});
+  };
+  Interpreter interp(settings, planner, io, store, interp_options);
   if (options.progress) interp.on_progress(options.progress);
   try {
     interp.run(std::move(script));

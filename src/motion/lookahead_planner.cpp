@@ -52,7 +52,11 @@ void LookAheadPlanner::move(const CanonMove& m) {
     return;
   }
   if (m.kind == MoveKind::Dwell || m.kind == MoveKind::Output) {
-    stop();  // an output switches with the machine at rest, between the moves around it
+    // An output switches with the machine at rest, between the moves around it. Stopping
+    // from the ramp speed is a speed jump, and so is starting again: with no time between
+    // them (an output takes none) they add up, to twice the ramp speed on a reversal. So
+    // before an output the machine ramps all the way to 0 and only the start jumps.
+    stop(m.kind == MoveKind::Output || m.dwell_s <= 0);
     PlannedSegment seg;
     seg.from = seg.to = m.to;
     seg.dwell_s = m.dwell_s;
@@ -271,18 +275,25 @@ void LookAheadPlanner::emit_front(double exit, double jerk) {
   front_locked_ = !q_.empty();
 }
 
-void LookAheadPlanner::stop() {
+void LookAheadPlanner::stop(bool to_zero) {
   if (held_) return;  // the held moves wait for resume()
   if (!q_.empty()) {
     // The last block may end at its rest speed (SB3 stops from the ramp speed).
-    replan(q_.back().rest);
+    const double end = to_zero ? 0 : q_.back().rest;
+    replan(end);
     while (q_.size() > 1) emit_front(q_[1].entry);
     const Block& last = q_.front();
-    emit_front(std::min(last.rest, reach(last.entry, last)));
+    emit_front(std::min(end, reach(last.entry, last)));
   }
   front_locked_ = false;
   held_length_ = 0;
   trail_.clear();
+}
+
+void LookAheadPlanner::settings_changed(const Settings& s) {
+  stop();  // what is planned keeps the values it was planned with
+  settings_ = s;
+  out_.settings_changed(s);
 }
 
 void LookAheadPlanner::flush() {

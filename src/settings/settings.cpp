@@ -4,11 +4,13 @@
 #include <fmt/format.h>   // messages
 #include <toml++/toml.h>  // the TOML parser
 
-#include <charconv>  // from_chars
-#include <cmath>     // ceil for tick counts
-#include <set>       // keys seen, to reject unknown ones
+#include <algorithm>  // sort
+#include <charconv>   // from_chars
+#include <cmath>      // ceil for tick counts
+#include <set>        // keys seen, to reject unknown ones
 
 #include "gantry/core/text_file.hpp"  // read_text_file
+#include "settings_private.hpp"       // parse_settings_table
 
 namespace gantry {
 namespace {
@@ -99,8 +101,8 @@ class TableReader {
     }
   }
 
-  // "a, b, c": whole numbers in [lo, hi].
-  std::vector<int> int_list(std::string_view key, int lo, int hi) {
+  // "a, b, c": whole numbers in [lo, hi]; exactly `count` of them unless count is 0.
+  std::vector<int> int_list(std::string_view key, int lo, int hi, size_t count = 0) {
     std::vector<int> out;
     bool ok = true;
     list(key, fmt::format("a whole number from {} to {}", lo, hi), "18, 19",
@@ -111,7 +113,31 @@ class TableReader {
            if (ok) out.push_back(v);
            return ok;
          });
-    return ok ? out : std::vector<int>{};
+    if (ok && count && out.size() != count && find_quiet(key))
+      fail(key, fmt::format("must list {} values, not {}", count, out.size()));
+    return ok && (!count || out.size() == count) ? out : std::vector<int>(count, 0);
+  }
+
+  // "a, b, c": exactly `count` numbers within `range`.
+  std::vector<double> number_list(std::string_view key, size_t count, Range range) {
+    std::vector<double> out;
+    bool ok = true;
+    list(key, fmt::format("a number {}", range.describe()), "1, 1", [&](std::string_view one) {
+      double v = 0;
+      const auto r = std::from_chars(one.data(), one.data() + one.size(), v);
+      ok = !one.empty() && r.ptr == one.data() + one.size() && range.contains(v);
+      if (ok) out.push_back(v);
+      return ok;
+    });
+    if (ok && out.size() != count && find_quiet(key))
+      fail(key, fmt::format("must list {} values, not {}", count, out.size()));
+    return ok && out.size() == count ? out : std::vector<double>(count, 1);
+  }
+
+  // Reports a rule the key's value breaks, at the key.
+  void fail(std::string_view key, std::string_view why) {
+    if (const toml::node* node = find_quiet(key))
+      error(*node, fmt::format("{} {}", full(key), why));
   }
 
   // "a:b, c:d" pairs of whole numbers: bits 0-31 and GPIO line offsets. `form` names the
@@ -176,6 +202,7 @@ class TableReader {
   }
 
  private:
+  const toml::node* find_quiet(std::string_view key) const { return table_.get(key); }
   const toml::node* find(std::string_view key) {
     seen_.insert(std::string(key));
     const toml::node* node = table_.get(key);
@@ -188,8 +215,10 @@ class TableReader {
   std::string full(std::string_view key) const {
     return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
   }
+  // The key's own file: a values file laid over the profile keeps its nodes' sources.
   SourceLoc loc_of(const toml::source_region& r) const {
-    return file_loc(origin_, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column));
+    return file_loc(r.path ? *r.path : origin_, static_cast<int>(r.begin.line),
+                    static_cast<int>(r.begin.column));
   }
   SourceLoc loc_of(const toml::node& n) const { return loc_of(n.source()); }
   void error(const toml::node& n, std::string msg) {
@@ -218,6 +247,117 @@ GroupSpeeds read_speeds(TableReader t, Range range) {
 constexpr Range kPositive{0, 1e6, true};
 constexpr Range kSpeed{0, 1e5, true};
 
+// "a, b, c": exactly `count` whole numbers in [lo, hi].
+std::array<int, 12> twelve_ints(TableReader& t, std::string_view key, int lo, int hi) {
+  std::array<int, 12> out{};
+  const std::vector<int> v = t.int_list(key, lo, hi, 12);
+  std::copy(v.begin(), v.end(), out.begin());
+  return out;
+}
+
+// The operator's values: what the V commands set (docs/values.md).
+void read_values(TableReader& root, Settings& s) {
+  constexpr Range kAny{-1e9, 1e9};
+  TableReader cutter = root.table("cutter");
+  CutterSettings& c = s.cutter;
+  c.diameter = cutter.number("diameter", {0, 1e4}, 0.25);
+  c.safe_z = cutter.number("safe_z", kAny, 1);
+  c.safe_a = cutter.number("safe_a", kAny, 1);
+  c.plunge_negative = cutter.choice("plunge_direction", {"-", "+"}, "-") == "-";
+  c.pocket_overlap = cutter.number("pocket_overlap", {0, 99}, 10);
+  c.trigger_on = cutter.number("trigger_on", kAny, 0);
+  c.trigger_off = cutter.number("trigger_off", kAny, 0);
+  c.trigger_axis = cutter.choice("trigger_axis", {"z", "a"}, "z") == "a" ? 3 : 2;
+  c.trigger_output = cutter.integer("trigger_output", 3, 12, 3);
+  cutter.finish();
+
+  TableReader tabs = root.table("tabs");
+  s.tabs.pull_up = tabs.number("pull_up", {0, 1e4}, 0.1);
+  s.tabs.spacing = tabs.number("spacing", {0, 1e6, true}, 4);
+  s.tabs.size = tabs.number("size", {0, 1e6}, 1);
+  s.tabs.leads = tabs.number("leads", {0, 1e6}, 0.5);
+  tabs.finish();
+
+  TableReader display = root.table("display");
+  DisplaySettings& d = s.display;
+  d.axes = display.integer("axes", 3, 6, 3);
+  for (int i = 0; i < 3; ++i) {
+    const std::string u = display.choice(
+        std::string("units_") + "abc" [i], { "in", "mm", "deg" }, "deg");
+    d.rotary_units[i] = u == "in"   ? AxisUnit::Inches
+                        : u == "mm" ? AxisUnit::Millimetres
+                                    : AxisUnit::Degrees;
+  }
+  d.show_comments = display.boolean("show_comments", false);
+  d.keypad_step = display.number("keypad_step", {0, 1e4, true}, 0.1);
+  d.keypad_remote = display.integer("keypad_remote", 0, 2, 0);
+  d.part_file_log = display.boolean("part_file_log", true);
+  d.system_log = display.boolean("system_log", true);
+  d.show_progress = display.boolean("show_progress", false);
+  d.keypad_outputs_off = display.boolean("keypad_outputs_off", false);
+  display.finish();
+
+  TableReader preview = root.table("preview");
+  PreviewSettings& p = s.preview;
+  p.grid = preview.number("grid", {0, 1e6}, 6);
+  p.table_x = preview.number("table_x", {0, 1e6, true}, 24);
+  p.table_y = preview.number("table_y", {0, 1e6, true}, 18);
+  p.table_z = preview.number("table_z", {0, 1e6, true}, 6);
+  p.simulate_cutting = preview.boolean("simulate_cutting", false);
+  p.draw_tool = preview.boolean("draw_tool", true);
+  p.start_at_location = preview.boolean("start_at_location", true);
+  p.show_jogs = preview.boolean("show_jogs", true);
+  preview.finish();
+
+  TableReader acc = root.table("accessories");
+  AccessorySettings& a = s.accessories;
+  a.mode = acc.integer("mode", 0, 1, 0);
+  a.plasma_rate = acc.number("plasma_rate", {0, 10}, 0.25);
+  a.pwm_low = acc.number("pwm_low", {0, 100}, 0);
+  a.pwm_high = acc.number("pwm_high", {0, 100}, 0);
+  a.pulse_khz = acc.number("pulse_khz", {0, 1e3}, 5.4);
+  a.low_cycle = acc.number("low_cycle", {1, 10}, 3);
+  a.temperature = acc.number("temperature", {0, 1e4}, 0);
+  acc.finish();
+
+  TableReader sw = root.table("switches");
+  SwitchSettings& w = s.switches;
+  w.limits = sw.boolean("limits", true);
+  w.stop_normally_open = sw.boolean("stop_normally_open", false);
+  w.accessory = sw.integer("accessory", 0, 3, 0);
+  w.input_modes = twelve_ints(sw, "input_modes", 0, 4);
+  w.output_modes = twelve_ints(sw, "output_modes", 0, 5);
+  sw.finish();
+
+  TableReader drivers = root.table("drivers");
+  const std::string channels = drivers.choice("channels", {}, "XYZABC");
+  s.drivers.channel_axis = {0, 1, 2, 3, 4, 5};
+  bool channels_ok = channels.size() == kAxisCount;
+  for (size_t k = 0; channels_ok && k < channels.size(); ++k) {
+    const size_t axis =
+        std::string_view("XYZABC").find(static_cast<char>(std::toupper(channels[k])));
+    channels_ok = axis != std::string_view::npos;
+    if (channels_ok) s.drivers.channel_axis[k] = static_cast<int>(axis);
+  }
+  if (!channels_ok)
+    drivers.fail("channels", "must name six axes, one per driver channel, such as \"XYZABC\"");
+  drivers.finish();
+
+  TableReader cal = root.table("calibration");
+  CalibrationSettings& k = s.calibration;
+  k.circle_resolution = cal.number("circle_resolution", {0, 1e3, true}, 0.05);
+  const std::vector<double> res = cal.number_list("resolution_multipliers", 5, {0, 10});
+  std::copy(res.begin(), res.end(), k.resolution_multiplier.begin());
+  k.step_divider = cal.integer("step_divider", 1, 100, 1);
+  k.no_resolution_shift = cal.boolean("no_resolution_shift", false);
+  cal.finish();
+
+  TableReader machine = root.table("machine");
+  s.machine.limit_checking = machine.boolean("limit_checking", true);
+  s.machine.warning_s = machine.number("warning_s", {0, 3600}, 2);
+  machine.finish();
+}
+
 void read_profile(TableReader root, Settings& s) {
   s.name = root.choice("name", {}, "");
   s.units = root.choice("units", {"in", "mm"}, "in") == "mm" ? Units::Millimetres : Units::Inches;
@@ -228,7 +368,7 @@ void read_profile(TableReader root, Settings& s) {
   for (int i = 0; i < kAxisCount; ++i) {
     TableReader ax = axes.table(std::string(1, kAxisLetters[i]));
     AxisSettings& a = s.axes[i];
-    a.steps_per_unit = ax.number("steps_per_unit", {0, 1e6, true}, 1);
+    a.steps_per_unit = ax.number("steps_per_unit", {-1e6, 1e6}, 1);
     a.max_speed = ax.number("max_speed", kSpeed, 1);
     a.max_accel = ax.number("max_accel", {0, 1e7, true}, 1);
     a.min = ax.number("min", {-1e9, 1e9}, 0);
@@ -292,9 +432,7 @@ void read_profile(TableReader root, Settings& s) {
   }
   pins.finish();
 
-  TableReader machine = root.table("machine");
-  s.machine.safe_z = machine.number("safe_z", {-1e6, 1e6}, 1.0);
-  machine.finish();
+  read_values(root, s);
 
   TableReader outputs = root.table("outputs");
   OutputSettings& o = s.outputs;
@@ -321,9 +459,11 @@ void read_profile(TableReader root, Settings& s) {
   root.finish();
 }
 
+}  // namespace
+
 // Rules that tie keys together; reported at the file, naming the keys.
-void check_consistency(const Settings& s, const std::string& origin,
-                       std::vector<Diagnostic>& errors) {
+static void check_consistency(const Settings& s, const std::string& origin,
+                              std::vector<Diagnostic>& errors) {
   auto err = [&](std::string msg) {
     errors.push_back({file_loc(origin), Severity::Error, std::move(msg)});
   };
@@ -337,7 +477,8 @@ void check_consistency(const Settings& s, const std::string& origin,
     const AxisSettings& a = s.axes[i];
     if (a.min >= a.max)
       err(fmt::format("axes.{0}.min ({1}) must be below axes.{0}.max ({2})", L, a.min, a.max));
-    const double rate = a.max_speed * a.steps_per_unit;
+    if (a.steps_per_unit == 0) err(fmt::format("axes.{}.steps_per_unit must not be 0", L));
+    const double rate = a.max_speed * std::fabs(a.steps_per_unit);
     if (rate > max_rate)
       err(fmt::format(
           "axes.{}.max_speed {} x steps_per_unit {} = {:.0f} steps/s exceeds the card's {:.0f} "
@@ -390,9 +531,19 @@ void check_consistency(const Settings& s, const std::string& origin,
   };
   check_group("speeds.move", s.speeds.move);
   check_group("speeds.jog", s.speeds.jog);
+  std::array<int, kAxisCount> channels = s.drivers.channel_axis;
+  std::sort(channels.begin(), channels.end());
+  if (channels != std::array<int, kAxisCount>{0, 1, 2, 3, 4, 5})
+    err("drivers.channels must name each axis once (one driver channel per axis)");
 }
 
-}  // namespace
+std::vector<std::string> settings_problems(const Settings& s) {
+  std::vector<Diagnostic> errors;
+  check_consistency(s, "", errors);
+  std::vector<std::string> out;
+  for (const Diagnostic& d : errors) out.push_back(d.message);
+  return out;
+}
 
 SettingsLoad parse_settings(const std::string& text, const std::string& origin) {
   SettingsLoad out;
@@ -405,6 +556,11 @@ SettingsLoad parse_settings(const std::string& text, const std::string& origin) 
                           Severity::Error, fmt::format("not valid TOML: {}", e.description())});
     return out;
   }
+  return parse_settings_table(table, origin);
+}
+
+SettingsLoad parse_settings_table(const toml::table& table, const std::string& origin) {
+  SettingsLoad out;
   read_profile(TableReader(table, "", origin, out.errors), out.settings);
   if (out.errors.empty()) check_consistency(out.settings, origin, out.errors);
   return out;

@@ -22,7 +22,7 @@ StepTiming StepTiming::from(const CardSettings& card) {
 }
 
 StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t block_words)
-    : pins_(PinMap::from(settings.pins)),
+    : pins_(PinMap::from(settings.pins, settings.drivers.channel_axis)),
       timing_(StepTiming::from(settings.card)),
       card_(card),
       block_words_(block_words) {
@@ -40,6 +40,22 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
   if (settings.outputs.spindle_bit >= 0) spindle_mask_ = 1u << settings.outputs.spindle_bit;
   aux_bits_ = settings.outputs.aux_bits;
   step_log_.resize(4096);
+}
+
+// At rest (the planner stopped first): pending pulses go out, then steps per unit and the
+// channel pins change. The step counts stay: the next move goes from them.
+void StepGenerator::settings_changed(const Settings& s) {
+  flush();
+  for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = s.axes[i].steps_per_unit;
+  std::uint32_t old_lines = 0;
+  for (const AxisPins& a : pins_.axes) old_lines |= a.step_mask | a.dir_mask;
+  pins_ = PinMap::from(s.pins, s.drivers.channel_axis);
+  card_.calibration_changed(s);
+  level_word_ &= ~old_lines;
+  for (int i = 0; i < kAxisCount; ++i) {
+    if (pins_.axes[i].step_active_low) level_word_ |= pins_.axes[i].step_mask;
+    level_word_ |= pins_.dir_bits(i, positive_[i]);
+  }
 }
 
 void StepGenerator::set_spindle(bool on) {

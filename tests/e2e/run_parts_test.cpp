@@ -27,10 +27,16 @@ struct Result {
 };
 
 // Runs the gantry binary with `args`, capturing stdout and stderr.
+// Runs gantry in the source folder. Each call gets a fresh config folder, so no run sees
+// the values (or $variables) another test's run saved.
 Result gantry(const std::string& args) {
+  static int calls = 0;
   const fs::path err_file = fs::temp_directory_path() / fmt::format("gantry_e2e_{}.err", getpid());
-  const std::string cmd = fmt::format("cd '{}' && '{}' {} 2>'{}'", kSource.string(), GANTRY_BIN,
-                                      args, err_file.string());
+  const fs::path config =
+      fs::temp_directory_path() / fmt::format("gantry_e2e_config_{}_{}", getpid(), ++calls);
+  const std::string cmd =
+      fmt::format("cd '{}' && XDG_CONFIG_HOME='{}' '{}' {} 2>'{}'", kSource.string(),
+                  config.string(), GANTRY_BIN, args, err_file.string());
   Result r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -43,6 +49,7 @@ Result gantry(const std::string& args) {
   std::stringstream ss;
   ss << e.rdbuf();
   r.err = ss.str();
+  fs::remove_all(config);
   fs::remove(err_file);
   return r;
 }
@@ -223,7 +230,7 @@ TEST(Commands, TheTableAsJsonHasEveryCodeWithItsParametersAndCoverage) {
   const Result r = gantry("commands --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json all = json::parse(r.out);
-  EXPECT_EQ(all.size(), 126u);  // 125 codes and the M0 alias
+  EXPECT_EQ(all.size(), 128u);  // 125 codes, the M0 alias, and FabMo's CN and SU
   const auto mx =
       std::find_if(all.begin(), all.end(), [](const json& c) { return c["code"] == "MX"; });
   ASSERT_NE(mx, all.end());
@@ -317,8 +324,8 @@ TEST(BadInput, MissingPartFile) {
 TEST(BadInput, SettingsWithAWrongValue) {
   const Result r = gantry("run parts/demo.sbp --settings tests/data/bad_value.toml --json");
   expect_rejected(r,
-                  "tests/data/bad_value.toml:12:18: error: axes.x.steps_per_unit = "
-                  "-916.7324 is out of range; allowed: > 0 and <= 1000000");
+                  "tests/data/bad_value.toml:13:13: error: axes.x.max_speed = -8 is out of "
+                  "range; allowed: > 0 and <= 100000");
   EXPECT_EQ(r.out, "");  // no card was started, so there is no report
 }
 

@@ -768,12 +768,12 @@ TEST_F(InterpreterTest, AParameterThatIsNotANumberIsLocated) {
 
 TEST_F(InterpreterTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
   const ModalState before = interp().state();
-  const Diagnostic d = run_error("SA\n  VR, .5, .5\nMX, 1\n");
+  const Diagnostic d = run_error("SA\n  PZ, 1, .5, -1\nMX, 1\n");
   EXPECT_EQ(d.loc.line, 2);
   EXPECT_EQ(d.loc.column, 3);
   EXPECT_EQ(d.message,
-            "VR (values for ramps) is not implemented yet in Gantry; the ramps come from "
-            "[ramps] in the machine profile (docs/settings.md)");
+            "PZ (probe in Z) is not implemented yet in Gantry; probing needs live inputs, which "
+            "arrive with issue 8");
   EXPECT_TRUE(moves().empty());  // the file stopped there: MX never ran
   EXPECT_EQ(interp().state().position, before.position);
   EXPECT_EQ(interp().state().speeds.move.xy, before.speeds.move.xy);
@@ -784,18 +784,29 @@ TEST_F(InterpreterTest, TextParametersReachTheMessage) {
   EXPECT_EQ(
       run_error("CR, 10, 5, O\n").message.rfind("CR (cut rectangle) is not implemented yet", 0),
       0u);
-  EXPECT_EQ(run_error("M0\n").message.rfind("M0 (motors off", 0), 0u);
+}
+
+// MO and M0 (SB3 accepts a zero for the letter O): every output switch off, at rest.
+TEST_F(InterpreterTest, MotorsOffTurnsEveryOutputOff) {
+  run("SO, 1, 1\nSO, 3, 1\nMX, 1\nMO\nMX, 2\nSO, 2, 1\nM0\n");
+  EXPECT_EQ(interp().state().outputs, 0u);
+  std::vector<std::pair<int, bool>> switched;
+  for (const CanonMove& m : moves())
+    if (m.kind == MoveKind::Output) switched.emplace_back(m.output, m.output_on);
+  const std::vector<std::pair<int, bool>> expected = {{1, true},  {3, true}, {1, false},
+                                                      {3, false}, {2, true}, {2, false}};
+  EXPECT_EQ(switched, expected);
 }
 
 TEST_F(InterpreterTest, CheckCountsEachSuchLineAndEveryOtherError) {
-  const std::vector<Diagnostic> errors = check("MX, 1\nVC, .25\nQQ\nTD\nMY, 2\n");
+  const std::vector<Diagnostic> errors = check("MX, 1\nPX, 1, 1, 2\nQQ\nCR, 2\nMY, 2\n");
   ASSERT_EQ(errors.size(), 3u);
   EXPECT_EQ(errors[0].loc.line, 2);
-  EXPECT_EQ(errors[0].message.rfind("VC (values for the cutter) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[0].message.rfind("PX (probe in X) is not implemented yet", 0), 0u);
   EXPECT_EQ(errors[1].loc.line, 3);
   EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
   EXPECT_EQ(errors[2].loc.line, 4);
-  EXPECT_EQ(errors[2].message.rfind("TD (tools: drill press) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[2].message.rfind("CR (cut rectangle) is not implemented yet", 0), 0u);
   EXPECT_EQ(moves().size(), 2u);  // the good lines still ran dry
 }
 

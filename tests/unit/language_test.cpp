@@ -837,21 +837,21 @@ CLOSE #1
   EXPECT_EQ(dir().read("out.txt"), "&myVar = 23.5\nM2, 23.5, 23.5\nM2, 23.5, 23.5\n");
 }
 
-// Example 15 — setup lines. VC is not implemented yet.
+// Example 15 — setup lines.
 const char* const kExample15 = R"sbp('Setup lines for this file
   VS, 1.25, .45, , 2.75, .80   'to set speeds
   VC, .25                     'always a .25 in cutter for this file
   SA                           'distances will be absolute
 )sbp";
 
-TEST_F(LanguageTest, Example15PassesTheSyntaxPassAndStopsAtVc) {
-  const auto script = Script::from_text(kExample15, "part.sbp");
-  EXPECT_TRUE(script->errors().empty()) << all(script->errors());
-  const Outcome o = execute(script);
-  EXPECT_EQ(format(o.diag).rfind(
-                "part.sbp:3:3: error: VC (values for the cutter) is not implemented yet", 0),
-            0u)
-      << format(o.diag);
+// VC's diameter is a permanent value (only VS, VU, VI, VL and SF revert with the file).
+TEST_F(LanguageTest, Example15SetsTheCutterForGood) {
+  std::string text = kExample15;
+  text.replace(text.find("VC, .25"), 7, "VC, .375");  // the default is .25 already
+  run(text);
+  EXPECT_TRUE(state().absolute);
+  EXPECT_DOUBLE_EQ(interp().settings().cutter.diameter, .375);
+  EXPECT_DOUBLE_EQ(state().speeds.move.xy, 2.0);  // while VS's speeds reverted
 }
 
 TEST_F(LanguageTest, Example15WithoutVcSetsSpeedsThatRevertAtTheEnd) {

@@ -257,11 +257,32 @@ TEST(Outputs, AnOutputSwitchesAtRestBetweenTheMovesAroundIt) {
   p.move(line(vec(1), vec(2), s));
   p.flush();
   ASSERT_EQ(run.planned.segs.size(), 3u);
-  EXPECT_EQ(run.planned.segs[0].profile.v_exit, 0.4);  // the move ends at its rest speed
+  EXPECT_EQ(run.planned.segs[0].profile.v_exit, 0);  // all the way to rest: no stop jump
   EXPECT_EQ(run.planned.segs[1].output, 2);
   EXPECT_TRUE(run.planned.segs[1].output_on);
   EXPECT_EQ(run.planned.segs[2].profile.v_entry, 0.4);  // and the next starts from rest
   EXPECT_EQ(run.card.steps()[0], std::llround(2 * s.axes[0].steps_per_unit));
+  EXPECT_EQ(run.card.timing_violations(), 0u);
+}
+
+// A reversal around an output (found by shared/corpus/nist_singleLines.sbp): stopping from
+// the ramp speed and starting again with no time between was one jump of twice the ramp
+// speed, 3.5 times Z's acceleration limit by the card's own measure.
+TEST(Outputs, AReversalAroundAnOutputStaysWithinTheAcceleration) {
+  const Settings s = default_settings();
+  CardRun run(s);
+  LookAheadPlanner p(s, run.tee);
+  CanonMove down = line(vec(0), vec(0, 0, -0.8), s, SpeedClass::Jog);
+  p.move(down);
+  CanonMove on;
+  on.kind = MoveKind::Output;
+  on.from = on.to = vec(0, 0, -0.8);
+  on.output = 1;
+  on.output_on = true;
+  p.move(on);
+  p.move(line(vec(0, 0, -0.8), vec(0, 0, -0.2), s));
+  p.flush();
+  EXPECT_LE(run.card.kinematics().max_accel_ratio(), 1.0);
   EXPECT_EQ(run.card.timing_violations(), 0u);
 }
 

@@ -211,7 +211,7 @@ TEST(DefaultProfile, Pins) {
 // ---- values that load
 
 TEST(DefaultProfile, MachineValues) {
-  EXPECT_DOUBLE_EQ(default_settings().machine.safe_z, 1.0);
+  EXPECT_DOUBLE_EQ(default_settings().cutter.safe_z, 1.0);
 }
 
 TEST(DefaultProfile, Planner) {
@@ -377,13 +377,14 @@ TEST(SettingsLoad, ValueNotInTheChoices) {
   EXPECT_EQ(where(l.errors[0].loc), loc_at(e.line, 9));
 }
 
-TEST(SettingsLoad, NegativeStepsPerUnitIsOutOfRange) {
-  const Edited e = set_key("axes.x", "steps_per_unit", "-916.7324");
-  const SettingsLoad l = load(e.text);
-  ASSERT_EQ(l.errors.size(), 1u) << messages(l);
-  EXPECT_EQ(l.errors[0].message,
-            "axes.x.steps_per_unit = -916.7324 is out of range; allowed: > 0 and <= 1000000");
-  EXPECT_EQ(where(l.errors[0].loc), loc_at(e.line, 18));
+// SB3's convention (VU): a negative steps-per-unit value reverses the axis; zero is an error.
+TEST(SettingsLoad, NegativeStepsPerUnitReversesAndZeroIsAnError) {
+  const SettingsLoad reversed = load(set_key("axes.x", "steps_per_unit", "-916.7324").text);
+  ASSERT_TRUE(reversed.ok()) << messages(reversed);
+  EXPECT_DOUBLE_EQ(reversed.settings.axes[0].steps_per_unit, -916.7324);
+  const SettingsLoad zero = load(set_key("axes.x", "steps_per_unit", "0.0").text);
+  ASSERT_EQ(zero.errors.size(), 1u) << messages(zero);
+  EXPECT_EQ(zero.errors[0].message, "axes.x.steps_per_unit must not be 0");
 }
 
 TEST(SettingsLoad, ZeroIsOutsideAnOpenRange) {
@@ -670,9 +671,9 @@ TEST(LoadSettingsFile, ReportsErrorsWithThePath) {
   const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data/bad_value.toml";
   const SettingsLoad l = load_settings_file(path);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
-  EXPECT_EQ(where(l.errors[0].loc), path + ":12:18");
+  EXPECT_EQ(where(l.errors[0].loc), path + ":13:13");
   EXPECT_EQ(l.errors[0].message,
-            "axes.x.steps_per_unit = -916.7324 is out of range; allowed: > 0 and <= 1000000");
+            "axes.x.max_speed = -8 is out of range; allowed: > 0 and <= 100000");
 }
 
 }  // namespace

@@ -7,9 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "gantry/core/diagnostic.hpp"  // SourceLoc
-#include "gantry/interp/value.hpp"     // Value
-#include "gantry/lang/statement.hpp"   // Arg
+#include "gantry/core/diagnostic.hpp"    // SourceLoc
+#include "gantry/interp/value.hpp"       // Value
+#include "gantry/lang/statement.hpp"     // Arg
+#include "gantry/settings/settings.hpp"  // Dialect
 
 namespace gantry {
 
@@ -40,7 +41,39 @@ struct ParamSpec {
   std::optional<double> default_value;  // used when blank (nullopt: the handler decides)
   std::string_view help;
   ParamKind kind = ParamKind::Number;  // Text: a file name, a letter; bare words allowed
+  // Checked before the handler runs: a value outside is a located error and nothing happens.
+  std::optional<double> min = {}, max = {};  // allowed range, inclusive
+  bool whole = false;                        // a whole number
+  std::string_view choices = {};             // Text: the allowed words ("O I T"), any case
+
+  ParamSpec range(double lo, double hi) const {
+    ParamSpec p = *this;
+    p.min = lo;
+    p.max = hi;
+    return p;
+  }
+  ParamSpec at_least(double lo) const {
+    ParamSpec p = *this;
+    p.min = lo;
+    return p;
+  }
+  ParamSpec integer(double lo, double hi) const {
+    ParamSpec p = range(lo, hi);
+    p.whole = true;
+    return p;
+  }
+  ParamSpec one_of(std::string_view words) const {
+    ParamSpec p = *this;
+    p.choices = words;
+    return p;
+  }
 };
+
+// The type the fill-in sheet and the docs show: distance, speed, angle, int, flag, choice,
+// filename, text or number; derived from the unit, range and kind.
+std::string_view param_type(const ParamSpec& p);
+// "0 to 1", ">= 0", "O, I or T": the allowed values in words ("" when anything goes).
+std::string param_range(const ParamSpec& p);
 
 // A command's parameters after evaluation: one slot per ParamSpec, nullopt when blank.
 struct CommandCall {
@@ -71,6 +104,15 @@ struct CommandSpec {
   CommandHandler handler;
   // Empty when the command does all the references describe; otherwise what it lacks.
   std::string_view coverage = {};
+  // The parameters in FabMo's order when `dialect = "fabmo"` (empty: the same as `params`).
+  std::vector<ParamSpec> fabmo_params = {};
+  bool immediate = false;      // runs as soon as the code is typed (no parameter line)
+  std::string_view sets = {};  // system variables it changes, e.g. "%(1)-%(5)"
+
+  // The parameter list in force for `dialect`.
+  const std::vector<ParamSpec>& params_for(Dialect d) const {
+    return d == Dialect::FabMo && !fabmo_params.empty() ? fabmo_params : params;
+  }
 };
 
 class CommandTable {
@@ -96,6 +138,10 @@ void add_file_commands(std::vector<CommandSpec>& out);
 void add_output_commands(std::vector<CommandSpec>& out);
 void add_zero_commands(std::vector<CommandSpec>& out);
 void add_move_distance(std::vector<CommandSpec>& out);
+void add_values_commands(std::vector<CommandSpec>& out);
+void add_settings_commands(std::vector<CommandSpec>& out);
+void add_help_commands(std::vector<CommandSpec>& out);
+void add_tool_commands(std::vector<CommandSpec>& out);
 // Every other code of the SB3 and FabMo references, not in `implemented` (which may be `out`):
 // each says by name that it is not implemented yet, and does nothing else.
 void add_catalogue_commands(std::vector<CommandSpec>& out,

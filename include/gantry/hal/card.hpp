@@ -7,6 +7,8 @@
 
 namespace gantry {
 
+struct Settings;
+
 // Why a card stopped playing by itself. After a fault the card plays nothing more until it
 // is started again; ticks_played() says exactly how far it got.
 enum class CardFault {
@@ -46,6 +48,9 @@ class Card {
   virtual InputSample sample_inputs() const { return {ticks_played(), inputs()}; }
   // Why the card stopped by itself; None while it plays or after a clean stop.
   virtual CardFault fault() const = 0;
+  // The calibration changed (VU, VD's units) for the words written from now on. A real card
+  // plays words and cares not; the simulator, which checks the machine's limits, follows.
+  virtual void calibration_changed(const Settings&) {}
 };
 
 }  // namespace gantry

@@ -19,7 +19,9 @@ struct AxisPins {
 struct PinMap {
   std::array<AxisPins, kAxisCount> axes{};
 
-  static PinMap from(const std::array<PinSettings, kAxisCount>& pins);
+  // Axis channel_axis[k] is driven through channel k's pins (VI); default: channel k = axis k.
+  static PinMap from(const std::array<PinSettings, kAxisCount>& pins,
+                     const std::array<int, kAxisCount>& channel_axis = {0, 1, 2, 3, 4, 5});
 
   // The word with every step line idle and every direction line showing positive travel.
   std::uint32_t idle_word() const;

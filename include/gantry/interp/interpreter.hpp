@@ -22,6 +22,11 @@
 
 namespace gantry {
 
+// Where the tool was when SP started a preview: SM returns there.
+struct PreviewReturn {
+  Vec6 position, zero, machine_origin, applied_offset, tool_offset;
+};
+
 // The state the language defines and commands change.
 struct ModalState {
   Vec6 position = Vec6::Zero();  // commanded position: working coordinates, machine units
@@ -30,7 +35,22 @@ struct ModalState {
   SpeedSettings speeds;          // MS / JS / VS
   std::uint32_t outputs = 0;     // SO: bit n-1 set while output switch n is on
   std::optional<std::array<double, 2>> last_xy_move;  // its X, Y displacement (for MD)
+  // Where table base 0 is in the machine's own frame, the one the step counts are in: ZT,
+  // UZ and VA's table base fields move table base coordinates without moving the tool.
+  Vec6 machine_origin = Vec6::Zero();
+  // VO: the offset the next move adds (zero while off), the one the tool is at now, and the
+  // values last entered (turning VO on again uses them).
+  Vec6 tool_offset = Vec6::Zero(), applied_offset = Vec6::Zero(), tool_offset_values = Vec6::Zero();
+  // VB's in-file tab control, for the cut commands: on, how many tabs, where the first is.
+  bool tabs_on = false;
+  int tab_count = 0;
+  double first_tab = 0;
+  std::optional<PreviewReturn> preview;  // SP: moves reach no motor until SM
 };
+
+// How long a value command's change lasts: for good, or (VS, VU, VI, VL, SF in a part
+// file) until that file ends, unless SV makes it permanent.
+enum class ValueScope { Permanent, File };
 
 // How a nested file's coordinates map to the machine's: machine = origin + scale * file.
 struct Transform {
@@ -55,11 +75,33 @@ class Interpreter;
 // What a command handler may touch: the modal state, the profile, and the move stream.
 class CommandContext {
  public:
-  CommandContext(ModalState& state, const Settings& settings, MotionSink& sink)
+  CommandContext(ModalState& state, Settings& settings, MotionSink& sink)
       : state_(state), settings_(settings), sink_(sink) {}
 
   ModalState& state() { return state_; }
   const Settings& settings() const { return settings_; }
+  // The settings, to change (the V commands). With ValueScope::File, inside a part file,
+  // what they were is kept so the file's end restores it (unless SV).
+  Settings& change_values(ValueScope scope);
+  // Values the planner or the step generator use changed (VR, VU, VI): the machine comes to
+  // rest, then the new values travel down the motion stream.
+  void values_reach_motion(const SourceLoc& loc);
+  // SV: every value changed so far, in every running file, is kept when the files end.
+  void make_values_permanent();
+  // VD, SU: every value, the location and the speeds change to `to`; the tool stays put.
+  // ValueScope::File (SU in a part file): the file's end changes them back.
+  void change_units(Units to, ValueScope scope, const SourceLoc& loc);
+  // CN, C<n>: runs macro file number n (C<n>.sbp or macro_<n>.sbp) once this command returns.
+  void call_macro(int number, const SourceLoc& loc);
+  // SM (and the end of a run): back from SP's preview to where the tool is.
+  void end_preview();
+  // SL: every &variable is deleted.
+  void clear_variables();
+  // Whether a part file is running (false: a command typed at the console).
+  bool in_file() const;
+  // Sets the table base location of the current position for `axes` (bits 0 X .. 5 C)
+  // without moving: working locations keep their values.
+  void set_table_base(unsigned axes, const Vec6& location);
 
   // The current position in the running file's coordinates (FP may scale and offset them).
   Vec6 position() const { return transform_.to_file(state_.position); }
@@ -80,6 +122,18 @@ class CommandContext {
   // Records who set a speed group (0 xy .. 4 c): values set by VS are undone when the file
   // that set them ends; MS and JS values stay.
   void speed_set(SpeedClass cls, int group, bool by_values);
+  // Text for the operator (help sheets, listings), as PRINT shows it.
+  void print(std::string_view text);
+  // A warning located at `loc` (a value accepted but without effect on this machine).
+  void warn(const SourceLoc& loc, std::string message);
+  // A file a command writes (TD, TU, TH): a relative name is found beside the top-level
+  // file, as FP finds it; a check or a preview writes into its sandbox, never the disk. A
+  // file that is running is refused. Returns the path written.
+  std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc);
+  // The text of a file found as write_file finds it (a check sees its own writes); nullopt
+  // when it cannot be read. `path` receives where it looked.
+  std::optional<std::string> read_file(const std::string& name, const SourceLoc& loc,
+                                       std::string* path = nullptr);
 
   std::size_t moves() const { return moves_; }
 
@@ -88,7 +142,7 @@ class CommandContext {
   CanonMove here(MoveKind kind, const SourceLoc& loc) const;
   friend class Interpreter;
   ModalState& state_;
-  const Settings& settings_;
+  Settings& settings_;
   MotionSink& sink_;
   Interpreter* interp_ = nullptr;
   Transform transform_;
@@ -106,6 +160,9 @@ struct InterpreterOptions {
   std::string macro_dir;             // where C<n> finds its files ("" = beside the file)
   int max_file_depth = 8;            // FP nesting, the top-level file included
   int max_gosub_depth = 256;
+  // Called when a run ends (not in a dry run) with the settings as the run leaves them:
+  // file-scoped values undone, the speeds MS/JS left in force. The job saves the values.
+  std::function<void(const Settings&)> save_values;
 };
 
 class Interpreter : private EvalEnv {
@@ -128,6 +185,7 @@ class Interpreter : private EvalEnv {
   void on_progress(std::function<void(std::size_t, std::size_t)> f) { progress_ = std::move(f); }
 
   const ModalState& state() const { return state_; }
+  const Settings& settings() const { return settings_; }
   std::size_t statements_executed() const { return executed_; }
   std::size_t moves_emitted() const { return ctx_.moves(); }
   const Value* variable(std::string_view upper_name) const { return user_variable(upper_name); }
@@ -147,7 +205,7 @@ class Interpreter : private EvalEnv {
   void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from,
                  bool refuse_broken = true);
   void end_file();
-  void restore_file_speeds(Frame& f);
+  void restore_file_values(Frame& f);
   void plunge_for_pass(Frame& f);
   void loop(std::vector<Diagnostic>* collect);
   void execute(const Statement& st);
@@ -155,6 +213,7 @@ class Interpreter : private EvalEnv {
   // and file statements in io_statements.cpp.
   void exec(const CommandStmt& s, const SourceLoc& loc);
   void exec(const CustomCutStmt& s, const SourceLoc& loc);
+  void call_macro(int number, const SourceLoc& loc);
   void exec(const LabelStmt&, const SourceLoc&) {}
   void exec(const AssignStmt& s, const SourceLoc& loc);
   void exec(const JumpStmt& s, const SourceLoc& loc);
@@ -183,7 +242,7 @@ class Interpreter : private EvalEnv {
   [[noreturn]] void rethrow_located(const GantryError& e) const;
   void unwind_all();
 
-  const Settings& settings_;
+  Settings settings_;  // the profile as the V commands change it
   const CommandTable& table_;
   MotionSink& sink_;
   OperatorIO& io_;

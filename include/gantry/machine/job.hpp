@@ -25,6 +25,10 @@ struct JobOptions {
   bool operator_present = true;               // a person answers at a terminal
   std::size_t check_budget = 10'000'000;      // statements a check may run (loops end there)
   double feed_override = 1;                   // 0.1 to 2: the speeds' factor (estimate too)
+  // Where the run saves the values it leaves changed (V commands, MS, JS), as the keys that
+  // differ from `profile`; empty (or no profile): nothing is saved.
+  std::string values_path;
+  const Settings* profile = nullptr;
 };
 
 struct JobResult {
@@ -37,6 +41,7 @@ struct JobResult {
   CardFault fault = CardFault::None;  // why the card stopped by itself, if it did
   double planned_time_s = 0;          // the planner's sum of segment durations
   double estimated_time_s = 0;        // the cycle time the check predicted before the run
+  Settings settings;                  // as the run left them (the values it changed)
   bool ok() const { return errors.empty(); }
 };
 

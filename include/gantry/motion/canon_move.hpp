@@ -40,6 +40,9 @@ class MotionSink {
   virtual ~MotionSink() = default;
   virtual void move(const CanonMove& m) = 0;
   virtual void flush() = 0;
+  // New values (VR ramps, VU steps per unit, VI channels) for the moves that follow; the
+  // sender has brought the machine to rest just before (a Stop move).
+  virtual void settings_changed(const Settings&) {}
 };
 
 }  // namespace gantry

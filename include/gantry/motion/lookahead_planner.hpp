@@ -20,6 +20,7 @@ class LookAheadPlanner : public MotionSink {
   LookAheadPlanner(const Settings& settings, SegmentSink& out);
   void move(const CanonMove& m) override;
   void flush() override;  // brings the machine to rest after the last move
+  void settings_changed(const Settings& s) override;
 
   // Feed override, 0.1 to 2 (10 % to 200 %) of the commanded speeds, never above an axis's
   // max_speed. It applies at once to every move not yet sent.
@@ -62,10 +63,12 @@ class LookAheadPlanner : public MotionSink {
   // Sends the front block to `exit` with ramps of `jerk` (the profile's, unless a hold).
   void emit_front(double exit) { emit_front(exit, settings_.planner.jerk); }
   void emit_front(double exit, double jerk);
-  void stop();  // plans to rest after the last block and emits everything
+  // Plans to rest after the last block and emits everything: ending at the ramp speed (SB3),
+  // or at 0 when something with no duration follows (an output switch).
+  void stop(bool to_zero = false);
   Vec6 incoming_direction(const Vec6& at, const Vec6& fallback) const;
 
-  const Settings& settings_;
+  Settings settings_;  // a copy: VR and VU change it mid-stream (settings_changed)
   SegmentSink& out_;
   std::deque<Block> q_;
   bool punctuated_ = false;          // an MS or JS came since the last block

@@ -22,6 +22,8 @@ class SegmentSink {
   virtual ~SegmentSink() = default;
   virtual void segment(const PlannedSegment& s) = 0;
   virtual void flush() = 0;  // no more segments: complete everything pending
+  // New values for the segments that follow (see MotionSink::settings_changed).
+  virtual void settings_changed(const Settings&) {}
 };
 
 }  // namespace gantry

@@ -100,9 +100,73 @@ struct CardSettings {
   double pacer_hz() const { return clock_hz / pacer_divisor; }
 };
 
-// The machine's own values that commands read (and issue 6's V commands will set).
+// VC: the cutter and the heights it is pulled up to.
+struct CutterSettings {
+  double diameter = 0.25;       // used by the O and I (outside, inside) cut offsets
+  double safe_z = 1.0;          // working Z that MH and JH raise the tool to first
+  double safe_a = 1.0;          // the same for an A axis used as a second Z
+  bool plunge_negative = true;  // VC 5 "-": a negative Z goes into the material
+  double pocket_overlap = 10;   // percent of the cutter diameter, pocketing passes
+  // Z- or A-triggered output switch (an air drill): thresholds, the axis and the switch.
+  double trigger_on = 0, trigger_off = 0;
+  int trigger_axis = 2;    // 2 Z, 3 A
+  int trigger_output = 3;  // output switch 3-12, not 4
+};
+
+struct TabSettings {  // VB: tabs left on the last pass of a cut
+  double pull_up = 0.1, spacing = 4, size = 1, leads = 0.5;
+};
+
+// Units of a rotary-capable axis (VD 4, 5): a length or degrees.
+enum class AxisUnit { Inches, Millimetres, Degrees };
+
+struct DisplaySettings {  // VD
+  int axes = 3;           // axes shown and used: 3 XYZ, 4 adds A, 5 adds B, 6 adds C
+  std::array<AxisUnit, 3> rotary_units{AxisUnit::Degrees, AxisUnit::Degrees,
+                                       AxisUnit::Degrees};  // A, B, C
+  bool show_comments = false;       // part-file comments shown as the file runs
+  double keypad_step = 0.1;         // SK fixed-distance step, units
+  int keypad_remote = 0;            // 0 keyboard, 1 pendant on the inputs, 2 other
+  bool part_file_log = true;        // a log line per part file run
+  bool system_log = true;           // a system log for diagnostics
+  bool show_progress = false;       // a progress bar while a file runs
+  bool keypad_outputs_off = false;  // output switches off when the keypad closes
+};
+
+struct PreviewSettings {  // VP
+  double grid = 6, table_x = 24, table_y = 18, table_z = 6;
+  bool simulate_cutting = false, draw_tool = true, start_at_location = true, show_jogs = true;
+};
+
+struct AccessorySettings {  // VH: torch height control, laser PWM, heater
+  int mode = 0;             // 1 on, 0 off (needs switches.accessory)
+  double plasma_rate = 0.25, pwm_low = 0, pwm_high = 0, pulse_khz = 5.4, low_cycle = 3,
+         temperature = 0;
+};
+
+struct SwitchSettings {                // VN
+  bool limits = true;                  // limit switches stop the machine
+  bool stop_normally_open = false;     // input 4 (stop) wiring; false: normally closed
+  int accessory = 0;                   // 0 none, 1 torch height, 2 laser, 3 analog
+  std::array<int, 12> input_modes{};   // 0 standard, 1 NO limit, 2 NC limit, 3 NO stop, 4 NC stop
+  std::array<int, 12> output_modes{};  // 0-5, SB3's output switch modes
+};
+
+struct DriverSettings {  // VI: which axis each driver channel 1-6 drives
+  std::array<int, kAxisCount> channel_axis{0, 1, 2, 3, 4, 5};
+};
+
+struct CalibrationSettings {                                   // VU beyond steps per unit
+  double circle_resolution = 0.05;                             // arc segment length, units
+  std::array<double, 5> resolution_multiplier{1, 1, 1, 1, 1};  // X..B, jog resolution shift
+  int step_divider = 1;  // 1-100: speeds run 1/n of their value (very slow moves)
+  bool no_resolution_shift = false;
+};
+
+// Values the commands read beyond the groups above.
 struct MachineSettings {
-  double safe_z = 1.0;  // working Z that MH and JH raise the tool to first (VC's Safe-Z)
+  bool limit_checking = true;  // SF, VL 9: moves checked against the soft limits
+  double warning_s = 2;        // SW: warning before movement starts, s; 0 none
 };
 
 struct Settings {
@@ -117,6 +181,14 @@ struct Settings {
   std::array<PinSettings, kAxisCount> pins{};
   OutputSettings outputs;
   InputSettings inputs;
+  CutterSettings cutter;
+  TabSettings tabs;
+  DisplaySettings display;
+  PreviewSettings preview;
+  AccessorySettings accessories;
+  SwitchSettings switches;
+  DriverSettings drivers;
+  CalibrationSettings calibration;
   MachineSettings machine;
 };
 
@@ -129,6 +201,16 @@ struct SettingsLoad {
 
 // Parses and validates a profile. `origin` names it in messages (a path).
 SettingsLoad parse_settings(const std::string& text, const std::string& origin);
+
+// The rules that tie keys together (speeds within axis limits, step rates within the card,
+// soft limits ordered, pins distinct), as messages; empty when `s` keeps them all.
+std::vector<std::string> settings_problems(const Settings& s);
+
+// Converts every length, speed and acceleration to `to` (VD's linear units): lengths scale
+// by 25.4, steps per unit inversely. A, B and C follow when their unit is a length.
+void convert_units(Settings& s, Units to);
+// The factor from the profile's units to `to`: 1, 25.4 or 1/25.4.
+double units_factor(Units from, Units to);
 
 // Reads and validates a profile file; a missing file is an error like any other.
 SettingsLoad load_settings_file(const std::string& path);

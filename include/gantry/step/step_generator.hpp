@@ -38,6 +38,7 @@ class StepGenerator : public SegmentSink {
 
   void segment(const PlannedSegment& s) override;
   void flush() override;  // plays out every pending pulse and hands the last block to the card
+  void settings_changed(const Settings& s) override;
 
   const Steps6& position() const { return position_; }  // steps emitted so far
   // Steps the card has actually played (its ticks_played()): where the tool is after a

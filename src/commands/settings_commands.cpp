@@ -1,0 +1,143 @@
+// Settings commands that set modes of a run: SF, SV, SW, SL, SM, SP and FabMo's SU; and
+// FabMo's CN (call a macro).
+#include <fmt/format.h>  // messages
+
+#include "gantry/commands/command_table.hpp"
+#include "gantry/interp/interpreter.hpp"
+
+namespace gantry {
+namespace {
+
+// SF: soft-limit checking on or off. In a part file it lasts until the file ends (SV keeps
+// it); typed at the console it stays.
+void set_limit_checking(CommandContext& ctx, const CommandCall& call) {
+  ctx.change_values(ValueScope::File).machine.limit_checking = *call.number(0) != 0;
+}
+
+void make_permanent(CommandContext& ctx, const CommandCall&) {
+  ctx.make_values_permanent();
+}
+
+void set_warning(CommandContext& ctx, const CommandCall& call) {
+  ctx.change_values(ValueScope::Permanent).machine.warning_s = *call.number(0);
+}
+
+void clear_variables(CommandContext& ctx, const CommandCall&) {
+  ctx.clear_variables();
+}
+
+// SP: what follows is previewed, not cut: moves change the location but reach no motor.
+// SM returns to the machine: the location is the tool's again, as it was at SP.
+void set_preview(CommandContext& ctx, const CommandCall& call) {
+  ModalState& st = ctx.state();
+  if (st.preview) return;  // SP while previewing restarts the preview: nothing to keep
+  ctx.come_to_rest(call.loc);
+  st.preview =
+      PreviewReturn{st.position, st.zero, st.machine_origin, st.applied_offset, st.tool_offset};
+}
+
+void set_move_mode(CommandContext& ctx, const CommandCall&) {
+  ctx.end_preview();
+}
+
+// SU (FabMo, in its stock macros): units for the rest of the file; they revert at its end.
+void set_units(CommandContext& ctx, const CommandCall& call) {
+  const std::string u = call.text(0).value_or("");
+  const bool mm = u == "1" || u == "mm" || u == "MM";
+  ctx.change_units(mm ? Units::Millimetres : Units::Inches, ValueScope::File, call.loc);
+}
+
+// CN (FabMo, in its stock macros): runs macro n, as C<n> does.
+void call_macro(CommandContext& ctx, const CommandCall& call) {
+  ctx.call_macro(static_cast<int>(*call.number(0)), call.loc);
+}
+
+}  // namespace
+
+void add_settings_commands(std::vector<CommandSpec>& out) {
+  const auto S = CommandGroup::Settings;
+  out.push_back({"SF",
+                 "Set limit checking",
+                 S,
+                 "Turns checking of every move against the soft limits (VL) on or off. In a "
+                 "part file the change lasts until the file ends, unless SV.",
+                 {ParamSpec{"checking", "", true, std::nullopt, "1 on, 0 off."}.integer(0, 1)},
+                 set_limit_checking,
+                 "",
+                 {},
+                 false,
+                 "%(30)"});
+  out.push_back({"SV",
+                 "Set values permanent",
+                 S,
+                 "Keeps the values that VS, VU, VI, VL and SF changed in this part file (and in "
+                 "the files that called it) when the files end.",
+                 {},
+                 make_permanent,
+                 "",
+                 {},
+                 true});
+  out.push_back(
+      {"SW",
+       "Set warning duration",
+       S,
+       "Seconds of warning before movement starts; 0 turns the warning off.",
+       {ParamSpec{"duration", "s", false, 2.0, "Warning time, 0 to 3600."}.range(0, 3600)},
+       set_warning,
+       "the value is kept; the warning itself is the console's (issue 8)",
+       {},
+       false,
+       "%(21)"});
+  out.push_back({"SL",
+                 "Set: clear all variables",
+                 S,
+                 "Deletes every &variable and its value ($variables are kept).",
+                 {},
+                 clear_variables,
+                 "",
+                 {},
+                 true});
+  out.push_back({"SM",
+                 "Set to move/cut mode",
+                 S,
+                 "Commands move the machine again; after SP, the location is the tool's as it "
+                 "was when SP ran.",
+                 {},
+                 set_move_mode,
+                 "",
+                 {},
+                 true,
+                 "%(22)"});
+  out.push_back(
+      {"SU",
+       "Set units for this file",
+       S,
+       "FabMo: inches or millimetres until the part file ends (every value and the "
+       "location are converted, and converted back at the end).",
+       {ParamSpec{"units", "", true, std::nullopt, "0 or in: inches; 1 or mm: mm.", ParamKind::Text}
+            .one_of("0 1 in mm IN MM")},
+       set_units,
+       "",
+       {},
+       false,
+       "%(25)"});
+  out.push_back(
+      {"CN",
+       "Call macro",
+       CommandGroup::Cuts,
+       "FabMo: runs macro number n (C<n>.sbp or macro_<n>.sbp), as C<n> does.",
+       {ParamSpec{"macro", "", true, std::nullopt, "The macro's number."}.integer(0, 1e6)},
+       call_macro});
+  out.push_back({"SP",
+                 "Set to preview mode",
+                 S,
+                 "Moves that follow change the location without moving the machine, until SM.",
+                 {},
+                 set_preview,
+                 "the graphical preview is issue 9",
+                 {},
+                 true,
+                 "%(22)"});
+}
+
+}  // namespace gantry

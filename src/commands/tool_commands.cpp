@@ -1,0 +1,679 @@
+// Tools commands, TC to TU: SB3's "virtual tools", each a separate program with its own
+// screens. Gantry's drill press (TD), fluter (TF) and tabletop surfacer (TU) take their
+// values as parameters and write a part file, which the operator checks and runs with FP;
+// the header writer (TH) adds a comment header to a part file; setup (TS) prints the machine
+// profile. The copy machine (TC), typesetter (TT) and indexer (TI) are not implemented, and
+// say why by name.
+#include <fmt/format.h>  // the part files' text, messages
+
+#include <algorithm>  // clamp
+#include <cctype>     // toupper, tolower
+#include <cmath>      // ceil, round, sin, cos, acos
+#include <ctime>      // the date in TH's header
+#include <numbers>    // pi
+#include <string>
+#include <utility>  // pair
+#include <vector>
+
+#include "gantry/commands/command_table.hpp"
+#include "gantry/interp/interpreter.hpp"
+
+namespace gantry {
+namespace {
+
+// A number as a part file gives it: at most 4 decimals, no trailing zeros, never "-0".
+std::string num(double v) {
+  std::string s = fmt::format("{:.4f}", v);
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s == "-0" ? "0" : s;
+}
+
+// ---- parameters -------------------------------------------------------------------------
+
+ParamSpec file_param(std::string_view help) {
+  return {"file name", "", true, std::nullopt, help, ParamKind::Text};
+}
+ParamSpec length(std::string_view name, std::optional<double> def, std::string_view help,
+                 bool required = false) {
+  return {name, "units", required, def, help};
+}
+ParamSpec count(std::string_view name, std::optional<double> def, std::string_view help) {
+  return {name, "", false, def, help};
+}
+
+// Parameter i as a whole number in [lo, hi].
+int whole(const CommandCall& call, size_t i, int lo, int hi) {
+  const double v = *call.number(i);
+  if (v != std::round(v) || v < lo || v > hi)
+    fail(call.param_loc(i), fmt::format("{} ({}) is {}; it must be a whole number from {} to {}",
+                                        call.spec.params[i].name, call.spec.code, num(v), lo, hi));
+  return static_cast<int>(v);
+}
+
+// Parameter i, which must be above 0; `fallback` when blank (nullopt: it must be given).
+double positive(const CommandCall& call, size_t i, std::optional<double> fallback = std::nullopt) {
+  const std::optional<double> v = call.number(i) ? call.number(i) : fallback;
+  if (!v)
+    fail(call.param_loc(i), fmt::format("{} needs its parameter {} ({})", call.spec.code, i + 1,
+                                        call.spec.params[i].name));
+  if (!(*v > 0))
+    fail(call.param_loc(i), fmt::format("{} ({}) is {}; it must be above 0",
+                                        call.spec.params[i].name, call.spec.code, num(*v)));
+  return *v;
+}
+
+// Parameter i as an overlap in percent, 0 up to (not including) 100.
+double overlap(const CommandCall& call, size_t i, double fallback) {
+  const double v = call.number(i).value_or(fallback);
+  if (!(v >= 0 && v < 100))
+    fail(call.param_loc(i),
+         fmt::format("{} ({}) is {} %; it must be from 0 up to (not including) 100",
+                     call.spec.params[i].name, call.spec.code, num(v)));
+  return v;
+}
+
+// Parameter i as a choice between 0 and 1.
+bool choice(const CommandCall& call, size_t i, std::string_view zero, std::string_view one) {
+  const double v = call.number(i).value_or(0);
+  if (v != 0 && v != 1)
+    fail(call.param_loc(i),
+         fmt::format("{} ({}) is {}; it is 0 ({}) or 1 ({})", call.spec.params[i].name,
+                     call.spec.code, num(v), zero, one));
+  return v == 1;
+}
+
+// The cutter values of the profile (VC) the tools fall back on when a parameter is blank.
+struct Cutter {
+  double diameter, safe_z, overlap;
+};
+Cutter cutter(const CommandContext& ctx) {
+  const CutterSettings& c = ctx.settings().cutter;
+  return {c.diameter, c.safe_z, c.pocket_overlap};
+}
+
+// Safe Z (parameter i): blank is the profile's Safe-Z above `surface`; it must clear it.
+double safe_z(const CommandContext& ctx, const CommandCall& call, size_t i, double surface) {
+  const double z = call.number(i).value_or(surface + cutter(ctx).safe_z);
+  if (!(z > surface))
+    fail(call.param_loc(i),
+         fmt::format("safe Z ({}) is {}, not above the material surface (Z {}); the tool "
+                     "would travel through the material",
+                     call.spec.code, num(z), num(surface)));
+  return z;
+}
+
+// The Z of each pass, evenly down to `bottom` from `surface`.
+std::vector<double> pass_depths(double surface, double bottom, int passes) {
+  std::vector<double> z;
+  for (int k = 1; k <= passes; ++k) z.push_back(surface + (bottom - surface) * k / passes);
+  return z;
+}
+
+// ---- the part file a tool writes -----------------------------------------------------------
+
+class PartFile {
+ public:
+  // The first lines: what wrote it, for which machine and units, and the summary `about`.
+  PartFile(const CommandContext& ctx, std::string_view code, std::string_view tool,
+           const std::vector<std::string>& about) {
+    const Settings& s = ctx.settings();
+    comment(fmt::format("{} written by Gantry {} ({}) for the machine profile \"{}\"", tool,
+                        GANTRY_VERSION, code, s.name));
+    comment(fmt::format("Units: {}. Absolute coordinates from working 0 (it sets SA).",
+                        units_name(s.units)));
+    for (const std::string& a : about) comment(a);
+    line("SA");
+  }
+  void comment(std::string_view text) { line(fmt::format("' {}", text)); }
+  void line(std::string_view text) {
+    text_ += text;
+    text_ += '\n';
+  }
+  void jog_z(double z) { line(fmt::format("JZ, {}", num(z))); }
+  void jog_xy(double x, double y) { line(fmt::format("J2, {}, {}", num(x), num(y))); }
+  void move_z(double z) { line(fmt::format("MZ, {}", num(z))); }
+  void move_xy(double x, double y) { line(fmt::format("M2, {}, {}", num(x), num(y))); }
+  // A full circle at the current Z, clockwise from 12 o'clock (where the tool is) and back,
+  // as chords no further than `tolerance` from the circle.
+  void circle(double cx, double cy, double r, double tolerance) {
+    int n = 8;
+    if (tolerance < r)
+      n = static_cast<int>(std::ceil(std::numbers::pi / std::acos(1 - tolerance / r)));
+    n = std::clamp(n, 8, 1000);
+    for (int j = 1; j < n; ++j) {
+      const double a = 2 * std::numbers::pi * j / n;
+      move_xy(cx + r * std::sin(a), cy + r * std::cos(a));
+    }
+    move_xy(cx, cy + r);
+  }
+  // Writes the file through the interpreter (a check keeps it in its sandbox) and tells the
+  // operator how to run it.
+  void write(CommandContext& ctx, const CommandCall& call, std::string_view what) {
+    const std::string name = *call.text(0);
+    const std::string path = ctx.write_file(name, text_, call.param_loc(0));
+    ctx.print(
+        fmt::format("{} wrote {} to {}; run it with FP, {} (`gantry moves {}` lists its "
+                    "moves)\n",
+                    call.spec.code, what, path, name, path));
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+};
+
+// ---- TD: drill press ------------------------------------------------------------------------
+
+enum Td {
+  kTdFile,
+  kTdX,
+  kTdY,
+  kTdCountX,
+  kTdCountY,
+  kTdSpacingX,
+  kTdSpacingY,
+  kTdDepth,
+  kTdPasses,
+  kTdSafeZ,
+  kTdHole,
+  kTdBit,
+  kTdPocket,
+  kTdOverlap,
+  kTdZero,
+  kTdThickness
+};
+
+// The spacing of a row of `count` holes (parameter i); needed only for more than one.
+double spacing(const CommandCall& call, size_t i, int count) {
+  if (count == 1) return 0;
+  const std::optional<double> s = call.number(i);
+  if (!s || *s == 0)
+    fail(call.param_loc(i), fmt::format("{} holes in a row need a {} other than 0 ({})", count,
+                                        call.spec.params[i].name, call.spec.code));
+  return *s;
+}
+
+void drill_press(CommandContext& ctx, const CommandCall& call) {
+  const Cutter c = cutter(ctx);
+  const double x0 = *call.number(kTdX), y0 = *call.number(kTdY);
+  const int nx = whole(call, kTdCountX, 1, 1000), ny = whole(call, kTdCountY, 1, 1000);
+  const double dx = spacing(call, kTdSpacingX, nx), dy = spacing(call, kTdSpacingY, ny);
+  const double depth = positive(call, kTdDepth);
+  const int passes = whole(call, kTdPasses, 1, 1000);
+  const bool table_zero = choice(call, kTdZero, "material surface", "table top");
+  double surface = 0;
+  if (table_zero) {
+    if (!call.number(kTdThickness))
+      fail(call.param_loc(kTdThickness),
+           "TD needs the material thickness (parameter 16) when Z 0 is the table top");
+    surface = positive(call, kTdThickness);
+    if (depth > surface)
+      ctx.warn(call.param_loc(kTdDepth),
+               fmt::format("the holes go {} below the table top (Z 0); TD drills them so",
+                           num(depth - surface)));
+  }
+  const double bottom = surface - depth;
+  const double safe = safe_z(ctx, call, kTdSafeZ, surface);
+  const double bit = positive(call, kTdBit, c.diameter);
+  const double hole = *call.number(kTdHole) == 0 ? bit : positive(call, kTdHole);
+  if (hole < bit)
+    fail(call.param_loc(kTdHole),
+         fmt::format("a hole of diameter {} is smaller than the bit ({}); use a bit no wider "
+                     "than the hole",
+                     num(hole), num(bit)));
+  const bool pocket = choice(call, kTdPocket, "cut the outline", "pocket from the centre out");
+  const double step = bit * (1 - overlap(call, kTdOverlap, c.overlap) / 100);
+  const double r = (hole - bit) / 2;  // the radius the bit's centre follows
+  const double tolerance = ctx.settings().planner.chord_tolerance;
+
+  PartFile f(ctx, "TD", "Drill press",
+             {fmt::format("{} x {} holes of diameter {}, the first at X {}, Y {}, {} apart in X "
+                          "and {} in Y",
+                          nx, ny, num(hole), num(x0), num(y0), num(dx), num(dy)),
+              fmt::format("Depth {} in {} pass{}, bit {}; Z 0 is the {}; safe Z {}", num(depth),
+                          passes, passes == 1 ? "" : "es", num(bit),
+                          table_zero ? "table top" : "material surface", num(safe))});
+  f.jog_z(safe);
+  const std::vector<double> levels = pass_depths(surface, bottom, passes);
+  for (int j = 0; j < ny; ++j)
+    for (int i0 = 0; i0 < nx; ++i0) {
+      const int i = j % 2 ? nx - 1 - i0 : i0;  // back and forth along the rows
+      const double cx = x0 + i * dx, cy = y0 + j * dy;
+      f.comment(fmt::format("Hole {}, {}", i + 1, j + 1));
+      if (r <= 0) {  // the bit's own size: plunge, back to the surface between passes
+        f.jog_xy(cx, cy);
+        for (int k = 0; k < passes; ++k) {
+          f.move_z(levels[k]);
+          if (k + 1 < passes) f.jog_z(surface);
+        }
+      } else if (!pocket) {  // the outline: the middle comes free on the last pass
+        f.jog_xy(cx, cy + r);
+        for (double z : levels) {
+          f.move_z(z);
+          f.circle(cx, cy, r, tolerance);
+        }
+      } else {  // rings from the centre out, each at most `step` beyond the last
+        const int rings = static_cast<int>(std::ceil(r / step - 1e-9));
+        f.jog_xy(cx, cy);
+        for (int k = 0; k < passes; ++k) {
+          if (k > 0) f.move_xy(cx, cy);
+          f.move_z(levels[k]);
+          for (int q = 1; q <= rings; ++q) {
+            const double rq = r * q / rings;
+            f.move_xy(cx, cy + rq);
+            f.circle(cx, cy, rq, tolerance);
+          }
+        }
+      }
+      f.jog_z(safe);
+    }
+  f.write(ctx, call, fmt::format("{} hole{}", nx * ny, nx * ny == 1 ? "" : "s"));
+}
+
+// ---- TF: fluter ----------------------------------------------------------------------------
+
+enum Tf {
+  kTfFile,
+  kTfX,
+  kTfY,
+  kTfCount,
+  kTfSpacing,
+  kTfLength,
+  kTfDepth,
+  kTfPasses,
+  kTfAlongX,
+  kTfSafeZ
+};
+
+void fluter(CommandContext& ctx, const CommandCall& call) {
+  const double x0 = *call.number(kTfX), y0 = *call.number(kTfY);
+  const int n = whole(call, kTfCount, 1, 1000);
+  double gap = 0;
+  if (n > 1) {
+    const std::optional<double> s = call.number(kTfSpacing);
+    if (!s || *s == 0)
+      fail(call.param_loc(kTfSpacing),
+           fmt::format("{} flutes need a spacing other than 0 (TF)", n));
+    gap = *s;
+  }
+  const double len = positive(call, kTfLength);
+  const double depth = positive(call, kTfDepth);
+  const int passes = whole(call, kTfPasses, 1, 1000);
+  const bool along_x = choice(call, kTfAlongX, "flutes along Y", "flutes along X");
+  const double safe = safe_z(ctx, call, kTfSafeZ, 0);
+
+  PartFile f(
+      ctx, "TF", "Fluter",
+      {fmt::format("{} flute{} {} long along {}, {} apart, the first from X {}, Y {}", n,
+                   n == 1 ? "" : "s", num(len), along_x ? "X" : "Y", num(gap), num(x0), num(y0)),
+       fmt::format("Depth {} in {} pass{}; Z 0 is the material surface; safe Z {}", num(depth),
+                   passes, passes == 1 ? "" : "es", num(safe))});
+  // Flute i from (u, v) to (u + len, v) in its own axes; X, Y when the flutes run along X.
+  auto point = [&](double u, double v, bool jog) {
+    const double x = along_x ? u : v, y = along_x ? v : u;
+    jog ? f.jog_xy(x, y) : f.move_xy(x, y);
+  };
+  const double u0 = along_x ? x0 : y0, v0 = along_x ? y0 : x0;
+  f.jog_z(safe);
+  const std::vector<double> levels = pass_depths(0, -depth, passes);
+  for (int i = 0; i < n; ++i) {
+    const double v = v0 + i * gap;
+    f.comment(fmt::format("Flute {}", i + 1));
+    point(u0, v, true);
+    for (int k = 0; k < passes; ++k) {  // back and forth, one pass deeper each way
+      f.move_z(levels[k]);
+      point(k % 2 ? u0 : u0 + len, v, false);
+    }
+    f.jog_z(safe);
+  }
+  f.write(ctx, call, fmt::format("{} flute{}", n, n == 1 ? "" : "s"));
+}
+
+// ---- TU: tabletop surfacer -----------------------------------------------------------------
+
+enum Tu {
+  kTuFile,
+  kTuX,
+  kTuY,
+  kTuSizeX,
+  kTuSizeY,
+  kTuDepth,
+  kTuPasses,
+  kTuBit,
+  kTuOverlap,
+  kTuAlongY,
+  kTuSafeZ
+};
+
+void surfacer(CommandContext& ctx, const CommandCall& call) {
+  const Cutter c = cutter(ctx);
+  const double x0 = *call.number(kTuX), y0 = *call.number(kTuY);
+  const double sx = positive(call, kTuSizeX), sy = positive(call, kTuSizeY);
+  const double depth = positive(call, kTuDepth);
+  const int passes = whole(call, kTuPasses, 1, 1000);
+  const double bit = positive(call, kTuBit, c.diameter);
+  const double ov = overlap(call, kTuOverlap, c.overlap);
+  const bool along_y = choice(call, kTuAlongY, "rows along X", "rows along Y");
+  const double safe = safe_z(ctx, call, kTuSafeZ, 0);
+  for (size_t i : {size_t{kTuSizeX}, size_t{kTuSizeY}})
+    if (*call.number(i) < bit)
+      fail(call.param_loc(i),
+           fmt::format("{} ({}) is {}, less than the bit ({}): the bit cannot stay inside the "
+                       "area",
+                       call.spec.params[i].name, call.spec.code, num(*call.number(i)), num(bit)));
+  // The bit's centre stays half a bit inside the area, so its edge reaches every side.
+  const double half = bit / 2;
+  const double u0 = (along_y ? y0 : x0) + half, u1 = (along_y ? y0 + sy : x0 + sx) - half;
+  const double v0 = (along_y ? x0 : y0) + half, v1 = (along_y ? x0 + sx : y0 + sy) - half;
+  const double step = bit * (1 - ov / 100);
+  const int rows = v1 > v0 ? static_cast<int>(std::ceil((v1 - v0) / step - 1e-9)) + 1 : 1;
+
+  PartFile f(
+      ctx, "TU", "Tabletop surfacer",
+      {fmt::format(
+           "Area X {} to {}, Y {} to {}: {} rows along {}, then the edge; bit {}, overlap {} %",
+           num(x0), num(x0 + sx), num(y0), num(y0 + sy), rows, along_y ? "Y" : "X", num(bit),
+           num(ov)),
+       fmt::format("Depth {} in {} pass{}; Z 0 is the surface; safe Z {}", num(depth), passes,
+                   passes == 1 ? "" : "es", num(safe))});
+  auto point = [&](double u, double v, bool jog) {
+    const double x = along_y ? v : u, y = along_y ? u : v;
+    jog ? f.jog_xy(x, y) : f.move_xy(x, y);
+  };
+  f.jog_z(safe);
+  for (double z : pass_depths(0, -depth, passes)) {
+    point(u0, v0, true);
+    f.move_z(z);
+    for (int i = 0; i < rows; ++i) {
+      const double v = rows == 1 ? v0 : v0 + (v1 - v0) * i / (rows - 1);
+      if (i > 0) point(i % 2 ? u1 : u0, v, false);  // over to the next row
+      point(i % 2 ? u0 : u1, v, false);             // along the row, back and forth
+    }
+    // Once around the edge from the corner the last row ended at: between the rows' ends
+    // the bit would leave scallops along the sides.
+    const double corners[4][2] = {{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}};
+    const int last = (rows - 1) % 2 ? 3 : 2;
+    for (int k = 1; k <= 4; ++k)
+      point(corners[(last + k) % 4][0], corners[(last + k) % 4][1], false);
+    f.jog_z(safe);
+  }
+  f.write(ctx, call, fmt::format("{} rows in {} pass{}", rows, passes, passes == 1 ? "" : "es"));
+}
+
+// ---- TH: header writer ---------------------------------------------------------------------
+
+enum Th {
+  kThFile,
+  kThTitle,
+  kThContact,
+  kThMaterial,
+  kThBlankX,
+  kThBlankY,
+  kThThickness,
+  kThBit,
+  kThZero,
+  kThNotes,
+  kThFirst,
+  kThLast
+};
+
+constexpr std::string_view kHeaderBegin = "'---- Header (Gantry TH) ----";
+constexpr std::string_view kHeaderEnd = "'---- End of header ----";
+constexpr std::string_view kLastBegin = "'---- Run last (Gantry TH) ----";
+
+// `text` without the header and the closing FP a previous TH wrote.
+std::string without_old_header(std::string text, const CommandCall& call, const std::string& path) {
+  if (text.starts_with(kHeaderBegin)) {
+    const size_t end = text.find(kHeaderEnd);
+    if (end == std::string::npos)
+      fail(call.param_loc(kThFile),
+           fmt::format("{} starts with a header TH wrote but its end line ({}) is gone; remove "
+                       "the old header by hand, then run TH again",
+                       path, kHeaderEnd));
+    const size_t next = text.find('\n', end);
+    text.erase(0, next == std::string::npos ? text.size() : next + 1);
+  }
+  const size_t last = text.rfind(kLastBegin);
+  if (last != std::string::npos && (last == 0 || text[last - 1] == '\n')) {
+    const size_t fp = text.find('\n', last);  // the FP line follows, and nothing after it
+    const size_t after = fp == std::string::npos ? fp : text.find('\n', fp + 1);
+    if (fp != std::string::npos &&
+        (after == std::string::npos || text.find_first_not_of("\r\n", after) == std::string::npos))
+      text.erase(last);
+  }
+  return text;
+}
+
+std::string quoted_file(const CommandCall& call, size_t i) {
+  const std::string name = *call.text(i);
+  if (name.find('"') != std::string::npos)
+    fail(call.param_loc(i), "a file name for FP cannot hold a double quote");
+  return fmt::format("FP, \"{}\"", name);
+}
+
+void header_writer(CommandContext& ctx, const CommandCall& call) {
+  std::string path;
+  const std::optional<std::string> old =
+      ctx.read_file(*call.text(kThFile), call.param_loc(kThFile), &path);
+  if (!old)
+    fail(call.param_loc(kThFile),
+         fmt::format("cannot read {}; TH adds a header to an existing part file", path));
+  const std::string body = without_old_header(*old, call, path);
+  const std::string eol = old->find("\r\n") != std::string::npos ? "\r\n" : "\n";
+  const Settings& s = ctx.settings();
+  std::vector<std::string> lines = {std::string(kHeaderBegin)};
+  auto field = [&](std::string_view label, size_t i) {
+    if (const std::optional<std::string> v = call.text(i); v && !v->empty())
+      lines.push_back(fmt::format("' {}: {}", label, *v));
+  };
+  field("Title", kThTitle);
+  field("Contact", kThContact);
+  field("Material", kThMaterial);
+  std::string blank;
+  const std::pair<std::string_view, size_t> sizes[] = {
+      {"X", kThBlankX}, {"Y", kThBlankY}, {"thickness", kThThickness}};
+  for (const auto& [label, i] : sizes)
+    if (const std::optional<double> v = call.number(i))
+      blank += fmt::format("{}{} {}", blank.empty() ? "" : ", ", label, num(*v));
+  if (!blank.empty()) lines.push_back(fmt::format("' Blank: {} {}", blank, units_name(s.units)));
+  field("Bit", kThBit);
+  if (call.number(kThZero))
+    lines.push_back(fmt::format("' Z zero: {}", choice(call, kThZero, "surface", "table top")
+                                                    ? "the table top"
+                                                    : "the material surface"));
+  field("Notes", kThNotes);
+  const std::time_t now = std::time(nullptr);
+  std::tm day{};
+  localtime_r(&now, &day);
+  char date[16];
+  std::strftime(date, sizeof date, "%Y-%m-%d", &day);
+  lines.push_back(fmt::format("' Units: {}; machine profile \"{}\"", units_name(s.units), s.name));
+  lines.push_back(fmt::format("' Header written {} by Gantry {} (TH)", date, GANTRY_VERSION));
+  if (call.text(kThFirst) && !call.text(kThFirst)->empty())
+    lines.push_back(quoted_file(call, kThFirst));
+  lines.push_back(std::string(kHeaderEnd));
+  std::string text;
+  for (const std::string& l : lines) text += l + eol;
+  text += body;
+  if (call.text(kThLast) && !call.text(kThLast)->empty()) {
+    if (!text.empty() && text.back() != '\n') text += eol;
+    text += std::string(kLastBegin) + eol + quoted_file(call, kThLast) + eol;
+  }
+  const std::string written = ctx.write_file(*call.text(kThFile), text, call.param_loc(kThFile));
+  ctx.print(fmt::format("TH wrote a {}-line header to {}\n", lines.size(), written));
+}
+
+// ---- TS: setup -----------------------------------------------------------------------------
+
+void setup(CommandContext& ctx, const CommandCall&) {
+  const Settings& s = ctx.settings();
+  const char* u = units_name(s.units);
+  std::string out = fmt::format(
+      "Machine profile: {}\nUnits: {}\nCard: {} (pacer {} Hz, step pulse {} us, direction setup "
+      "{} us)\n",
+      s.name.empty() ? "(unnamed)" : s.name, u, s.card.type, num(s.card.pacer_hz()),
+      num(s.card.step_pulse_us), num(s.card.dir_setup_us));
+  out += fmt::format("Axis  {:>12}  {:>10}  {:>10}  {}\n", "steps/unit", "max speed", "max accel",
+                     "travel (table base)");
+  for (int i = 0; i < kAxisCount; ++i) {
+    const AxisSettings& a = s.axes[i];
+    out += fmt::format("{:<4}  {:>12}  {:>10}  {:>10}  {} to {}\n",
+                       static_cast<char>(std::toupper(kAxisLetters[i])), num(a.steps_per_unit),
+                       num(a.max_speed), num(a.max_accel), num(a.min), num(a.max));
+  }
+  const GroupSpeeds& m = ctx.state().speeds.move;
+  const GroupSpeeds& j = ctx.state().speeds.jog;
+  out += fmt::format("Move speeds ({}/s): XY {}, Z {}, A {}, B {}, C {}\n", u, num(m.xy), num(m.z),
+                     num(m.a), num(m.b), num(m.c));
+  out += fmt::format("Jog speeds ({}/s): XY {}, Z {}, A {}, B {}, C {}\n", u, num(j.xy), num(j.z),
+                     num(j.a), num(j.b), num(j.c));
+  const Cutter c = cutter(ctx);
+  out += fmt::format("Cutter: diameter {}, safe Z {}\n", num(c.diameter), num(c.safe_z));
+  out += "These values come from the machine profile (docs/settings.md).\n";
+  ctx.print(out);
+}
+
+// ---- not implemented ---------------------------------------------------------------------
+
+// Why a tool Gantry does not have cannot run, and what to do instead.
+std::string_view why_not(std::string_view code) {
+  if (code == "TC")
+    return "it digitizes a part by touching it with a probe, and Gantry has no digitizing "
+           "routine; digitize the part with other software and run the part file it makes "
+           "with FP";
+  if (code == "TT")
+    return "V-carving text needs the fonts' outlines and a V-carve toolpath generator, which "
+           "Gantry does not have; make the lettering's toolpath with CAM software and run its "
+           "part file with FP";
+  return "neither command reference says what this virtual tool does, so there is nothing to "
+         "reproduce; turn a rotary axis with MA, MB, JA or JB";
+}
+
+// Says so by name, as a catalogued code does, with the reason; nothing else happens.
+void not_implemented(CommandContext&, const CommandCall& call) {
+  std::string name(call.spec.name);
+  name[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[0])));
+  fail(call.loc, fmt::format("{} ({}) is not implemented yet in Gantry: {}", call.spec.code, name,
+                             why_not(call.spec.code)));
+}
+
+}  // namespace
+
+void add_tool_commands(std::vector<CommandSpec>& out) {
+  const auto T = CommandGroup::Tools;
+  const ParamSpec safe = length("safe Z", std::nullopt,
+                                "Z of the moves between cuts (blank: the profile's safe Z above "
+                                "the surface).");
+  const ParamSpec passes = count("passes", 1.0, "Cuts to the full depth, evenly deeper.");
+  const ParamSpec bit =
+      length("bit diameter", std::nullopt, "The cutter (blank: cutter.diameter of the profile).");
+  const ParamSpec over = {"overlap", "%", false, std::nullopt,
+                          "Of the bit, between neighbouring paths (blank: the profile's "
+                          "cutter.pocket_overlap)."};
+  // SB3 opens these tools' screens; a part file may still pass values, which are ignored.
+  std::vector<ParamSpec> ignored;
+  for (std::string_view n : {"tool parameter 1", "tool parameter 2", "tool parameter 3",
+                             "tool parameter 4", "tool parameter 5", "tool parameter 6"})
+    ignored.push_back(
+        {n, "", false, std::nullopt, "Not used: the tool is not implemented.", ParamKind::Text});
+  out.push_back({"TC", "Tools: copy machine", T,
+                 "Digitizes a part with a probe (SB3 virtual tool). Not implemented: it stops "
+                 "the file and says why.",
+                 ignored, not_implemented, "not implemented"});
+  out.push_back(
+      {"TD",
+       "Tools: drill press",
+       T,
+       "Writes a part file that drills a grid of holes: each is plunged when it is the bit's "
+       "size, or cut around (or pocketed from the centre out) when larger. Run the file with "
+       "FP. Nothing moves while TD runs.",
+       {file_param("The part file to write; a relative name goes beside this file."),
+        length("X first hole", 0.0, "Centre of the first hole."),
+        length("Y first hole", 0.0, "Centre of the first hole."),
+        count("holes in X", 1.0, "How many holes along X."),
+        count("holes in Y", 1.0, "How many rows along Y."),
+        length("X spacing", 0.0, "Centre to centre along X (needed for 2 or more)."),
+        length("Y spacing", 0.0, "Centre to centre along Y (needed for 2 or more)."),
+        length("depth", std::nullopt, "How deep below the surface (above 0).", true), passes, safe,
+        length("hole diameter", 0.0, "0: the bit's own size (a plunge)."), bit,
+        count("pocket", 0.0, "1 cuts a larger hole out from the centre; 0 its outline only."), over,
+        count("Z zero", 0.0, "0 Z 0 is the material surface, 1 the table top."),
+        length("material thickness", std::nullopt, "Needed when Z 0 is the table top.")},
+       drill_press,
+       "the blank outline and the preview of SB3's screen"});
+  out.push_back(
+      {"TF",
+       "Tools: Forney fluter",
+       T,
+       "Writes a part file that cuts parallel flutes (straight grooves) with the bit's profile, "
+       "back and forth one pass deeper each way. Run the file with FP.",
+       {file_param("The part file to write; a relative name goes beside this file."),
+        length("X start", 0.0, "Start of the first flute (bit centre)."),
+        length("Y start", 0.0, "Start of the first flute (bit centre)."),
+        count("flutes", 1.0, "How many flutes."),
+        length("spacing", 0.0, "Centre to centre (needed for 2 or more)."),
+        length("flute length", std::nullopt, "Along the flute, centre to centre of its ends.",
+               true),
+        length("depth", std::nullopt, "Below the surface (Z 0), above 0.", true), passes,
+        count("along X", 0.0, "0 the flutes run along Y, 1 along X."), safe},
+       fluter,
+       "the groove width from a V-bit's angle, and placing the flutes from the blank's size and "
+       "edge distance (give the first flute's start and the spacing); no preview"});
+  out.push_back(
+      {"TH",
+       "Tools: header writer",
+       T,
+       "Adds a comment header to a part file: the given fields, the units, the machine profile "
+       "and the date, and optionally FP lines that run a file first and last. A header TH "
+       "wrote before is replaced.",
+       {file_param("The part file to add the header to."),
+        {"title", "", false, std::nullopt, "What the file makes.", ParamKind::Text},
+        {"contact", "", false, std::nullopt, "Who to ask; use restrictions.", ParamKind::Text},
+        {"material", "", false, std::nullopt, "The material.", ParamKind::Text},
+        length("blank X", std::nullopt, "Blank size in X."),
+        length("blank Y", std::nullopt, "Blank size in Y."),
+        length("thickness", std::nullopt, "Blank thickness."),
+        {"bit", "", false, std::nullopt, "Bit size and type.", ParamKind::Text},
+        count("Z zero", std::nullopt, "0 the material surface, 1 the table top (blank: not said)."),
+        {"notes", "", false, std::nullopt, "Anything else (offsets used, ...).", ParamKind::Text},
+        {"run first", "", false, std::nullopt, "A part file run (FP) before the file's own lines.",
+         ParamKind::Text},
+        {"run last", "", false, std::nullopt, "A part file run (FP) after them.", ParamKind::Text}},
+       header_writer});
+  out.push_back({"TI", "Tools: indexer", T,
+                 "A virtual tool SB3 names without describing it. Not implemented: it stops the "
+                 "file and says why.",
+                 ignored, not_implemented, "not implemented"});
+  out.push_back({"TS",
+                 "Tools: ShopBot setup",
+                 T,
+                 "Prints the machine's setup: profile, units, card, each axis's steps per unit, "
+                 "speed and travel, the current speeds and the cutter.",
+                 {},
+                 setup,
+                 "entering the setup (it is the machine profile's) and calibrating zeroing with "
+                 "a zero plate or proximity switches"});
+  out.push_back({"TT", "Tools: typesetter", T,
+                 "V-carves text in an installed font (SB3 virtual tool). Not implemented: it "
+                 "stops the file and says why.",
+                 ignored, not_implemented, "not implemented"});
+  out.push_back(
+      {"TU",
+       "Tools: tabletop surfacer",
+       T,
+       "Writes a part file that flattens a rectangle to a depth: row by row with the given "
+       "overlap, then once around the edge, the bit's edge reaching every side. Run the file "
+       "with FP.",
+       {file_param("The part file to write; a relative name goes beside this file."),
+        length("X start", 0.0, "Lower left corner of the area."),
+        length("Y start", 0.0, "Lower left corner of the area."),
+        length("X size", std::nullopt, "Width of the area.", true),
+        length("Y size", std::nullopt, "Height of the area.", true),
+        length("depth", std::nullopt, "Below the surface (Z 0), above 0.", true), passes, bit, over,
+        count("along Y", 0.0, "0 rows run along X, 1 along Y."), safe},
+       surfacer,
+       "the preview of SB3's screen"});
+}
+
+}  // namespace gantry

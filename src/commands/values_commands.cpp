@@ -1,0 +1,759 @@
+// The V commands: the operator's values (docs/values.md). Each parameter is a field of the
+// settings; its table entry below names it, once, for the parser, the sheets and the docs.
+#include <fmt/format.h>  // messages
+
+#include <cmath>  // lround
+#include <deque>  // stable storage for generated names
+
+#include "gantry/commands/command_table.hpp"
+#include "gantry/interp/interpreter.hpp"
+
+namespace gantry {
+namespace {
+
+// One parameter of a V command and the field it sets. `set` is null for a parameter the
+// references mark obsolete (accepted and ignored, as SB3 does) and for those with no
+// meaning on this machine, which `ignored` explains in a warning.
+struct Field {
+  ParamSpec param;
+  void (*set)(Settings&, const Value&) = nullptr;
+  std::string_view ignored = {};
+};
+
+ParamSpec num(std::string_view name, std::string_view unit, std::string_view help) {
+  return {name, unit, false, std::nullopt, help};
+}
+ParamSpec flag(std::string_view name, std::string_view help) {
+  return num(name, "", help).integer(0, 1);
+}
+ParamSpec word(std::string_view name, std::string_view choices, std::string_view help) {
+  return ParamSpec{name, "", false, std::nullopt, help, ParamKind::Text}.one_of(choices);
+}
+Field obsolete(int n) {
+  static const std::string names[] = {"obsolete 1", "obsolete 2", "obsolete 3", "obsolete 4"};
+  return {num(names[n], "", "No longer used; leave it blank."), nullptr};
+}
+
+bool on(const Value& v) {
+  return v.num() != 0;
+}
+int whole(const Value& v) {
+  return static_cast<int>(std::lround(v.num()));
+}
+
+std::vector<ParamSpec> params_of(const std::vector<Field>& fields) {
+  std::vector<ParamSpec> out;
+  for (const Field& f : fields) out.push_back(f.param);
+  return out;
+}
+
+// Applies the call's values to a copy of the settings, checks the rules that tie keys
+// together, then commits: a bad value changes nothing.
+void apply(CommandContext& ctx, const CommandCall& call, const std::vector<Field>& fields,
+           ValueScope scope,
+           void (*extra)(CommandContext&, const CommandCall&, Settings&) = nullptr) {
+  Settings next = ctx.settings();
+  for (size_t i = 0; i < fields.size(); ++i) {
+    if (!call.values[i] || i >= call.args.size() || call.args[i].blank()) continue;
+    if (fields[i].set) fields[i].set(next, *call.values[i]);
+    if (!fields[i].ignored.empty())
+      ctx.warn(call.param_loc(i), fmt::format("{} parameter {} ({}): {}", call.spec.code, i + 1,
+                                              fields[i].param.name, fields[i].ignored));
+  }
+  if (extra) extra(ctx, call, next);
+  const std::vector<std::string> problems = settings_problems(next);
+  if (!problems.empty())
+    fail(call.loc, fmt::format("{} would break a rule of the machine profile: {}; nothing was "
+                               "changed",
+                               call.spec.code, problems.front()));
+  ctx.change_values(scope) = next;
+}
+
+// ---- VC: cutter -----------------------------------------------------------------------
+
+Field diameter() {
+  return {num("cutter diameter", "units", "Used by the O and I offsets of the cut commands.")
+              .at_least(0),
+          [](Settings& s, const Value& v) { s.cutter.diameter = v.num(); }};
+}
+Field safe_z() {
+  return {num("safe Z pull-up", "units", "Working Z that MH and JH raise the tool to first."),
+          [](Settings& s, const Value& v) { s.cutter.safe_z = v.num(); }};
+}
+Field pocket_overlap() {
+  return {num("pocket overlap", "%", "Overlap of pocketing passes, % of the cutter diameter.")
+              .range(0, 99),
+          [](Settings& s, const Value& v) { s.cutter.pocket_overlap = v.num(); }};
+}
+Field safe_a() {
+  return {num("safe A pull-up", "A units", "The same height for an A axis used as a second Z."),
+          [](Settings& s, const Value& v) { s.cutter.safe_a = v.num(); }};
+}
+
+const std::vector<Field>& vc_sb3() {
+  static const std::vector<Field> f = {
+      diameter(),
+      obsolete(0),
+      obsolete(1),
+      safe_z(),
+      // SB3 files in the corpus write 0 here: read as the default, "-" (0 and -1 negative,
+      // 1 positive).
+      {word("plunge direction", "- + 0 1 -1", "-: a negative Z goes into the material."),
+       [](Settings& s, const Value& v) {
+         s.cutter.plunge_negative = v.to_string() != "+" && v.to_string() != "1";
+       }},
+      pocket_overlap(),
+      safe_a(),
+      {flag("triggered output", "1 turns the Z/A-triggered output switch on for this file."),
+       nullptr, "the Z/A-triggered output switch is not switched by Gantry yet (issue 8)"},
+      {num("trigger ON level", "units", "Z or A level at which the switch comes on."),
+       [](Settings& s, const Value& v) { s.cutter.trigger_on = v.num(); }},
+      {num("trigger OFF level", "units", "Z or A level at which the switch goes off."),
+       [](Settings& s, const Value& v) { s.cutter.trigger_off = v.num(); }},
+      {word("trigger axis", "Z A", "The axis watched: Z or A."),
+       [](Settings& s, const Value& v) {
+         s.cutter.trigger_axis = (v.to_string() == "A" || v.to_string() == "a") ? 3 : 2;
+       }},
+      {num("triggered switch", "", "Output switch 3-12 (not 4).").integer(3, 12),
+       [](Settings& s, const Value& v) { s.cutter.trigger_output = whole(v); }}};
+  return f;
+}
+const std::vector<Field>& vc_fabmo() {
+  static const std::vector<Field> f = {diameter(),  obsolete(0),      obsolete(1), safe_z(),
+                                       obsolete(2), pocket_overlap(), safe_a()};
+  return f;
+}
+
+void values_cutter(CommandContext& ctx, const CommandCall& call) {
+  const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  apply(ctx, call, fabmo ? vc_fabmo() : vc_sb3(), ValueScope::Permanent,
+        [](CommandContext&, const CommandCall& call, Settings& s) {
+          if (s.cutter.trigger_output == 4)
+            fail(call.param_loc(11),
+                 "VC: the triggered switch cannot be output 4 (the "
+                 "tool-in-motion switch); use 3 or 5-12");
+        });
+}
+
+// ---- VB: tabs -------------------------------------------------------------------------
+
+const std::vector<Field>& vb_fields() {
+  static const std::vector<Field> f = {
+      {num("tab height", "units", "How far the cutter lifts for a tab.").at_least(0),
+       [](Settings& s, const Value& v) { s.tabs.pull_up = v.num(); }},
+      {num("tab spacing", "units", "Distance from one tab to the next.").at_least(0),
+       [](Settings& s, const Value& v) { s.tabs.spacing = v.num(); }},
+      {num("tab size", "units", "Tab length along the path.").at_least(0),
+       [](Settings& s, const Value& v) { s.tabs.size = v.num(); }},
+      {num("lead length", "units", "Length of the incline up to and down from a tab.").at_least(0),
+       [](Settings& s, const Value& v) { s.tabs.leads = v.num(); }},
+      {flag("tabs on", "1 starts tab insertion in this file, 0 ends it."), nullptr},
+      {num("tab count", "", "How many tabs after an ON (then no OFF is needed).").integer(0, 1e6),
+       nullptr},
+      {num("first tab", "units", "Distance to the first tab of a series.").at_least(0), nullptr}};
+  return f;
+}
+
+void values_tabs(CommandContext& ctx, const CommandCall& call) {
+  apply(ctx, call, vb_fields(), ValueScope::Permanent);
+  ModalState& st = ctx.state();
+  if (const auto v = call.number(4)) st.tabs_on = *v != 0;
+  if (const auto v = call.number(5)) {
+    st.tab_count = static_cast<int>(*v);
+    if (*v > 0) st.tabs_on = true;
+  }
+  if (const auto v = call.number(6)) st.first_tab = *v;
+}
+
+// ---- VD: display and units ------------------------------------------------------------
+
+AxisUnit axis_unit(const Value& v) {
+  const int n = whole(v);
+  return n == 0 ? AxisUnit::Inches : n == 1 ? AxisUnit::Millimetres : AxisUnit::Degrees;
+}
+ParamSpec unit_code(std::string_view name) {
+  return num(name, "", "0 inches, 1 millimetres, 2 degrees.").integer(0, 2);
+}
+Field linear_units() {
+  return {
+      num("linear units", "", "0 inches, 1 millimetres: every value is converted.").integer(0, 1),
+      nullptr};  // applied by values_display: it converts everything
+}
+Field units_of(int axis) {
+  static const std::string names[] = {"A units", "B units", "C units"};
+  using Set = void (*)(Settings&, const Value&);
+  static const Set sets[] = {
+      [](Settings& s, const Value& v) { s.display.rotary_units[0] = axis_unit(v); },
+      [](Settings& s, const Value& v) { s.display.rotary_units[1] = axis_unit(v); },
+      [](Settings& s, const Value& v) { s.display.rotary_units[2] = axis_unit(v); }};
+  return {unit_code(names[axis]), sets[axis]};
+}
+constexpr std::string_view kScreen =
+    "Windows message-screen placement has no meaning in Gantry's "
+    "console; ignored";
+
+const std::vector<Field>& vd_sb3() {
+  static const std::vector<Field> f = {
+      obsolete(0),
+      {num("number of axes", "", "Axes in use: 3 XYZ, 4 adds A, 5 adds B, 6 adds C.").integer(3, 6),
+       [](Settings& s, const Value& v) { s.display.axes = whole(v); }},
+      linear_units(),
+      units_of(0),
+      units_of(1),
+      obsolete(1),
+      {flag("show comments", "1 shows part-file comments as the file runs."),
+       [](Settings& s, const Value& v) { s.display.show_comments = on(v); }},
+      {num("keypad step", "units", "Fixed-distance keypad step.").range(1e-6, 1e4),
+       [](Settings& s, const Value& v) { s.display.keypad_step = v.num(); }},
+      {num("keypad remote", "", "0 keyboard, 1 pendant on the inputs, 2 other.").integer(0, 2),
+       [](Settings& s, const Value& v) { s.display.keypad_remote = whole(v); }},
+      {flag("part file log", "1 logs each part file run."),
+       [](Settings& s, const Value& v) { s.display.part_file_log = on(v); }},
+      {flag("system log", "1 keeps a system log."),
+       [](Settings& s, const Value& v) { s.display.system_log = on(v); }},
+      {num("message X", "twips", "Message screen left."), nullptr, kScreen},
+      {num("message Y", "twips", "Message screen top."), nullptr, kScreen},
+      {num("message width", "twips", "Message screen width."), nullptr, kScreen},
+      {num("message height", "twips", "Message screen height."), nullptr, kScreen},
+      {flag("show progress", "1 shows a progress bar while a file runs."),
+       [](Settings& s, const Value& v) { s.display.show_progress = on(v); }},
+      {flag("keypad outputs off", "1 turns the output switches off when the keypad closes."),
+       [](Settings& s, const Value& v) { s.display.keypad_outputs_off = on(v); }},
+      {flag("show progress (again)", "The same as parameter 16 (SB3 lists it twice)."),
+       [](Settings& s, const Value& v) { s.display.show_progress = on(v); }},
+      {num("display type", "", "SB3's EASY or full screen."), nullptr,
+       "Gantry has one console; ignored"}};
+  return f;
+}
+const std::vector<Field>& vd_fabmo() {
+  static const std::vector<Field> f = {obsolete(0), linear_units(), units_of(0), units_of(1),
+                                       units_of(2)};
+  return f;
+}
+
+void values_display(CommandContext& ctx, const CommandCall& call) {
+  const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  const size_t units_param = fabmo ? 1 : 2;
+  apply(ctx, call, fabmo ? vd_fabmo() : vd_sb3(), ValueScope::Permanent);
+  if (const std::optional<double> units = call.number(units_param))
+    ctx.change_units(*units == 1 ? Units::Millimetres : Units::Inches, ValueScope::Permanent,
+                     call.loc);
+}
+
+// ---- VH: height control, laser, heater --------------------------------------------------
+
+const std::vector<Field>& vh_fields() {
+  static const std::vector<Field> f = {
+      {flag("control mode", "1 turns the accessory on, 0 off (VN parameter 3 enables it)."),
+       [](Settings& s, const Value& v) { s.accessories.mode = whole(v); }},
+      {num("plasma height rate", "", "Pull-up rate as a share of the XY speed.").range(0, 10),
+       [](Settings& s, const Value& v) { s.accessories.plasma_rate = v.num(); }},
+      {num("laser PWM low", "%", "Background PWM level.").range(0, 100),
+       [](Settings& s, const Value& v) { s.accessories.pwm_low = v.num(); }},
+      {num("laser PWM high", "%", "Peak PWM level, reached at full speed.").range(0, 100),
+       [](Settings& s, const Value& v) { s.accessories.pwm_high = v.num(); }},
+      {num("laser pulse frequency", "kHz", "PWM frequency.").range(0, 1000),
+       [](Settings& s, const Value& v) { s.accessories.pulse_khz = v.num(); }},
+      {num("low cycle time", "", "Share of time at low PWM for heater control, 1-10.").range(1, 10),
+       [](Settings& s, const Value& v) { s.accessories.low_cycle = v.num(); }},
+      {num("set temperature", "", "Heater target on analog input 1.").range(0, 1e4),
+       [](Settings& s, const Value& v) { s.accessories.temperature = v.num(); }}};
+  return f;
+}
+
+void values_accessories(CommandContext& ctx, const CommandCall& call) {
+  apply(ctx, call, vh_fields(), ValueScope::Permanent,
+        [](CommandContext&, const CommandCall& call, Settings& s) {
+          if (s.accessories.mode != 1) return;
+          if (s.switches.accessory == 0)
+            fail(call.param_loc(0),
+                 "VH mode 1 needs an accessory enabled first: VN parameter "
+                 "3 (1 torch height, 2 laser, 3 analog); nothing was changed");
+          fail(call.param_loc(0),
+               "VH mode 1: Gantry has no torch-height, laser-PWM or heater "
+               "output on this machine; the values can be set with mode 0, "
+               "nothing was changed");
+        });
+}
+
+// ---- VI: driver channels --------------------------------------------------------------
+
+int axis_of(const Value& v) {
+  const std::string t = v.to_string();
+  const size_t letter = std::string_view("XYZABCxyzabc").find(t.empty() ? '?' : t[0]);
+  if (letter != std::string_view::npos) return static_cast<int>(letter % 6);
+  return t[0] - '1';  // 1-6, checked by the choices
+}
+
+Field channel(int k) {
+  static const std::string names[] = {"channel 1 axis", "channel 2 axis", "channel 3 axis",
+                                      "channel 4 axis", "channel 5 axis", "channel 6 axis"};
+  using Set = void (*)(Settings&, const Value&);
+  static const Set sets[] = {
+#define GANTRY_CHANNEL(k) \
+  [](Settings& s, const Value& v) { s.drivers.channel_axis[k] = axis_of(v); }
+      GANTRY_CHANNEL(0), GANTRY_CHANNEL(1), GANTRY_CHANNEL(2), GANTRY_CHANNEL(3),
+      GANTRY_CHANNEL(4), GANTRY_CHANNEL(5)
+#undef GANTRY_CHANNEL
+  };
+  return {word(names[k], "X Y Z A B C 1 2 3 4 5 6", "The axis this driver channel drives."),
+          sets[k]};
+}
+Field comm_speed() {
+  return {num("comm speed", "", "SB3's serial link speed code."), nullptr,
+          "Gantry's cards have no serial link; ignored"};
+}
+
+const std::vector<Field>& vi_sb3() {
+  static const std::vector<Field> f = {
+      {num("comm port", "", "SB3's serial port."), nullptr,
+       "Gantry's cards have no serial port; ignored"},
+      obsolete(0),
+      obsolete(1),
+      obsolete(2),
+      channel(0),
+      channel(1),
+      channel(2),
+      channel(3),
+      comm_speed(),
+      channel(4),
+      channel(5),
+      {flag("enable outputs", "0 disables all step output (not supported: see the docs)."),
+       nullptr}};
+  return f;
+}
+const std::vector<Field>& vi_fabmo() {
+  static const std::vector<Field> f = {channel(0),   channel(1), channel(2), channel(3),
+                                       comm_speed(), channel(4), channel(5)};
+  return f;
+}
+
+void values_drivers(CommandContext& ctx, const CommandCall& call) {
+  const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  if (!fabmo && call.number(11) == 0.0)
+    fail(call.param_loc(11),
+         "VI: running with step output disabled is not supported; "
+         "`gantry check` or `gantry moves` run a file without moving");
+  const Settings before = ctx.settings();
+  apply(ctx, call, fabmo ? vi_fabmo() : vi_sb3(), ValueScope::File);
+  if (ctx.settings().drivers.channel_axis != before.drivers.channel_axis)
+    ctx.values_reach_motion(call.loc);
+}
+
+// ---- VL: soft limits ------------------------------------------------------------------
+
+Field limit(int axis, bool high) {
+  static const std::string names[2][6] = {
+      {"low X", "low Y", "low Z", "low A", "low B", "low C"},
+      {"high X", "high Y", "high Z", "high A", "high B", "high C"}};
+  using Set = void (*)(Settings&, const Value&);
+#define GANTRY_LIMIT(i)                                              \
+  {                                                                  \
+    [](Settings& s, const Value& v) { s.axes[i].min = v.num(); },    \
+        [](Settings& s, const Value& v) { s.axes[i].max = v.num(); } \
+  }
+  static const Set sets[6][2] = {GANTRY_LIMIT(0), GANTRY_LIMIT(1), GANTRY_LIMIT(2),
+                                 GANTRY_LIMIT(3), GANTRY_LIMIT(4), GANTRY_LIMIT(5)};
+#undef GANTRY_LIMIT
+  return {num(names[high][axis], "units",
+              high ? "Highest location allowed, table base coordinates."
+                   : "Lowest location allowed, table base coordinates."),
+          sets[axis][high]};
+}
+
+const std::vector<Field>& vl_sb3() {
+  static const std::vector<Field> f = {
+      limit(0, false),
+      limit(0, true),
+      limit(1, false),
+      limit(1, true),
+      limit(2, false),
+      limit(2, true),
+      limit(3, false),
+      limit(3, true),
+      {flag("limit checking", "1 checks moves against the limits, 0 does not (as SF)."),
+       [](Settings& s, const Value& v) { s.machine.limit_checking = on(v); }},
+      limit(4, false),
+      limit(4, true)};
+  return f;
+}
+const std::vector<Field>& vl_fabmo() {
+  static const std::vector<Field> f = {limit(0, false), limit(0, true),  limit(1, false),
+                                       limit(1, true),  limit(2, false), limit(2, true),
+                                       limit(3, false), limit(3, true),  limit(4, false),
+                                       limit(4, true),  limit(5, false), limit(5, true)};
+  return f;
+}
+
+void values_limits(CommandContext& ctx, const CommandCall& call) {
+  apply(ctx, call, ctx.settings().dialect == Dialect::FabMo ? vl_fabmo() : vl_sb3(),
+        ValueScope::File);
+}
+
+// ---- VN: input and output switch modes ------------------------------------------------
+
+// AMB-19: the references name the groups but not their positions. Gantry's order: 1-3 as
+// SB3 numbers them, 4-14 the modes of inputs 1-3 and 5-12, 15-26 those of outputs 1-12.
+const std::vector<Field>& vn_fields() {
+  static const std::vector<Field> f = [] {
+    std::vector<Field> v = {
+        {flag("limit switches", "1 limit switches stop the machine, 0 they do not."),
+         [](Settings& s, const Value& x) { s.switches.limits = on(x); }},
+        {flag("stop switch wiring", "Input 4, the stop switch: 0 normally closed, 1 open."),
+         [](Settings& s, const Value& x) { s.switches.stop_normally_open = on(x); }},
+        {num("accessory", "", "0 none, 1 torch height, 2 laser, 3 analog (VH).").integer(0, 3),
+         [](Settings& s, const Value& x) { s.switches.accessory = whole(x); }}};
+    static std::deque<std::string> names;
+    using Set = void (*)(Settings&, const Value&);
+#define GANTRY_IN(n) [](Settings& s, const Value& x) { s.switches.input_modes[n - 1] = whole(x); }
+    static const Set inputs[] = {GANTRY_IN(1),  GANTRY_IN(2),  GANTRY_IN(3), GANTRY_IN(5),
+                                 GANTRY_IN(6),  GANTRY_IN(7),  GANTRY_IN(8), GANTRY_IN(9),
+                                 GANTRY_IN(10), GANTRY_IN(11), GANTRY_IN(12)};
+#undef GANTRY_IN
+#define GANTRY_OUT(n) [](Settings& s, const Value& x) { s.switches.output_modes[n] = whole(x); }
+    static const Set outputs[] = {GANTRY_OUT(0), GANTRY_OUT(1), GANTRY_OUT(2),  GANTRY_OUT(3),
+                                  GANTRY_OUT(4), GANTRY_OUT(5), GANTRY_OUT(6),  GANTRY_OUT(7),
+                                  GANTRY_OUT(8), GANTRY_OUT(9), GANTRY_OUT(10), GANTRY_OUT(11)};
+#undef GANTRY_OUT
+    const int input_numbers[] = {1, 2, 3, 5, 6, 7, 8, 9, 10, 11, 12};
+    for (int k = 0; k < 11; ++k) {
+      names.push_back(fmt::format("input {} mode", input_numbers[k]));
+      v.push_back(
+          {num(names.back(), "", "0 standard, 1 NO limit, 2 NC limit, 3 NO stop, 4 NC stop.")
+               .integer(0, 4),
+           inputs[k]});
+    }
+    for (int k = 0; k < 12; ++k) {
+      names.push_back(fmt::format("output {} mode", k + 1));
+      v.push_back({num(names.back(), "",
+                       "0 off at file end, 1 stays on, 2 off on a stop, 3 on for a file, 4 on "
+                       "at file start, 5 on at start and off on a stop.")
+                       .integer(0, 5),
+                   outputs[k]});
+    }
+    return v;
+  }();
+  return f;
+}
+
+void values_switches(CommandContext& ctx, const CommandCall& call) {
+  apply(ctx, call, vn_fields(), ValueScope::Permanent);
+}
+
+// ---- VO: temporary tool offset --------------------------------------------------------
+
+const std::vector<ParamSpec>& vo_params() {
+  static const std::vector<ParamSpec> p = [] {
+    std::vector<ParamSpec> v = {num("offset on", "", "1 on, 2 off (0 also off)").integer(0, 2)};
+    for (const char* n : {"X offset", "Y offset", "Z offset", "A offset", "B offset", "C offset"})
+      v.push_back(num(n, "units", "Added to every move while the offset is on."));
+    return v;
+  }();
+  return p;
+}
+
+void values_offset(CommandContext& ctx, const CommandCall& call) {
+  ModalState& st = ctx.state();
+  for (int i = 0; i < kAxisCount; ++i)
+    if (const auto v = call.number(1 + i)) st.tool_offset_values[i] = *v;
+  if (const auto v = call.number(0))
+    st.tool_offset = *v == 1 ? st.tool_offset_values : Vec6::Zero();
+  else if (st.tool_offset != Vec6::Zero())
+    st.tool_offset = st.tool_offset_values;  // new values for an offset that is on
+}
+
+// ---- VP: preview ----------------------------------------------------------------------
+
+const std::vector<Field>& vp_fields() {
+  static const std::vector<Field> f = {
+      {num("grid", "units", "Grid spacing in the preview.").at_least(0),
+       [](Settings& s, const Value& v) { s.preview.grid = v.num(); }},
+      {num("table X", "units", "Table size in X.").range(1e-6, 1e6),
+       [](Settings& s, const Value& v) { s.preview.table_x = v.num(); }},
+      {num("table Y", "units", "Table size in Y.").range(1e-6, 1e6),
+       [](Settings& s, const Value& v) { s.preview.table_y = v.num(); }},
+      {num("table Z", "units", "Table size in Z.").range(1e-6, 1e6),
+       [](Settings& s, const Value& v) { s.preview.table_z = v.num(); }},
+      {flag("simulate cutting", "1 runs the preview as a fast simulated cut."),
+       [](Settings& s, const Value& v) { s.preview.simulate_cutting = on(v); }},
+      {flag("draw tool", "1 draws the cutter."),
+       [](Settings& s, const Value& v) { s.preview.draw_tool = on(v); }},
+      {flag("start at tool", "1 starts the preview where the tool is, 0 at 0,0."),
+       [](Settings& s, const Value& v) { s.preview.start_at_location = on(v); }},
+      {flag("show jogs", "1 draws jogs (in another colour)."),
+       [](Settings& s, const Value& v) { s.preview.show_jogs = on(v); }}};
+  return f;
+}
+
+void values_preview(CommandContext& ctx, const CommandCall& call) {
+  apply(ctx, call, vp_fields(), ValueScope::Permanent);
+}
+
+// ---- VR: ramps ------------------------------------------------------------------------
+
+Field ramp_speed(bool jog, int group) {
+  static const std::string names[2][4] = {
+      {"XY move ramp speed", "Z move ramp speed", "A move ramp speed", "B move ramp speed"},
+      {"XY jog ramp speed", "Z jog ramp speed", "A jog ramp speed", "B jog ramp speed"}};
+  using Set = void (*)(Settings&, const Value&);
+#define GANTRY_RAMP(g, f)                                                       \
+  {                                                                             \
+    [](Settings& s, const Value& v) { s.ramps.move_ramp_speed.f = v.num(); },   \
+        [](Settings& s, const Value& v) { s.ramps.jog_ramp_speed.f = v.num(); } \
+  }
+  static const Set sets[4][2] = {GANTRY_RAMP(0, xy), GANTRY_RAMP(1, z), GANTRY_RAMP(2, a),
+                                 GANTRY_RAMP(3, b)};
+#undef GANTRY_RAMP
+  return {
+      num(names[jog][group], "units/s", "Speed a ramp starts from and ends at.").range(1e-6, 1e5),
+      sets[group][jog]};
+}
+
+const std::vector<Field>& vr_sb3() {
+  static const std::vector<Field> f = {
+      ramp_speed(false, 0),
+      ramp_speed(false, 1),
+      ramp_speed(false, 2),
+      ramp_speed(false, 3),
+      ramp_speed(true, 0),
+      ramp_speed(true, 1),
+      ramp_speed(true, 2),
+      ramp_speed(true, 3),
+      {num("move ramp rate", "units", "Distance over which move speed changes by 2 units/s.")
+           .range(1e-6, 1e6),
+       [](Settings& s, const Value& v) { s.ramps.move_ramp_rate = v.num(); }},
+      {num("jog ramp rate", "units", "The same for jogs.").range(1e-6, 1e6),
+       [](Settings& s, const Value& v) { s.ramps.jog_ramp_rate = v.num(); }},
+      {num("3D threshold", "%", "Sensitivity of 3D ramping; lower is more sensitive.")
+           .range(0, 1000),
+       [](Settings& s, const Value& v) { s.ramps.threshold_3d = v.num(); }},
+      {num("minimum distance", "units", "Shortest distance looked at for a ramp decision.")
+           .range(0, 1e3),
+       [](Settings& s, const Value& v) { s.ramps.min_distance = v.num(); }},
+      {num("slow corner speed", "%", "Share of speed kept through a slight corner.").range(0, 100),
+       [](Settings& s, const Value& v) { s.ramps.slow_corner = v.num(); }},
+      obsolete(0),
+      obsolete(1),
+      {num("keypad ramp rate", "units", "Ramp rate of keypad jogs.").range(1e-6, 1e6),
+       [](Settings& s, const Value& v) { s.ramps.keypad_ramp_rate = v.num(); }},
+      {num("small circle", "units", "Circles of smaller diameter run at ramp speed (AMB-22).")
+           .range(0, 1e3),
+       [](Settings& s, const Value& v) { s.ramps.small_circle = v.num(); }}};
+  return f;
+}
+
+// FabMo's VR sets jerk limits (AMB-24: units unstated). Gantry's planner has one jerk for
+// the path; FabMo's XY value sets it, in g2core's unit (millions of mm/min^3), converted.
+const std::vector<Field>& vr_fabmo() {
+  static const std::vector<Field> f = [] {
+    std::vector<Field> v = {
+        {num("XY jerk", "Mmm/min^3", "Jerk limit of the path (S-curve ramps).").range(0, 1e6),
+         [](Settings& s, const Value& x) {
+           const double mm_s3 = x.num() * 1e6 / (60.0 * 60.0 * 60.0);
+           s.planner.jerk = mm_s3 * units_factor(Units::Millimetres, s.units);
+         }}};
+    for (const char* n : {"Z jerk", "A jerk", "B jerk", "C jerk"})
+      v.push_back(
+          {num(n, "Mmm/min^3", "Per-axis jerk: the XY value governs the path.").range(0, 1e6),
+           nullptr, "Gantry limits jerk along the path with the XY value only; ignored"});
+    return v;
+  }();
+  return f;
+}
+
+void values_ramps(CommandContext& ctx, const CommandCall& call) {
+  apply(ctx, call, ctx.settings().dialect == Dialect::FabMo ? vr_fabmo() : vr_sb3(),
+        ValueScope::Permanent);
+  ctx.values_reach_motion(call.loc);
+}
+
+// ---- VU: calibration ------------------------------------------------------------------
+
+Field steps(int axis) {
+  static const std::string names[] = {"X steps per unit", "Y steps per unit", "Z steps per unit",
+                                      "A steps per unit", "B steps per unit", "C steps per unit"};
+  using Set = void (*)(Settings&, const Value&);
+#define GANTRY_STEPS(i) [](Settings& s, const Value& v) { s.axes[i].steps_per_unit = v.num(); }
+  static const Set sets[] = {GANTRY_STEPS(0), GANTRY_STEPS(1), GANTRY_STEPS(2),
+                             GANTRY_STEPS(3), GANTRY_STEPS(4), GANTRY_STEPS(5)};
+#undef GANTRY_STEPS
+  return {num(names[axis], "steps/unit",
+              "Motor steps per unit of travel; negative reverses the "
+              "axis.")
+              .range(-1e7, 1e7),
+          sets[axis]};
+}
+Field multiplier(int axis) {
+  static const std::string names[] = {"X resolution multiplier", "Y resolution multiplier",
+                                      "Z resolution multiplier", "A resolution multiplier",
+                                      "B resolution multiplier"};
+  using Set = void (*)(Settings&, const Value&);
+#define GANTRY_MUL(i) \
+  [](Settings& s, const Value& v) { s.calibration.resolution_multiplier[i] = v.num(); }
+  static const Set sets[] = {GANTRY_MUL(0), GANTRY_MUL(1), GANTRY_MUL(2), GANTRY_MUL(3),
+                             GANTRY_MUL(4)};
+#undef GANTRY_MUL
+  return {num(names[axis], "", "Jog resolution shift of SB3's alpha drives.").range(0, 10),
+          sets[axis]};
+}
+
+const std::vector<Field>& vu_fields() {
+  static const std::vector<Field> f = {
+      steps(0),
+      steps(1),
+      steps(2),
+      steps(3),
+      {num("circle resolution", "units", "Segment length of arcs in the cut commands.")
+           .range(1e-6, 1e3),
+       [](Settings& s, const Value& v) { s.calibration.circle_resolution = v.num(); }},
+      obsolete(0),
+      obsolete(1),
+      obsolete(2),
+      steps(4),
+      multiplier(0),
+      multiplier(1),
+      multiplier(2),
+      multiplier(3),
+      multiplier(4),
+      {num("step divider", "", "1-100: every speed runs at 1/n of its value.").integer(1, 100),
+       [](Settings& s, const Value& v) { s.calibration.step_divider = whole(v); }},
+      {flag("no resolution shift", "1 turns off the jog resolution shift."),
+       [](Settings& s, const Value& v) { s.calibration.no_resolution_shift = on(v); }}};
+  return f;
+}
+
+void values_calibration(CommandContext& ctx, const CommandCall& call) {
+  const Settings before = ctx.settings();
+  apply(ctx, call, vu_fields(), ValueScope::File);
+  for (int i = 0; i < kAxisCount; ++i)
+    if (ctx.settings().axes[i].steps_per_unit != before.axes[i].steps_per_unit)
+      return ctx.values_reach_motion(call.loc);
+}
+
+// ---- VA: locations --------------------------------------------------------------------
+
+std::vector<ParamSpec> va_params(std::string_view letters) {
+  static const std::string working[] = {"X location", "Y location", "Z location",
+                                        "A location", "B location", "C location"};
+  static const std::string base[] = {"table base X", "table base Y", "table base Z",
+                                     "table base A", "table base B", "table base C"};
+  std::vector<ParamSpec> out;
+  for (char a : letters)
+    out.push_back(num(working[std::string_view("XYZABC").find(a)], "units",
+                      "The value the current location takes; nothing moves."));
+  for (char a : letters)
+    out.push_back(num(base[std::string_view("XYZABC").find(a)], "units",
+                      "The table base value of the current location; nothing moves."));
+  return out;
+}
+
+// Table base values first, then working ones (FabMo states that order; SB3 is silent).
+void values_locations(CommandContext& ctx, const CommandCall& call) {
+  const int n = ctx.settings().dialect == Dialect::FabMo ? 6 : 5;
+  Vec6 base = Vec6::Zero();
+  unsigned base_axes = 0;
+  for (int i = 0; i < n; ++i)
+    if (const auto v = call.number(n + i)) {
+      base[i] = *v;
+      base_axes |= 1u << i;
+    }
+  ctx.set_table_base(base_axes, base);
+  ModalState& st = ctx.state();
+  for (int i = 0; i < n; ++i)
+    if (const auto v = call.number(i)) {
+      st.zero[i] += st.position[i] - *v;
+      st.position[i] = *v;
+    }
+}
+
+}  // namespace
+
+void add_values_commands(std::vector<CommandSpec>& out) {
+  const auto V = CommandGroup::Values;
+  out.push_back({"VA", "Values for axis locations", V,
+                 "Gives the current location new working values, then table base values, "
+                 "without moving. Blank keeps an axis's value.",
+                 va_params("XYZAB"), values_locations, "", va_params("XYZABC"), false,
+                 "%(1)-%(10)"});
+  out.push_back({"VB",
+                 "Values for tabs",
+                 V,
+                 "Sets the size and spacing of tabs left on the last pass of a cut, and turns "
+                 "tab insertion on or off in a file.",
+                 params_of(vb_fields()),
+                 values_tabs,
+                 "tabs are inserted into cuts with issue 7 (cut commands)",
+                 {},
+                 false,
+                 "%(41)-%(44)"});
+  out.push_back({"VC", "Values for the cutter", V,
+                 "Sets the cutter diameter, the safe Z and A pull-up heights, the plunge "
+                 "direction, the pocket overlap and the Z/A-triggered output switch.",
+                 params_of(vc_sb3()), values_cutter,
+                 "the triggered output switch (parameters 8-12) is stored, not switched",
+                 params_of(vc_fabmo()), false, "%(20), %(28), %(29)"});
+  out.push_back({"VD", "Values for display and units", V,
+                 "Sets the number of axes, the linear units (every value and the position are "
+                 "converted), the A/B/C units and console options.",
+                 params_of(vd_sb3()), values_display, "", params_of(vd_fabmo()), false,
+                 "%(25), %(27)"});
+  out.push_back({"VH", "Values for height control and accessories", V,
+                 "Sets torch-height, laser-PWM and heater values (VN parameter 3 enables them).",
+                 params_of(vh_fields()), values_accessories,
+                 "values are stored; Gantry drives no torch, laser or heater output"});
+  out.push_back({"VI", "Values for driver channels", V,
+                 "Assigns an axis to each driver channel 1-6 (its step and direction pins). "
+                 "In a part file the change lasts until the file ends, unless SV.",
+                 params_of(vi_sb3()), values_drivers,
+                 "enable = 0 (run without step output) is refused", params_of(vi_fabmo()), false,
+                 "%(36)-%(40)"});
+  out.push_back({"VL", "Values for table limits", V,
+                 "Sets the soft limits in table base coordinates, and (SB3) limit checking. In a "
+                 "part file the change lasts until the file ends, unless SV.",
+                 params_of(vl_sb3()), values_limits, "", params_of(vl_fabmo()), false,
+                 "%(11)-%(20), %(30)"});
+  out.push_back({"VN",
+                 "Values for input and output switches",
+                 V,
+                 "Sets limit switches on or off, the stop switch wiring, the accessory, and the "
+                 "mode of each input and output switch.",
+                 params_of(vn_fields()),
+                 values_switches,
+                 "input modes take effect with the machine controller (issue 8); output modes "
+                 "2 and 5 (a stop) likewise",
+                 {},
+                 false,
+                 "%(91)-%(98), %(111)-%(122), %(131)-%(134)"});
+  out.push_back({"VO",
+                 "Values for a temporary tool offset",
+                 V,
+                 "Adds an offset to every move (a second head, an air drill) until turned off or "
+                 "the run ends; the location shows where the tool really is.",
+                 vo_params(),
+                 values_offset,
+                 "",
+                 {},
+                 false,
+                 "%(1)-%(10)"});
+  out.push_back({"VP", "Values for the preview", V,
+                 "Sets the preview's grid, table size and drawing options.", params_of(vp_fields()),
+                 values_preview, "the console preview that reads them is issue 9"});
+  out.push_back({"VR", "Values for ramps", V,
+                 "Sets the ramp speeds and rates of the SB3 ramp model (docs/planner.md); FabMo's "
+                 "form sets jerk limits. The machine comes to rest first.",
+                 params_of(vr_sb3()), values_ramps, "", params_of(vr_fabmo())});
+  out.push_back({"VU",
+                 "Values for calibration",
+                 V,
+                 "Sets steps per unit, arc resolution, resolution multipliers and the step "
+                 "divider. In a part file the change lasts until the file ends, unless SV.",
+                 params_of(vu_fields()),
+                 values_calibration,
+                 "resolution multipliers and shifting are stored (step/direction drives have no "
+                 "resolution shift)",
+                 {},
+                 false,
+                 "%(151)-%(156)"});
+}
+
+}  // namespace gantry

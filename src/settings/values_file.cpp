@@ -1,0 +1,126 @@
+// The values file: reading it over a profile, and writing the keys that differ.
+#include "gantry/settings/values_file.hpp"
+
+#include <fcntl.h>  // open
+#include <fmt/format.h>
+#include <toml++/toml.h>
+#include <unistd.h>  // fsync, close, getpid
+
+#include <cctype>      // isalnum
+#include <cstdio>      // rename
+#include <cstdlib>     // getenv
+#include <filesystem>  // create_directories
+#include <sstream>     // the formatter writes to a stream
+
+#include "settings_private.hpp"  // settings_table, parse_settings_table
+
+namespace gantry {
+
+namespace {
+
+// Moves every key of `from` into `into`; tables merge key by key. Moving (not copying)
+// keeps each node's source position, so errors point into the values file.
+void lay_over(toml::table& into, toml::table& from) {
+  for (auto&& [key, node] : from) {
+    toml::node* mine = into.get(key);
+    if (mine && mine->is_table() && node.is_table()) {
+      lay_over(*mine->as_table(), *node.as_table());
+      continue;
+    }
+    node.visit([&](auto& n) { into.insert_or_assign(key, std::move(n)); });
+  }
+}
+
+bool same_leaf(const toml::node& a, const toml::node& b) {
+  if (a.type() != b.type()) return false;
+  if (a.is_floating_point()) return *a.value<double>() == *b.value<double>();
+  if (a.is_integer()) return *a.value<std::int64_t>() == *b.value<std::int64_t>();
+  if (a.is_boolean()) return *a.value<bool>() == *b.value<bool>();
+  if (a.is_string()) return *a.value<std::string>() == *b.value<std::string>();
+  return false;
+}
+
+// The keys of `now` that differ from `was` (both complete profiles).
+toml::table difference(const toml::table& was, const toml::table& now) {
+  toml::table out;
+  for (auto&& [key, node] : now) {
+    const toml::node* old = was.get(key);
+    if (node.is_table()) {
+      toml::table sub = old && old->is_table() ? difference(*old->as_table(), *node.as_table())
+                                               : *node.as_table();
+      if (!sub.empty()) out.insert(key, std::move(sub));
+    } else if (!old || !same_leaf(*old, node)) {
+      node.visit([&](const auto& n) { out.insert(key, n); });
+    }
+  }
+  return out;
+}
+
+std::string format_table(const toml::table& t) {
+  std::ostringstream text;
+  text << toml::toml_formatter(t);
+  return text.str();
+}
+
+}  // namespace
+
+SettingsLoad parse_settings(const std::string& profile_text, const std::string& profile_origin,
+                            const std::optional<std::string>& values_text,
+                            const std::string& values_origin) {
+  if (!values_text) return parse_settings(profile_text, profile_origin);
+  SettingsLoad out;
+  toml::table profile, values;
+  for (auto [text, origin, table] : {std::tuple{&profile_text, &profile_origin, &profile},
+                                     std::tuple{&*values_text, &values_origin, &values}}) {
+    try {
+      *table = toml::parse(*text, *origin);
+    } catch (const toml::parse_error& e) {
+      const auto& b = e.source().begin;
+      out.errors.push_back({file_loc(*origin, static_cast<int>(b.line), static_cast<int>(b.column)),
+                            Severity::Error, fmt::format("not valid TOML: {}", e.description())});
+    }
+  }
+  if (!out.errors.empty()) return out;
+  lay_over(profile, values);
+  return parse_settings_table(profile, profile_origin);
+}
+
+std::string settings_text(const Settings& s) {
+  return format_table(settings_table(s)) + "\n";
+}
+
+std::string values_text(const Settings& current, const Settings& profile) {
+  const toml::table diff = difference(settings_table(profile), settings_table(current));
+  return fmt::format(
+      "# Gantry values for the profile \"{}\": the V commands' changes (docs/values.md).\n"
+      "# Each key overrides the profile's; delete a key (or this file) to return to the "
+      "profile.\n\n{}\n",
+      profile.name, format_table(diff));
+}
+
+std::string default_values_path(const std::string& profile_name) {
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  const char* home = std::getenv("HOME");
+  const std::string base = xdg && *xdg ? xdg : std::string(home ? home : ".") + "/.config";
+  std::string file;
+  for (char c : profile_name) file += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return fmt::format("{}/gantry/values/{}.toml", base, file.empty() ? "profile" : file);
+}
+
+bool write_file_atomically(const std::string& path, const std::string& text) {
+  const std::filesystem::path p(path);
+  std::error_code ec;
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
+  const std::string tmp = fmt::format("{}.{}.tmp", path, ::getpid());  // one per process
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  bool ok = fd >= 0 && ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ok = fd >= 0 && ::fsync(fd) == 0 && ok;
+  if (fd >= 0) ::close(fd);
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace gantry
