@@ -34,7 +34,10 @@ double sb3_corner(const Junction& j, const Settings& s, double v, double full) {
     const double change = std::abs(j.v_out * j.u_out[i] - j.v_in * j.u_in[i]);
     if (change > group_ramp[i] * s.ramps.threshold_3d / 100) return full;
   }
-  const double theta = xy_angle(j.u_in_long, j.u_out);
+  // The turn over the last min_distance of path catches a curve of tiny segments; the turn
+  // at the corner itself still counts when a short move comes before it (the longer check
+  // adds ramping, never removes it: §8 fact 138).
+  const double theta = std::max(xy_angle(j.u_in_long, j.u_out), xy_angle(j.u_in, j.u_out));
   if (theta >= kFullRampAngle) return full;
   const double criterion = sb3_criterion_angle(v, s);
   if (theta < criterion) return v;

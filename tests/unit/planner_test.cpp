@@ -106,6 +106,19 @@ TEST(Sb3Ramps, AnIsolatedMoveStartsAndEndsAtTheRampSpeed) {
   EXPECT_DOUBLE_EQ(segs[0].profile.accel, 14.0);  // 2 (0.4 + 1) / 0.2
 }
 
+// Fact 138 after a move shorter than the minimum distance: the turn measured from 0.15 in
+// back along the path is only 6 degrees here, but the corner itself turns 90 and ramps fully
+// (it was taken at 0.77 in/s), and so does a reversal.
+TEST(Sb3Ramps, Fact138_ACornerAfterAShortMoveStillRampsFully) {
+  const Settings s = default_settings();
+  const auto corner_after_short = plan(s, {vec(0), vec(1), vec(1, 0.1), vec(2, 0.1)});
+  ASSERT_EQ(corner_after_short.size(), 3u);
+  EXPECT_NEAR(junction_speed(corner_after_short, 1), 0.4, 1e-12);
+  const auto reversal = plan(s, {vec(0), vec(1), vec(0.9), vec(1)});
+  EXPECT_NEAR(junction_speed(reversal, 0), 0.4, 1e-12);
+  EXPECT_NEAR(junction_speed(reversal, 1), 0.4, 1e-12);
+}
+
 TEST(Sb3Ramps, ANinetyDegreeCornerRampsFullyDownToTheRampSpeed) {
   const auto segs = plan(default_settings(), corner(90));
   ASSERT_EQ(segs.size(), 2u);
