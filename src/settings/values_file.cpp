@@ -27,7 +27,8 @@ void lay_over(toml::table& into, toml::table& from) {
       lay_over(*mine->as_table(), *node.as_table());
       continue;
     }
-    node.visit([&](auto& n) { into.insert_or_assign(key, std::move(n)); });
+    const toml::key& k = key;  // a structured binding cannot be captured (C++20, clang)
+    node.visit([&](auto& n) { into.insert_or_assign(k, std::move(n)); });
   }
 }
 
@@ -50,7 +51,8 @@ toml::table difference(const toml::table& was, const toml::table& now) {
                                                : *node.as_table();
       if (!sub.empty()) out.insert(key, std::move(sub));
     } else if (!old || !same_leaf(*old, node)) {
-      node.visit([&](const auto& n) { out.insert(key, n); });
+      const toml::key& k = key;
+      node.visit([&](const auto& n) { out.insert(k, n); });
     }
   }
   return out;
