@@ -93,8 +93,8 @@ void help_parameters(CommandContext& ctx, const CommandCall&) {
 // HN: Gantry has no support desk; say what a useful report holds.
 void help_support(CommandContext& ctx, const CommandCall&) {
   ctx.print(fmt::format(
-      "Gantry is not ShopBot software, so ShopBot Technical Support cannot help with it, and "
-      "Gantry has no support desk of its own that this command could write to.\n"
+      "Gantry is not ShopBot software: ShopBot Technical Support does not support it, and "
+      "Gantry has no support desk that this command could send a request to.\n"
       "A useful problem report to Gantry's maintainers holds:\n"
       "  - the version (HA, or `gantry --version`) and the machine profile (--settings);\n"
       "  - the part file, and what `gantry check FILE` prints for it;\n"

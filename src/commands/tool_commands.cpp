@@ -459,7 +459,9 @@ void header_writer(CommandContext& ctx, const CommandCall& call) {
   if (!old)
     fail(call.param_loc(kThFile),
          fmt::format("cannot read {}; TH adds a header to an existing part file", path));
-  const std::string body = without_old_header(*old, call, path);
+  constexpr std::string_view kBom = "\xEF\xBB\xBF";  // kept first, where a reader looks for it
+  const bool bom = old->starts_with(kBom);
+  const std::string body = without_old_header(old->substr(bom ? kBom.size() : 0), call, path);
   const std::string eol = old->find("\r\n") != std::string::npos ? "\r\n" : "\n";
   const Settings& s = ctx.settings();
   std::vector<std::string> lines = {std::string(kHeaderBegin)};
@@ -493,7 +495,7 @@ void header_writer(CommandContext& ctx, const CommandCall& call) {
   if (call.text(kThFirst) && !call.text(kThFirst)->empty())
     lines.push_back(quoted_file(call, kThFirst));
   lines.push_back(std::string(kHeaderEnd));
-  std::string text;
+  std::string text(bom ? kBom : "");
   for (const std::string& l : lines) text += l + eol;
   text += body;
   if (call.text(kThLast) && !call.text(kThLast)->empty()) {
@@ -501,10 +503,15 @@ void header_writer(CommandContext& ctx, const CommandCall& call) {
     text += std::string(kLastBegin) + eol + quoted_file(call, kThLast) + eol;
   }
   const std::string written = ctx.write_file(*call.text(kThFile), text, call.param_loc(kThFile));
-  ctx.print(fmt::format("TH wrote a {}-line header to {}\n", lines.size(), written));
+  ctx.print(fmt::format("TH wrote a header of {} lines to {}\n", lines.size(), written));
 }
 
 // ---- TS: setup -----------------------------------------------------------------------------
+
+// A setting as stored, every digit kept.
+std::string show(double v) {
+  return fmt::format("{}", v);
+}
 
 void setup(CommandContext& ctx, const CommandCall&) {
   const Settings& s = ctx.settings();
@@ -512,25 +519,27 @@ void setup(CommandContext& ctx, const CommandCall&) {
   std::string out = fmt::format(
       "Machine profile: {}\nUnits: {}\nCard: {} (pacer {} Hz, step pulse {} us, direction setup "
       "{} us)\n",
-      s.name.empty() ? "(unnamed)" : s.name, u, s.card.type, num(s.card.pacer_hz()),
-      num(s.card.step_pulse_us), num(s.card.dir_setup_us));
+      s.name.empty() ? "(unnamed)" : s.name, u, s.card.type, show(s.card.pacer_hz()),
+      show(s.card.step_pulse_us), show(s.card.dir_setup_us));
   out += fmt::format("Axis  {:>12}  {:>10}  {:>10}  {}\n", "steps/unit", "max speed", "max accel",
                      "travel (table base)");
   for (int i = 0; i < kAxisCount; ++i) {
     const AxisSettings& a = s.axes[i];
     out += fmt::format("{:<4}  {:>12}  {:>10}  {:>10}  {} to {}\n",
-                       static_cast<char>(std::toupper(kAxisLetters[i])), num(a.steps_per_unit),
-                       num(a.max_speed), num(a.max_accel), num(a.min), num(a.max));
+                       static_cast<char>(std::toupper(kAxisLetters[i])), show(a.steps_per_unit),
+                       show(a.max_speed), show(a.max_accel), show(a.min), show(a.max));
   }
   const GroupSpeeds& m = ctx.state().speeds.move;
   const GroupSpeeds& j = ctx.state().speeds.jog;
-  out += fmt::format("Move speeds ({}/s): XY {}, Z {}, A {}, B {}, C {}\n", u, num(m.xy), num(m.z),
-                     num(m.a), num(m.b), num(m.c));
-  out += fmt::format("Jog speeds ({}/s): XY {}, Z {}, A {}, B {}, C {}\n", u, num(j.xy), num(j.z),
-                     num(j.a), num(j.b), num(j.c));
+  out += fmt::format("Move speeds ({}/s): XY {}, Z {}, A {}, B {}, C {}\n", u, show(m.xy),
+                     show(m.z), show(m.a), show(m.b), show(m.c));
+  out += fmt::format("Jog speeds ({}/s): XY {}, Z {}, A {}, B {}, C {}\n", u, show(j.xy), show(j.z),
+                     show(j.a), show(j.b), show(j.c));
   const Cutter c = cutter(ctx);
-  out += fmt::format("Cutter: diameter {}, safe Z {}\n", num(c.diameter), num(c.safe_z));
-  out += "These values come from the machine profile (docs/settings.md).\n";
+  out += fmt::format("Cutter: diameter {}, safe Z {}\n", show(c.diameter), show(c.safe_z));
+  out +=
+      "These are the machine profile's values (docs/settings.md) as MS, JS and the V "
+      "commands left them.\n";
   ctx.print(out);
 }
 

@@ -424,7 +424,7 @@ TEST_F(HelpToolsTest, ThAddsAHeaderAndReplacesItsOwn) {
                        "'---- End of header ----\nMX, 1\nMY, 2\n"
                        "'---- Run last \\(Gantry TH\\) ----\nFP, \"last.sbp\"\n$")))
       << once;
-  EXPECT_NE(printed.find("TH wrote a 11-line header to " + path("job.sbp")), std::string::npos);
+  EXPECT_NE(printed.find("TH wrote a header of 11 lines to " + path("job.sbp")), std::string::npos);
   // Again, with other values: one header, one closing FP.
   run("TH, job.sbp, Sign 2, , , , , , , , , first.sbp\n");
   const std::string twice = slurp(path("job.sbp"));
@@ -444,6 +444,17 @@ TEST_F(HelpToolsTest, ThKeepsWindowsLineEndings) {
   const std::string text = slurp(path("job.sbp"));
   EXPECT_TRUE(text.starts_with("'---- Header (Gantry TH) ----\r\n' Title: Box\r\n")) << text;
   EXPECT_TRUE(text.ends_with("'---- End of header ----\r\nMX, 1\r\nMY, 2\r\n")) << text;
+}
+
+TEST_F(HelpToolsTest, ThKeepsAByteOrderMarkFirst) {
+  write("job.sbp", "\xEF\xBB\xBFMX, 1\n");
+  run("TH, job.sbp, Box\n");
+  run("TH, job.sbp, Box 2\n");
+  const std::string text = slurp(path("job.sbp"));
+  EXPECT_TRUE(text.starts_with("\xEF\xBB\xBF'---- Header (Gantry TH) ----\n' Title: Box 2\n"))
+      << text;
+  EXPECT_TRUE(text.ends_with("'---- End of header ----\nMX, 1\n")) << text;
+  EXPECT_EQ(moves_of("job.sbp").size(), 1u);
 }
 
 TEST_F(HelpToolsTest, ThNeedsAnExistingFile) {
