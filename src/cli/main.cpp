@@ -48,11 +48,11 @@ bool load_profile(const std::string& path, const std::string& values, Profile& o
     print_errors(bare.errors);
     return false;
   }
-  out.bare = bare.settings;
+  out.bare = out.settings = bare.settings;
   out.values_path = values.empty() ? default_values_path(bare.settings.name) : values;
-  const std::optional<std::string> values_text =
-      std::filesystem::exists(out.values_path) ? read_text_file(out.values_path) : std::nullopt;
-  if (std::filesystem::exists(out.values_path) && !values_text) {
+  if (!std::filesystem::exists(out.values_path)) return true;  // nothing changed yet
+  const std::optional<std::string> values_text = read_text_file(out.values_path);
+  if (!values_text) {
     fmt::print(stderr, "{}: error: cannot read the values file; check its permissions\n",
                out.values_path);
     return false;

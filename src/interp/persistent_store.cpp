@@ -3,11 +3,9 @@
 
 #include <fmt/format.h>
 
-#include <cstdlib>     // getenv
-#include <filesystem>  // create_directories
+#include <filesystem>  // exists
 
-#include "gantry/core/text_file.hpp"        // read_text_file
-#include "gantry/settings/values_file.hpp"  // write_file_atomically
+#include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically, user_config_dir
 
 namespace gantry {
 
@@ -28,10 +26,7 @@ PersistentStore::PersistentStore(std::string path) : path_(std::move(path)) {
 }
 
 std::string PersistentStore::default_path() {
-  const char* xdg = std::getenv("XDG_CONFIG_HOME");
-  const char* home = std::getenv("HOME");
-  const std::string base = xdg && *xdg ? xdg : std::string(home ? home : ".") + "/.config";
-  return base + "/gantry/persistent.json";
+  return user_config_dir() + "/persistent.json";
 }
 
 const nlohmann::json* PersistentStore::variable(std::string_view name) const {

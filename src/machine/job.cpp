@@ -6,7 +6,7 @@
 
 #include "gantry/core/text_file.hpp"            // read_text_file
 #include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
-#include "gantry/settings/values_file.hpp"      // values_text, write_file_atomically
+#include "gantry/settings/values_file.hpp"      // values_text
 #include "gantry/step/step_generator.hpp"       // StepGenerator
 
 namespace gantry {

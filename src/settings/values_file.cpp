@@ -1,18 +1,14 @@
 // The values file: reading it over a profile, and writing the keys that differ.
 #include "gantry/settings/values_file.hpp"
 
-#include <fcntl.h>  // open
 #include <fmt/format.h>
 #include <toml++/toml.h>
-#include <unistd.h>  // fsync, close, getpid
 
-#include <cctype>      // isalnum
-#include <cstdio>      // rename
-#include <cstdlib>     // getenv
-#include <filesystem>  // create_directories
-#include <sstream>     // the formatter writes to a stream
+#include <cctype>   // isalnum
+#include <sstream>  // the formatter writes to a stream
 
-#include "settings_private.hpp"  // settings_table, parse_settings_table
+#include "gantry/core/text_file.hpp"  // user_config_dir
+#include "settings_private.hpp"       // settings_table, parse_settings_table
 
 namespace gantry {
 
@@ -101,28 +97,9 @@ std::string values_text(const Settings& current, const Settings& profile) {
 }
 
 std::string default_values_path(const std::string& profile_name) {
-  const char* xdg = std::getenv("XDG_CONFIG_HOME");
-  const char* home = std::getenv("HOME");
-  const std::string base = xdg && *xdg ? xdg : std::string(home ? home : ".") + "/.config";
   std::string file;
   for (char c : profile_name) file += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return fmt::format("{}/gantry/values/{}.toml", base, file.empty() ? "profile" : file);
-}
-
-bool write_file_atomically(const std::string& path, const std::string& text) {
-  const std::filesystem::path p(path);
-  std::error_code ec;
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), ec);
-  const std::string tmp = fmt::format("{}.{}.tmp", path, ::getpid());  // one per process
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  bool ok = fd >= 0 && ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
-  ok = fd >= 0 && ::fsync(fd) == 0 && ok;
-  if (fd >= 0) ::close(fd);
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    return false;
-  }
-  return true;
+  return fmt::format("{}/values/{}.toml", user_config_dir(), file.empty() ? "profile" : file);
 }
 
 }  // namespace gantry

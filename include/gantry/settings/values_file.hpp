@@ -23,12 +23,8 @@ std::string settings_text(const Settings& s);
 // The keys of `current` whose values differ from `profile`: the values file's text.
 std::string values_text(const Settings& current, const Settings& profile);
 
-// Where the values for a profile named `profile_name` live: the operator's config folder
-// ($XDG_CONFIG_HOME or ~/.config)/gantry/values/<name as a file name>.toml.
+// Where the values for a profile named `profile_name` live:
+// user_config_dir()/values/<name as a file name>.toml.
 std::string default_values_path(const std::string& profile_name);
-
-// Writes `text` to `path` so that a crash leaves the old file or the new one, never a mix:
-// a temporary file beside it, fsync, rename. False (and the old file untouched) on failure.
-bool write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace gantry
