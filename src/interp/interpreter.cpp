@@ -122,35 +122,22 @@ void CommandContext::change_units(Units to, ValueScope scope, const SourceLoc& l
     Interpreter::Frame& f = interp_->frames_.back();
     if (!f.saved_units) f.saved_units = settings_.units;
   }
-  const double f = units_factor(settings_.units, to);
-  Vec6 scale = Vec6::Ones();
-  for (int i = 0; i < kAxisCount; ++i)
-    scale[i] = i < 3 || settings_.display.rotary_units[i - 3] != AxisUnit::Degrees ? f : 1.0;
+  const Vec6 scale = units_scale(settings_, to);
   convert_units(settings_, to);
   ModalState& st = state_;
   for (Vec6* v : {&st.position, &st.zero, &st.machine_origin, &st.tool_offset, &st.applied_offset,
                   &st.tool_offset_values})
     *v = v->cwiseProduct(scale);
-  for (GroupSpeeds* g : {&st.speeds.move, &st.speeds.jog}) {
-    g->xy *= f;
-    g->z *= f;
-    g->a *= scale[3];
-    g->b *= scale[4];
-    g->c *= scale[5];
-  }
+  scale_speeds(st.speeds.move, scale);
+  scale_speeds(st.speeds.jog, scale);
   if (st.last_xy_move) {
-    (*st.last_xy_move)[0] *= f;
-    (*st.last_xy_move)[1] *= f;
+    (*st.last_xy_move)[0] *= scale[0];
+    (*st.last_xy_move)[1] *= scale[1];
   }
   // What running files will restore is in the new units too.
   for (Interpreter::Frame& fr : interp_->frames_) {
-    for (GroupSpeeds* g : {&fr.saved_speeds.move, &fr.saved_speeds.jog}) {
-      g->xy *= f;
-      g->z *= f;
-      g->a *= scale[3];
-      g->b *= scale[4];
-      g->c *= scale[5];
-    }
+    scale_speeds(fr.saved_speeds.move, scale);
+    scale_speeds(fr.saved_speeds.jog, scale);
     if (fr.saved_values) convert_units(*fr.saved_values, to);
   }
   // The tool stays where it is: the planner and the step generator take the new values.

@@ -22,35 +22,38 @@ double round12(double v) {
 
 }  // namespace
 
-void convert_units(Settings& s, Units to) {
+Vec6 units_scale(const Settings& s, Units to) {
   const double f = units_factor(s.units, to);
+  Vec6 scale = Vec6::Constant(f);
+  for (int i = 0; i < 3; ++i)
+    if (s.display.rotary_units[i] == AxisUnit::Degrees) scale[3 + i] = 1;
+  return scale;
+}
+
+void scale_speeds(GroupSpeeds& g, const Vec6& scale) {
+  g.xy = round12(g.xy * scale[0]);
+  g.z = round12(g.z * scale[2]);
+  g.a = round12(g.a * scale[3]);
+  g.b = round12(g.b * scale[4]);
+  g.c = round12(g.c * scale[5]);
+}
+
+void convert_units(Settings& s, Units to) {
+  const Vec6 scale = units_scale(s, to);
+  const double f = scale[0];
   s.units = to;
   if (f == 1) return;
-  // X, Y, Z are lengths; A, B, C only when VD says their unit is a length.
-  std::array<bool, kAxisCount> linear{true, true, true};
-  for (int i = 0; i < 3; ++i) linear[3 + i] = s.display.rotary_units[i] != AxisUnit::Degrees;
-  const auto axis_f = [&](int i) { return linear[i] ? f : 1.0; };
   for (int i = 0; i < kAxisCount; ++i) {
     AxisSettings& a = s.axes[i];
-    a.steps_per_unit = round12(a.steps_per_unit / axis_f(i));
-    a.max_speed = round12(a.max_speed * axis_f(i));
-    a.max_accel = round12(a.max_accel * axis_f(i));
-    a.min = round12(a.min * axis_f(i));
-    a.max = round12(a.max * axis_f(i));
+    a.steps_per_unit = round12(a.steps_per_unit / scale[i]);
+    a.max_speed = round12(a.max_speed * scale[i]);
+    a.max_accel = round12(a.max_accel * scale[i]);
+    a.min = round12(a.min * scale[i]);
+    a.max = round12(a.max * scale[i]);
   }
-  // Speed groups: XY and Z are lengths; A, B, C follow their axes.
-  const auto groups = [&](GroupSpeeds& g) {
-    g.xy = round12(g.xy * f);
-    g.z = round12(g.z * f);
-    g.a = round12(g.a * axis_f(3));
-    g.b = round12(g.b * axis_f(4));
-    g.c = round12(g.c * axis_f(5));
-  };
-  groups(s.speeds.move);
-  groups(s.speeds.jog);
   RampSettings& r = s.ramps;
-  groups(r.move_ramp_speed);
-  groups(r.jog_ramp_speed);
+  for (GroupSpeeds* g : {&s.speeds.move, &s.speeds.jog, &r.move_ramp_speed, &r.jog_ramp_speed})
+    scale_speeds(*g, scale);
   for (double* v : {&r.move_ramp_rate,
                     &r.jog_ramp_rate,
                     &r.min_distance,
@@ -72,8 +75,8 @@ void convert_units(Settings& s, Units to) {
                     &s.preview.table_z,
                     &s.calibration.circle_resolution})
     *v = round12(*v * f);
-  s.cutter.safe_a = round12(s.cutter.safe_a * axis_f(3));
-  const double trigger_f = axis_f(s.cutter.trigger_axis);
+  s.cutter.safe_a = round12(s.cutter.safe_a * scale[3]);
+  const double trigger_f = scale[s.cutter.trigger_axis];
   s.cutter.trigger_on = round12(s.cutter.trigger_on * trigger_f);
   s.cutter.trigger_off = round12(s.cutter.trigger_off * trigger_f);
 }

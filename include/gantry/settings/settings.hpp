@@ -211,6 +211,11 @@ std::vector<std::string> settings_problems(const Settings& s);
 void convert_units(Settings& s, Units to);
 // The factor from the profile's units to `to`: 1, 25.4 or 1/25.4.
 double units_factor(Units from, Units to);
+// Per axis, the factor convert_units(s, to) applies: X, Y, Z always; A, B, C only when VD
+// gives them a length unit.
+Vec6 units_scale(const Settings& s, Units to);
+// Scales a speed group as convert_units does (XY by X's factor, 12 significant digits).
+void scale_speeds(GroupSpeeds& g, const Vec6& scale);
 
 // Reads and validates a profile file; a missing file is an error like any other.
 SettingsLoad load_settings_file(const std::string& path);
