@@ -2,8 +2,9 @@
 // settings; its table entry below names it, once, for the parser, the sheets and the docs.
 #include <fmt/format.h>  // messages
 
-#include <cmath>  // lround
-#include <deque>  // stable storage for generated names
+#include <cmath>       // lround
+#include <deque>       // stable storage for generated names
+#include <functional>  // a field's setter
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -16,7 +17,7 @@ namespace {
 // meaning on this machine, which `ignored` explains in a warning.
 struct Field {
   ParamSpec param;
-  void (*set)(Settings&, const Value&) = nullptr;
+  std::function<void(Settings&, const Value&)> set = nullptr;
   std::string_view ignored = {};
 };
 
@@ -181,12 +182,8 @@ Field linear_units() {
 }
 Field units_of(int axis) {
   static const std::string names[] = {"A units", "B units", "C units"};
-  using Set = void (*)(Settings&, const Value&);
-  static const Set sets[] = {
-      [](Settings& s, const Value& v) { s.display.rotary_units[0] = axis_unit(v); },
-      [](Settings& s, const Value& v) { s.display.rotary_units[1] = axis_unit(v); },
-      [](Settings& s, const Value& v) { s.display.rotary_units[2] = axis_unit(v); }};
-  return {unit_code(names[axis]), sets[axis]};
+  return {unit_code(names[axis]),
+          [axis](Settings& s, const Value& v) { s.display.rotary_units[axis] = axis_unit(v); }};
 }
 constexpr std::string_view kScreen =
     "Windows message-screen placement has no meaning in Gantry's "
@@ -288,16 +285,8 @@ int axis_of(const Value& v) {
 Field channel(int k) {
   static const std::string names[] = {"channel 1 axis", "channel 2 axis", "channel 3 axis",
                                       "channel 4 axis", "channel 5 axis", "channel 6 axis"};
-  using Set = void (*)(Settings&, const Value&);
-  static const Set sets[] = {
-#define GANTRY_CHANNEL(k) \
-  [](Settings& s, const Value& v) { s.drivers.channel_axis[k] = axis_of(v); }
-      GANTRY_CHANNEL(0), GANTRY_CHANNEL(1), GANTRY_CHANNEL(2), GANTRY_CHANNEL(3),
-      GANTRY_CHANNEL(4), GANTRY_CHANNEL(5)
-#undef GANTRY_CHANNEL
-  };
   return {word(names[k], "X Y Z A B C 1 2 3 4 5 6", "The axis this driver channel drives."),
-          sets[k]};
+          [k](Settings& s, const Value& v) { s.drivers.channel_axis[k] = axis_of(v); }};
 }
 Field comm_speed() {
   return {num("comm speed", "", "SB3's serial link speed code."), nullptr,
@@ -346,19 +335,12 @@ Field limit(int axis, bool high) {
   static const std::string names[2][6] = {
       {"low X", "low Y", "low Z", "low A", "low B", "low C"},
       {"high X", "high Y", "high Z", "high A", "high B", "high C"}};
-  using Set = void (*)(Settings&, const Value&);
-#define GANTRY_LIMIT(i)                                              \
-  {                                                                  \
-    [](Settings& s, const Value& v) { s.axes[i].min = v.num(); },    \
-        [](Settings& s, const Value& v) { s.axes[i].max = v.num(); } \
-  }
-  static const Set sets[6][2] = {GANTRY_LIMIT(0), GANTRY_LIMIT(1), GANTRY_LIMIT(2),
-                                 GANTRY_LIMIT(3), GANTRY_LIMIT(4), GANTRY_LIMIT(5)};
-#undef GANTRY_LIMIT
   return {num(names[high][axis], "units",
               high ? "Highest location allowed, table base coordinates."
                    : "Lowest location allowed, table base coordinates."),
-          sets[axis][high]};
+          [axis, high](Settings& s, const Value& v) {
+            (high ? s.axes[axis].max : s.axes[axis].min) = v.num();
+          }};
 }
 
 const std::vector<Field>& vl_sb3() {
@@ -404,24 +386,12 @@ const std::vector<Field>& vn_fields() {
         {num("accessory", "", "0 none, 1 torch height, 2 laser, 3 analog (VH).").integer(0, 3),
          [](Settings& s, const Value& x) { s.switches.accessory = whole(x); }}};
     static std::deque<std::string> names;
-    using Set = void (*)(Settings&, const Value&);
-#define GANTRY_IN(n) [](Settings& s, const Value& x) { s.switches.input_modes[n - 1] = whole(x); }
-    static const Set inputs[] = {GANTRY_IN(1),  GANTRY_IN(2),  GANTRY_IN(3), GANTRY_IN(5),
-                                 GANTRY_IN(6),  GANTRY_IN(7),  GANTRY_IN(8), GANTRY_IN(9),
-                                 GANTRY_IN(10), GANTRY_IN(11), GANTRY_IN(12)};
-#undef GANTRY_IN
-#define GANTRY_OUT(n) [](Settings& s, const Value& x) { s.switches.output_modes[n] = whole(x); }
-    static const Set outputs[] = {GANTRY_OUT(0), GANTRY_OUT(1), GANTRY_OUT(2),  GANTRY_OUT(3),
-                                  GANTRY_OUT(4), GANTRY_OUT(5), GANTRY_OUT(6),  GANTRY_OUT(7),
-                                  GANTRY_OUT(8), GANTRY_OUT(9), GANTRY_OUT(10), GANTRY_OUT(11)};
-#undef GANTRY_OUT
-    const int input_numbers[] = {1, 2, 3, 5, 6, 7, 8, 9, 10, 11, 12};
-    for (int k = 0; k < 11; ++k) {
-      names.push_back(fmt::format("input {} mode", input_numbers[k]));
+    for (int n : {1, 2, 3, 5, 6, 7, 8, 9, 10, 11, 12}) {  // input 4 is the stop switch
+      names.push_back(fmt::format("input {} mode", n));
       v.push_back(
           {num(names.back(), "", "0 standard, 1 NO limit, 2 NC limit, 3 NO stop, 4 NC stop.")
                .integer(0, 4),
-           inputs[k]});
+           [n](Settings& s, const Value& x) { s.switches.input_modes[n - 1] = whole(x); }});
     }
     for (int k = 0; k < 12; ++k) {
       names.push_back(fmt::format("output {} mode", k + 1));
@@ -429,7 +399,7 @@ const std::vector<Field>& vn_fields() {
                        "0 off at file end, 1 stays on, 2 off on a stop, 3 on for a file, 4 on "
                        "at file start, 5 on at start and off on a stop.")
                        .integer(0, 5),
-                   outputs[k]});
+                   [k](Settings& s, const Value& x) { s.switches.output_modes[k] = whole(x); }});
     }
     return v;
   }();
@@ -495,18 +465,15 @@ Field ramp_speed(bool jog, int group) {
   static const std::string names[2][4] = {
       {"XY move ramp speed", "Z move ramp speed", "A move ramp speed", "B move ramp speed"},
       {"XY jog ramp speed", "Z jog ramp speed", "A jog ramp speed", "B jog ramp speed"}};
-  using Set = void (*)(Settings&, const Value&);
-#define GANTRY_RAMP(g, f)                                                       \
-  {                                                                             \
-    [](Settings& s, const Value& v) { s.ramps.move_ramp_speed.f = v.num(); },   \
-        [](Settings& s, const Value& v) { s.ramps.jog_ramp_speed.f = v.num(); } \
-  }
-  static const Set sets[4][2] = {GANTRY_RAMP(0, xy), GANTRY_RAMP(1, z), GANTRY_RAMP(2, a),
-                                 GANTRY_RAMP(3, b)};
-#undef GANTRY_RAMP
+  static constexpr double GroupSpeeds::*fields[] = {&GroupSpeeds::xy, &GroupSpeeds::z,
+                                                    &GroupSpeeds::a, &GroupSpeeds::b};
   return {
       num(names[jog][group], "units/s", "Speed a ramp starts from and ends at.").range(1e-6, 1e5),
-      sets[group][jog]};
+      [jog, field = fields[group]](Settings& s, const Value& v) {
+        // Through a reference: GCC 12 drops `(c ? x : y).*field = v` (a prvalue copy).
+        GroupSpeeds& g = jog ? s.ramps.jog_ramp_speed : s.ramps.move_ramp_speed;
+        g.*field = v.num();
+      }};
 }
 
 const std::vector<Field>& vr_sb3() {
@@ -572,29 +539,19 @@ void values_ramps(CommandContext& ctx, const CommandCall& call) {
 Field steps(int axis) {
   static const std::string names[] = {"X steps per unit", "Y steps per unit", "Z steps per unit",
                                       "A steps per unit", "B steps per unit", "C steps per unit"};
-  using Set = void (*)(Settings&, const Value&);
-#define GANTRY_STEPS(i) [](Settings& s, const Value& v) { s.axes[i].steps_per_unit = v.num(); }
-  static const Set sets[] = {GANTRY_STEPS(0), GANTRY_STEPS(1), GANTRY_STEPS(2),
-                             GANTRY_STEPS(3), GANTRY_STEPS(4), GANTRY_STEPS(5)};
-#undef GANTRY_STEPS
   return {num(names[axis], "steps/unit",
               "Motor steps per unit of travel; negative reverses the "
               "axis.")
               .range(-1e7, 1e7),
-          sets[axis]};
+          [axis](Settings& s, const Value& v) { s.axes[axis].steps_per_unit = v.num(); }};
 }
 Field multiplier(int axis) {
   static const std::string names[] = {"X resolution multiplier", "Y resolution multiplier",
                                       "Z resolution multiplier", "A resolution multiplier",
                                       "B resolution multiplier"};
-  using Set = void (*)(Settings&, const Value&);
-#define GANTRY_MUL(i) \
-  [](Settings& s, const Value& v) { s.calibration.resolution_multiplier[i] = v.num(); }
-  static const Set sets[] = {GANTRY_MUL(0), GANTRY_MUL(1), GANTRY_MUL(2), GANTRY_MUL(3),
-                             GANTRY_MUL(4)};
-#undef GANTRY_MUL
-  return {num(names[axis], "", "Jog resolution shift of SB3's alpha drives.").range(0, 10),
-          sets[axis]};
+  return {
+      num(names[axis], "", "Jog resolution shift of SB3's alpha drives.").range(0, 10),
+      [axis](Settings& s, const Value& v) { s.calibration.resolution_multiplier[axis] = v.num(); }};
 }
 
 const std::vector<Field>& vu_fields() {
