@@ -31,17 +31,6 @@ ParamSpec text(std::string_view name, std::string_view help) {
   return {name, "", false, std::nullopt, help, ParamKind::Text};
 }
 
-// Location parameters for the axes in `axes` ("XYZ").
-std::vector<ParamSpec> axes(std::string_view letters) {
-  static const std::string names[] = {"X location", "Y location", "Z location",
-                                      "A location", "B location", "C location"};
-  std::vector<ParamSpec> out;
-  for (char a : letters)
-    out.push_back(num(names[std::string_view("XYZABC").find(a)], "units", std::nullopt,
-                      "Where the axis goes (SA), or how far it moves (SR)."));
-  return out;
-}
-
 // A probe: switch, speed, then a target per axis.
 std::vector<ParamSpec> probe(std::string_view letters) {
   static const std::string names[] = {"target X", "target Y", "target Z",
@@ -190,35 +179,6 @@ const std::vector<Entry>& catalogue() {
                   text("mask", "File selector mask (default *.sb?).")},
                  "FP finds relative names beside the top-level file; give FP a path instead"});
     // Jog and move
-    e.push_back({"J6", "Jog 6 dimensions", G::Jog, "Jogs X, Y, Z, A, B and C together (FabMo).",
-                 axes("XYZABC"), "use J5 for X, Y, Z, A and B"});
-    e.push_back({"JC", "Jog C axis", G::Jog, "Jogs the C axis (FabMo).", axes("C"),
-                 "C-axis moves are not offered yet"});
-    e.push_back({"JH",
-                 "Jog home",
-                 G::Jog,
-                 "Raises Z to safe Z if below it, then jogs X and Y to 0,0.",
-                 {},
-                 "write `JZ, safe height` then `J2, 0, 0` in absolute mode (SA)"});
-    e.push_back({"M6", "Move 6 dimensions", G::Move, "Moves X, Y, Z, A, B and C together (FabMo).",
-                 axes("XYZABC"), "use M5 for X, Y, Z, A and B"});
-    e.push_back({"MC", "Move C axis", G::Move,
-                 "Moves the C axis (FabMo index only; by analogy with MA and MB).", axes("C"),
-                 "C-axis moves are not offered yet"});
-    e.push_back({"MD",
-                 "Move distance and angle",
-                 G::Move,
-                 "Moves a given length at a given angle (0 is +Y, clockwise) from the last point.",
-                 {num("length", "units", std::nullopt, "Length of the move."),
-                  text("angle", "Degrees, 90R/45L relative, 3:00 clock or N/E/S/W compass."),
-                  text("Z change", "Z location, or 0.5U up / 0.5D down.")},
-                 "compute the end point and use M2 or M3"});
-    e.push_back({"MH",
-                 "Move home",
-                 G::Move,
-                 "Raises Z to safe Z if below it, then moves X and Y to 0,0 at move speed.",
-                 {},
-                 "write `MZ, safe height` then `M2, 0, 0` in absolute mode (SA)"});
     e.push_back(
         {"MI",
          "Move indexer or oscillate",
@@ -235,13 +195,6 @@ const std::vector<Entry>& catalogue() {
                  "A panel of small adjustments of the current location.",
                  {},
                  "make a short relative move (SR), or zero an axis with ZX, ZY or ZZ"});
-    for (std::string_view code : {"MO", "M0"})
-      e.push_back({code,
-                   code == "MO" ? "Motors off" : "Motors off (M0 spelling of MO)",
-                   G::Move,
-                   "Cuts power to the motors and turns every output switch off.",
-                   {},
-                   "turn output switches off with SO; every switch goes off when the job ends"});
     // Probe
     const std::tuple<std::string_view, std::string_view, std::string_view> probes[] = {
         {"PX", "Probe in X", "X"},
@@ -288,13 +241,6 @@ const std::vector<Entry>& catalogue() {
                  "Selects the working coordinate system: 0 table base, 1 user (FabMo).",
                  {num("system", "", std::nullopt, "0 table base, 1 user.")},
                  "Gantry has one working system over table base; zero it with Z2, Z3 and ZX"});
-    e.push_back({"SF",
-                 "Set limit checking",
-                 G::Settings,
-                 "Turns software limit checking on or off.",
-                 {num("on", "", std::nullopt, "1 on, 0 off.")},
-                 "limits are always checked against min and max in [axes.*] of the machine "
-                 "profile (docs/settings.md)"});
     e.push_back(
         {"SI", "Send command lines", G::Settings, "A scratch pad to type lines and send them.",
          free_params("line", 8, "A line to send."), "write the lines in a part file and run it"});
@@ -304,37 +250,6 @@ const std::vector<Entry>& catalogue() {
                  "Manual jogging from the keypad; a file resumes when it is closed.",
                  {text("message", "Shown on the keypad (FabMo).")},
                  "Gantry has no keypad; jog with J commands"});
-    e.push_back({"SL", "Set: clear all variables", G::Settings, "Deletes every variable.", {}, ""});
-    e.push_back({"SM",
-                 "Set to move/cut mode",
-                 G::Settings,
-                 "Commands run on the machine (not in preview).",
-                 {},
-                 "`gantry run` always cuts; `gantry check` and `gantry moves` preview"});
-    e.push_back({"SP",
-                 "Set to preview mode",
-                 G::Settings,
-                 "Moves are shown on the preview screen, not made.",
-                 {},
-                 "preview with `gantry moves` or `gantry check`"});
-    e.push_back({"ST",
-                 "Set location to table base coordinates",
-                 G::Settings,
-                 "Removes the working offsets: working locations become table base locations.",
-                 {},
-                 ""});
-    e.push_back({"SV",
-                 "Set values to permanent",
-                 G::Settings,
-                 "Keeps the file's temporary settings (VS, VI, VU, limits) after the file ends.",
-                 {},
-                 "MS and JS speeds stay after the file ends; VS speeds do not"});
-    e.push_back({"SW",
-                 "Set warning duration",
-                 G::Settings,
-                 "Seconds of warning before any movement starts.",
-                 {num("duration", "s", 2.0, "0 turns the warning off.")},
-                 ""});
     // Utilities
     e.push_back({"UD",
                  "Utilities: diagnostic display",
@@ -379,126 +294,13 @@ const std::vector<Entry>& catalogue() {
                  ui,
                  {},
                  "system variables %(n) give the values (docs/system_variables.md)"});
-    e.push_back({"UZ",
-                 "Utilities: zero locations and table base",
-                 G::Utilities,
-                 "Zeros every axis's working location and table base coordinates.",
-                 {},
-                 "Z6 zeros the working locations"});
     // Values
-    e.push_back({"VA", "Values for axis locations", G::Values,
-                 "Sets working locations, then table base locations, without moving (SB3 order).",
-                 plus(axes("XYZAB"),
-                      {num("table base X", "units", std::nullopt, "Table base X location."),
-                       num("table base Y", "units", std::nullopt, "Table base Y location."),
-                       num("table base Z", "units", std::nullopt, "Table base Z location."),
-                       num("table base A", "units", std::nullopt, "Table base A location."),
-                       num("table base B", "units", std::nullopt, "Table base B location.")}),
-                 "to make the current location 0 use ZX, Z2, Z3 and the like"});
-    e.push_back({"VB",
-                 "Values for tabbing",
-                 G::Values,
-                 "Tab size and spacing for the TAB feature of the C commands.",
-                 {num("pull up", "units", 0.1, "Tab thickness."),
-                  num("distance to next tab", "units", 4.0, "Tab spacing."),
-                  num("tab size", "units", 1.0, "Tab width."),
-                  num("leads", "units", 0.5, "Length of the ramps up and down."),
-                  num("on", "", std::nullopt, "1 on, 0 off, in a file."),
-                  num("number", "", std::nullopt, "Tabs after an ON."),
-                  num("start", "units", std::nullopt, "Distance to the first tab.")},
-                 "tabs are not offered"});
-    e.push_back({"VC",
-                 "Values for the cutter",
-                 G::Values,
-                 "Cutter diameter, safe Z and A heights, plunge sign, pocket overlap, triggered "
-                 "output (SB3 order).",
-                 {num("diameter", "units", 0.25, "Cutter diameter; %(20)."),
-                  num("obsolete", "", std::nullopt, "Leave blank."),
-                  num("obsolete", "", std::nullopt, "Leave blank."),
-                  num("safe Z", "units", 1.0, "Safe Z pull-up height."),
-                  text("plunge direction", "- (default) or +."),
-                  num("pocket overlap", "%", 10.0, "Pocketing overlap."),
-                  num("safe A", "units", 1.0, "Safe A pull-up."),
-                  num("triggered output", "", 0.0, "1 on, 0 off."),
-                  num("trigger on", "units", std::nullopt, "Level that turns the switch on."),
-                  num("trigger off", "units", std::nullopt, "Level that turns it off."),
-                  text("axis", "Vertical axis monitored, Z or A."),
-                  num("switch", "", std::nullopt, "Output switch 3 to 12, not 4.")},
-                 ""});
-    e.push_back(
-        {"VD",
-         "Values for display",
-         G::Values,
-         "Number of axes, units and display options (SB3 order).",
-         {num("obsolete", "", std::nullopt, "Leave blank."),
-          num("number of axes", "", 3.0, "Active axes."),
-          num("linear units", "", 0.0, "0 inches, 1 millimetres."),
-          num("A units", "", 0.0, "0 in, 1 mm, 2 degrees."),
-          num("B units", "", 2.0, "0 in, 1 mm, 2 degrees."),
-          num("obsolete", "", std::nullopt, "Leave blank."),
-          num("show comments", "", 0.0, "1 shows comments while running."),
-          num("keypad distance", "units", 0.1, "Keypad fixed step."),
-          num("keypad remote", "", 0.0, "0 mouse, 1 pendant, 2 other."),
-          num("part file log", "", 1.0, "1 writes a log per file."),
-          num("system log", "", 1.0, "1 writes the system log."),
-          num("message X", "twips", std::nullopt, "Message screen position."),
-          num("message Y", "twips", std::nullopt, "Message screen position."),
-          num("message width", "twips", std::nullopt, "Message screen size."),
-          num("message height", "twips", std::nullopt, "Message screen size."),
-          num("show progress", "", 0.0, "1 shows file progress."),
-          num("keypad switches off", "", 0.0, "1 turns outputs off when the keypad closes."),
-          num("show progress", "", 0.0, "Repeated in the SB3 header."),
-          num("display type", "", 1.0, "Main display type.")},
-         "the units come from `units` in the machine profile (docs/settings.md)"});
-    e.push_back({"VH",
-                 "Values for the height controller and accessories",
-                 G::Values,
-                 "Torch height control, laser PWM and heater settings.",
-                 {num("mode", "", 0.0, "1 on, 0 off."),
-                  num("plasma height rate", "", 0.25, "Pull-up rate, proportion of XY speed."),
-                  num("laser PWM low", "%", 0.0, "Start level."),
-                  num("laser PWM high", "%", 0.0, "Peak level."),
-                  num("laser frequency", "kHz", 5.4, "Pulse frequency."),
-                  num("low cycle time", "", 3.0, "1 to 10."),
-                  num("temperature", "", 0.0, "Heater target.")},
-                 ""});
-    e.push_back({"VI",
-                 "Values for ports and drivers",
-                 G::Values,
-                 "Comm port, driver channel of each axis, and output enable (SB3 order).",
-                 {num("comm port", "", std::nullopt, "Port number."),
-                  num("obsolete", "", std::nullopt, "Leave blank."),
-                  num("obsolete", "", std::nullopt, "Leave blank."),
-                  num("obsolete", "", std::nullopt, "Leave blank."),
-                  num("channel 1", "", std::nullopt, "Axis on driver channel 1."),
-                  num("channel 2", "", std::nullopt, "Axis on driver channel 2."),
-                  num("channel 3", "", std::nullopt, "Axis on driver channel 3."),
-                  num("channel 4", "", std::nullopt, "Axis on driver channel 4."),
-                  num("speed", "", 5.0, "Comm speed."),
-                  num("channel 5", "", std::nullopt, "Axis on driver channel 5."),
-                  num("channel 6", "", std::nullopt, "Axis on driver channel 6."),
-                  num("enable", "", 1.0, "Global output enable.")},
-                 "the card and each axis's pins come from [card] and [pins.*] in the machine "
-                 "profile (docs/settings.md)"});
     e.push_back({"VK",
                  "Values (undocumented)",
                  G::Values,
                  "Named only in SB3's UV entry; neither reference describes it.",
                  {},
                  ""});
-    e.push_back(
-        {"VL",
-         "Values for table limits",
-         G::Values,
-         "Software limits of the table, in table base coordinates (SB3 order).",
-         {num("low X", "units", std::nullopt, ""), num("high X", "units", std::nullopt, ""),
-          num("low Y", "units", std::nullopt, ""), num("high Y", "units", std::nullopt, ""),
-          num("low Z", "units", std::nullopt, ""), num("high Z", "units", std::nullopt, ""),
-          num("low A", "units", std::nullopt, ""), num("high A", "units", std::nullopt, ""),
-          num("limit checking", "", std::nullopt, "1 on, 0 off (as SF)."),
-          num("low B", "units", std::nullopt, ""), num("high B", "units", std::nullopt, "")},
-         "the limits are min and max in [axes.*] of the machine profile "
-         "(docs/settings.md)"});
     {
       std::vector<ParamSpec> vn = {
           num("limits on", "", 1.0, "1 limit switches stop the tool."),
@@ -509,22 +311,7 @@ const std::vector<Entry>& catalogue() {
       for (ParamSpec& p :
            free_params("output mode", 8, "Mode of an output (SB3 positions unclear)."))
         vn.push_back(p);
-      e.push_back({"VN", "Values for input switches", G::Values,
-                   "Limit switch enable, stop input mode, and each input's and output's mode.", vn,
-                   "inputs are wired in [inputs] of the machine profile (docs/settings.md)"});
     }
-    e.push_back({"VO", "Values for a temporary tool offset", G::Values,
-                 "An offset added to every move until turned off or the file ends.",
-                 plus({num("active", "", std::nullopt, "1 on, 2 off.")}, axes("XYZABC")), ""});
-    e.push_back({"VP",
-                 "Values for the preview screen",
-                 G::Values,
-                 "Preview display settings.",
-                 {num("grid", "units", 6.0, ""), num("table X", "units", 96.0, ""),
-                  num("table Y", "units", 48.0, ""), num("table Z", "units", 6.0, ""),
-                  num("simulate cutting", "", 0.0, ""), num("draw tool", "", 1.0, ""),
-                  num("start at actual location", "", 1.0, ""), num("show jogs", "", 1.0, "")},
-                 "Gantry has no preview screen; `gantry moves` lists the moves"});
     {
       std::vector<ParamSpec> vr;
       for (const char* n :
@@ -540,30 +327,7 @@ const std::vector<Entry>& catalogue() {
       vr.push_back(num("obsolete", "", std::nullopt, "Leave blank."));
       vr.push_back(num("keypad ramp rate", "units", 0.2, "Ramp rate of the keypad."));
       vr.push_back(num("small circle", "units", 0.25, "Circles below this run at ramp speed."));
-      e.push_back({"VR", "Values for ramps", G::Values,
-                   "Acceleration ramps of the motion planner (SB3 order).", vr,
-                   "the ramps come from [ramps] in the machine profile (docs/settings.md)"});
     }
-    e.push_back(
-        {"VU",
-         "Values for calibration units",
-         G::Values,
-         "Steps per unit of each axis, circle resolution, resolution multipliers.",
-         {num("X unit", "steps/unit", std::nullopt, ""),
-          num("Y unit", "steps/unit", std::nullopt, ""),
-          num("Z unit", "steps/unit", std::nullopt, ""),
-          num("A unit", "steps/unit", std::nullopt, ""),
-          num("circle resolution", "units", 0.05, "Circle segment length."),
-          num("obsolete", "", std::nullopt, "Leave blank."),
-          num("obsolete", "", std::nullopt, "Leave blank."),
-          num("obsolete", "", std::nullopt, "Leave blank."),
-          num("B unit", "steps/unit", std::nullopt, ""), num("multiplier X", "", std::nullopt, ""),
-          num("multiplier Y", "", std::nullopt, ""), num("multiplier Z", "", std::nullopt, ""),
-          num("multiplier A", "", std::nullopt, ""), num("multiplier B", "", std::nullopt, ""),
-          num("step interval divider", "", 1.0, "1 to 100."),
-          num("no resolution shifting", "", 0.0, "1 disables it.")},
-         "steps per unit come from steps_per_unit in [axes.*] of the machine profile "
-         "(docs/settings.md)"});
     e.push_back({"VV",
                  "Values for variables",
                  G::Values,
@@ -571,12 +335,6 @@ const std::vector<Entry>& catalogue() {
                  {},
                  "set a variable with &name = value"});
     // Zero
-    e.push_back({"ZT",
-                 "Zero table base coordinates",
-                 G::Zero,
-                 "The current position becomes table base 0 for every axis.",
-                 {},
-                 ""});
     return e;
   }();
   return entries;
