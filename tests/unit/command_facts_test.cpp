@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/recording_sink.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/file_system.hpp"
@@ -37,14 +38,6 @@ namespace {
 // ---- helpers ----------------------------------------------------------------------------
 
 // Every canonical move the interpreter emits, Stop and Output included.
-class RecordingSink : public MotionSink {
- public:
-  void move(const CanonMove& m) override { all.push_back(m); }
-  void flush() override { ++flushes; }
-  std::vector<CanonMove> all;
-  int flushes = 0;
-};
-
 // Part files for FP, held in memory by name.
 class MemoryFiles : public FileSystem {
  public:
@@ -129,13 +122,13 @@ class CommandFacts : public ::testing::Test {
   // The straight moves only (no Stop, Output or Dwell items).
   std::vector<CanonMove> lines() const {
     std::vector<CanonMove> out;
-    for (const CanonMove& m : sink.all)
+    for (const CanonMove& m : sink.moves)
       if (m.kind == MoveKind::Line) out.push_back(m);
     return out;
   }
   std::vector<MoveKind> kinds() const {
     std::vector<MoveKind> out;
-    for (const CanonMove& m : sink.all) out.push_back(m.kind);
+    for (const CanonMove& m : sink.moves) out.push_back(m.kind);
     return out;
   }
   double variable(std::string_view name) {
@@ -343,7 +336,7 @@ TEST_F(CommandFacts, Fact9_BlankCoordinateKeepsTheAxis) {
     run("SA\nM5, 1, 2, 0.5, 3, 4\n");
     std::string blanks;
     for (int i = 1; i < n; ++i) blanks += ", ";
-    sink.all.clear();
+    sink.moves.clear();
     run(std::string(code) + blanks + ", 2.5\nSR\n" + code + blanks + ", 1\nSA\n");
     Vec6 expected = at(1, 2, 0.5, 3, 4);
     const auto m = lines();
@@ -478,7 +471,7 @@ TEST_F(CommandFacts, Fact97_FpRepetitionsRunTheWholeFileAgain) {
   run("M2, 2, 2\nFP, step.sbp\n");
   ASSERT_EQ(lines().size(), 3u);
   expect_vec(lines().back().to, at(3, 3));
-  sink.all.clear();
+  sink.moves.clear();
   run("M2, 2, 2\nFP, step.sbp, , , , 3\n");
   const auto m = lines();
   ASSERT_EQ(m.size(), 7u);
@@ -524,7 +517,7 @@ TEST_F(CommandFacts, Fact101_FpPlungeCutsEachRepetitionDeeper) {
   files.texts["square.sbp"] = "M2, 2, 1\nM2, 2, 2\nM2, 1, 2\nM2, 1, 1\n";
   run("M2, 1, 1\nFP, square.sbp, , , , 3\n");  // no plunge: every pass at Z 0
   for (const CanonMove& m : lines()) EXPECT_EQ(m.to[2], 0);
-  sink.all.clear();
+  sink.moves.clear();
   run("FP, square.sbp, , , , 3, , -0.25\n");
   std::vector<double> depths;  // the Z of each XY cut
   for (const CanonMove& m : lines())
@@ -576,7 +569,7 @@ TEST_F(CommandFacts, Fact111_SingleAxisCommandsAbsoluteOrRelative) {
                                                {"JA", 3}, {"JB", 4}};
   for (const auto& [code, axis] : codes) {
     SCOPED_TRACE(code);
-    sink.all.clear();
+    sink.moves.clear();
     run(std::string("SA\n") + code + ", 2\n" + code + ", 1.5\nSR\n" + code + ", 1.5\n" + code +
         ", -0.5\nSA\n");
     const auto m = lines();
@@ -662,13 +655,13 @@ TEST_F(CommandFacts, Fact118_HomeRaisesZToSafeZOnlyWhenBelow) {
   expect_vec(m[2].to, at(0, 0, 1));
   EXPECT_EQ(m[1].speed_class, SpeedClass::Move);
   EXPECT_EQ(m[2].speed_class, SpeedClass::Move);
-  sink.all.clear();
+  sink.moves.clear();
   run("M3, 5, 4, 2\nJH\n");
   m = lines();
   ASSERT_EQ(m.size(), 2u);
   expect_vec(m[1].to, at(0, 0, 2));
   EXPECT_EQ(m[1].speed_class, SpeedClass::Jog);
-  sink.all.clear();
+  sink.moves.clear();
   run("M3, 5, 4, 0.25\nJH\n");
   m = lines();
   ASSERT_EQ(m.size(), 3u);
@@ -724,7 +717,7 @@ TEST_F(CommandFacts, Fact123_MdZeroDegreesIsUp) {
 TEST_F(CommandFacts, Fact124_MdRelativeAngles) {
   run("MD, 1, 90R\n");  // the first move: 90 from +Y, +X
   expect_vec(lines().back().to, at(1, 0), 1e-12);
-  sink.all.clear();
+  sink.moves.clear();
   run("M2, 5, 5\nMX, 7\nMD, 1, 90R\nMD, 1, 90L\nMD, 2, 45L\n");
   const auto m = lines();
   ASSERT_EQ(m.size(), 5u);
@@ -1022,17 +1015,17 @@ TEST_F(CommandFacts, Fact157_SrPlungeAndReturn) {
 // the switch off.
 TEST_F(CommandFacts, Fact169_SoSwitchAndStateBlankIsOff) {
   run("SO, 2, 1\nMX, 1\nSO, 2, 0\nSO, 3, 1\nSO, 3\n");
-  ASSERT_EQ(sink.all.size(), 5u);
+  ASSERT_EQ(sink.moves.size(), 5u);
   const std::pair<int, bool> expected[] = {{2, true}, {2, false}, {3, true}, {3, false}};
   const size_t at_index[] = {0, 2, 3, 4};
   for (size_t i = 0; i < 4; ++i) {
-    const CanonMove& m = sink.all[at_index[i]];
+    const CanonMove& m = sink.moves[at_index[i]];
     EXPECT_EQ(m.kind, MoveKind::Output) << i;
     EXPECT_EQ(m.output, expected[i].first) << i;
     EXPECT_EQ(m.output_on, expected[i].second) << i;
   }
   EXPECT_EQ(state().outputs, 0u);
-  EXPECT_EQ(where(sink.all[4].loc), "part.sbp:5:1");
+  EXPECT_EQ(where(sink.moves[4].loc), "part.sbp:5:1");
 }
 
 // Fact 170: switches are numbered 1-8 (SB3) or 1-12 (FabMo): Gantry takes 1 to 12 (AMB-27).
@@ -1041,10 +1034,10 @@ TEST_F(CommandFacts, Fact170_SoSwitchesOneToTwelve) {
   for (int n = 1; n <= 12; ++n) text += "SO, " + std::to_string(n) + ", 1\n";
   run(text);
   EXPECT_EQ(state().outputs, 0u);  // all off again at the end of the job
-  ASSERT_EQ(sink.all.size(), 24u);
+  ASSERT_EQ(sink.moves.size(), 24u);
   for (int n = 1; n <= 12; ++n) {
-    EXPECT_EQ(sink.all[n - 1].output, n);
-    EXPECT_TRUE(sink.all[n - 1].output_on);
+    EXPECT_EQ(sink.moves[n - 1].output, n);
+    EXPECT_TRUE(sink.moves[n - 1].output_on);
   }
   Diagnostic d = run_error("MX, 1\nSO, 13, 1\n");
   EXPECT_EQ(where(d.loc), "part.sbp:2:5");
@@ -1057,19 +1050,19 @@ TEST_F(CommandFacts, Fact170_SoSwitchesOneToTwelve) {
 // Fact 172: every output switch is off when the control program ends; the state is not kept.
 TEST_F(CommandFacts, Fact172_OutputsAreOffWhenTheJobEnds) {
   run("SO, 5, 1\nSO, 7, 1\nMX, 1\n");
-  ASSERT_EQ(sink.all.size(), 5u);
+  ASSERT_EQ(sink.moves.size(), 5u);
   for (size_t k : {3u, 4u}) {
-    EXPECT_EQ(sink.all[k].kind, MoveKind::Output);
-    EXPECT_FALSE(sink.all[k].output_on);
+    EXPECT_EQ(sink.moves[k].kind, MoveKind::Output);
+    EXPECT_FALSE(sink.moves[k].output_on);
   }
-  EXPECT_EQ(sink.all[3].output + sink.all[4].output, 12);
+  EXPECT_EQ(sink.moves[3].output + sink.moves[4].output, 12);
   EXPECT_EQ(state().outputs, 0u);
   // Also when the job ends with an error.
-  sink.all.clear();
+  sink.moves.clear();
   EXPECT_EQ(where(run_error("SO, 1, 1\nQQ\n").loc), "part.sbp:2:1");
-  ASSERT_EQ(sink.all.size(), 2u);
-  EXPECT_EQ(sink.all[1].output, 1);
-  EXPECT_FALSE(sink.all[1].output_on);
+  ASSERT_EQ(sink.moves.size(), 2u);
+  EXPECT_EQ(sink.moves[1].output, 1);
+  EXPECT_FALSE(sink.moves[1].output_on);
   EXPECT_EQ(state().outputs, 0u);
 }
 
@@ -1126,9 +1119,9 @@ class CommandFactsZero : public CommandFacts {
     run("M5, 2, 3, 0.5, 4, 5\n");
     const Vec6 before = state().position;
     const Vec6 table = state().position + state().zero;
-    const size_t moves = sink.all.size();
+    const size_t moves = sink.moves.size();
     run(std::string(c.code) + "\n&x = %(1)\n&y = %(2)\n&z = %(3)\n&a = %(4)\n&b = %(5)\n");
-    EXPECT_EQ(sink.all.size(), moves);  // nothing moved
+    EXPECT_EQ(sink.moves.size(), moves);  // nothing moved
     for (int i = 0; i < kAxisCount; ++i)
       EXPECT_EQ(state().position[i], (c.axes >> i) & 1 ? 0.0 : before[i]) << kAxisLetters[i];
     expect_vec(state().position + state().zero, table);

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/recording_sink.hpp"
 #include "gantry/commands/command_docs.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/diagnostic.hpp"
@@ -26,13 +27,6 @@ namespace gantry {
 namespace {
 
 namespace fs = std::filesystem;
-
-class RecordingSink : public MotionSink {
- public:
-  void move(const CanonMove& m) override { moves.push_back(m); }
-  void flush() override {}
-  std::vector<CanonMove> moves;
-};
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

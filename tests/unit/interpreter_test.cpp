@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/recording_sink.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/lang/script.hpp"
@@ -14,16 +15,6 @@
 
 namespace gantry {
 namespace {
-
-// Collects every move the interpreter emits.
-class RecordingSink : public MotionSink {
- public:
-  void move(const CanonMove& m) override { moves.push_back(m); }
-  void flush() override { ++flushes; }
-
-  std::vector<CanonMove> moves;
-  int flushes = 0;
-};
 
 std::string where(const SourceLoc& loc) {
   return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../support/recording_sink.hpp"
 #include "gantry/core/text_file.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/system_variables.hpp"
@@ -18,16 +19,6 @@ namespace gantry {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Collects moves and the settings each settings_changed carried.
-class RecordingSink : public MotionSink {
- public:
-  void move(const CanonMove& m) override { moves.push_back(m); }
-  void flush() override {}
-  void settings_changed(const Settings& s) override { changes.push_back(s); }
-  std::vector<CanonMove> moves;
-  std::vector<Settings> changes;
-};
 
 // A folder of part files for FP, removed at the end.
 struct TempDir {
