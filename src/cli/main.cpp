@@ -20,6 +20,7 @@
 #include "progress.hpp"                      // ProgressBar
 #include "report.hpp"                        // RunReport, to_json, to_text
 #include "sim/sim_card.hpp"                  // SimCard
+#include "svg.hpp"                           // moves_svg
 #include "terminal_io.hpp"                   // TerminalIO
 
 #include <unistd.h>  // isatty
@@ -37,6 +38,14 @@ struct Profile {
   Settings bare;      // the profile alone: the values file holds what differs from it
   Settings settings;  // with the values
   std::string values_path;
+  std::string path;  // of the profile; "" the built-in default
+
+  // UV, UD and UR show or load the profile and say where it and the values live.
+  void describe(InterpreterOptions& o) const {
+    o.profile = &bare;
+    o.profile_path = path;
+    o.values_path = values_path;
+  }
 };
 
 bool load_profile(const std::string& path, const std::string& values, Profile& out) {
@@ -49,6 +58,7 @@ bool load_profile(const std::string& path, const std::string& values, Profile& o
     return false;
   }
   out.bare = out.settings = bare.settings;
+  out.path = path;
   out.values_path = values.empty() ? default_values_path(bare.settings.name) : values;
   if (!std::filesystem::exists(out.values_path)) return true;  // nothing changed yet
   const std::optional<std::string> values_text = read_text_file(out.values_path);
@@ -158,6 +168,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
+  profile.describe(opt.interpreter);
   PersistentStore store = lang.store();
   report.units = settings.units;
   std::shared_ptr<const Script> script = Script::load(a.file);
@@ -234,6 +245,7 @@ int cmd_check(const std::string& file, const std::string& settings_path, const L
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
+  profile.describe(opt.interpreter);
   std::shared_ptr<const Script> script = Script::load(file);
   const std::vector<Diagnostic> found = check_program(script, settings, lang.store(), opt);
   print_errors(found);
@@ -251,6 +263,7 @@ int cmd_estimate(const std::string& file, const std::string& settings_path, bool
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
+  profile.describe(opt.interpreter);
   opt.operator_present = false;  // an estimate answers nothing: --yes and --input do
   std::shared_ptr<const Script> script = Script::load(file);
   double seconds = 0;
@@ -290,13 +303,22 @@ class PrintingSink : public MotionSink {
   bool jsonl_;
 };
 
+// Keeps the moves, for the SVG view.
+class KeepingSink : public MotionSink {
+ public:
+  void move(const CanonMove& m) override { moves.push_back(m); }
+  void flush() override {}
+  std::vector<CanonMove> moves;
+};
+
 int cmd_moves(const std::string& file, const std::string& settings_path, const std::string& format,
-              const LanguageArgs& lang) {
+              const std::string& svg, const LanguageArgs& lang) {
   Profile profile;
   if (!load_profile(settings_path, lang.values, profile)) return 1;
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
+  profile.describe(opt.interpreter);
   std::shared_ptr<const Script> script = Script::load(file);
   const PersistentStore scratch = lang.store().scratch_copy();
   const std::vector<Diagnostic> found = check_program(script, settings, scratch, opt);
@@ -312,6 +334,16 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
   ScriptedIO io(true, opt.inputs, &printed);
   opt.interpreter.dry_run = true;
   PersistentStore preview = scratch.scratch_copy();  // a preview saves nothing
+  // --svg: a picture instead of the list.
+  if (!svg.empty()) {
+    KeepingSink kept;
+    interpret(script, settings, kept, io, preview, opt);
+    if (!write_file_atomically(svg, moves_svg(kept.moves))) {
+      fmt::print(stderr, "error: cannot write {}\n", svg);
+      return 1;
+    }
+    return 0;
+  }
   interpret(script, settings, sink, io, preview, opt);
   return 0;
 }
@@ -413,6 +445,9 @@ int main(int argc, char** argv) {
   moves_cmd->add_option("--settings", moves_settings, "Machine profile (TOML)");
   moves_cmd->add_option("--format", moves_format, "text or jsonl")
       ->check(CLI::IsMember({"text", "jsonl"}));
+  std::string moves_svg_file;
+  moves_cmd->add_option("--svg", moves_svg_file,
+                        "Write a top view of the moves to this SVG file instead of listing them");
   moves_lang.add_to(moves_cmd);
 
   std::string estimate_file, estimate_settings;
@@ -449,7 +484,8 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return cmd_run(run, run_lang);
     if (*check_cmd) return cmd_check(check_file, check_settings, check_lang);
-    if (*moves_cmd) return cmd_moves(moves_file, moves_settings, moves_format, moves_lang);
+    if (*moves_cmd)
+      return cmd_moves(moves_file, moves_settings, moves_format, moves_svg_file, moves_lang);
     if (*estimate_cmd)
       return cmd_estimate(estimate_file, estimate_settings, estimate_json, estimate_lang);
     if (*help_cmd) return cmd_help(help_code, help_markdown);

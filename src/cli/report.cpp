@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>  // text layout
 
+#include <cmath>  // M_PI
+
 #include "gantry/motion/path_limits.hpp"  // nominal_path_speed
 
 namespace gantry {
@@ -83,13 +85,20 @@ std::string to_text(const RunReport& r) {
 }
 
 nlohmann::ordered_json to_json(const CanonMove& m) {
-  return {{"file", m.loc.file ? *m.loc.file : ""},
-          {"line", m.loc.line},
-          {"kind", kind_name(m.kind)},
-          {"speed_class", speed_class_name(m.speed_class)},
-          {"from", vec_array(m.from)},
-          {"to", vec_array(m.to)},
-          {"speed", nominal_path_speed(m.to - m.from, m.speeds)}};
+  nlohmann::ordered_json j = {
+      {"file", m.loc.file ? *m.loc.file : ""},
+      {"line", m.loc.line},
+      {"kind", kind_name(m.kind)},
+      {"speed_class", speed_class_name(m.speed_class)},
+      {"from", vec_array(m.from)},
+      {"to", vec_array(m.to)},
+      {"speed",
+       m.kind == MoveKind::Arc ? m.speeds.xy : nominal_path_speed(m.to - m.from, m.speeds)}};
+  if (m.kind == MoveKind::Arc) {  // centre and signed sweep (radians, counter-clockwise +)
+    j["center"] = {m.center_x, m.center_y};
+    j["sweep"] = m.sweep;
+  }
+  return j;
 }
 
 nlohmann::ordered_json to_json(const CommandSpec& s) {
@@ -116,6 +125,11 @@ std::string to_text(const CanonMove& m) {
     return fmt::format("{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}", p[0], p[1], p[2], p[3], p[4],
                        p[5]);
   };
+  if (m.kind == MoveKind::Arc)  // the XY speed runs along the arc
+    return fmt::format("{}:{}  {} {}  {} -> {}  centre {:.4f},{:.4f} sweep {:.4f} deg  at {:.4f}/s",
+                       m.loc.file ? *m.loc.file : "", m.loc.line, kind_name(m.kind),
+                       speed_class_name(m.speed_class), v(m.from), v(m.to), m.center_x, m.center_y,
+                       m.sweep * 180 / M_PI, m.speeds.xy);
   return fmt::format("{}:{}  {} {}  {} -> {}  at {:.4f}/s", m.loc.file ? *m.loc.file : "",
                      m.loc.line, kind_name(m.kind), speed_class_name(m.speed_class), v(m.from),
                      v(m.to), nominal_path_speed(m.to - m.from, m.speeds));

@@ -40,6 +40,8 @@ const CommandTable& CommandTable::standard() {
     add_settings_commands(specs);
     add_help_commands(specs);
     add_tool_commands(specs);
+    add_utility_commands(specs);
+    add_cut_commands(specs);
     add_catalogue_commands(specs, specs);  // last: it fills in every code not yet there
     return CommandTable(std::move(specs));
   }();

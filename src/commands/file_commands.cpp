@@ -1,10 +1,19 @@
-// File commands: FP runs another part file as a subroutine.
+// File commands: FP runs another part file as a subroutine; FS sets the parts folder FP's
+// relative names are found in; FE opens a file in the operator's editor; FC converts a
+// drawing (HP-GL, DXF) into a part file.
 #include <fmt/format.h>  // messages
 
-#include <cmath>  // round
+#include <cctype>      // tolower
+#include <cmath>       // round
+#include <cstdlib>     // getenv, system
+#include <filesystem>  // FS's folder, FC's names
 
 #include "gantry/commands/command_table.hpp"
+#include "gantry/convert/to_sbp.hpp"  // hpgl_to_sbp, dxf_to_sbp
 #include "gantry/interp/interpreter.hpp"
+
+#include <sys/wait.h>  // WEXITSTATUS
+#include <unistd.h>    // isatty
 
 namespace gantry {
 namespace {
@@ -38,6 +47,149 @@ void file_part(CommandContext& ctx, const CommandCall& call) {
   ctx.call_file(fc, call.loc);
 }
 
+// ---- FS -------------------------------------------------------------------------------------
+
+// FS: a relative folder is found from the current parts folder ("..", a subfolder), so a
+// part file can move down into a folder of sub-files and back.
+void file_set_folder(CommandContext& ctx, const CommandCall& call) {
+  std::string folder = ctx.top_folder();
+  if (const std::optional<std::string> name = call.text(0)) {
+    std::filesystem::path p =
+        std::filesystem::path(ctx.file_path(*name, call.param_loc(0))).lexically_normal();
+    folder = p.string();
+    while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder.empty() ? "." : folder, ec))
+      fail(call.param_loc(0),
+           fmt::format("FS: there is no folder {}; the parts folder stays {}", folder,
+                       ctx.parts_folder().empty() ? "the working directory" : ctx.parts_folder()));
+  }
+  ctx.set_parts_folder(folder, call.text(1).value_or("*.sb?"));
+}
+
+// ---- FE -------------------------------------------------------------------------------------
+
+// The editor FE starts: UN's, else $VISUAL, else $EDITOR, else vi.
+std::string editor(const CommandContext& ctx) {
+  if (!ctx.settings().machine.editor.empty()) return ctx.settings().machine.editor;
+  for (const char* var : {"VISUAL", "EDITOR"})
+    if (const char* e = std::getenv(var); e && *e) return e;
+  return "vi";
+}
+
+// `path` for a shell command line, in single quotes.
+std::string quoted(const std::string& path) {
+  std::string out = "'";
+  for (char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+void file_edit(CommandContext& ctx, const CommandCall& call) {
+  const std::optional<std::string> name = call.text(0);
+  const std::string path = name ? ctx.file_path(*name, call.param_loc(0)) : ctx.last_file();
+  if (name) ctx.set_last_file(path);
+  const std::string program = editor(ctx);
+  const InterpreterOptions& o = ctx.options();
+  // An editor needs a person at a terminal; a check or a preview starts nothing.
+  const char* why = o.dry_run             ? "a check or a preview starts no program"
+                    : !o.operator_present ? "nobody is at a terminal to edit"
+                    : !isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO)
+                        ? "there is no terminal to edit in"
+                        : nullptr;
+  const std::string what = path.empty() ? "a new file" : path;
+  if (why) {
+    ctx.print(fmt::format("FE would open {} in {}; {}\n", what, program, why));
+    return;
+  }
+  ctx.come_to_rest(call.loc);  // the machine waits while the operator edits
+  const std::string command = path.empty() ? program : program + " " + quoted(path);
+  const int status = std::system(command.c_str());
+  const int rc = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (rc != 0)
+    ctx.warn(call.loc, fmt::format("FE: `{}` {}; the part file continues", command,
+                                   rc == 127 ? "could not be started (is the editor installed? UN "
+                                               "names another)"
+                                             : fmt::format("exited with status {}", rc)));
+}
+
+// ---- FC -------------------------------------------------------------------------------------
+
+enum class Drawing { HpGl, Dxf, GCode, Raster, Unknown };
+
+Drawing kind_of(const std::string& name) {
+  std::string ext = std::filesystem::path(name).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".plt" || ext == ".hpg" || ext == ".hpgl" || ext == ".hgl") return Drawing::HpGl;
+  if (ext == ".dxf") return Drawing::Dxf;
+  if (ext == ".nc" || ext == ".tap" || ext == ".ngc" || ext == ".gcode" || ext == ".cnc" ||
+      ext == ".g")
+    return Drawing::GCode;
+  if (ext == ".bmp" || ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".gif" ||
+      ext == ".tif" || ext == ".tiff")
+    return Drawing::Raster;
+  return Drawing::Unknown;
+}
+
+enum Fc { kFcFile, kFcPart, kFcCutZ, kFcSafeZ, kFcScale };
+
+void file_convert(CommandContext& ctx, const CommandCall& call) {
+  const std::string name = *call.text(kFcFile);
+  const SourceLoc& at = call.param_loc(kFcFile);
+  const Drawing kind = kind_of(name);
+  if (kind == Drawing::GCode)
+    fail(at, fmt::format("FC: {} is a G-code file; there is nothing to convert: FP will run "
+                         "G-code files directly once Gantry reads G-code (issue 10). Nothing "
+                         "was done",
+                         name));
+  if (kind == Drawing::Raster)
+    fail(at, fmt::format("FC: {} is a raster image; converting an image's grey levels into "
+                         "heights is not offered by Gantry: make the toolpath with CAM "
+                         "software and run its part file with FP. Nothing was done",
+                         name));
+  if (kind == Drawing::Unknown)
+    fail(at, fmt::format("FC: {} has no extension FC converts: .dxf (DXF) or .plt, .hpg "
+                         "(HP-GL); rename the file if it is one of those. Nothing was done",
+                         name));
+  std::string path;
+  const std::optional<std::string> text = ctx.read_file(name, at, &path);
+  if (!text) fail(at, fmt::format("FC: cannot read {}", path));
+  ConvertOptions o;
+  o.source = name;
+  o.units = ctx.settings().units;
+  o.cut_z = *call.number(kFcCutZ);
+  o.safe_z = call.number(kFcSafeZ).value_or(ctx.settings().cutter.safe_z);
+  if (!(o.safe_z > o.cut_z))
+    fail(call.param_loc(kFcSafeZ),
+         fmt::format("FC: safe Z {} is not above the cutting Z {}; the jogs between paths "
+                     "would go through the material",
+                     format_number(o.safe_z), format_number(o.cut_z)));
+  o.scale = call.number(kFcScale).value_or(0);
+  Conversion c;
+  try {
+    c = kind == Drawing::Dxf ? dxf_to_sbp(*text, o) : hpgl_to_sbp(*text, o);
+  } catch (const GantryError& e) {
+    Diagnostic d = e.diagnostic();  // located in the drawing; the FC line leads to it
+    if (d.via.empty()) d.via.push_back(call.loc);
+    throw GantryError(std::move(d));
+  }
+  const std::string part =
+      call.text(kFcPart).value_or(std::filesystem::path(name).replace_extension(".sbp").string());
+  if (ctx.file_path(part, call.param_loc(kFcPart)) == path)
+    fail(call.param_loc(kFcPart),
+         "FC: the part file would overwrite the drawing; give another name");
+  for (const std::string& n : c.notes)
+    ctx.warn(call.loc, fmt::format("FC: not converted from {}: {}", name, n));
+  if (c.paths == 0) ctx.warn(call.loc, fmt::format("FC: {} holds nothing to cut", name));
+  const std::string written = ctx.write_file(part, c.text, call.param_loc(kFcPart));
+  ctx.print(fmt::format("FC converted {} ({}) into {} path{} in {}; run it with FP, {}\n", name,
+                        kind == Drawing::Dxf ? "DXF" : "HP-GL", c.paths, c.paths == 1 ? "" : "s",
+                        written, part));
+}
+
+ParamSpec text(std::string_view name, std::string_view help, bool required = false) {
+  return {name, "", required, std::nullopt, help, ParamKind::Text};
+}
+
 }  // namespace
 
 void add_file_commands(std::vector<CommandSpec>& out) {
@@ -61,6 +213,48 @@ void add_file_commands(std::vector<CommandSpec>& out) {
         {"plunge from Z 0", "", false, 0.0, "1 plunges from Z 0 (not offered yet)."}},
        file_part,
        "tabs (parameter 8) and plunge from Z 0 (parameter 9)"});
+  out.push_back(
+      {"FS",
+       "File: set the parts folder",
+       F,
+       "Sets the folder FP (and every command that reads or writes a file) finds relative "
+       "names in, for the rest of the run. A relative folder is taken from the current parts "
+       "folder, so `FS, sub` and later `FS, ..` move down and back. Blank: the top-level "
+       "file's folder again.",
+       {text("folder", "Absolute, or relative to the parts folder (blank: the top-level file's)."),
+        text("mask", "File selector mask, shown by UV (blank: *.sb?).")},
+       file_set_folder,
+       "the mask filters nothing: Gantry has no file selector (UV shows it)"});
+  out.push_back(
+      {"FE",
+       "File edit",
+       F,
+       "Opens a file in the editor UN names (else $VISUAL, $EDITOR, or vi) and waits for it to "
+       "close; a part file then continues. Blank: the last file loaded (the running file, FP's "
+       "or FE's). A check or a preview, or a run with nobody at a terminal, starts nothing and "
+       "prints what FE would open.",
+       {text("file name", "The file to edit (blank: the last one loaded).")},
+       file_edit});
+  out.push_back(
+      {"FC",
+       "File conversion",
+       F,
+       "Converts a drawing into a part file of M2 lines and CG arcs, cut at one Z with jogs at "
+       "safe Z between paths: HP-GL (.plt, .hpg: IN, PU, PD, PA, PR, SP) and DXF (LINE, ARC, "
+       "CIRCLE, LWPOLYLINE, POLYLINE with bulges). What is left out is named in warnings. "
+       "G-code needs no conversion; raster images are not offered.",
+       {text("file name", "The drawing; a relative name is found in the parts folder.", true),
+        text("part file", "The part file to write (blank: the drawing's name with .sbp)."),
+        {"cut Z", "units", false, 0.0, "Z of the cutting moves; FP's plunge cuts deeper passes."},
+        {"safe Z", "units", false, std::nullopt,
+         "Z of the jogs between paths, above cut Z (blank: the profile's safe Z, VC)."},
+        ParamSpec{"scale", "", false, std::nullopt,
+                  "Part-file units per drawing unit (blank: from the drawing: HP-GL 0.025 mm; "
+                  "DXF $INSUNITS, else 1)."}
+            .at_least(1e-9)},
+       file_convert,
+       "G-code (FP will run it directly, issue 10), raster images, HP-GL's arcs, circles and "
+       "labels, and DXF's other entities (SPLINE, ELLIPSE, TEXT, INSERT...)"});
 }
 
 }  // namespace gantry

@@ -52,6 +52,26 @@ void call_macro(CommandContext& ctx, const CommandCall& call) {
   ctx.call_macro(static_cast<int>(*call.number(0)), call.loc);
 }
 
+// SC (FabMo): 0 reads and moves in table base coordinates, the user system's offsets (the
+// zero commands') set aside; 1 brings them back. Offsets set while 0 is in force (ZX, VA,
+// ZT...) make a new user system, which stays: the ones set aside are dropped.
+void set_coordinate_system(CommandContext& ctx, const CommandCall& call) {
+  ModalState& st = ctx.state();
+  const bool table_base = st.user_zero && st.zero == Vec6::Zero();
+  if (*call.number(0) == 0) {
+    if (table_base) return;
+    st.user_zero = st.zero;
+    st.position += st.zero;
+    st.zero = Vec6::Zero();
+    return;
+  }
+  if (table_base) {
+    st.zero = *st.user_zero;
+    st.position -= st.zero;
+  }
+  st.user_zero.reset();
+}
+
 }  // namespace
 
 void add_settings_commands(std::vector<CommandSpec>& out) {
@@ -138,6 +158,19 @@ void add_settings_commands(std::vector<CommandSpec>& out) {
                  {},
                  true,
                  "%(22)"});
+  out.push_back(
+      {"SC",
+       "Set coordinate system",
+       S,
+       "FabMo: 0 selects the table base system (locations and moves in table base "
+       "coordinates; the zero commands' offsets are set aside), 1 the user system (the "
+       "offsets back). Zeroing while 0 is in force makes a new user system.",
+       {ParamSpec{"system", "", true, std::nullopt, "0 table base, 1 user."}.integer(0, 1)},
+       set_coordinate_system,
+       "",
+       {},
+       false,
+       "%(1)-%(5)"});
 }
 
 }  // namespace gantry

@@ -8,6 +8,7 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/interp/interpreter.hpp"
+#include "gantry/lang/expression.hpp"  // parse_lvalue: VV's names
 
 namespace gantry {
 namespace {
@@ -623,6 +624,66 @@ void values_locations(CommandContext& ctx, const CommandCall& call) {
     }
 }
 
+// ---- VV: variables ------------------------------------------------------------------------
+
+constexpr size_t kVvPairs = 8;
+
+std::vector<ParamSpec> vv_params() {
+  static const std::deque<std::string> names = [] {
+    std::deque<std::string> n;
+    for (size_t k = 1; k <= kVvPairs; ++k) {
+      n.push_back(fmt::format("name {}", k));
+      n.push_back(fmt::format("value {}", k));
+    }
+    return n;
+  }();
+  std::vector<ParamSpec> out;
+  for (size_t k = 0; k < 2 * kVvPairs; ++k)
+    out.push_back({names[k], "", false, std::nullopt,
+                   k % 2 ? "Its value: a number, text, or an expression."
+                         : "A variable, &NAME (the & may be left out).",
+                   ParamKind::Text});
+  return out;
+}
+
+// VV, &NAME, value, ...: every pair is checked before any variable is set.
+void values_variables(CommandContext& ctx, const CommandCall& call) {
+  std::vector<std::pair<std::string, Value>> set;
+  for (size_t n = 0; n < 2 * kVvPairs; n += 2) {
+    const bool named = n < call.args.size() && !call.args[n].blank();
+    const std::optional<Value>& value = call.values[n + 1];
+    if (!named && !value) continue;
+    if (!named)
+      fail(call.param_loc(n + 1), fmt::format("VV: value {} has no name; give the variable "
+                                              "(&NAME) as parameter {}",
+                                              n / 2 + 1, n + 1));
+    std::string written = call.args[n].text;  // as written: its value, if any, is not wanted
+    if (written.starts_with('$'))
+      fail(call.param_loc(n),
+           fmt::format("VV sets &variables; set {0} with `{0} = value`", written));
+    if (!written.starts_with('&')) written = "&" + written;
+    const std::optional<LValue> target = parse_lvalue(written, call.param_loc(n));
+    if (!target || !target->path.empty())
+      fail(call.param_loc(n), fmt::format("VV: {} is not a variable name; write &NAME (letters, "
+                                          "digits and _)",
+                                          call.args[n].text));
+    if (!value)  // at the value when it is written (""), else at the name
+      fail(call.param_loc(n + 1 < call.args.size() ? n + 1 : n),
+           fmt::format("VV: &{} has no value (parameter {})", target->name, n + 2));
+    set.push_back({target->name, *value});
+  }
+  if (set.empty()) fail(call.loc, "VV needs a variable and its value, e.g. VV, &DEPTH, 0.5");
+  for (auto& [name, value] : set) ctx.set_variable(name, std::move(value));
+}
+
+// VK: named once, in SB3's "see also" of UV; neither reference says what it does.
+void values_unknown(CommandContext&, const CommandCall& call) {
+  fail(call.loc,
+       "VK cannot run: SB3's reference names it only in UV's \"see also\" and neither "
+       "reference says what it does, so Gantry has nothing to reproduce; nothing was done. "
+       "UV prints the values and settings");
+}
+
 }  // namespace
 
 void add_values_commands(std::vector<CommandSpec>& out) {
@@ -639,7 +700,8 @@ void add_values_commands(std::vector<CommandSpec>& out) {
                  "tab insertion on or off in a file.",
                  params_of(vb_fields()),
                  values_tabs,
-                 "tabs are inserted into cuts with issue 7 (cut commands)",
+                 "tabs go into the cut commands; plain moves in a file and FP's tab feature "
+                 "are not tabbed yet",
                  {},
                  false,
                  "%(41)-%(44)"});
@@ -711,6 +773,19 @@ void add_values_commands(std::vector<CommandSpec>& out) {
                  {},
                  false,
                  "%(151)-%(156)"});
+  out.push_back({"VV", "Values for variables", V,
+                 "Defines &variables: up to 8 name and value pairs, e.g. `VV, &DEPTH, 0.5, "
+                 "&MATERIAL, Oak`, as `&name = value` would. Nothing is set unless every pair "
+                 "is right. UL lists them; SL deletes them.",
+                 vv_params(), values_variables});
+  out.push_back({"VK",
+                 "Values (undocumented)",
+                 V,
+                 "Named only in SB3's UV entry; neither reference describes it. It stops the "
+                 "file and says so.",
+                 {},
+                 values_unknown,
+                 "not implemented"});
 }
 
 }  // namespace gantry

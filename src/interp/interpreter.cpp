@@ -9,14 +9,15 @@
 #include <filesystem>  // path joining for FP and C#
 
 #include "../lang/scan.hpp"    // looks_like_expression
+#include "gantry/motion/arc_chords.hpp"  // arc_to under an uneven FP scale
 #include "interp_private.hpp"  // Frame, UserFile
 
 namespace gantry {
 
 // ---- CommandContext -------------------------------------------------------------------
 
-void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
-  const Vec6 target = transform_.to_machine(file_target);
+void CommandContext::check_reach(const Vec6& point, const SourceLoc& loc) const {
+  const Vec6 target = transform_.to_machine(point);
   const char* unit = units_name(settings_.units);
   // Soft limits are the table's envelope, in table base coordinates (VO's offset included:
   // it is where the tool really goes).
@@ -36,6 +37,13 @@ void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const Sour
   }
   if (!std::isfinite(table.sum()))
     fail(loc, "a move target is not a finite number; nothing was moved");
+}
+
+void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
+  check_reach(file_target, loc);
+  const Vec6 target = transform_.to_machine(file_target);
+  const Vec6 table = target + state_.zero + state_.tool_offset;
+  const Vec6 now = state_.position + state_.zero + state_.applied_offset;
   if (table == now) return;  // no motion, no move
   CanonMove m;
   m.speed_class = cls;
@@ -49,6 +57,56 @@ void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const Sour
   if (!state_.preview) sink_.move(m);  // SP: the location changes, no motor moves
   if (target[0] != state_.position[0] || target[1] != state_.position[1])  // for MD's R and L
     state_.last_xy_move = {target[0] - state_.position[0], target[1] - state_.position[1]};
+  state_.position = target;
+  ++moves_;
+}
+
+void CommandContext::arc_to(const Vec6& file_target, double cx, double cy, double sweep,
+                            SpeedClass cls, const SourceLoc& loc) {
+  const Vec6 from = position();
+  CanonMove arc;  // in file coordinates, for its chords and extreme points
+  arc.kind = MoveKind::Arc;
+  arc.from = from;
+  arc.to = file_target;
+  arc.center_x = cx;
+  arc.center_y = cy;
+  arc.sweep = sweep;
+  if (transform_.scale[0] != transform_.scale[1]) {
+    // Scaling maps a chord of the circle to the chord of its image, and the chord's gap to
+    // the arc grows by at most the larger scale: chords within tolerance / that scale.
+    const double scale = std::max(transform_.scale[0], transform_.scale[1]);
+    const std::vector<Vec6> chords = arc_chords(arc, settings_.planner.chord_tolerance / scale);
+    for (const Vec6& p : chords) check_reach(p, loc);
+    for (const Vec6& p : chords) line_to(p, cls, loc);
+    return;
+  }
+  check_reach(file_target, loc);
+  const double r = std::hypot(from[0] - cx, from[1] - cy);
+  const double a0 = std::atan2(from[1] - cy, from[0] - cx);
+  for (double k = std::floor(std::min(a0, a0 + sweep) / (M_PI / 2)) + 1;
+       k * M_PI / 2 < std::max(a0, a0 + sweep); ++k) {  // where X or Y is extreme
+    Vec6 p = from;
+    p[0] = cx + r * std::cos(k * M_PI / 2);
+    p[1] = cy + r * std::sin(k * M_PI / 2);
+    check_reach(p, loc);
+  }
+  if (state_.applied_offset != state_.tool_offset) line_to(from, cls, loc);  // VO changed
+  const Vec6 target = transform_.to_machine(file_target);
+  const Vec6 shift = state_.zero + state_.tool_offset + state_.machine_origin;
+  CanonMove m = arc;
+  m.speed_class = cls;
+  m.from = state_.position + shift;
+  m.to = target + shift;
+  m.center_x = transform_.origin[0] + transform_.scale[0] * cx + shift[0];
+  m.center_y = transform_.origin[1] + transform_.scale[1] * cy + shift[1];
+  m.speeds = cls == SpeedClass::Move ? state_.speeds.move : state_.speeds.jog;
+  if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15, as line_to
+    for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c}) *v /= n;
+  m.loc = loc;
+  if (!state_.preview) sink_.move(m);
+  // MD's R and L turn from the direction of travel at the end: the tangent there.
+  const double ex = m.to[0] - m.center_x, ey = m.to[1] - m.center_y;
+  state_.last_xy_move = sweep > 0 ? std::array<double, 2>{-ey, ex} : std::array<double, 2>{ey, -ex};
   state_.position = target;
   ++moves_;
 }
@@ -221,6 +279,51 @@ std::optional<std::string> CommandContext::read_file(const std::string& name, co
   return text.str();
 }
 
+std::vector<std::pair<std::string, Value>> CommandContext::variables() const {
+  std::vector<std::pair<std::string, Value>> out(interp_->vars_.begin(), interp_->vars_.end());
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return out;
+}
+
+void CommandContext::set_variable(const std::string& upper_name, Value v) {
+  interp_->vars_[upper_name] = std::move(v);
+}
+
+const std::string& CommandContext::parts_folder() const {
+  return interp_->parts_dir_;
+}
+
+const std::string& CommandContext::parts_mask() const {
+  return interp_->parts_mask_;
+}
+
+void CommandContext::set_parts_folder(std::string folder, std::string mask) {
+  interp_->parts_dir_ = std::move(folder);
+  interp_->parts_mask_ = std::move(mask);
+}
+
+std::string CommandContext::top_folder() const {
+  const auto& frames = interp_->frames_;
+  if (frames.empty() || !frames.front().script->name()) return "";
+  return std::filesystem::path(*frames.front().script->name()).parent_path().string();
+}
+
+std::string CommandContext::file_path(const std::string& name, const SourceLoc& loc) const {
+  return interp_->file_path(name, loc);
+}
+
+const std::string& CommandContext::last_file() const {
+  return interp_->last_file_;
+}
+
+void CommandContext::set_last_file(std::string path) {
+  interp_->last_file_ = std::move(path);
+}
+
+const InterpreterOptions& CommandContext::options() const {
+  return interp_->options_;
+}
+
 namespace {
 
 double& speed_field(SpeedSettings& s, int i) {  // 0-4 move xy..c, 5-9 jog xy..c
@@ -283,6 +386,10 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
 
 Interpreter::~Interpreter() = default;
 
+void Interpreter::set_machine_position(const Vec6& machine) {
+  state_.position = machine - state_.machine_origin - state_.zero - state_.applied_offset;
+}
+
 std::string Interpreter::file_path(const std::string& name, const SourceLoc& loc) const {
   std::string n = name;
   std::replace(n.begin(), n.end(), '\\', '/');  // part files written on Windows
@@ -309,6 +416,7 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
         throw GantryError(std::move(d));
       }
   }
+  if (!call.resolved && script->name()) last_file_ = *script->name();  // FE's blank opens it
   Frame f;
   f.script = std::move(script);
   f.pc = f.script->start();

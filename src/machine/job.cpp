@@ -43,6 +43,7 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   opt.statement_budget = options.check_budget;
   opt.operator_present = options.operator_present;
   Interpreter interp(settings, sink, io, scratch, opt);
+  if (options.start_state) interp.restore_state(*options.start_state);
   std::vector<Diagnostic> out = interp.check(std::move(script));
   if (estimated_time_s) *estimated_time_s = planner.planned_time();
   if (runtime_warnings)

@@ -87,13 +87,13 @@ void LookAheadPlanner::move(const CanonMove& m) {
   add(std::move(b));
 }
 
-// Arcs run as chords. SB3 runs a full circle smaller than the small-circle diameter at the
-// ramp speed rather than the move speed.
+// Arcs run as chords. SB3 runs a circle or an arc (SB3 L1240: "a circle or arc") of a circle
+// smaller than the small-circle diameter at the ramp speed rather than the move speed: a
+// circle cut into pieces by tabs keeps the speed of the whole circle.
 void LookAheadPlanner::arc(const CanonMove& m) {
   CanonMove chord = m;
   chord.kind = MoveKind::Line;
   const bool small_circle = settings_.planner.mode == PlannerMode::SB3 &&
-                            std::abs(m.sweep) >= 2 * M_PI - 1e-9 &&
                             2 * arc_radius(m) < settings_.ramps.small_circle;
   if (small_circle) {
     const GroupSpeeds& ramp = m.speed_class == SpeedClass::Jog ? settings_.ramps.jog_ramp_speed

@@ -44,7 +44,9 @@ PathLimits path_limits(const CanonMove& m, const Settings& s) {
   if (out.length == 0) return out;
   const bool jog = m.speed_class == SpeedClass::Jog;
   const GroupSpeeds& rs = jog ? s.ramps.jog_ramp_speed : s.ramps.move_ramp_speed;
-  const double rate = jog ? s.ramps.jog_ramp_rate : s.ramps.move_ramp_rate;
+  const double rate = m.keypad ? s.ramps.keypad_ramp_rate
+                      : jog      ? s.ramps.jog_ramp_rate
+                                 : s.ramps.move_ramp_rate;
   const auto fractions = group_fractions(delta, out.length);
   const std::array<double, 5> group_accel = {ramp_accel(rs.xy, rate), ramp_accel(rs.z, rate),
                                              ramp_accel(rs.a, rate), ramp_accel(rs.b, rate),

@@ -181,6 +181,18 @@ class TableReader {
     return fallback;
   }
 
+  // A string key that profiles written before it existed may leave out.
+  std::string optional_text(std::string_view key, std::string fallback) {
+    seen_.insert(std::string(key));
+    const toml::node* node = table_.get(key);
+    if (!node) return fallback;
+    if (!node->is_string()) {
+      error(*node, fmt::format("{} must be a string", full(key)));
+      return fallback;
+    }
+    return *node->value<std::string>();
+  }
+
   // A sub-table; a missing or mistyped one is reported once, and its keys are not.
   TableReader table(std::string_view key) {
     static const toml::table empty;
@@ -355,6 +367,7 @@ void read_values(TableReader& root, Settings& s) {
   TableReader machine = root.table("machine");
   s.machine.limit_checking = machine.boolean("limit_checking", true);
   s.machine.warning_s = machine.number("warning_s", {0, 3600}, 2);
+  s.machine.editor = machine.optional_text("editor", "");
   machine.finish();
 }
 

@@ -151,7 +151,8 @@ toml::table settings_table(const Settings& s) {
                           {"step_divider", cal.step_divider},
                           {"no_resolution_shift", cal.no_resolution_shift}});
   root.insert("machine", toml::table{{"limit_checking", s.machine.limit_checking},
-                                     {"warning_s", s.machine.warning_s}});
+                                     {"warning_s", s.machine.warning_s},
+                                     {"editor", s.machine.editor}});
   return root;
 }
 

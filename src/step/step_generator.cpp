@@ -106,19 +106,26 @@ void StepGenerator::check_card() {
 }
 
 void StepGenerator::segment(const PlannedSegment& seg) {
-  if (faulted_) return;
+  segment_until(seg, {});
+}
+
+std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, StopTicks stops) {
+  if (faulted_) return std::nullopt;
   current_loc_ = seg.loc;
+  const std::int64_t t0 = segment_end_;
   if (seg.output > 0) {  // at rest: the words so far keep the old level, one word the new
+    if (stops.now() <= t0) return 0.0;
     emit_until(segment_end_);
     set_output(seg.output, seg.output_on);  // checked by SO: it is wired
     emit_until(++segment_end_);
-    return;
+    return std::nullopt;
   }
   const Trapezoid& p = seg.profile;
-  const std::int64_t t0 = segment_end_;
   std::int64_t end = t0 + std::llround((p.duration() + seg.dwell_s) / timing_.tick_s);
   events_.clear();
   std::array<std::size_t, kAxisCount> next{}, stop{};  // each axis's run of events
+  const std::array<std::int64_t, kAxisCount> last_before = last_step_;
+  const std::array<bool, kAxisCount> positive_before = positive_;
   for (int i = 0; i < kAxisCount; ++i) {
     next[i] = stop[i] = events_.size();
     const std::int64_t target = std::llround(seg.to[i] * steps_per_unit_[i]);
@@ -126,10 +133,17 @@ void StepGenerator::segment(const PlannedSegment& seg) {
     if (delta == 0) continue;
     const bool positive = delta > 0;
     const std::int64_t n = positive ? delta : -delta;
+    // The k-th step goes out when the exact position crosses the half step before it:
+    // x(f) = x0 + f (x1 - x0) reaches position + sign (k - 1/2) at the fraction below.
+    // From a whole step (the usual case) that is f = (k - 1/2) / (x1 - x0); from a point
+    // part-way (a segment cut by a hold) the first step comes when it is really due.
+    const double x0 = seg.from[i] * steps_per_unit_[i], x1 = seg.to[i] * steps_per_unit_[i];
+    const double sign = positive ? 1.0 : -1.0;
     std::int64_t last = last_step_[i];
     for (std::int64_t k = 1; k <= n; ++k) {
-      const double s = (static_cast<double>(k) - 0.5) / static_cast<double>(n) * p.length;
-      std::int64_t tick = t0 + std::llround(p.time_at(s) / timing_.tick_s);
+      const double crossing = static_cast<double>(position_[i]) + sign * (k - 0.5);
+      const double f = x1 == x0 ? 0.0 : std::clamp((crossing - x0) / (x1 - x0), 0.0, 1.0);
+      std::int64_t tick = t0 + std::llround(p.time_at(f * p.length) / timing_.tick_s);
       tick = std::max(tick, last + timing_.min_period_ticks);
       if (k == 1 && positive != positive_[i]) {
         // The new direction level goes out once the last pulse is over and no earlier than
@@ -149,6 +163,10 @@ void StepGenerator::segment(const PlannedSegment& seg) {
   }
   // Each axis's events are in tick order already: merge the runs (no sort, no allocation).
   // Within a tick the lower axis goes first, and an axis's direction change before its step.
+  // A stop tick cuts the merge: each axis is left as its last played event left it.
+  last_step_ = last_before;
+  positive_ = positive_before;
+  std::int64_t stop_tick = stops.now();
   while (true) {
     int best = -1;
     for (int i = 0; i < kAxisCount; ++i)
@@ -156,11 +174,23 @@ void StepGenerator::segment(const PlannedSegment& seg) {
         best = i;
     if (best < 0) break;
     const Event& e = events_[next[best]++];
+    if (e.tick >= (stop_tick = stops.now())) break;
     emit_until(e.tick);
     apply(e);
+    if (e.is_dir)
+      positive_[e.axis] = e.positive;
+    else
+      last_step_[e.axis] = e.tick;
   }
-  emit_until(end);
-  segment_end_ = end;
+  if ((stop_tick = stops.now()) >= end) {
+    emit_until(end);
+    segment_end_ = end;
+    return std::nullopt;
+  }
+  stop_tick = std::max(stop_tick, std::max(t0, cursor_));
+  emit_until(stop_tick);
+  segment_end_ = stop_tick;
+  return static_cast<double>(stop_tick - t0) * timing_.tick_s;
 }
 
 void StepGenerator::flush() {
@@ -174,11 +204,30 @@ void StepGenerator::flush() {
       emit_until(cursor_ + 1);
       break;
     }
+  segment_end_ = cursor_;  // the next segment starts after the words sent
   if (!block_.empty()) {
     card_.write(block_);
     block_.clear();
     check_card();
   }
+}
+
+void StepGenerator::halt() {
+  if (!block_.empty()) card_.write(block_);
+  block_.clear();
+  card_.stop(pins_.idle_word());  // outputs off, as an E-stop must
+}
+
+void StepGenerator::restart() {
+  position_ = confirmed_ = played_position();
+  log_begin_ = log_end_ = 0;
+  pulse_end_.fill(0);
+  last_step_.fill(std::numeric_limits<std::int64_t>::min() / 2);
+  positive_.fill(true);  // the levels card.stop() left (as at construction)
+  level_word_ = pins_.idle_word();
+  faulted_ = false;
+  card_.start(1.0 / timing_.tick_s);
+  cursor_ = segment_end_ = static_cast<std::int64_t>(card_.ticks_played());  // its new count
 }
 
 void StepGenerator::apply(const Event& e) {

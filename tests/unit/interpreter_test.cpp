@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -770,11 +771,13 @@ TEST_F(InterpreterTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
   EXPECT_EQ(interp().state().speeds.move.xy, before.speeds.move.xy);
 }
 
-TEST_F(InterpreterTest, TextParametersReachTheMessage) {
-  // O/I/T is a word; the line still fails only because CR is not implemented.
-  EXPECT_EQ(
-      run_error("CR, 10, 5, O\n").message.rfind("CR (cut rectangle) is not implemented yet", 0),
-      0u);
+TEST_F(InterpreterTest, TextParametersReachTheCommand) {
+  // O/I/T is a word: O cuts outside a 10 x 5 rectangle, so the path is a cutter wider.
+  run("CR, 10, 5, O\n");
+  double x = 0, y = 0;
+  for (const CanonMove& m : moves()) x = std::max(x, m.to[0]), y = std::max(y, m.to[1]);
+  EXPECT_DOUBLE_EQ(x, 10.25);
+  EXPECT_DOUBLE_EQ(y, 5.25);
 }
 
 // MO and M0 (SB3 accepts a zero for the letter O): every output switch off, at rest.
@@ -790,14 +793,14 @@ TEST_F(InterpreterTest, MotorsOffTurnsEveryOutputOff) {
 }
 
 TEST_F(InterpreterTest, CheckCountsEachSuchLineAndEveryOtherError) {
-  const std::vector<Diagnostic> errors = check("MX, 1\nPX, 1, 1, 2\nQQ\nCR, 2\nMY, 2\n");
+  const std::vector<Diagnostic> errors = check("MX, 1\nPX, 1, 1, 2\nQQ\nMN\nMY, 2\n");
   ASSERT_EQ(errors.size(), 3u);
   EXPECT_EQ(errors[0].loc.line, 2);
   EXPECT_EQ(errors[0].message.rfind("PX (probe in X) is not implemented yet", 0), 0u);
   EXPECT_EQ(errors[1].loc.line, 3);
   EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
   EXPECT_EQ(errors[2].loc.line, 4);
-  EXPECT_EQ(errors[2].message.rfind("CR (cut rectangle) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[2].message.rfind("MN (move nudge) is not implemented yet", 0), 0u);
   EXPECT_EQ(moves().size(), 2u);  // the good lines still ran dry
 }
 

@@ -750,17 +750,22 @@ CR, 10, 5, , , , -.25, , , 1
 'The End
 )sbp";
 
-TEST_F(LanguageTest, Example11PassesTheSyntaxPassAndStopsAtCr) {
+TEST_F(LanguageTest, Example11PassesTheSyntaxPassAndCutsTheRectangle) {
   const auto script = Script::from_text(kExample11, "part.sbp");
   EXPECT_TRUE(script->errors().empty()) << all(script->errors());
   EXPECT_EQ(script->line_count(), 13);
   const Outcome o = execute(script);
-  EXPECT_EQ(o.ending, Ending::Error);
-  EXPECT_EQ(
-      format(o.diag).rfind("part.sbp:10:1: error: CR (cut rectangle) is not implemented yet", 0),
-      0u)
-      << format(o.diag);
-  expect_path(moves(), {{kJog, at(0, 0, .5)}, {kJog, at(10, 10, .5)}});
+  EXPECT_EQ(o.ending, Ending::Normal) << format(o.diag);
+  // CR 10 x 5 from (10, 10), plunge -.25 from Z 0 (its ninth parameter), then up to Safe-Z.
+  expect_path(moves(), {{kJog, at(0, 0, .5)},
+                        {kJog, at(10, 10, .5)},
+                        {kMove, at(10, 10, 0)},
+                        {kMove, at(10, 10, -.25)},
+                        {kMove, at(10, 15, -.25)},
+                        {kMove, at(20, 15, -.25)},
+                        {kMove, at(20, 10, -.25)},
+                        {kMove, at(10, 10, -.25)},
+                        {kJog, at(10, 10, 1)}});
 }
 
 TEST_F(LanguageTest, Example11WithoutCrRuns) {

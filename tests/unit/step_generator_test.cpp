@@ -428,7 +428,8 @@ TEST_F(StepGeneratorTest, EveryAxisFollowsTheProfileOnADiagonalTrapezoid) {
     const auto& pulses = tr.axes[i].pulses;
     ASSERT_EQ(static_cast<std::int64_t>(pulses.size()), n) << "axis " << i;
     for (std::int64_t k = 1; k <= n; ++k) {
-      const double s = (static_cast<double>(k) - 0.5) / static_cast<double>(n) * seg.profile.length;
+      // The k-th step is due when the exact position crosses k - 1/2 steps.
+      const double s = (static_cast<double>(k) - 0.5) / std::abs(to[i] * spu(i)) * seg.profile.length;
       const double ideal = seg.profile.time_at(s) / tick;
       // Negative axes wait one tick for the direction setup only on their first step.
       const double slack = (k == 1 && to[i] < 0) ? 1.0 : 0.0;

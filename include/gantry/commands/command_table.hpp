@@ -142,6 +142,8 @@ void add_values_commands(std::vector<CommandSpec>& out);
 void add_settings_commands(std::vector<CommandSpec>& out);
 void add_help_commands(std::vector<CommandSpec>& out);
 void add_tool_commands(std::vector<CommandSpec>& out);
+void add_utility_commands(std::vector<CommandSpec>& out);
+void add_cut_commands(std::vector<CommandSpec>& out);
 // Every other code of the SB3 and FabMo references, not in `implemented` (which may be `out`):
 // each says by name that it is not implemented yet, and does nothing else.
 void add_catalogue_commands(std::vector<CommandSpec>& out,

@@ -46,6 +46,10 @@ struct ModalState {
   int tab_count = 0;
   double first_tab = 0;
   std::optional<PreviewReturn> preview;  // SP: moves reach no motor until SM
+  // CG's centre offsets I and J: modal, as in G-code; a blank one keeps the last given.
+  std::array<double, 2> cg_center_offset{0, 0};
+  // SC 0 (table base system): the user system's offsets (`zero` when SC 1), set aside.
+  std::optional<Vec6> user_zero;
 };
 
 // How long a value command's change lasts: for good, or (VS, VU, VI, VL, SF in a part
@@ -71,6 +75,7 @@ struct FileCall {
 };
 
 class Interpreter;
+struct InterpreterOptions;
 
 // What a command handler may touch: the modal state, the profile, and the move stream.
 class CommandContext {
@@ -108,6 +113,15 @@ class CommandContext {
   // A straight move to `target` (file coordinates). A target outside the soft limits is an
   // error at `loc`, and nothing is emitted.
   void line_to(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
+  // An arc in XY about (cx, cy) through `sweep` radians (positive counter-clockwise) to
+  // `target`, the other axes moving in proportion (file coordinates). Its extreme points
+  // are checked against the soft limits too. When FP scales X and Y differently the arc is
+  // no longer circular: it is sent as lines within the chord tolerance.
+  void arc_to(const Vec6& target, double cx, double cy, double sweep, SpeedClass cls,
+              const SourceLoc& loc);
+  // A located error, as line_to gives, if the tool cannot pass through `point` (file
+  // coordinates): outside the soft limits, or not a number. Nothing moves.
+  void check_reach(const Vec6& point, const SourceLoc& loc) const;
   // A timed wait in the motion stream.
   void dwell(double seconds, const SourceLoc& loc);
   // The machine ramps down to rest here before the next move (MS, JS).
@@ -137,6 +151,24 @@ class CommandContext {
 
   std::size_t moves() const { return moves_; }
 
+  // ---- for the utility and file commands (UL, VV, FS, FE, UV, UD, UR) ----
+  // Every &variable (names upper case, without the &), sorted by name.
+  std::vector<std::pair<std::string, Value>> variables() const;
+  void set_variable(const std::string& upper_name, Value v);
+  // Where a relative file name is found (FS changes it); "" is the working directory.
+  const std::string& parts_folder() const;
+  const std::string& parts_mask() const;
+  // FS: the new parts folder (already resolved) and file mask.
+  void set_parts_folder(std::string folder, std::string mask);
+  // The folder of the top-level file: FS with a blank folder returns to it.
+  std::string top_folder() const;
+  // The path a relative `name` stands for (the parts folder's), as write_file finds it.
+  std::string file_path(const std::string& name, const SourceLoc& loc) const;
+  // The last part file loaded (the run's own, FP's) or opened with FE; "" none.
+  const std::string& last_file() const;
+  void set_last_file(std::string path);
+  const InterpreterOptions& options() const;
+
  private:
   // A motion-stream item at the current location, in table base coordinates.
   CanonMove here(MoveKind kind, const SourceLoc& loc) const;
@@ -163,6 +195,11 @@ struct InterpreterOptions {
   // Called when a run ends (not in a dry run) with the settings as the run leaves them:
   // file-scoped values undone, the speeds MS/JS left in force. The job saves the values.
   std::function<void(const Settings&)> save_values;
+  // What UV and UD show and UR loads: the machine profile without the operator's values
+  // (null: the built-in default), the file it came from ("": built in), the values file.
+  const Settings* profile = nullptr;
+  std::string profile_path;
+  std::string values_path;
 };
 
 class Interpreter : private EvalEnv {
@@ -186,6 +223,11 @@ class Interpreter : private EvalEnv {
 
   const ModalState& state() const { return state_; }
   const Settings& settings() const { return settings_; }
+  // The machine controller's: the state a check starts from (the live one), and where the
+  // tool really is after a stop or a jog (machine frame, units: the step counts over
+  // steps per unit); working and table base locations follow, the zero stays.
+  void restore_state(const ModalState& s) { state_ = s; }
+  void set_machine_position(const Vec6& machine);
   std::size_t statements_executed() const { return executed_; }
   std::size_t moves_emitted() const { return ctx_.moves(); }
   const Value* variable(std::string_view upper_name) const { return user_variable(upper_name); }
@@ -260,6 +302,9 @@ class Interpreter : private EvalEnv {
   std::optional<FileCall> pending_call_;
   SourceLoc pending_call_loc_;
   std::string parts_dir_;
+  // FS's file mask, and the last file loaded (FE's blank opens it).
+  std::string parts_mask_ = "*.sb?";
+  std::string last_file_;
   Cursor current_;    // the line being executed
   Statement simple_;  // the last simple command line, its storage reused line after line
   std::vector<std::optional<Value>> values_storage_;  // a command's values, reused likewise

@@ -29,6 +29,8 @@ struct JobOptions {
   // differ from `profile`; empty (or no profile): nothing is saved.
   std::string values_path;
   const Settings* profile = nullptr;
+  // Where the check starts (the machine controller's live state); null: a fresh machine.
+  const ModalState* start_state = nullptr;
 };
 
 struct JobResult {

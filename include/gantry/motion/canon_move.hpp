@@ -26,6 +26,7 @@ struct CanonMove {
   double sweep = 0;                   // Arc: signed angle, radians; 2 pi is a full circle
   double dwell_s = 0;                 // Dwell: how long the machine waits, s
   int output = 0;                     // Output: the switch, 1-based as SO numbers it
+  bool keypad = false;  // a keypad jog: it ramps at VR's keypad ramp rate
   bool output_on = false;
   SourceLoc loc;  // the statement that asked for it
 };

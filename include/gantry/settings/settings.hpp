@@ -167,6 +167,7 @@ struct CalibrationSettings {                                   // VU beyond step
 struct MachineSettings {
   bool limit_checking = true;  // SF, VL 9: moves checked against the soft limits
   double warning_s = 2;        // SW: warning before movement starts, s; 0 none
+  std::string editor;          // UN: the program FE opens files in ("": $VISUAL, $EDITOR)
 };
 
 struct Settings {

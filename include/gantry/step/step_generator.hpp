@@ -1,7 +1,11 @@
 // Planned segments to pulse words: the exact tick of every step, on the card's clock.
 #pragma once
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "gantry/hal/card.hpp"                // Card
@@ -22,12 +26,13 @@ struct StepTiming {
 
 // Converts each segment's straight path into step events and streams the words to a card.
 //
-// Step placement. A segment moves axis i by n_i = |round(to_i * spu_i) - round(from_i * spu_i)|
-// whole steps (the commanded position is rounded once, so steps never drift). Along the
-// segment's path, axis i has moved k - 1/2 steps when the path fraction reaches
-// f_k = (k - 1/2) / n_i; its k-th step is placed at the time the profile reaches distance
-// f_k * L, rounded to the nearest tick. So each axis's step count is exact and each step is
-// within half a tick of the ideal position-rounding instant.
+// Step placement. A segment moves axis i by n_i = |round(to_i * spu_i) - p_i| whole steps
+// from its count p_i (the commanded position is rounded once, so steps never drift). Its
+// k-th step is due when the exact position crosses p_i +/- (k - 1/2), at path fraction
+// f_k = (p_i +/- (k - 1/2) - x0) / (x1 - x0) with x0, x1 the ends in steps; it is placed at
+// the time the profile reaches f_k * L, rounded to the nearest tick. So each axis's count
+// is exact, each step is within half a tick of the ideal rounding instant, and a segment
+// cut part-way (a hold) continues with the steps it would have played.
 //
 // Constraints are then enforced by delaying, never by dropping: a step is no earlier than
 // min_period after the previous one on its axis, and when the direction changes the new
@@ -37,6 +42,23 @@ class StepGenerator : public SegmentSink {
   StepGenerator(const Settings& settings, Card& card, std::size_t block_words = 4096);
 
   void segment(const PlannedSegment& s) override;
+  static constexpr std::int64_t kNever = std::numeric_limits<std::int64_t>::max();
+  // Ticks at which playing must stop, set by other threads at any time (kNever: none); the
+  // earlier of the two counts. Read before every step, so a request arriving mid-segment
+  // cuts it at the next word not yet generated.
+  struct StopTicks {
+    const std::atomic<std::int64_t>* a = nullptr;
+    const std::atomic<std::int64_t>* b = nullptr;
+    std::int64_t now() const {
+      const std::int64_t x = a ? a->load(std::memory_order_acquire) : kNever;
+      return b ? std::min(x, b->load(std::memory_order_acquire)) : x;
+    }
+  };
+  // Plays `s` unless the clock reaches a stop tick first (never earlier than the words
+  // already sent): then only the steps due before it play, and the result is the time into
+  // the segment's profile where it was cut (the machine is then at that point of the path,
+  // at that speed; the caller decides what follows).
+  std::optional<double> segment_until(const PlannedSegment& s, StopTicks stop);
   void flush() override;  // plays out every pending pulse and hands the last block to the card
   void settings_changed(const Settings& s) override;
 
@@ -50,6 +72,10 @@ class StepGenerator : public SegmentSink {
   // profile does not wire it.
   bool set_output(int n, bool on);
   bool faulted() const { return faulted_; }
+  // E-stop: the words so far go to the card, which stops at once; unplayed words are lost.
+  void halt();
+  // After halt(): the card starts again and the step counts are the steps it played.
+  void restart();
   // Confirms the steps the card has played; on a card fault, throws (once) the error naming
   // the fault and where the tool stopped. Called after every block, and by the job after
   // the card drains.

@@ -1,0 +1,61 @@
+// The pass model shared by the cut commands: plunge per pass and repetitions, spiral
+// plunge and bottom pass, pocketing rings, tabs on the last pass, the pull-up at the end and
+// the plunge from Z 0 (docs/cuts.md).
+#pragma once
+
+#include <vector>
+
+#include "gantry/cuts/path.hpp"
+#include "gantry/settings/settings.hpp"  // TabSettings
+
+namespace gantry::cuts {
+
+enum class Pocket { None, OutsideIn, InsideOut };
+
+// Where tabs go: VB's sizes, where the first one starts along the path, and at most how
+// many (0: as many as fit).
+struct TabPlan {
+  bool on = false;
+  TabSettings sizes;
+  double first = 0;
+  int most = 0;
+};
+
+struct PassPlan {
+  double z_start = 0;  // where Z is when the command starts
+  double plunge = 0;   // Z change of each pass
+  int repetitions = 1;
+  bool spiral = false;       // Z descends along each pass instead of before it
+  bool bottom_pass = false;  // one more pass, flat, at the final depth
+  bool from_zero = false;    // Z goes to 0 first; passes are measured from 0
+  bool pull_up = true;       // at the end, up to lift_z
+  double safe_z = 1;
+  bool plunge_negative = true;  // VC 5: which way is into the material
+  Pocket pocket = Pocket::None;
+  TabPlan tabs;
+
+  // Out of the material: the higher (in the lifting sense) of Safe-Z and the start Z.
+  double lift_z() const;
+  double depth(int pass) const;  // Z of pass k (0: the reference)
+};
+
+// The tab lifts along a contour of length `length`: up over the leads, level for the size,
+// down over the leads, starting at `first` and every `spacing` after (start to start); a tab
+// that would run past the end is left out. `count` receives how many there are.
+Profile tab_profile(double length, const TabPlan& t, double lift, int* count);
+
+// Runs the passes over `rings` from `start`: rings[0] is the tool path; the others, inner
+// rings for pocketing, each starting on a straight line from rings[0]'s start that stays in
+// the cleared area. `closed`: the path ends where it starts.
+CutPath run_passes(const V3& start, const std::vector<Contour>& rings, bool closed,
+                   const PassPlan& plan);
+
+// The scale factors of the rings that pocket a convex path whose farthest point is `reach`
+// from the centre it is scaled about, with a step-over of at most `step` between rings,
+// the innermost within step / 2 of the centre: 1, then down to (step / 2) / reach.
+std::vector<double> pocket_scales(double reach, double step);
+// The insets of the rings that pocket a w x h rectangle: 0, then up to min(w, h) / 2 -
+// step / 2, at most `step` apart.
+std::vector<double> pocket_insets(double w, double h, double step);
+
+}  // namespace gantry::cuts

@@ -1,0 +1,82 @@
+// Plays planned segments through the step generator, and can bring the motion to rest at any
+// point of the path (a hold: pause, stop, key up) or stop the pulses at once (a halt: E-stop).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <memory>
+
+#include "gantry/motion/planned_segment.hpp"  // PlannedSegment, SegmentSink
+#include "gantry/step/step_generator.hpp"     // StepGenerator
+
+namespace gantry {
+
+// Playing: segments play as planned. Slowing: a hold began; every segment is played slowing
+// down at its own acceleration until the machine is at rest. Held: at rest part-way along the
+// path; what is left is kept for resume(). Halted: the pulses stopped at once; nothing plays
+// until discard().
+enum class FeedPhase { Playing, Slowing, Held, Halted };
+
+const char* feed_phase_name(FeedPhase p);
+
+// A hold slows down along the path, never off it: from the speed at the cut, each segment's
+// remaining length is run with speed v(s)^2 = v_cut^2 - 2 a s at that segment's acceleration
+// a. The plan it replaces reached no segment end faster than a allows to slow down, so the
+// hold's speed is never above the plan's anywhere: every corner is taken no faster than
+// planned, and every axis stays within its limits. After resume() the kept path starts from
+// rest: each segment accelerates from the speed the one before it reached, up to its planned
+// cruise and exit speeds (a forward pass: slower than the plan until it catches up).
+//
+// Threads: segment(), flush(), settings_changed(), resume() and discard() belong to the thread
+// that feeds the card; request_hold(), request_halt() and phase() may be called from any.
+class MotionFeeder : public SegmentSink {
+ public:
+  explicit MotionFeeder(StepGenerator& steps) : steps_(steps) {}
+
+  void segment(const PlannedSegment& s) override;
+  void flush() override;
+  void settings_changed(const Settings& s) override;
+
+  // Slows to rest from the card's tick `tick` on (0: as soon as possible; a tick already
+  // generated means the next word).
+  void request_hold(std::int64_t tick = 0);
+  // Stops the pulses at `tick` (0: at once): the card is stopped, unplayed words dropped.
+  void request_halt(std::int64_t tick = 0);
+  FeedPhase phase() const { return phase_.load(std::memory_order_acquire); }
+  // Held: plays what was kept, from rest, and what follows.
+  void resume();
+  // Held or Halted: forgets what was kept; the next segment starts where the tool is.
+  void discard();
+  // Held or playing: the pulses stop here and now (E-stop with nothing cut mid-segment).
+  void halt_now();
+  // Whether a flush arrived while held (the stream's end is among what was kept).
+  bool flush_kept() const;
+  // Flushes done: played out, or abandoned by a halt or a discard.
+  std::uint64_t flushes_completed() const { return flushes_; }
+  // The source line of the segment where the hold or halt came to rest.
+  const SourceLoc& rest_loc() const { return rest_loc_; }
+
+ private:
+  struct Kept {  // what arrived while held, in order
+    enum Kind { kSegment, kSettings, kFlush } kind;
+    PlannedSegment seg;
+    std::shared_ptr<const gantry::Settings> settings;
+  };
+  void play(const PlannedSegment& s);  // as given, until a hold or halt cuts it
+  void slow(const PlannedSegment& s);  // slowing from carry_
+  void hold_here(const PlannedSegment& rest);
+  void settle();  // at rest: held
+  void set_phase(FeedPhase p) { phase_.store(p, std::memory_order_release); }
+
+  StepGenerator& steps_;
+  std::atomic<FeedPhase> phase_{FeedPhase::Playing};
+  std::atomic<std::int64_t> hold_at_{StepGenerator::kNever}, halt_at_{StepGenerator::kNever};
+  double carry_ = 0;          // the speed the last segment played ended at
+  bool catching_up_ = false;  // after a rest: below the plan's speeds until it reaches them
+  std::deque<Kept> kept_;
+  SourceLoc rest_loc_;
+  std::uint64_t flushes_ = 0;
+};
+
+}  // namespace gantry

@@ -1,0 +1,112 @@
+// The pass model: how plunge, repetitions, spiral, bottom pass, pocket rings and tabs
+// combine into one tool path (docs/cuts.md, "Passes").
+#include "gantry/cuts/passes.hpp"
+
+#include <algorithm>  // max, min
+#include <cmath>      // ceil
+
+namespace gantry::cuts {
+
+double PassPlan::lift_z() const {
+  return plunge_negative ? std::max(safe_z, z_start) : std::min(safe_z, z_start);
+}
+
+double PassPlan::depth(int pass) const {
+  return (from_zero ? 0.0 : z_start) + pass * plunge;
+}
+
+Profile tab_profile(double length, const TabPlan& t, double lift, int* count) {
+  Profile p = Profile::constant(0);
+  int n = 0;
+  const TabSettings& z = t.sizes;
+  const double span = 2 * z.leads + z.size;
+  // Tabs closer than their own length would overlap: they are then placed end to end.
+  const double step = std::max(z.spacing, span);
+  if (t.on && span > 0)
+    for (double s = t.first; s + span <= length + 1e-9 && (t.most <= 0 || n < t.most); s += step) {
+      p.points.insert(
+          p.points.end(),
+          {{s, 0.0}, {s + z.leads, lift}, {s + z.leads + z.size, lift}, {s + span, 0.0}});
+      ++n;
+      if (!(step > 0)) break;
+    }
+  if (count) *count = n;
+  return p;
+}
+
+namespace {
+
+V2 start_of(const Contour& c) {
+  return c.front().from;
+}
+
+}  // namespace
+
+CutPath run_passes(const V3& start, const std::vector<Contour>& rings, bool closed,
+                   const PassPlan& plan) {
+  PathBuilder b(start);
+  const V2 home = start.head<2>();
+  const double lift = plan.lift_z();
+  const double up = plan.plunge_negative ? 1.0 : -1.0;
+  const Contour& path = rings.front();
+  const double total = length(path);
+  if (plan.from_zero) b.z(0, Role::Plunge);
+  const int passes = plan.repetitions + (plan.bottom_pass ? 1 : 0);
+  for (int j = 0; j < passes; ++j) {
+    const bool bottom = j >= plan.repetitions;
+    const int k = bottom ? plan.repetitions : j + 1;
+    const double z_from = plan.depth(bottom ? k : k - 1), z_to = plan.depth(k);
+    const bool spiral = plan.spiral && !bottom;
+    const bool last = j == passes - 1;
+    if (j > 0 && !closed) {  // an open path: back to its start above the work
+      b.z(lift, Role::Retract);
+      b.xy(home, Role::Reposition);
+    }
+    if (plan.pocket == Pocket::OutsideIn) {
+      b.z(z_to, Role::Plunge);
+      for (const Contour& ring : rings) {
+        b.xy(start_of(ring), Role::Cut);  // inward, across what the last ring cleared
+        b.follow(ring, Profile::constant(z_to));
+      }
+      b.xy(home, Role::Cut);  // back out along the same line, at depth
+      continue;
+    }
+    if (plan.pocket == Pocket::InsideOut) {
+      // Across at the depth already cleared (the start Z for the first pass) to the centre.
+      b.xy(start_of(rings.back()), Role::Cut);
+      b.z(z_to, Role::Plunge);
+      for (auto ring = rings.rbegin(); ring != rings.rend(); ++ring) {
+        b.xy(start_of(*ring), Role::Cut);
+        b.follow(*ring, Profile::constant(z_to));
+      }
+      continue;
+    }
+    b.z(spiral ? z_from : z_to, Role::Plunge);
+    Profile z = spiral ? Profile::ramp(total, z_from, z_to) : Profile::constant(z_to);
+    if (last && plan.tabs.on)
+      z = z + tab_profile(total, plan.tabs, up * plan.tabs.sizes.pull_up, &b.path().tabs);
+    b.follow(path, z);
+  }
+  if (plan.pull_up) b.z(lift, Role::Retract);
+  return b.take();
+}
+
+std::vector<double> pocket_scales(double reach, double step) {
+  std::vector<double> k = {1.0};
+  if (!(step > 0) || !(reach > step / 2)) return k;
+  const double inner = (step / 2) / reach;
+  const int n = static_cast<int>(std::ceil((reach - step / 2) / step - 1e-9));
+  for (int i = 1; i <= n; ++i) k.push_back(1 - (1 - inner) * i / n);
+  return k;
+}
+
+std::vector<double> pocket_insets(double w, double h, double step) {
+  std::vector<double> d = {0.0};
+  const double half = std::min(w, h) / 2;
+  if (!(step > 0) || !(half > step / 2)) return d;
+  const int n = static_cast<int>(std::ceil((half - step / 2) / step - 1e-9));
+  for (int i = 1; i <= n; ++i) d.push_back((half - step / 2) * i / n);
+  return d;
+}
+
+}  // namespace gantry::cuts

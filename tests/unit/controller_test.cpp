@@ -1,0 +1,221 @@
+// The controller on the simulated card in virtual time: pause, resume, stop, E-stop and
+// keypad jogs at chosen machine times; positions to the step.
+#include "gantry/machine/controller.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "gantry/interp/operator_io.hpp"
+#include "gantry/lang/script.hpp"
+#include "sim/sim_card.hpp"
+
+namespace gantry {
+namespace {
+
+struct Machine {
+  Settings settings = default_settings();
+  SimCard card{settings};
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+
+  std::int64_t steps(double units, int axis = 0) const {
+    return std::llround(units * settings.axes[axis].steps_per_unit);
+  }
+  Outcome run(const std::string& text) { return c.run(Script::from_text(text, "part.sbp")); }
+};
+
+const char* kSquare =
+    "MS, 2, 1\n"
+    "M2, 4, 0\n"
+    "M2, 4, 3\n"
+    "M3, 1, 3, -0.25\n"
+    "M2, 1, 1\n"
+    "J2, 0.5, 0.5\n";
+
+TEST(MachineStates, EveryRefusalSaysWhyAndTheDocsHoldTheTable) {
+  for (int s = 0; s < kMachineStates; ++s)
+    for (int r = 0; r < kRequests; ++r) {
+      const Verdict v = decide(MachineState(s), Request(r));
+      EXPECT_TRUE(v.next.has_value() != !v.refusal.empty())
+          << state_name(MachineState(s)) << " / " << request_name(Request(r));
+    }
+  EXPECT_EQ(*decide(MachineState::EStop, Request::Acknowledge).next, MachineState::Idle);
+  EXPECT_FALSE(decide(MachineState::EStop, Request::Run).next);
+  EXPECT_FALSE(decide(MachineState::Running, Request::Jog).next);
+  std::ifstream doc(std::string(GANTRY_SOURCE_DIR) + "/docs/controller.md");
+  std::stringstream text;
+  text << doc.rdbuf();
+  EXPECT_NE(text.str().find(transition_table_markdown()), std::string::npos)
+      << "docs/controller.md lacks the current table:\n"
+      << transition_table_markdown();
+}
+
+TEST(Controller, RunsAFileToItsEnd) {
+  Machine m;
+  ASSERT_TRUE(m.run(kSquare));
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Idle);
+  EXPECT_EQ(s.steps[0], m.steps(0.5));
+  EXPECT_EQ(s.steps[1], m.steps(0.5, 1));
+  EXPECT_EQ(s.steps[2], m.steps(-0.25, 2));
+  EXPECT_DOUBLE_EQ(m.c.modal().position[0], 0.5);
+}
+
+TEST(Controller, AFileWithErrorsIsRefusedAndNothingMoves) {
+  Machine m;
+  const Outcome o = m.run("M2, 1, 1\nMX, 100\n");  // beyond the table
+  EXPECT_FALSE(o);
+  ASSERT_EQ(o.errors.size(), 1u);
+  EXPECT_EQ(o.errors[0].loc.line, 2);
+  EXPECT_NE(o.errors[0].message.find("soft limits"), std::string::npos);
+  EXPECT_EQ(m.c.status().steps[0], 0);
+  EXPECT_EQ(m.c.state(), MachineState::Idle);
+}
+
+TEST(Controller, TheSoftLimitCheckStartsFromWhereTheToolIs) {
+  Machine m;
+  ASSERT_TRUE(m.run("MX, 20\n"));
+  m.c.wait();
+  const Outcome o = m.run("SR\nMX, 5\n");  // 25 in: beyond the 24 in table
+  EXPECT_FALSE(o);
+  ASSERT_FALSE(o.errors.empty());
+  EXPECT_EQ(o.errors[0].loc.line, 2);
+}
+
+TEST(Controller, PauseAndResumeAtRandomPointsEndExactlyWhereAFullRunEnds) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> when(0.05, 6.0);
+  for (int trial = 0; trial < 8; ++trial) {
+    Machine m;
+    const double t = when(rng);
+    m.c.schedule(Request::Pause, t);
+    ASSERT_TRUE(m.run(kSquare));
+    m.c.wait();
+    ControllerStatus s = m.c.status();
+    if (s.state == MachineState::Paused) {  // the pause came before the end
+      EXPECT_EQ(s.phase, FeedPhase::Held);
+      EXPECT_FALSE(m.run(kSquare));  // refused while paused
+      ASSERT_TRUE(m.c.resume());
+      m.c.wait();
+      s = m.c.status();
+    }
+    EXPECT_EQ(s.state, MachineState::Idle) << "pause at " << t;
+    EXPECT_EQ(s.steps[0], m.steps(0.5)) << "pause at " << t;
+    EXPECT_EQ(s.steps[1], m.steps(0.5, 1)) << "pause at " << t;
+    EXPECT_EQ(s.steps[2], m.steps(-0.25, 2)) << "pause at " << t;
+    EXPECT_LE(m.card.kinematics().max_accel_ratio(), 1.0) << "pause at " << t;
+    EXPECT_EQ(m.card.timing_violations(), 0u);
+  }
+}
+
+TEST(Controller, AStopEndsTheFileWithThePositionOfThePulsesPlayed) {
+  Machine m;
+  m.c.schedule(Request::Stop, 1.0);
+  ASSERT_TRUE(m.run(kSquare));
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Stopped);
+  EXPECT_EQ(s.steps, m.card.steps());
+  EXPECT_GT(s.steps[0], m.steps(1.0));
+  EXPECT_LT(s.steps[0], m.steps(4.0));
+  EXPECT_EQ(s.stopped_at.line, 2);  // in M2, 4, 0
+  // The interpreter knows: a relative move from here lands exactly.
+  const double x = static_cast<double>(s.steps[0]) / m.settings.axes[0].steps_per_unit;
+  EXPECT_DOUBLE_EQ(m.c.modal().position[0], x);
+  ASSERT_TRUE(m.run("MX, 2\n"));
+  m.c.wait();
+  EXPECT_EQ(m.c.status().steps[0], m.steps(2.0));
+  EXPECT_EQ(m.c.state(), MachineState::Idle);
+}
+
+TEST(Controller, EStopStopsThePulsesAtOnceAndNeedsAcknowledging) {
+  Machine m;
+  m.c.schedule(Request::EStop, 1.0);
+  ASSERT_TRUE(m.run(kSquare));
+  m.c.wait();
+  ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::EStop);
+  EXPECT_EQ(s.phase, FeedPhase::Halted);
+  EXPECT_EQ(s.steps, m.card.steps());
+  // Cruising at 2 in/s at 1 s: no ramp down, so the tool is short of where a hold would be.
+  EXPECT_GT(s.steps[0], m.steps(1.5));
+  EXPECT_LT(s.steps[0], m.steps(2.0));
+  const Outcome refused = m.run("MX, 1\n");
+  EXPECT_FALSE(refused);
+  EXPECT_NE(refused.reason.find("acknowledge"), std::string::npos);
+  ASSERT_TRUE(m.c.acknowledge());
+  EXPECT_EQ(m.c.state(), MachineState::Idle);
+  ASSERT_TRUE(m.run("MX, 1\n"));
+  m.c.wait();
+  EXPECT_EQ(m.c.status().steps[0], m.steps(1.0));
+  EXPECT_EQ(m.card.steps()[0], m.steps(1.0));
+}
+
+TEST(Controller, AContinuousJogRampsDownOnReleaseAtTheKeypadRampRate) {
+  Machine m;
+  const double hold_s = 1.0;
+  m.c.schedule(Request::JogRelease, hold_s);
+  JogRequest j;
+  j.direction[0] = 1;
+  ASSERT_TRUE(m.c.jog(j));
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Idle);
+  // Move speed v (slow keypad), ramp from the ramp speed u at the keypad rate: by 1 s the
+  // tool cruises; it stops v^2 / 2a after the release.
+  const double v = m.settings.speeds.move.xy, u = m.settings.ramps.move_ramp_speed.xy;
+  const double a = 2 * (u + 1) / m.settings.ramps.keypad_ramp_rate;
+  const double expected = v * hold_s - (v - u) * (v - u) / (2 * a) + v * v / (2 * a);
+  EXPECT_NEAR(s.machine[0], expected, 2.0 / m.settings.axes[0].steps_per_unit);
+  EXPECT_EQ(s.steps[1], 0);
+}
+
+TEST(Controller, AContinuousJogStopsAtTheSoftLimit) {
+  Machine m;
+  JogRequest j;
+  j.direction[0] = 1;
+  j.direction[1] = 1;  // diagonal: Y (18 in) limits first
+  j.fast = true;
+  ASSERT_TRUE(m.c.jog(j));
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.steps[1], m.steps(m.settings.axes[1].max, 1));
+  EXPECT_EQ(s.steps[0], m.steps(m.settings.axes[1].max, 0));
+  EXPECT_FALSE(m.c.jog(j));  // at the limit that way
+}
+
+TEST(Controller, AThousandFixedStepsNeverDrift) {
+  Machine m;
+  JogRequest j;
+  j.step = true;
+  j.fast = true;
+  const double d = m.settings.display.keypad_step;
+  for (int cycle = 0; cycle < 10; ++cycle) {  // 50 presses out, 50 back: 1,000 in all
+    for (int dir : {1, -1}) {
+      j.direction[0] = dir;
+      for (int k = 0; k < 50; ++k) {
+        ASSERT_TRUE(m.c.jog(j)) << cycle << " " << k;
+        m.c.wait();
+      }
+      EXPECT_EQ(m.c.status().steps[0], dir > 0 ? m.steps(50 * d) : 0) << cycle;
+    }
+  }
+  EXPECT_EQ(m.card.steps()[0], 0);
+}
+
+TEST(Controller, RequestsOutOfTurnAreRefusedWithAReason) {
+  Machine m;
+  EXPECT_NE(m.c.resume().reason.find("nothing is paused"), std::string::npos);
+  EXPECT_NE(m.c.pause().reason.find("nothing is running"), std::string::npos);
+  EXPECT_NE(m.c.acknowledge().reason.find("no E-stop"), std::string::npos);
+  EXPECT_FALSE(m.c.jog_release());
+}
+
+}  // namespace
+}  // namespace gantry

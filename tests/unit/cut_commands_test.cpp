@@ -1,0 +1,943 @@
+// The cut commands CA, CC, CG, CP and CR through the interpreter: the testable facts of
+// shared/spec/commands.md §8.2-8.6 (each test names its fact), the decisions of docs/cuts.md,
+// located errors that move nothing, soft limits, FP's transforms and CommandContext::arc_to.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "../support/recording_sink.hpp"
+#include "gantry/commands/command_table.hpp"
+#include "gantry/core/diagnostic.hpp"
+#include "gantry/interp/file_system.hpp"
+#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/operator_io.hpp"
+#include "gantry/interp/persistent_store.hpp"
+#include "gantry/lang/script.hpp"
+#include "gantry/motion/arc_chords.hpp"
+#include "gantry/motion/lookahead_planner.hpp"
+#include "gantry/motion/planned_segment.hpp"
+
+namespace gantry {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+class MemoryFiles : public FileSystem {
+ public:
+  std::shared_ptr<const Script> load_script(const std::string& path) override {
+    const auto it = texts.find(path);
+    return it == texts.end() ? Script::load(path) : Script::from_text(it->second, path);
+  }
+  bool is_file(const std::string& path) override { return texts.count(path) > 0; }
+  std::shared_ptr<std::istream> open_read(const std::string&) override { return nullptr; }
+  std::shared_ptr<std::ostream> open_write(const std::string&, bool) override { return nullptr; }
+  std::map<std::string, std::string> texts;
+};
+
+struct P3 {
+  double x, y, z;
+};
+
+double dist2(double ax, double ay, double bx, double by) {
+  return std::hypot(ax - bx, ay - by);
+}
+
+class CutCommands : public ::testing::Test {
+ protected:
+  CutCommands() { settings.machine.limit_checking = false; }
+
+  // Each run starts with no recorded moves (the interpreter keeps its state).
+  void run(std::string_view text) {
+    sink.moves.clear();
+    auto script = Script::from_text(std::string(text), "part.sbp");
+    ASSERT_TRUE(script->ok()) << format(script->errors().front());
+    try {
+      interp().run(script);
+    } catch (const GantryError& e) {
+      FAIL() << format(e.diagnostic());
+    }
+  }
+  Diagnostic run_error(std::string_view text) {
+    sink.moves.clear();
+    auto script = Script::from_text(std::string(text), "part.sbp");
+    try {
+      if (!script->ok()) throw GantryError(script->errors().front());
+      interp().run(script);
+    } catch (const GantryError& e) {
+      return e.diagnostic();
+    }
+    ADD_FAILURE() << "no error from:\n" << text;
+    return {};
+  }
+  Interpreter& interp() {
+    if (!interp_) {
+      InterpreterOptions options;
+      options.files = &files;
+      interp_.emplace(settings, sink, io, store, options);
+    }
+    return *interp_;
+  }
+
+  // Lines and arcs, in order.
+  std::vector<CanonMove> motion() const {
+    std::vector<CanonMove> out;
+    for (const CanonMove& m : sink.moves)
+      if (m.kind == MoveKind::Line || m.kind == MoveKind::Arc) out.push_back(m);
+    return out;
+  }
+  // The moves of source line `line`.
+  std::vector<CanonMove> of_line(int line) const {
+    std::vector<CanonMove> out;
+    for (const CanonMove& m : motion())
+      if (m.loc.line == line) out.push_back(m);
+    return out;
+  }
+  std::vector<CanonMove> arcs(int line = 0) const {
+    std::vector<CanonMove> out;
+    for (const CanonMove& m : line ? of_line(line) : motion())
+      if (m.kind == MoveKind::Arc) out.push_back(m);
+    return out;
+  }
+  // Points along the moves of `line` (all lines when 0) that cut: move speed, XY moving.
+  std::vector<P3> cut_points(int line = 0, int per = 64) const {
+    std::vector<P3> out;
+    for (const CanonMove& m : line ? of_line(line) : motion()) {
+      if (m.speed_class != SpeedClass::Move) continue;
+      if (m.kind == MoveKind::Line && m.from[0] == m.to[0] && m.from[1] == m.to[1]) continue;
+      for (int i = 0; i <= per; ++i) out.push_back(point(m, static_cast<double>(i) / per));
+    }
+    return out;
+  }
+  static P3 point(const CanonMove& m, double f) {
+    const Vec6 p = m.from + (m.to - m.from) * f;
+    P3 q{p[0], p[1], p[2]};
+    if (m.kind == MoveKind::Arc) {
+      const double r = arc_radius(m);
+      const double a = std::atan2(m.from[1] - m.center_y, m.from[0] - m.center_x) + f * m.sweep;
+      q.x = m.center_x + r * std::cos(a);
+      q.y = m.center_y + r * std::sin(a);
+    }
+    return q;
+  }
+  static double arc_r(const CanonMove& m) { return arc_radius(m); }
+
+  Settings settings = default_settings();
+  RecordingSink sink;
+  MemoryFiles files;
+  std::string printed;
+  ScriptedIO io{true, {}, &printed};
+  PersistentStore store;
+
+ private:
+  std::optional<Interpreter> interp_;
+};
+
+std::vector<std::string_view> names(std::string_view code, Dialect d = Dialect::SB3) {
+  std::vector<std::string_view> out;
+  for (const ParamSpec& p : CommandTable::standard().find(code)->params_for(d))
+    out.push_back(p.name);
+  return out;
+}
+
+void expect_xy(const CanonMove& m, double x, double y, bool end = true, double tol = 1e-9) {
+  const Vec6& p = end ? m.to : m.from;
+  EXPECT_NEAR(p[0], x, tol);
+  EXPECT_NEAR(p[1], y, tol);
+}
+
+// ===========================================================================================
+// §8.2 CA — Cut Arch
+// ===========================================================================================
+
+TEST(CutFacts, Fact21_CaParameterOrder) {
+  const std::vector<std::string_view> want = {"arch length", "arch height",     "O/I/T",
+                                              "direction",   "alignment angle", "plunge",
+                                              "repetitions", "proportion X",    "proportion Y",
+                                              "tabs",        "no pull up",      "plunge from Z 0"};
+  EXPECT_EQ(names("CA"), want);
+}
+
+TEST_F(CutCommands, Fact22_FabMoCaSkipsParameter10) {
+  EXPECT_EQ(names("CA", Dialect::FabMo)[9], "skip");
+  settings.dialect = Dialect::FabMo;
+  run("CA, 10, 5, T, 1, 0, -0.5, 1, 1, 1, 1, 1\n");  // a 1 in position 10: no tabs
+  for (const P3& p : cut_points()) EXPECT_NEAR(p.z, -0.5, 1e-12);
+}
+
+TEST_F(CutCommands, Fact23_ArchLengthAndHeightAreRequired) {
+  const Diagnostic d = run_error("CA, 10\n");
+  EXPECT_NE(d.message.find("arch height"), std::string::npos) << d.message;
+  EXPECT_TRUE(motion().empty());
+}
+
+TEST_F(CutCommands, Fact24_ASpanTwiceTheHeightIsAHalfCircle) {
+  run("CA, 10, 5\n");
+  ASSERT_EQ(arcs().size(), 1u);
+  EXPECT_NEAR(std::abs(arcs()[0].sweep), M_PI, 1e-12);
+  EXPECT_NEAR(arc_r(arcs()[0]), 5, 1e-12);
+}
+
+TEST_F(CutCommands, Fact25_CaStartsHereAndEndsAtTheOtherEndOfTheSpan) {
+  run("J2, 2, 3\nCA, 6, 1\n");
+  const CanonMove a = arcs(2).at(0);
+  expect_xy(a, 2, 3, false);
+  expect_xy(a, 8, 3);
+}
+
+TEST_F(CutCommands, Fact26_CaSideDefaultsToTrue) {
+  run("CA, 10, 2\n");
+  EXPECT_NEAR(arc_r(arcs()[0]), 7.25, 1e-12);  // the arch itself, not offset
+}
+
+TEST_F(CutCommands, Fact27_CaDirectionDefaultsToClockwise) {
+  run("CA, 10, 2\nJ2, 0, 0\nCA, 10, 2, T, -1\n");
+  EXPECT_LT(arcs(1).at(0).sweep, 0);  // clockwise, bulging up (+Y)
+  EXPECT_NEAR(arcs(1)[0].center_y, -5.25, 1e-12);
+  EXPECT_GT(arcs(3).at(0).sweep, 0);  // counter-clockwise: the mirror image, bulging down
+  EXPECT_NEAR(arcs(3)[0].center_y, 5.25, 1e-12);
+  double low = kInf;
+  for (const P3& p : cut_points(3)) low = std::min(low, p.y);
+  EXPECT_NEAR(low, -2, 1e-6);
+}
+
+TEST_F(CutCommands, Fact28_AlignmentZeroRunsRightHorizontally) {
+  run("CA, 10, 3\n");
+  double top = -kInf;
+  for (const P3& p : cut_points(1, 4000)) top = std::max(top, p.y);
+  EXPECT_NEAR(top, 3, 1e-5);
+  expect_xy(arcs()[0], 10, 0);
+}
+
+TEST_F(CutCommands, Fact29_Alignment90IsVerticalTopToBottom) {
+  run("CA, 10, 5, T, 1, 90\n");
+  const CanonMove a = arcs().at(0);
+  expect_xy(a, 0, -10);  // below the start
+  EXPECT_NEAR(a.center_x, 0, 1e-9);
+  EXPECT_NEAR(a.center_y, -5, 1e-9);
+  double right = -kInf;
+  for (const P3& p : cut_points()) right = std::max(right, p.x);
+  EXPECT_NEAR(right, 5, 1e-9);  // bulges to +X, the left of travel down
+}
+
+TEST_F(CutCommands, Fact30_CaPlungeIsPerRepetitionNegativeDown) {
+  run("CA, 10, 5, T, 1, 0, -0.25, 3\n");
+  const auto a = arcs();
+  ASSERT_EQ(a.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k].to[2], -0.25 * (k + 1), 1e-12);
+  run("CA, 10, 5\n");                          // default 0: the arch at the current height
+  EXPECT_NEAR(arcs().back().to[2], 1, 1e-12);  // (after the first command's pull-up)
+}
+
+TEST_F(CutCommands, Fact31_CaRepetitionsDefaultToOne) {
+  run("CA, 10, 5, T, 1, 0, -0.25\n");
+  EXPECT_EQ(arcs().size(), 1u);
+}
+
+TEST_F(CutCommands, Fact32_CaProportionsDefaultToOne) {
+  run("CA, 10, 5\n");
+  EXPECT_EQ(arcs().size(), 1u);  // a circular arc
+  run("J2, 10, 0\nCA, 10, 5, T, 1, 0, 0, 1, 2, 1\n");
+  EXPECT_EQ(arcs().size(), 0u);  // an ellipse: lines
+  double x1 = -kInf;
+  for (const P3& p : cut_points(2)) x1 = std::max(x1, p.x);
+  EXPECT_NEAR(x1 - 10, 20, 1e-9);  // twice as long in X
+}
+
+TEST_F(CutCommands, Fact33_CaTabsDefaultOff) {
+  run("CA, 10, 5, T, 1, 0, -0.5\n");
+  for (const P3& p : cut_points()) EXPECT_NEAR(p.z, -0.5, 1e-12);
+  run("J3, 0, 0, 0\nCA, 10, 5, T, 1, 0, -0.5, 1, 1, 1, 1\n");  // tabs: 3 along the 15.7 arc
+  double top = -kInf;
+  for (const P3& p : cut_points(2)) top = std::max(top, p.z);
+  EXPECT_NEAR(top, -0.4, 1e-12);
+}
+
+TEST_F(CutCommands, Fact34_CaPullsUpUnlessNoPullUp) {
+  run("CA, 10, 5, T, 1, 0, -0.5\n");
+  EXPECT_NEAR(motion().back().to[2], 1, 1e-12);  // Safe-Z
+  EXPECT_EQ(motion().back().speed_class, SpeedClass::Jog);
+  run("J3, 0, 0, 0\nCA, 10, 5, T, 1, 0, -0.5, 1, 1, 1, 0, 1\n");
+  EXPECT_NEAR(motion().back().to[2], -0.5, 1e-12);  // stays at depth
+}
+
+TEST_F(CutCommands, Fact35_CaPlungeFromZZero) {
+  run("JZ, 0.4\nCA, 10, 5, T, 1, 0, -0.25, 2, 1, 1, 0, 0, 1\n");
+  const auto m = of_line(2);
+  EXPECT_NEAR(m.at(0).to[2], 0, 1e-12);  // to Z 0 first
+  EXPECT_NEAR(arcs(2).at(0).to[2], -0.25, 1e-12);
+  EXPECT_NEAR(arcs(2).at(1).to[2], -0.5, 1e-12);
+}
+
+// ===========================================================================================
+// §8.3 CC — Cut Circle
+// ===========================================================================================
+
+TEST(CutFacts, Fact36_CcParameterOrder) {
+  const std::vector<std::string_view> want = {"diameter",    "O/I/T",        "direction",
+                                              "begin angle", "end angle",    "plunge",
+                                              "repetitions", "proportion X", "proportion Y",
+                                              "feature",     "no pull up",   "plunge from Z 0"};
+  EXPECT_EQ(names("CC"), want);
+}
+
+TEST_F(CutCommands, Fact37_FabMoCcFeatures2To4) {
+  settings.dialect = Dialect::FabMo;
+  run("CC, 2, I, 1, , , -0.2, 1, 1, 1, 2\n");  // pocket
+  EXPECT_GT(arcs().size(), 2u);
+  run("J3, 0, 0, 0\nCC, 2, T, 1, , , -0.2, 1, 1, 1, 3\n");  // spiral
+  EXPECT_NEAR(arcs(2).at(0).from[2], 0, 1e-12);
+  EXPECT_NEAR(arcs(2).at(0).to[2], -0.2, 1e-12);
+  run("J3, 0, 0, 0\nCC, 2, T, 1, , , -0.2, 1, 1, 1, 4\n");  // spiral and bottom pass
+  EXPECT_EQ(arcs(2).size(), 2u);
+}
+
+TEST_F(CutCommands, Fact38_DiameterIsTheOnlyRequiredCcParameter) {
+  const Diagnostic d = run_error("CC\n");
+  EXPECT_NE(d.message.find("diameter"), std::string::npos) << d.message;
+  run("CC, 2\n");
+  EXPECT_EQ(arcs().size(), 1u);
+}
+
+TEST_F(CutCommands, Fact39_CcAloneCutsATrueCircleFromTwelveOClock) {
+  run("J2, 5, 5\nCC, 2\n");
+  const CanonMove a = arcs(2).at(0);
+  EXPECT_NEAR(a.center_x, 5, 1e-12);
+  EXPECT_NEAR(a.center_y, 4, 1e-12);  // the tool is at the top
+  EXPECT_NEAR(std::abs(a.sweep), 2 * M_PI, 1e-12);
+  EXPECT_NEAR(arc_r(a), 1, 1e-12);
+}
+
+TEST_F(CutCommands, Fact40_CcOutsideIsBiggerThanInside) {
+  run("CC, 2, O\nJ3, 0, 0, 0\nCC, 2, I\nJ3, 0, 0, 0\nCC, 2\n");
+  EXPECT_NEAR(arc_r(arcs(1).at(0)), 1.125, 1e-12);  // D7
+  EXPECT_NEAR(arcs(1)[0].center_y, -1.125, 1e-12);
+  EXPECT_NEAR(arc_r(arcs(3).at(0)), 0.875, 1e-12);  // D8
+  EXPECT_NEAR(arcs(3)[0].center_y, -0.875, 1e-12);
+  EXPECT_NEAR(arc_r(arcs(5).at(0)), 1, 1e-12);
+}
+
+TEST_F(CutCommands, Fact41_CcDirectionDefaultsToClockwise) {
+  run("CC, 2\nJ3, 0, 0, 0\nCC, 2, T, -1\n");
+  EXPECT_LT(arcs(1).at(0).sweep, 0);
+  EXPECT_GT(arcs(3).at(0).sweep, 0);
+}
+
+TEST_F(CutCommands, Fact42_AnglesAreDegreesFromTwelveOClockClockwise) {
+  run("CC, 2, T, 1, 90\n");  // the tool at 3 o'clock: the centre is to its left
+  EXPECT_NEAR(arcs()[0].center_x, -1, 1e-12);
+  EXPECT_NEAR(arcs()[0].center_y, 0, 1e-12);
+}
+
+TEST_F(CutCommands, Fact43_AllCcCutsBeginAtTheToolLocation) {
+  run("J2, 3, 4\nCC, 2, O, -1, 45, 100, -0.1, 2, 1.5, 1\n");
+  const auto m = of_line(2);
+  ASSERT_FALSE(m.empty());
+  expect_xy(m.front(), 3, 4, false);
+  for (const CanonMove& c : m)
+    if (c.speed_class == SpeedClass::Move && c.from[2] == c.to[2]) {
+      expect_xy(c, 3, 4, false, 1e-9);  // the first cutting move too
+      break;
+    }
+}
+
+TEST_F(CutCommands, Fact44_ZeroTo360IsBelowTheStartClockwiseFromTheTop) {
+  run("CC, 2, T, 1, 0, 360\n");
+  const CanonMove a = arcs().at(0);
+  EXPECT_NEAR(a.center_y, -1, 1e-12);
+  // D1: (0,0) -> (1,-1) -> (0,-2) -> (-1,-1) -> (0,0).
+  const P3 q1 = point(a, 0.25), q2 = point(a, 0.5), q3 = point(a, 0.75);
+  EXPECT_NEAR(q1.x, 1, 1e-12);
+  EXPECT_NEAR(q1.y, -1, 1e-12);
+  EXPECT_NEAR(q2.x, 0, 1e-12);
+  EXPECT_NEAR(q2.y, -2, 1e-12);
+  EXPECT_NEAR(q3.x, -1, 1e-12);
+  EXPECT_NEAR(q3.y, -1, 1e-12);
+}
+
+TEST_F(CutCommands, Fact45_180To540IsAboveTheStart) {
+  run("CC, 2, T, 1, 180, 540\n");
+  EXPECT_NEAR(arcs()[0].center_y, 1, 1e-12);
+  EXPECT_NEAR(std::abs(arcs()[0].sweep), 2 * M_PI, 1e-12);
+  expect_xy(arcs()[0], 0, 0);
+}
+
+TEST_F(CutCommands, Fact46_270To630IsToTheRight) {
+  run("CC, 2, T, 1, 270, 630\n");
+  EXPECT_NEAR(arcs()[0].center_x, 1, 1e-12);
+  EXPECT_NEAR(arcs()[0].center_y, 0, 1e-12);
+}
+
+TEST_F(CutCommands, Fact47_90To180ClockwiseIsTheLowerRightQuadrant) {
+  run("CC, 2, T, 1, 90, 180\n");
+  const CanonMove a = arcs().at(0);
+  EXPECT_NEAR(a.center_x, -1, 1e-12);
+  EXPECT_NEAR(a.sweep, -M_PI / 2, 1e-12);
+  expect_xy(a, -1, -1);
+  for (const P3& p : cut_points()) EXPECT_TRUE(p.x >= -1 - 1e-9 && p.y <= 1e-9);  // lower right
+}
+
+TEST_F(CutCommands, Fact48_90To180CounterClockwiseIsTheOther270Degrees) {
+  run("CC, 2, T, -1, 90, 180\nJ3, 0, 0, 0\nCC, 2, T, -1, 90, -180\n");
+  for (int line : {1, 3}) {
+    const CanonMove a = arcs(line).at(0);
+    EXPECT_NEAR(a.sweep, 3 * M_PI / 2, 1e-12);
+    expect_xy(a, -1, -1);
+  }
+}
+
+TEST_F(CutCommands, Fact49_RoundedLowerRightCornerAfterABottomEdge) {
+  run("M2, 4, 0\nCC, 2, T, -1, 180, 90\n");
+  const CanonMove a = arcs(2).at(0);
+  // It continues the edge (+X at the start), turns up, and ends heading +Y at 3 o'clock.
+  EXPECT_NEAR(a.center_x, 4, 1e-12);
+  EXPECT_NEAR(a.center_y, 1, 1e-12);
+  EXPECT_NEAR(a.sweep, M_PI / 2, 1e-12);
+  expect_xy(a, 5, 1);
+}
+
+TEST_F(CutCommands, Fact50_BlankBeginIsZeroClockwise360CounterClockwise) {
+  run("CC, 2, T, -1\n");
+  EXPECT_NEAR(arcs()[0].center_y, -1, 1e-12);  // D2: starts at the top
+  const P3 q = point(arcs()[0], 0.25);
+  EXPECT_NEAR(q.x, -1, 1e-12);  // counter-clockwise: 9 o'clock first
+}
+
+TEST_F(CutCommands, Fact51_BlankEndIsAFullCircle) {
+  run("CC, 2, T, 1, 90\nJ3, 0, 0, 0\nCC, 2, T, -1, 200\n");
+  for (int line : {1, 3}) {
+    EXPECT_NEAR(std::abs(arcs(line).at(0).sweep), 2 * M_PI, 1e-12);
+    expect_xy(arcs(line)[0], 0, 0);
+  }
+}
+
+TEST_F(CutCommands, Fact52_CcPlungePerRepetition) {
+  run("CC, 2, T, 1, , , -0.5, 3\n");  // D10
+  const auto a = arcs();
+  ASSERT_EQ(a.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(a[k].from[2], -0.5 * (k + 1), 1e-12);
+    EXPECT_NEAR(a[k].to[2], -0.5 * (k + 1), 1e-12);
+  }
+  EXPECT_NEAR(motion().back().to[2], 1, 1e-12);  // then up to Safe-Z
+}
+
+TEST_F(CutCommands, Fact53_CcRepetitionsDefaultToOne) {
+  run("CC, 2, T, 1, , , -0.5\n");
+  EXPECT_EQ(arcs().size(), 1u);
+}
+
+TEST_F(CutCommands, Fact54_Diameter16Proportions3And1IsAn48By16Ellipse) {
+  run("CC, 16, T, 1, , , 0, 1, 3, 1\n");  // D9
+  double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf;
+  for (const P3& p : cut_points(1, 8)) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  EXPECT_NEAR(x0, -24, 1e-3);
+  EXPECT_NEAR(x1, 24, 1e-3);
+  EXPECT_NEAR(y0, -16, 1e-9);
+  EXPECT_NEAR(y1, 0, 1e-9);
+}
+
+TEST_F(CutCommands, Fact55_CcFeatureDefaultsToNone) {
+  run("CC, 6, T, 1, , , -0.5\n");
+  EXPECT_EQ(arcs().size(), 1u);  // one flat circle: no tabs, pocket or spiral
+  EXPECT_EQ(arcs()[0].from[2], arcs()[0].to[2]);
+}
+
+TEST_F(CutCommands, Fact56_CcTabsOnTheLastPassOnly) {
+  run("CC, 6, T, 1, , , -0.25, 3, 1, 1, 1\n");
+  for (const P3& p : cut_points()) {
+    if (p.z > -0.6) {
+      EXPECT_NEAR(std::fmod(p.z, 0.25), 0, 1e-9) << p.z;  // the first passes are flat
+    }
+  }
+  double top_last = -kInf;
+  for (const CanonMove& m : motion())
+    if (m.speed_class == SpeedClass::Move && m.to[2] < -0.5 - 1e-9)
+      top_last = std::max(top_last, m.to[2]);
+  EXPECT_NEAR(top_last, -0.65, 1e-12);  // 0.1 above the last pass
+}
+
+TEST_F(CutCommands, Fact57_PocketNeedsAFullCircleAndTakesNoTabs) {
+  const Diagnostic d = run_error("CC, 2, T, 1, 0, 90, -0.2, 1, 1, 1, 2\n");
+  EXPECT_EQ(d.loc.column, 36) << d.message;  // at the feature
+  EXPECT_NE(d.message.find("full circle"), std::string::npos);
+  EXPECT_TRUE(motion().empty());
+  run("VB, , , , , 1\nCC, 2, T, 1, , , -0.2, 1, 1, 1, 2\n");  // tabs on in the file: ignored
+  for (const P3& p : cut_points(2)) EXPECT_NEAR(p.z, -0.2, 1e-12);
+}
+
+TEST_F(CutCommands, Fact58_PocketCutsSmallerCirclesInside) {
+  run("CC, 3, I, 1, , , -0.2, 1, 1, 1, 2\n");
+  const auto a = arcs();
+  ASSERT_GT(a.size(), 3u);
+  for (size_t i = 1; i < a.size(); ++i) {
+    EXPECT_LT(arc_r(a[i]), arc_r(a[i - 1]));
+    EXPECT_NEAR(a[i].center_x, a[0].center_x, 1e-12);
+    EXPECT_NEAR(a[i].center_y, a[0].center_y, 1e-12);
+  }
+}
+
+TEST_F(CutCommands, Fact59_SpiralWithOneRepetitionIsOneDescendingTurn) {
+  run("CC, 2, T, 1, , , -0.5, 1, 1, 1, 3\n");
+  ASSERT_EQ(arcs().size(), 1u);
+  EXPECT_NEAR(arcs()[0].from[2], 0, 1e-12);
+  EXPECT_NEAR(arcs()[0].to[2], -0.5, 1e-12);
+  EXPECT_NEAR(std::abs(arcs()[0].sweep), 2 * M_PI, 1e-12);
+}
+
+TEST_F(CutCommands, Fact60_SpiralDescendsThePlungeEachTurn) {
+  run("CC, 2, T, 1, , , -0.5, 3, 1, 1, 3\n");  // D11
+  const auto a = arcs();
+  ASSERT_EQ(a.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(a[k].from[2], -0.5 * k, 1e-12);
+    EXPECT_NEAR(a[k].to[2], -0.5 * (k + 1), 1e-12);
+  }
+}
+
+TEST_F(CutCommands, Fact61_SpiralAndBottomPassEndsWithAFlatTurn) {
+  run("CC, 2, T, 1, , , -0.5, 1, 1, 1, 4\n");  // D12
+  const auto a = arcs();
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_NEAR(a[1].from[2], -0.5, 1e-12);
+  EXPECT_NEAR(a[1].to[2], -0.5, 1e-12);
+}
+
+TEST_F(CutCommands, Fact62_TabsOnInTheFileStayOnForEachCircle) {
+  run("VB, , , , , 1\nCC, 6, T, 1, , , -0.5\nJ3, 0, 0, 0\nCC, 6, T, 1, , , -0.5\n");
+  for (int line : {2, 4}) {
+    double top = -kInf;
+    for (const P3& p : cut_points(line)) top = std::max(top, p.z);
+    EXPECT_NEAR(top, -0.4, 1e-12) << line;
+  }
+  run("VB, , , , , 0\nJ3, 0, 0, 0\nCC, 6, T, 1, , , -0.5\n");  // off again
+  for (const P3& p : cut_points(3)) EXPECT_NEAR(p.z, -0.5, 1e-12);
+}
+
+TEST_F(CutCommands, Fact63_CirclesRunAsShortChordsWithinTheTolerance) {
+  // Gantry sends true arcs; the planner runs each as chords no farther than the profile's
+  // chord tolerance from the circle (SB3's segment length becomes a tolerance).
+  run("CC, 4\n");
+  const CanonMove a = arcs().at(0);
+  const std::vector<Vec6> chords = arc_chords(a, settings.planner.chord_tolerance);
+  EXPECT_GT(chords.size(), 50u);
+  Vec6 from = a.from;
+  for (const Vec6& to : chords) {
+    const Vec6 mid = (from + to) / 2;
+    EXPECT_LE(2 - std::hypot(mid[0] - a.center_x, mid[1] - a.center_y),
+              settings.planner.chord_tolerance + 1e-12);
+    from = to;
+  }
+}
+
+TEST_F(CutCommands, Fact64_SmallCirclesGetFinerChords) {
+  run("CC, 0.1\nCC, 10\n");
+  const auto a = arcs();
+  auto chord = [&](const CanonMove& m) {
+    const auto c = arc_chords(m, settings.planner.chord_tolerance);
+    return std::hypot(c[0][0] - m.from[0], c[0][1] - m.from[1]);
+  };
+  EXPECT_LT(chord(a.at(0)), settings.calibration.circle_resolution);
+  EXPECT_LT(chord(a.at(0)), chord(a.at(1)) / 5);  // and the large one is coarse again
+}
+
+// ===========================================================================================
+// §8.4 CG — Cut G-code Circle
+// ===========================================================================================
+
+TEST(CutFacts, Fact65_CgParameterOrder) {
+  const std::vector<std::string_view> want = {
+      "diameter",     "X end",     "Y end",      "X center offset", "Y center offset",
+      "O/I/T",        "direction", "plunge",     "repetitions",     "proportion X",
+      "proportion Y", "feature",   "no pull up", "plunge from Z 0"};
+  EXPECT_EQ(names("CG"), want);
+}
+
+TEST_F(CutCommands, Fact66_FabMoCgKeepsTheDiameterPosition) {
+  // FabMo marks position 1 obsolete; the other positions are where SB3 has them, and a
+  // diameter written there still works as SB3's (AMB-31).
+  EXPECT_EQ(names("CG", Dialect::FabMo).size(), 14u);
+  EXPECT_EQ(names("CG", Dialect::FabMo)[1], "X end");
+  settings.dialect = Dialect::FabMo;
+  run("CG, , 2, 0, 1, 0\n");
+  EXPECT_NEAR(arcs().at(0).center_x, 1, 1e-12);
+}
+
+TEST_F(CutCommands, Fact67_CgStartsHereAndEndsAtTheEndPoint) {
+  run("CG, , 2, 0, 1, 0\n");  // D16
+  const CanonMove a = arcs().at(0);
+  expect_xy(a, 0, 0, false);
+  expect_xy(a, 2, 0);
+  EXPECT_NEAR(a.sweep, -M_PI, 1e-12);
+  const P3 mid = point(a, 0.5);
+  EXPECT_NEAR(mid.x, 1, 1e-12);
+  EXPECT_NEAR(mid.y, 1, 1e-12);
+}
+
+TEST_F(CutCommands, Fact68_CgDiameterMethodGivesTheArcUnder180Degrees) {
+  run("CG, 4, 2, 0\nJ3, 0, 0, 0\nCG, 4, 2, 0, , , T, -1\n");
+  for (int line : {1, 3}) {
+    const CanonMove a = arcs(line).at(0);
+    EXPECT_LT(std::abs(a.sweep), M_PI);
+    EXPECT_NEAR(arc_r(a), 2, 1e-12);
+    expect_xy(a, 2, 0);
+  }
+  EXPECT_LT(arcs(1)[0].center_y, 0);  // clockwise: bulges up, centre below
+  EXPECT_GT(arcs(3)[0].center_y, 0);
+  const Diagnostic d = run_error("J2, 0, 0\nCG, 1, 3, 0\n");  // the end beyond the diameter
+  EXPECT_NE(d.message.find("farther than the diameter"), std::string::npos) << d.message;
+}
+
+TEST_F(CutCommands, Fact69_CgCentreOffsetsAreFromTheToolLocation) {
+  run("J2, 3, 4\nCG, , 5, 4, 1, 0\n");
+  EXPECT_NEAR(arcs(2).at(0).center_x, 4, 1e-12);
+  EXPECT_NEAR(arcs(2)[0].center_y, 4, 1e-12);
+}
+
+TEST_F(CutCommands, Fact70_WithADiameterIAndJAreIgnored) {
+  run("CG, 4, 2, 0, 5, 5\nJ3, 0, 0, 0\nCG, 4, 2, 0\n");
+  EXPECT_NEAR(arcs(1).at(0).center_x, arcs(3).at(0).center_x, 1e-12);
+  EXPECT_NEAR(arcs(1)[0].center_y, arcs(3)[0].center_y, 1e-12);
+}
+
+TEST_F(CutCommands, Fact71_CgWithoutAnEndPointEndsAtTheStart) {
+  run("CG, , , , 0, -1\n");  // D15: the same circle as CC 2
+  const CanonMove a = arcs().at(0);
+  EXPECT_NEAR(a.center_y, -1, 1e-12);
+  EXPECT_NEAR(a.sweep, -2 * M_PI, 1e-12);
+  expect_xy(a, 0, 0);
+}
+
+TEST_F(CutCommands, Fact72_CgCannotMakeACircleFromADiameterAlone) {
+  const Diagnostic d = run_error("CG, 2\n");
+  EXPECT_NE(d.message.find("diameter alone"), std::string::npos) << d.message;
+  EXPECT_TRUE(motion().empty());
+}
+
+TEST_F(CutCommands, Fact73_CgCentreOffsetsAreModal) {
+  run("CG, , 2, 0, 1, 0\nCG, , 4, 0\nCG, , 6, 0, , 1\n");
+  EXPECT_NEAR(arcs(2).at(0).center_x, 3, 1e-12);  // I 1, J 0 again, from (2, 0)
+  EXPECT_NEAR(arcs(2)[0].center_y, 0, 1e-12);
+  EXPECT_NEAR(arcs(3).at(0).center_x, 5, 1e-12);  // I kept, J now 1, from (4, 0)
+  EXPECT_NEAR(arcs(3)[0].center_y, 1, 1e-12);
+}
+
+TEST_F(CutCommands, Fact74_CgProportionsDefaultToOne) {
+  run("CG, , 2, 0, 1, 0\n");
+  EXPECT_EQ(arcs().size(), 1u);  // circular
+  run("J2, 0, 0\nCG, , 2, 0, 1, 0, T, 1, 0, 1, 2, 1\n");
+  EXPECT_EQ(arcs().size(), 0u);  // an ellipse: lines
+}
+
+// ===========================================================================================
+// §8.5 CP — Cut Circle from Center Point
+// ===========================================================================================
+
+TEST(CutFacts, Fact75_CpParameterOrder) {
+  const std::vector<std::string_view> want = {
+      "diameter",     "X center",  "Y center",   "O/I/T",          "direction",
+      "start angle",  "end angle", "plunge",     "repetitions",    "proportion X",
+      "proportion Y", "feature",   "no pull up", "plunge from Z 0"};
+  EXPECT_EQ(names("CP"), want);
+}
+
+TEST_F(CutCommands, Fact76_CpMovesToTheStartPointAtTheCurrentHeight) {
+  run("JZ, 0.5\nCP, 2, 5, 5\n");  // D14
+  const auto m = of_line(2);
+  ASSERT_GE(m.size(), 2u);
+  EXPECT_EQ(m[0].kind, MoveKind::Line);
+  EXPECT_EQ(m[0].speed_class, SpeedClass::Move);
+  expect_xy(m[0], 5, 6);
+  EXPECT_NEAR(m[0].to[2], 0.5, 1e-12);  // not lifted
+  EXPECT_NEAR(arcs(2).at(0).center_x, 5, 1e-12);
+  EXPECT_NEAR(arcs(2)[0].center_y, 5, 1e-12);
+}
+
+TEST_F(CutCommands, Fact77_CpNeedsDiameterAndCentre) {
+  for (const char* text : {"CP\n", "CP, 2\n", "CP, 2, 5\n"}) {
+    run_error(text);
+    EXPECT_TRUE(motion().empty()) << text;
+  }
+}
+
+TEST_F(CutCommands, Fact78_TheToolNeverGoesToTheCpCentre) {
+  run("CP, 2, 5, 5, T, 1, 0, 0, -0.2, 2\n");
+  for (const CanonMove& m : motion())
+    for (int i = 0; i <= 64; ++i) {
+      const P3 p = point(m, i / 64.0);
+      EXPECT_GT(dist2(p.x, p.y, 5, 5), 0.5) << p.x << "," << p.y;
+    }
+}
+
+TEST_F(CutCommands, Fact79_CpAnglesDefaultToAFullCircleFromTheTop) {
+  run("CP, 2, 5, 5\n");
+  EXPECT_NEAR(std::abs(arcs().at(0).sweep), 2 * M_PI, 1e-12);
+  expect_xy(arcs()[0], 5, 6, false);
+}
+
+TEST_F(CutCommands, Fact80_CpZeroTo360FromTheTop180To540FromTheBottom) {
+  run("CP, 2, 5, 5, T, 1, 0, 360\nCP, 2, 5, 5, T, 1, 180, 540\n");
+  expect_xy(arcs(1).at(0), 5, 6, false);
+  expect_xy(arcs(2).at(0), 5, 4, false);
+  EXPECT_NEAR(std::abs(arcs(2)[0].sweep), 2 * M_PI, 1e-12);
+}
+
+TEST_F(CutCommands, Fact81_FabMoCpFeatures2To4) {
+  settings.dialect = Dialect::FabMo;
+  run("CP, 2, 5, 5, I, 1, 0, 0, -0.2, 1, 1, 1, 2\n");
+  EXPECT_GT(arcs().size(), 2u);
+  run("CP, 2, 5, 5, T, 1, 0, 0, -0.2, 1, 1, 1, 4\n");
+  EXPECT_EQ(arcs(1).size(), 2u);
+}
+
+// ===========================================================================================
+// §8.6 CR — Cut Rectangle
+// ===========================================================================================
+
+TEST(CutFacts, Fact82_CrParameterOrder) {
+  const std::vector<std::string_view> want = {"length X",    "length Y",     "O/I/T",
+                                              "direction",   "start corner", "plunge",
+                                              "repetitions", "feature",      "plunge from Z 0"};
+  EXPECT_EQ(names("CR"), want);
+}
+
+// The XY corners a rectangle cut visits, in order, from the moves of `line`.
+std::vector<std::pair<double, double>> corners(const std::vector<CanonMove>& m) {
+  std::vector<std::pair<double, double>> out;
+  for (const CanonMove& c : m)
+    if (c.speed_class == SpeedClass::Move && (c.from[0] != c.to[0] || c.from[1] != c.to[1])) {
+      if (out.empty()) out.emplace_back(c.from[0], c.from[1]);
+      out.emplace_back(c.to[0], c.to[1]);
+    }
+  return out;
+}
+using Corners = std::vector<std::pair<double, double>>;
+
+TEST_F(CutCommands, Fact83_FabMoCrPocketsOutsideInAndInsideOut) {
+  settings.dialect = Dialect::FabMo;
+  run("CR, 3, 2, T, 1, 4, -0.2, 1, 2\n");
+  const Corners oi = corners(of_line(1));
+  EXPECT_EQ(oi[1], std::make_pair(0.0, 2.0));  // the outline first
+  run("J3, 0, 0, 0\nCR, 3, 2, T, 1, 4, -0.2, 1, 3\n");
+  const Corners io = corners(of_line(2));
+  EXPECT_GT(io[1].first, 0.5);  // the innermost ring first
+  EXPECT_EQ(io.back(), std::make_pair(0.0, 0.0));
+}
+
+TEST_F(CutCommands, Fact84_CrWithOnlyXCutsASquare) {
+  run("CR, 4\n");  // D20
+  EXPECT_EQ(corners(motion()), (Corners{{0, 0}, {0, 4}, {4, 4}, {4, 0}, {0, 0}}));
+}
+
+TEST_F(CutCommands, Fact85_CrLengthXIsRequired) {
+  run_error("CR\n");
+  EXPECT_TRUE(motion().empty());
+}
+
+TEST_F(CutCommands, Fact86_CrOutsideIsBiggerThanInside) {
+  run("CR, 4, 2, O\nJ3, 0, 0, 0\nCR, 4, 2, I\n");
+  EXPECT_EQ(corners(of_line(1)), (Corners{{0, 0}, {0, 2.25}, {4.25, 2.25}, {4.25, 0}, {0, 0}}));
+  EXPECT_EQ(corners(of_line(3)), (Corners{{0, 0}, {0, 1.75}, {3.75, 1.75}, {3.75, 0}, {0, 0}}));
+}
+
+TEST_F(CutCommands, Fact87_CrDirectionDefaultsToClockwise) {
+  run("CR, 4, 2\nCR, 4, 2, T, -1\n");  // D17, D18
+  EXPECT_EQ(corners(of_line(1)), (Corners{{0, 0}, {0, 2}, {4, 2}, {4, 0}, {0, 0}}));
+  EXPECT_EQ(corners(of_line(2)), (Corners{{0, 0}, {4, 0}, {4, 2}, {0, 2}, {0, 0}}));
+}
+
+TEST_F(CutCommands, Fact88_CrStartCornerCodes) {
+  run("CR, 4, 2, T, 1, 1\nCR, 4, 2, T, 1, 2\nCR, 4, 2, T, 1, 3\nCR, 4, 2\n");
+  EXPECT_EQ(corners(of_line(1)), (Corners{{0, 0}, {4, 0}, {4, -2}, {0, -2}, {0, 0}}));
+  EXPECT_EQ(corners(of_line(2)), (Corners{{0, 0}, {0, -2}, {-4, -2}, {-4, 0}, {0, 0}}));
+  EXPECT_EQ(corners(of_line(3)), (Corners{{0, 0}, {-4, 0}, {-4, 2}, {0, 2}, {0, 0}}));
+  EXPECT_EQ(corners(of_line(4)), (Corners{{0, 0}, {0, 2}, {4, 2}, {4, 0}, {0, 0}}));
+}
+
+TEST_F(CutCommands, Fact89_CrStartsHereCorner3IsUpperLeftOfIt) {
+  run("J2, 10, 5\nCR, 4, 2, T, 1, 3\n");  // D19
+  const Corners c = corners(of_line(2));
+  EXPECT_EQ(c.front(), std::make_pair(10.0, 5.0));
+  for (const auto& p : c) EXPECT_TRUE(p.first <= 10 && p.second >= 5);
+}
+
+TEST_F(CutCommands, Fact90_CrPlungeDefaultsToZeroRepetitionsToOne) {
+  run("JZ, 0.3\nCR, 4, 2\n");
+  for (const CanonMove& m : of_line(2))
+    if (m.speed_class == SpeedClass::Move) {
+      EXPECT_NEAR(m.to[2], 0.3, 1e-12);
+    }
+  EXPECT_EQ(corners(of_line(2)).size(), 5u);  // once round
+}
+
+TEST_F(CutCommands, Fact91_CrTabsOnTheLastCutPocketInsideDefaultsOff) {
+  run("CR, 8, 6, T, 1, 4, -0.25, 2, 1\n");
+  double top_last = -kInf;
+  int flat_first = 0;
+  for (const CanonMove& m : of_line(1))
+    if (m.speed_class == SpeedClass::Move) {
+      if (m.to[2] < -0.26) top_last = std::max(top_last, m.to[2]);
+      if (std::abs(m.to[2] + 0.25) < 1e-12 && std::abs(m.from[2] + 0.25) < 1e-12) ++flat_first;
+    }
+  EXPECT_EQ(flat_first, 4);                              // the first pass: 4 flat sides
+  EXPECT_NEAR(top_last, -0.4, 1e-12);                    // the last: tabs 0.1 up
+  run("J3, 0, 0, 0\nCR, 8, 6, T, 1, 4, -0.25, 1, 2\n");  // pocket: smaller rectangles inside
+  EXPECT_GT(corners(of_line(2)).size(), 10u);
+  run("J3, 0, 0, 0\nCR, 8, 6\n");  // default: neither
+  EXPECT_EQ(corners(of_line(2)).size(), 5u);
+}
+
+// ===========================================================================================
+// Errors: located, and nothing moves
+// ===========================================================================================
+
+struct BadCut {
+  const char* text;
+  int param;  // 1-based: the parameter at fault
+  const char* words;
+};
+
+// The 1-based column where parameter `n` (1-based) of a command line starts.
+int param_column(std::string_view line, int n) {
+  size_t at = 2;  // after the code
+  for (int k = 0; k < n; ++k) at = line.find(',', at) + 1;
+  while (line[at] == ' ') ++at;
+  return static_cast<int>(at) + 1;
+}
+
+TEST_F(CutCommands, BadParametersAreLocatedErrorsAndMoveNothing) {
+  const BadCut cases[] = {
+      {"CC, -2\n", 1, "diameter"},
+      {"CC, 0\n", 1, "above 0"},
+      {"CC, 2, T, 1, , , -0.5, 0\n", 7, "repetitions"},
+      {"CC, 2, T, 0\n", 3, "direction"},
+      {"CC, 2, X\n", 2, "O/I/T"},
+      {"CC, 0.2, I\n", 2, "no path inside"},
+      {"CC, 2, T, 1, , , 0, 1, 0\n", 8, "proportion X"},
+      {"CA, 10, 6\n", 2, "half as high"},
+      {"CA, 10, 0\n", 2, "height"},
+      {"CA, -1, 0.2\n", 1, "arch length"},
+      {"CR, 4, 2, T, 1, 5\n", 5, "start corner"},
+      {"CR, 0.2, 0.2, I\n", 3, "no path inside"},
+      {"CG, , 3, 0, 1, 0\n", 2, "not on the circle"},
+      {"CG, , 3, 0, 0, 0\n", 4, "centre"},
+      {"CP, 2, 5, 5, T, 1, 0, 0, 0, 1, 1, 1, 5\n", 12, "feature"},
+  };
+  for (const BadCut& c : cases) {
+    const Diagnostic d = run_error(c.text);
+    EXPECT_EQ(d.severity, Severity::Error) << c.text;
+    EXPECT_EQ(d.loc.line, 1) << c.text;
+    EXPECT_EQ(d.loc.column, param_column(c.text, c.param)) << c.text << d.message;
+    EXPECT_NE(d.message.find(c.words), std::string::npos) << c.text << d.message;
+    EXPECT_TRUE(motion().empty()) << c.text;
+  }
+}
+
+TEST_F(CutCommands, ACircleCrossingTheSoftLimitsBetweenItsEndsMovesNothing) {
+  settings.machine.limit_checking = true;
+  // From (1, 5) a 2.5 circle spans X -0.25 to 2.25: only its 9 o'clock point is outside.
+  const Diagnostic d = run_error("J2, 1, 5\nCC, 2.5\n");
+  EXPECT_EQ(d.loc.line, 2);
+  EXPECT_NE(d.message.find("soft limits"), std::string::npos) << d.message;
+  EXPECT_EQ(motion().size(), 1u);  // the jog only
+  run("J2, 1, 5\nCC, 2\n");        // X 0 to 2: inside
+  EXPECT_EQ(arcs().size(), 1u);
+}
+
+// ===========================================================================================
+// Decisions of docs/cuts.md and the transforms
+// ===========================================================================================
+
+TEST_F(CutCommands, CpCentreAndCgEndFollowRelativeMode) {
+  run("J2, 1, 1\nSR\nCP, 2, 4, 4\nSA\nJ2, 1, 1\nSR\nCG, , 2, 0, 1, 0\n");
+  EXPECT_NEAR(arcs(3).at(0).center_x, 5, 1e-12);
+  EXPECT_NEAR(arcs(3)[0].center_y, 5, 1e-12);
+  expect_xy(arcs(7).at(0), 3, 1);
+}
+
+TEST_F(CutCommands, FpScalingXAndYAlikeKeepsArcsUnevenlyMakesEllipsesAsLines) {
+  files.texts["circle.sbp"] = "CC, 2\n";
+  run("J2, 5, 5\nFP, circle.sbp, 2, 2, 1, 1, 2\n");
+  ASSERT_EQ(arcs().size(), 1u);
+  EXPECT_NEAR(arc_r(arcs()[0]), 2, 1e-12);
+  run("J2, 5, 5\nFP, circle.sbp, 2, 1, 1, 1, 2\n");
+  EXPECT_TRUE(arcs().empty());
+  // The ellipse 4 x 2 centred at (5, 4): every point within the chord tolerance of it.
+  double worst = 0;
+  for (const CanonMove& m : motion()) {
+    if (m.loc.line != 1 || m.speed_class != SpeedClass::Move) continue;
+    for (int i = 0; i <= 8; ++i) {
+      const P3 p = point(m, i / 8.0);
+      const double r = std::hypot((p.x - 5) / 2, (p.y - 4) / 1);  // 1 on the ellipse
+      worst = std::max(worst, std::abs(r - 1));
+    }
+  }
+  EXPECT_GT(worst, 0);
+  EXPECT_LE(worst, settings.planner.chord_tolerance);
+}
+
+TEST_F(CutCommands, MdTurnsFromTheDirectionAtTheEndOfAnArc) {
+  // A clockwise quarter from 3 o'clock ends at 6 o'clock heading -X (west).
+  run("CC, 2, T, 1, 90, 180, 0, 1, 1, 1, 0, 1\nMD, 1, 0R\n");
+  const CanonMove m = motion().back();
+  expect_xy(m, -2, -1);
+}
+
+TEST_F(CutCommands, APreviewSendsNoArcs) {
+  run("SP\nCC, 2\nSM\n");
+  EXPECT_TRUE(arcs().empty());
+}
+
+TEST_F(CutCommands, VbTabCountEndsTabbingWhenUsedUp) {
+  settings.tabs = {0.1, 4, 1, 0.5};
+  run("VB, , , , , 1, 2\nCC, 6, T, 1, , , -0.5\nJ3, 0, 0, 0\nCC, 6, T, 1, , , -0.5\n");
+  auto tabs_of = [&](int line) {
+    int rises = 0;
+    for (const CanonMove& m : of_line(line))
+      if (m.speed_class == SpeedClass::Move && m.to[2] > m.from[2] + 1e-9 && m.to[0] != m.from[0])
+        ++rises;
+    return rises;
+  };
+  EXPECT_EQ(tabs_of(2), 2);  // 4 would fit on 18.8; the count allows 2
+  EXPECT_EQ(tabs_of(4), 0);  // used up: tabbing is off
+  EXPECT_FALSE(interp().state().tabs_on);
+}
+
+TEST(CutPlanner, SmallArcsRunAtTheRampSpeedLikeSmallCircles) {
+  const Settings s = default_settings();
+  CanonMove c;
+  c.kind = MoveKind::Arc;
+  c.from = Vec6::Zero();
+  c.from[0] = 5.1;
+  c.from[1] = 5;
+  c.to = c.from;
+  c.to[0] = 5;
+  c.to[1] = 5.1;
+  c.center_x = 5;
+  c.center_y = 5;
+  c.sweep = M_PI / 2;  // a quarter of a 0.2 circle
+  c.speeds = s.speeds.move;
+  struct Top : SegmentSink {
+    void segment(const PlannedSegment& seg) override { v = std::max(v, seg.profile.v_cruise); }
+    void flush() override {}
+    double v = 0;
+  } top;
+  LookAheadPlanner p(s, top);
+  p.move(c);
+  p.flush();
+  EXPECT_LE(top.v, s.ramps.move_ramp_speed.xy + 1e-12);
+  EXPECT_GT(top.v, 0);
+}
+
+}  // namespace
+}  // namespace gantry
