@@ -171,10 +171,7 @@ Outcome Controller::acknowledge() {
   if (!o) return o;
   std::unique_lock lock(m_);
   cv_.wait(lock, [&] { return feeder_.phase() == FeedPhase::Playing; });
-  Vec6 machine = Vec6::Zero();
-  for (int i = 0; i < kAxisCount; ++i)
-    machine[i] = static_cast<double>(played_[i].load()) / settings_.axes[i].steps_per_unit;
-  interp_->set_machine_position(machine);
+  interp_->set_machine_position(played_machine());
   message_.clear();
   return o;
 }
@@ -232,11 +229,23 @@ ControllerStatus Controller::status() const {
     s.stopped_at = stopped_at_;
   }
   s.phase = feeder_.phase();
-  for (int i = 0; i < kAxisCount; ++i) {
-    s.steps[i] = played_[i].load(std::memory_order_acquire);
-    s.machine[i] = static_cast<double>(s.steps[i]) / settings_.axes[i].steps_per_unit;
-  }
+  for (int i = 0; i < kAxisCount; ++i) s.steps[i] = played_[i].load(std::memory_order_acquire);
+  s.machine = played_machine(s.steps);
   return s;
+}
+
+// The played step counts in units (machine frame).
+Vec6 Controller::played_machine(const Steps6& steps) const {
+  Vec6 m = Vec6::Zero();
+  for (int i = 0; i < kAxisCount; ++i)
+    m[i] = static_cast<double>(steps[i]) / settings_.axes[i].steps_per_unit;
+  return m;
+}
+
+Vec6 Controller::played_machine() const {
+  Steps6 steps{};
+  for (int i = 0; i < kAxisCount; ++i) steps[i] = played_[i].load(std::memory_order_acquire);
+  return played_machine(steps);
 }
 
 MachineState Controller::state() const {
@@ -341,12 +350,9 @@ void Controller::job_main() {
     cmd_resume_ = false;
     dropping_ = false;
     effect_state_.reset();
-    Vec6 machine = Vec6::Zero();
-    for (int i = 0; i < kAxisCount; ++i)
-      machine[i] = static_cast<double>(played_[i].load()) / settings_.axes[i].steps_per_unit;
     const bool cut = interrupted_ || abort_;
     if (cut)
-      interp_->set_machine_position(machine);  // where the pulses brought the tool
+      interp_->set_machine_position(played_machine());  // where the pulses brought the tool
     else if (jog_target_)
       interp_->set_machine_position(*jog_target_);  // exact: fixed steps never drift
     abort_ = false;

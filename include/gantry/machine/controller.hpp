@@ -96,6 +96,8 @@ class Controller {
   void publish();          // feeder thread: position and phase for status()
   void on_feeder_event();  // feeder thread: a hold or halt took effect
   CanonMove keypad_move(const JogRequest& j) const;
+  Vec6 played_machine(const Steps6& steps) const;
+  Vec6 played_machine() const;  // the played counts now, in units
 
   Settings settings_;
   Card& card_;
