@@ -59,16 +59,47 @@ void SimCard::set_input(int bit, bool active, bool active_low) {
   inputs_ = high ? inputs_ | (1u << bit) : inputs_ & ~(1u << bit);
 }
 
+// Several switches may share one input (ShopBot wires the proximity switches of X, Y and Z
+// to input 3): a shared bit is active while any of its switches is. A limit switch trips
+// the card as it becomes active, as the driver of a real card latches it; moving back off
+// an active switch does not trip it again.
 void SimCard::update_switches(int axis) {
-  const double at = static_cast<double>(steps_[axis]) / steps_per_unit_[axis];
+  auto at_of = [&](int i) { return static_cast<double>(steps_[i]) / steps_per_unit_[i]; };
+  const double at = at_of(axis);
   const bool low = world_.min_switch[axis] && at <= *world_.min_switch[axis];
   const bool high = world_.max_switch[axis] && at >= *world_.max_switch[axis];
-  const bool home = world_.home_switch[axis] && at <= *world_.home_switch[axis];
+  const std::uint32_t before = inputs_;
   set_input(input_bits_.min_bit[axis], low, input_bits_.limits_active_low);
   set_input(input_bits_.max_bit[axis], high, input_bits_.limits_active_low);
-  set_input(input_bits_.home_bit[axis], home, false);
+  if (const int bit = input_bits_.home_bit[axis]; bit >= 0) {
+    bool home = false;
+    for (int i = 0; i < kAxisCount; ++i)
+      home |= input_bits_.home_bit[i] == bit && world_.home_switch[i] &&
+              (world_.home_above[i] ? at_of(i) >= *world_.home_switch[i]
+                                    : at_of(i) <= *world_.home_switch[i]);
+    set_input(bit, home, false);
+  }
   if (axis == 2 && world_.probe_z) set_input(input_bits_.probe_bit, at <= *world_.probe_z, false);
-  if ((low || high) && fault_ == CardFault::None && tick_ > 0) fault_ = CardFault::Limit;
+  auto became_active = [&](int bit, bool active) {
+    return active && bit >= 0 && ((before ^ inputs_) >> bit & 1u);
+  };
+  if ((became_active(input_bits_.min_bit[axis], low) ||
+       became_active(input_bits_.max_bit[axis], high)) &&
+      fault_ == CardFault::None && tick_ > 0)
+    fault_ = CardFault::Limit;
+}
+
+void SimCard::watch(const InputWatch& w) {
+  watcher_.arm(w, inputs_);
+  fired_.reset();
+}
+
+void SimCard::sample_watch(std::uint64_t played) {
+  if (fired_) return;
+  if (const std::optional<int> bit = watcher_.sample(inputs_)) {
+    fired_ = InputEdge{played, *bit, inputs_};
+    if (watcher_.watch().stop >> *bit & 1u) stopped_ = true;
+  }
 }
 
 // The monitor checks what follows against the new calibration; the simulated switches stay
@@ -107,12 +138,23 @@ void SimCard::stop(std::uint32_t idle_word) {
 
 void SimCard::write(std::span<const std::uint32_t> words) {
   if (stopped_ || fault_ != CardFault::None) return;
+  if (realtime_) {
+    // Idle (nothing queued) the card's clock does not run: words written after a wait play
+    // from now, not all at once to catch up with the wall clock.
+    const auto now = std::chrono::steady_clock::now();
+    const auto card_now =
+        wall_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                          std::chrono::duration<double>(time_s()));
+    if (now > card_now) wall_start_ += now - card_now;
+  }
   std::uint64_t event_tick = next_event_tick();
   for (std::uint32_t w : words) {
     while (next_input_ < input_ticks_.size() && tick_ >= input_ticks_[next_input_]) {
       const SimInputEvent& e = world_.input_events[next_input_++];
       set_input(e.bit, e.high, false);
       event_tick = next_event_tick();
+      sample_watch(tick_);
+      if (stopped_) return;  // the word at this tick is not played
     }
     if (tick_ >= event_tick) {
       if (tick_ >= estop_tick_) {
@@ -125,7 +167,8 @@ void SimCard::write(std::span<const std::uint32_t> words) {
     }
     if (w != prev_) {
       decode(w);
-      if (fault_ != CardFault::None) {  // a limit switch tripped by this word's step
+      sample_watch(tick_ + 1);
+      if (fault_ != CardFault::None || stopped_) {  // a switch tripped by this word's step
         ++tick_;
         break;
       }

@@ -47,6 +47,9 @@ class SimCard : public Card {
   std::uint32_t inputs() const override { return inputs_; }
   CardFault fault() const override { return fault_; }
   void calibration_changed(const Settings& s) override;
+  // Exact: every word's inputs are compared, and a `stop` bit stops the card at its word.
+  void watch(const InputWatch& w) override;
+  std::optional<InputEdge> watch_fired() override { return fired_; }
 
   const Steps6& steps() const { return steps_; }  // decoded from the step and dir lines
   double time_s() const { return static_cast<double>(tick_) * tick_s_; }
@@ -65,6 +68,9 @@ class SimCard : public Card {
   std::size_t next_input_ = 0;
   std::uint32_t axis_bits_ = 0;  // every step and direction bit
   void set_input(int bit, bool active, bool active_low);
+  void sample_watch(std::uint64_t played);  // the inputs may have changed; `played` words in
+  EdgeDetector watcher_;
+  std::optional<InputEdge> fired_;
 
   SimWorld world_;
   InputSettings input_bits_;

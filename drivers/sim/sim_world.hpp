@@ -20,8 +20,10 @@ struct SimWorld {
   // Limit switches: active once the axis is at or beyond the position (units), on the low
   // and on the high side.
   std::array<std::optional<double>, kAxisCount> min_switch{}, max_switch{};
-  // Proximity (home) switches: active at or below the position (homing runs towards them).
+  // Proximity (home) switches: active at or below the position, or at or above it for the
+  // axes marked in home_above (a Z homing upwards).
   std::array<std::optional<double>, kAxisCount> home_switch{};
+  std::array<bool, kAxisCount> home_above{};
   std::optional<double> probe_z;     // a surface: the probe input is active at or below this Z
   std::optional<double> estop_at_s;  // the operator presses E-stop at this machine time
   std::optional<double> stall_at_s;  // the producer stalls here: words still due underrun

@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 
+#include "console.hpp"                       // the console subcommand
 #include "gantry/commands/command_docs.hpp"  // help text
 #include "gantry/core/text_file.hpp"         // read_text_file
 #include "gantry/lang/script.hpp"            // Script
@@ -122,6 +123,7 @@ struct LanguageArgs {
   std::string values;      // the values file; default in the user's config directory
   std::size_t budget = 10'000'000;
   double feed_override = 100;  // percent
+  int from_line = 0;           // run and moves: the first line to run (0: all)
 
   void add_to(CLI::App* cmd) {
     cmd->add_flag("--yes", yes, "Continue every PAUSE and press each MSGBOX's default button");
@@ -142,6 +144,7 @@ struct LanguageArgs {
     out.check_budget = budget;
     out.feed_override = feed_override / 100;
     out.yes = yes;
+    out.interpreter.start_line = from_line;
     for (const std::string& kv : inputs) {
       const size_t eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) {
@@ -427,6 +430,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--sim-probe-z", run.probe_z, "Simulate a probe surface at this Z");
   LanguageArgs run_lang, check_lang, moves_lang;
   run_lang.add_to(run_cmd);
+  run_cmd
+      ->add_option("--from-line", run_lang.from_line,
+                   "Start at this line: the lines before it set modes, values and the location "
+                   "without moving, then the tool goes there by Safe-Z")
+      ->check(CLI::Range(1, 1'000'000'000));
   run_cmd->add_option("--feed-override", run_lang.feed_override, "Percent of the file's speeds")
       ->check(CLI::Range(10.0, 200.0));
 
@@ -449,6 +457,10 @@ int main(int argc, char** argv) {
   moves_cmd->add_option("--svg", moves_svg_file,
                         "Write a top view of the moves to this SVG file instead of listing them");
   moves_lang.add_to(moves_cmd);
+  moves_cmd
+      ->add_option("--from-line", moves_lang.from_line,
+                   "List the moves of a run that starts at this line (the approach first)")
+      ->check(CLI::Range(1, 1'000'000'000));
 
   std::string estimate_file, estimate_settings;
   bool estimate_json = false;
@@ -476,6 +488,9 @@ int main(int argc, char** argv) {
   help_cmd->add_option("code", help_code, "A two-letter command, such as MX");
   help_cmd->add_flag("--markdown", help_markdown, "Print the command reference (docs/commands.md)");
 
+  ConsoleArgs console_args;
+  CLI::App* console_cmd = add_console_command(app, console_args);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -489,6 +504,7 @@ int main(int argc, char** argv) {
     if (*estimate_cmd)
       return cmd_estimate(estimate_file, estimate_settings, estimate_json, estimate_lang);
     if (*help_cmd) return cmd_help(help_code, help_markdown);
+    if (*console_cmd) return run_console(console_args);
     if (*commands_cmd) return cmd_commands(commands_group, commands_json);
   } catch (const GantryError& e) {
     fmt::print(stderr, "{}\n", e.what());

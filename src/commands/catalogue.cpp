@@ -31,18 +31,6 @@ ParamSpec text(std::string_view name, std::string_view help) {
   return {name, "", false, std::nullopt, help, ParamKind::Text};
 }
 
-// A probe: switch, speed, then a target per axis.
-std::vector<ParamSpec> probe(std::string_view letters) {
-  static const std::string names[] = {"target X", "target Y", "target Z",
-                                      "target A", "target B", "target C"};
-  std::vector<ParamSpec> out = {num("switch", "", std::nullopt, "Input switch that stops it."),
-                                num("speed", "units/s", std::nullopt, "Probing speed.")};
-  for (char a : letters)
-    out.push_back(num(names[std::string_view("XYZABC").find(a)], "units", std::nullopt,
-                      "Where the move stops if the switch never triggers."));
-  return out;
-}
-
 // `count` free-form parameters, for codes whose references give no fixed list.
 std::vector<ParamSpec> free_params(std::string_view name, int count, std::string_view help) {
   static const std::string names[] = {" 1", " 2", " 3", " 4", " 5", " 6", " 7", " 8"};
@@ -55,23 +43,6 @@ std::vector<ParamSpec> free_params(std::string_view name, int count, std::string
   return out;
 }
 
-const ParamSpec kPlunge = num("plunge", "units", 0.0, "Depth per repetition; negative is down.");
-const ParamSpec kReps = num("repetitions", "", 1.0, "Number of passes.");
-const ParamSpec kFromZero = num("plunge from Z 0", "", 0.0, "1 plunges from Z 0.");
-
-// SB3's file parameters, shared by FG (and FP).
-std::vector<ParamSpec> file_params() {
-  return {text("file name", "The part file."),
-          num("proportion X", "", 1.0, "Scale of X."),
-          num("proportion Y", "", 1.0, "Scale of Y."),
-          num("proportion Z", "", 1.0, "Scale of Z."),
-          kReps,
-          num("offset", "", 0.0, "0 none, 1 3D offset, 2 2D offset."),
-          kPlunge,
-          num("tab feature", "", 0.0, "1 adds tabs on the last pass."),
-          kFromZero};
-}
-
 const std::vector<Entry>& catalogue() {
   using G = CommandGroup;
   static const std::vector<Entry> entries = [] {
@@ -81,73 +52,11 @@ const std::vector<Entry>& catalogue() {
                  "Homing macro (FabMo)",
                  G::Cuts,
                  "FabMo's shortcut for macro 3, the homing macro. Gantry reads C3 as custom cut 3: "
-                 "it runs C3.sbp or macro_3.sbp, so this entry is never dispatched.",
+                 "it runs C3.sbp or macro_3.sbp, or without them the built-in homing on the "
+                 "proximity switches; this entry is never dispatched.",
                  {},
-                 "write the homing routine as C3.sbp (custom cut 3)"});
-    // File
-    e.push_back({"FG", "File: run a part file step by step", G::File,
-                 "Loads a part file to step through it line by line, or run from a line.",
-                 file_params(), "run the file with FP; `gantry moves` lists what each line does"});
-    // Jog and move
-    e.push_back(
-        {"MI",
-         "Move indexer or oscillate",
-         G::Move,
-         "Starts continuous rotation or oscillation of one axis alongside other moves.",
-         {text("axis", "Axis letter (default B)."), num("direction", "", 1.0, "1 clockwise."),
-          num("rotary speed", "units/s", std::nullopt, "Speed of rotation."),
-          num("frequency", "Hz", std::nullopt, "Oscillation cycles per second."),
-          num("distance", "units", std::nullopt, "Oscillation distance.")},
-         ""});
-    e.push_back({"MN",
-                 "Move nudge",
-                 G::Move,
-                 "A panel of small adjustments of the current location.",
-                 {},
-                 "make a short relative move (SR), or zero an axis with ZX, ZY or ZZ"});
-    // Probe
-    const std::tuple<std::string_view, std::string_view, std::string_view> probes[] = {
-        {"PX", "Probe in X", "X"},
-        {"PY", "Probe in Y", "Y"},
-        {"PZ", "Probe in Z", "Z"},
-        {"PA", "Probe in A", "A"},
-        {"PB", "Probe in B", "B"},
-        {"PC", "Probe in C", "C"},
-        {"P2", "Probe in 2 dimensions", "XY"},
-        {"P3", "Probe in 3 dimensions", "XYZ"},
-        {"P4", "Probe in 4 dimensions", "XYZA"},
-        {"P5", "Probe in 5 dimensions", "XYZAB"},
-        {"P6", "Probe in 6 dimensions", "XYZABC"}};
-    for (const auto& [code, name, letters] : probes)
-      e.push_back({code, name, G::Probe,
-                   "Moves toward the target until the input switch triggers (FabMo).",
-                   probe(letters), "probing needs live inputs, which arrive with issue 8"});
-    // Record
-    const std::string_view record = "the session record is not kept; keep the lines in a part file";
-    e.push_back({"RA", "Record: activate", G::Record, "Turns command recording on.", {}, record});
-    e.push_back(
-        {"RI", "Record: inactivate", G::Record, "Turns command recording off.", {}, record});
-    e.push_back(
-        {"RP", "Record: play all", G::Record, "Replays every recorded command.", {}, record});
-    e.push_back({"RR",
-                 "Record: replay last commands",
-                 G::Record,
-                 "Replays the last commands, repeated.",
-                 {text("commands back", "How many (1; A for all)."),
-                  num("repetitions", "", 1.0, "How many times.")},
-                 record});
-    e.push_back({"RS",
-                 "Record: save to a file",
-                 G::Record,
-                 "Saves the recorded commands to a file and opens it.",
-                 {text("file name", "Blank: SBTEMP.SBP."),
-                  num("commands back", "", std::nullopt, "Blank: all.")},
-                 record});
-    e.push_back({"RZ", "Record: zero the memory", G::Record, "Clears the record.", {}, record});
+                 ""});
     // Settings
-    e.push_back(
-        {"SI", "Send command lines", G::Settings, "A scratch pad to type lines and send them.",
-         free_params("line", 8, "A line to send."), "write the lines in a part file and run it"});
     e.push_back({"SK",
                  "Set to keypad mode",
                  G::Settings,

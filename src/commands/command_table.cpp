@@ -31,6 +31,7 @@ const CommandTable& CommandTable::standard() {
   static const CommandTable table = [] {
     std::vector<CommandSpec> specs;
     add_move_commands(specs);
+    add_probe_commands(specs);
     add_mode_commands(specs);
     add_file_commands(specs);
     add_output_commands(specs);
@@ -42,6 +43,8 @@ const CommandTable& CommandTable::standard() {
     add_tool_commands(specs);
     add_utility_commands(specs);
     add_cut_commands(specs);
+    add_record_commands(specs);
+    add_nudge_commands(specs);
     add_catalogue_commands(specs, specs);  // last: it fills in every code not yet there
     return CommandTable(std::move(specs));
   }();

@@ -89,9 +89,11 @@ int whole(const CommandCall& call, size_t i) {
 cuts::CutSetup setup_for(CommandContext& ctx) {
   const Vec6 at = ctx.position();
   cuts::CutSetup s = cuts::CutSetup::from(ctx.settings(), V3(at[0], at[1], at[2]));
-  s.file_tabs = ctx.state().tabs_on;
-  s.first_tab = ctx.state().first_tab;
-  s.tabs_left = ctx.state().tab_count;
+  // VB's tabbing in the file, or FP's tab feature (its last repetition): tabs on every cut.
+  const ModalState& st = ctx.state();
+  s.file_tabs = st.tabs_on || ctx.file_tabs();
+  s.first_tab = st.tabs_on ? st.first_tab : 0;  // FP's: one spacing from the start
+  s.tabs_left = st.tabs_on ? st.tab_count : 0;
   return s;
 }
 
@@ -125,6 +127,7 @@ void emit(CommandContext& ctx, const CutPath& path, const CommandCall& call) {
         ctx.check_reach(point(V3(e.x(), e.y(), at.z())), call.loc);
     at = m.to;
   }
+  const CommandContext::OwnTabs own(ctx);  // the path's tabs are in it already
   for (const cuts::CutMove& m : path.moves) {
     if (m.arc)
       ctx.arc_to(point(m.to), m.centre.x(), m.centre.y(), m.sweep, m.speed(), call.loc);

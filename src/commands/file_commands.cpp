@@ -18,7 +18,8 @@
 namespace gantry {
 namespace {
 
-void file_part(CommandContext& ctx, const CommandCall& call) {
+// FP's nine parameters (FG's first nine).
+FileCall file_call(const CommandCall& call) {
   FileCall fc;
   fc.path = *call.text(0);
   fc.proportion[0] = *call.number(1);
@@ -36,15 +37,43 @@ void file_part(CommandContext& ctx, const CommandCall& call) {
     fail(call.param_loc(5), "FP offset is 0 (none), 1 (3D: X, Y, Z from here) or 2 (2D)");
   fc.offset = static_cast<int>(offset);
   fc.plunge = *call.number(6);
-  if (*call.number(7) != 0)
-    fail(call.param_loc(7),
-         "FP's tab feature needs tabbing (VB), which Gantry does not offer "
-         "yet; leave parameter 8 blank");
-  if (*call.number(8) != 0)
-    fail(call.param_loc(8),
-         "FP's plunge from Z 0 (parameter 9) is not offered yet; move Z to 0 "
-         "before FP instead");
+  fc.tabs = *call.number(7) != 0;
+  fc.from_zero = *call.number(8) != 0;
+  return fc;
+}
+
+void file_part(CommandContext& ctx, const CommandCall& call) {
+  ctx.call_file(file_call(call), call.loc);
+}
+
+// FG: FP from a chosen line; the lines before it run without motion, then the tool comes
+// to where they leave it (docs/language.md, "Starting at a line").
+void file_goto(CommandContext& ctx, const CommandCall& call) {
+  FileCall fc = file_call(call);
+  fc.start_line = static_cast<int>(*call.number(9));
+  fc.start_loc = call.param_loc(9);
   ctx.call_file(fc, call.loc);
+}
+
+std::vector<ParamSpec> part_params() {
+  return {
+      {"file name", "", true, std::nullopt,
+       "The part file; a relative name is found in the parts folder (the top-level file's).",
+       ParamKind::Text},
+      {"proportion X", "", false, 1.0, "Scale of X."},
+      {"proportion Y", "", false, 1.0, "Scale of Y."},
+      {"proportion Z", "", false, 1.0, "Scale of Z."},
+      {"repetitions", "", false, 1.0, "How many times the file runs."},
+      {"offset", "", false, 0.0, "0 none; 1 3D: X, Y, Z start from here; 2 2D: X, Y from here."},
+      {"plunge", "units", false, 0.0,
+       "Z change of each repetition, the first included (negative goes down)."},
+      ParamSpec{"tab feature", "", false, 0.0,
+                "1 leaves tabs (VB's sizes) on the cutting moves of the last repetition, "
+                "and in the files it calls."}
+          .integer(0, 1),
+      ParamSpec{"plunge from Z 0", "", false, 0.0,
+                "1 first moves Z to 0 and takes the plunges from there."}
+          .integer(0, 1)};
 }
 
 // ---- FS -------------------------------------------------------------------------------------
@@ -194,25 +223,25 @@ ParamSpec text(std::string_view name, std::string_view help, bool required = fal
 
 void add_file_commands(std::vector<CommandSpec>& out) {
   const auto F = CommandGroup::File;
+  out.push_back({"FP", "File: run a part file", F,
+                 "Runs another part file, then continues on the next line. Variables are "
+                 "shared; the file may be scaled, repeated a plunge deeper each time, placed "
+                 "relative to the current position, and tabbed on its last repetition.",
+                 part_params(), file_part, "G-code files (.tap, .nc) are not run yet (issue 10)"});
+  std::vector<ParamSpec> goto_params = part_params();
+  goto_params.push_back(ParamSpec{"start line", "", false, 1.0,
+                                  "Gantry's: the first line of the file to run. The lines "
+                                  "before it set variables, modes and the location without "
+                                  "moving; then the tool goes there by Safe-Z."}
+                            .integer(1, 1e9));
   out.push_back(
-      {"FP",
-       "File: run a part file",
-       F,
-       "Runs another part file, then continues on the next line. Variables are shared; the file "
-       "may be scaled, repeated, and placed relative to the current position.",
-       {{"file name", "", true, std::nullopt,
-         "The part file; a relative name is found in the parts folder (the top-level file's).",
-         ParamKind::Text},
-        {"proportion X", "", false, 1.0, "Scale of X."},
-        {"proportion Y", "", false, 1.0, "Scale of Y."},
-        {"proportion Z", "", false, 1.0, "Scale of Z."},
-        {"repetitions", "", false, 1.0, "How many times the file runs."},
-        {"offset", "", false, 0.0, "0 none; 1 3D: X, Y, Z start from here; 2 2D: X, Y from here."},
-        {"plunge", "units", false, 0.0, "Z added at each repetition (negative goes down)."},
-        {"tab feature", "", false, 0.0, "1 adds tabs on the last pass (not offered yet)."},
-        {"plunge from Z 0", "", false, 0.0, "1 plunges from Z 0 (not offered yet)."}},
-       file_part,
-       "tabs (parameter 8) and plunge from Z 0 (parameter 9)"});
+      {"FG", "File: run a part file from a line", F,
+       "Runs a part file as FP does, starting at a chosen line: the lines before it run without "
+       "motion, output or questions, the tool then rises to Safe-Z, crosses to where those lines "
+       "leave it and goes down there, and the file runs on from that line.",
+       goto_params, file_goto,
+       "no single-stepping, and no record of where a stopped run ended: FG runs on from the "
+       "line given (parameter 10)"});
   out.push_back(
       {"FS",
        "File: set the parts folder",

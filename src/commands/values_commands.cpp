@@ -165,6 +165,10 @@ void values_tabs(CommandContext& ctx, const CommandCall& call) {
     if (*v > 0) st.tabs_on = true;
   }
   if (const auto v = call.number(6)) st.first_tab = *v;
+  if (call.number(4) || call.number(5) || call.number(6)) {  // a series of tabs starts here
+    st.tab_travel = 0;
+    st.tabs_passed = 0;
+  }
 }
 
 // ---- VD: display and units ------------------------------------------------------------
@@ -700,8 +704,7 @@ void add_values_commands(std::vector<CommandSpec>& out) {
                  "tab insertion on or off in a file.",
                  params_of(vb_fields()),
                  values_tabs,
-                 "tabs go into the cut commands; plain moves in a file and FP's tab feature "
-                 "are not tabbed yet",
+                 "",
                  {},
                  false,
                  "%(41)-%(44)"});

@@ -3,7 +3,7 @@
 #include "gantry/cuts/passes.hpp"
 
 #include <algorithm>  // max, min
-#include <cmath>      // ceil
+#include <cmath>      // ceil, floor
 
 namespace gantry::cuts {
 
@@ -15,23 +15,79 @@ double PassPlan::depth(int pass) const {
   return (from_zero ? 0.0 : z_start) + pass * plunge;
 }
 
+namespace {
+
+// One series of tabs: the k-th starts at first + k * step, where step is the spacing, or the
+// tab's own length when the spacing is shorter (the tabs then run end to end).
+struct TabSeries {
+  double first, span, step;
+  int most;  // 0: no limit
+  explicit TabSeries(const TabPlan& t)
+      : first(t.first),
+        span(2 * t.sizes.leads + t.sizes.size),
+        step(std::max(t.sizes.spacing, span)),
+        most(t.most) {}
+  bool usable(const TabPlan& t) const { return t.on && span > 0 && step > 0; }
+  double start(int k) const { return first + k * step; }
+  bool allowed(int k) const { return most <= 0 || k < most; }
+  // How many tabs end at or before s.
+  int ended_by(double s) const {
+    const double k = std::floor((s + 1e-9 - span - first) / step) + 1;
+    const int n = k > 0 ? static_cast<int>(std::min(k, 1e9)) : 0;
+    return most > 0 ? std::min(n, most) : n;
+  }
+};
+
+// Tab k's profile: up over the leads, level for the size, down over the leads; distances
+// measured from `origin`.
+void add_tab(Profile& p, const TabSettings& z, double s, double lift, double origin) {
+  const double a = s - origin;
+  p.points.insert(p.points.end(), {{a, 0.0},
+                                   {a + z.leads, lift},
+                                   {a + z.leads + z.size, lift},
+                                   {a + 2 * z.leads + z.size, 0.0}});
+}
+
+}  // namespace
+
 Profile tab_profile(double length, const TabPlan& t, double lift, int* count) {
   Profile p = Profile::constant(0);
   int n = 0;
-  const TabSettings& z = t.sizes;
-  const double span = 2 * z.leads + z.size;
-  // Tabs closer than their own length would overlap: they are then placed end to end.
-  const double step = std::max(z.spacing, span);
-  if (t.on && span > 0)
-    for (double s = t.first; s + span <= length + 1e-9 && (t.most <= 0 || n < t.most); s += step) {
-      p.points.insert(
-          p.points.end(),
-          {{s, 0.0}, {s + z.leads, lift}, {s + z.leads + z.size, lift}, {s + span, 0.0}});
+  const TabSeries series(t);
+  if (series.usable(t))
+    for (int k = 0; series.start(k) + series.span <= length + 1e-9 && series.allowed(k); ++k) {
+      add_tab(p, t.sizes, series.start(k), lift, 0);
       ++n;
-      if (!(step > 0)) break;
     }
   if (count) *count = n;
   return p;
+}
+
+Profile tab_window(const TabPlan& t, double lift, double from, double to, int* ended) {
+  Profile p;
+  const TabSeries series(t);
+  int n = 0;
+  if (series.usable(t)) {
+    // The first tab that may still be under way at `from`.
+    int k = std::max(
+        0, static_cast<int>(std::floor((from - series.span - series.first) / series.step)));
+    for (; series.allowed(k) && series.start(k) < to; ++k)
+      if (series.start(k) + series.span > from) add_tab(p, t.sizes, series.start(k), lift, from);
+    n = series.ended_by(to);
+  }
+  if (p.points.empty()) p = Profile::constant(0);
+  if (ended) *ended = n;
+  return p;
+}
+
+CutPath tab_stretch(const V3& tool, double lift_now, const Piece& piece, double z_to, double travel,
+                    const TabPlan& t, double lift, int* ended) {
+  PathBuilder b(tool);
+  const double len = piece.length();
+  const Profile z = Profile::ramp(len, tool.z() - lift_now, z_to) +
+                    tab_window(t, lift, travel, travel + len, ended);
+  b.follow({piece}, z);
+  return b.take();
 }
 
 namespace {

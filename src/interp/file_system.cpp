@@ -29,17 +29,17 @@ std::shared_ptr<std::ostream> DiskFileSystem::open_write(const std::string& path
 std::shared_ptr<const Script> SandboxFileSystem::load_script(const std::string& path) {
   auto it = written_.find(path);  // a part file the run wrote itself
   if (it != written_.end()) return Script::from_text(it->second->str(), path);
-  return disk_.load_script(path);
+  return base_->load_script(path);
 }
 
 bool SandboxFileSystem::is_file(const std::string& path) {
-  return written_.count(path) || disk_.is_file(path);
+  return written_.count(path) || base_->is_file(path);
 }
 
 std::shared_ptr<std::istream> SandboxFileSystem::open_read(const std::string& path) {
   auto it = written_.find(path);
   if (it != written_.end()) return std::make_shared<std::istringstream>(it->second->str());
-  return disk_.open_read(path);
+  return base_->open_read(path);
 }
 
 std::shared_ptr<std::ostream> SandboxFileSystem::open_write(const std::string& path, bool append) {

@@ -2,8 +2,12 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "gantry/interp/interpreter.hpp"
 
@@ -23,6 +27,92 @@ struct Interpreter::Frame {
   std::array<bool, 10> vs_owned{};  // speeds (move xy..c, jog xy..c) VS set last here
   std::optional<Settings> saved_values;  // before this file's first file-scoped change
   std::optional<Units> saved_units;      // before this file's SU
+};
+
+// The motion stream while the lines before a start line run: closed, it passes nothing but
+// the end of the stream and the inputs' state; it notes that the values changed and which
+// inputs to watch, for open() to send.
+class Interpreter::GatedSink : public MotionSink {
+ public:
+  explicit GatedSink(MotionSink& out) : out_(out) {}
+  void move(const CanonMove& m) override {
+    if (!closed) out_.move(m);
+  }
+  void flush() override { out_.flush(); }
+  void settings_changed(const Settings& s) override {
+    if (closed)
+      changed = true;
+    else
+      out_.settings_changed(s);
+  }
+  // Closed, the machine is not asked: a probe is taken to reach its target, no input fires.
+  std::optional<MotionReport> sync() override {
+    if (closed) return std::nullopt;
+    return out_.sync();
+  }
+  void watch_inputs(std::span<const InputTrigger> t, Watching w) override {
+    if (!closed) return out_.watch_inputs(t, w);
+    watched_.emplace(std::vector<InputTrigger>(t.begin(), t.end()), w);
+  }
+  std::optional<std::array<bool, 12>> input_switches() const override {
+    return out_.input_switches();
+  }
+  // Opens the stream; the inputs the lines before last asked to watch are watched from here.
+  void open() {
+    closed = false;
+    if (watched_) out_.watch_inputs(watched_->first, watched_->second);
+    watched_.reset();
+  }
+  bool closed = false;
+  bool changed = false;
+
+ private:
+  MotionSink& out_;
+  std::optional<std::pair<std::vector<InputTrigger>, Watching>> watched_;
+};
+
+// The operator while the lines before a start line run: closed, nothing is shown and nobody
+// is asked to continue (PAUSE and DIALOG go on, MSGBOX takes its default button); INPUT still
+// asks, since the lines after it need the answer. Warnings pass.
+class Interpreter::GatedIO : public OperatorIO {
+ public:
+  explicit GatedIO(OperatorIO& out) : out_(out) {}
+  void print(std::string_view text) override {
+    if (!closed) out_.print(text);
+  }
+  bool confirm(std::string_view message, const SourceLoc& loc) override {
+    return closed || out_.confirm(message, loc);
+  }
+  std::optional<std::string> ask(std::string_view prompt, std::string_view variable,
+                                 std::string_view default_value, const SourceLoc& loc) override {
+    return out_.ask(prompt, variable, default_value, loc);
+  }
+  std::string choose(std::string_view text, const std::vector<std::string>& buttons,
+                     size_t default_button, std::string_view title, const SourceLoc& loc) override {
+    if (closed) return buttons.at(default_button);
+    return out_.choose(text, buttons, default_button, title, loc);
+  }
+  void warn(const Diagnostic& d) override { out_.warn(d); }
+  bool closed = false;
+
+ private:
+  OperatorIO& out_;
+};
+
+// A start line (FG, --from-line) not reached yet.
+struct Interpreter::StartLine {
+  size_t depth = 0;  // the frame of the file it is in
+  int line = 0;      // the first line that runs (a statement's)
+  SourceLoc at;      // where it was given
+  // Where the tool really is while the lines before run (the machine frame), and which
+  // output switches are really on.
+  Vec6 machine = Vec6::Zero();
+  std::uint32_t outputs = 0;
+  std::size_t moves = 0;  // moves sent before it
+  // Put back when the quiet part ends.
+  bool dry_run = false;
+  FileSystem* files = nullptr;
+  std::unique_ptr<SandboxFileSystem> sandbox;  // the quiet part's writes
 };
 
 // A file opened with OPEN ... AS #n.

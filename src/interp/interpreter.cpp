@@ -8,16 +8,21 @@
 #include <cmath>       // isfinite, round
 #include <filesystem>  // path joining for FP and C#
 
-#include "../lang/scan.hpp"    // looks_like_expression
+#include "../lang/scan.hpp"              // looks_like_expression
+#include "gantry/core/text_file.hpp"     // write_file_atomically
+#include "gantry/cuts/passes.hpp"        // tabs on plain moves
 #include "gantry/motion/arc_chords.hpp"  // arc_to under an uneven FP scale
-#include "interp_private.hpp"  // Frame, UserFile
+#include "interp_private.hpp"            // Frame, UserFile
 
 namespace gantry {
 
 // ---- CommandContext -------------------------------------------------------------------
 
 void CommandContext::check_reach(const Vec6& point, const SourceLoc& loc) const {
-  const Vec6 target = transform_.to_machine(point);
+  check_working(transform_.to_machine(point), loc);
+}
+
+void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) const {
   const char* unit = units_name(settings_.units);
   // Soft limits are the table's envelope, in table base coordinates (VO's offset included:
   // it is where the tool really goes).
@@ -42,6 +47,11 @@ void CommandContext::check_reach(const Vec6& point, const SourceLoc& loc) const 
 void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
   check_reach(file_target, loc);
   const Vec6 target = transform_.to_machine(file_target);
+  if (tab_move(target, nullptr, cls, loc)) return;
+  send_line(target, cls, loc);
+}
+
+void CommandContext::send_line(const Vec6& target, SpeedClass cls, const SourceLoc& loc) {
   const Vec6 table = target + state_.zero + state_.tool_offset;
   const Vec6 now = state_.position + state_.zero + state_.applied_offset;
   if (table == now) return;  // no motion, no move
@@ -92,13 +102,23 @@ void CommandContext::arc_to(const Vec6& file_target, double cx, double cy, doubl
   }
   if (state_.applied_offset != state_.tool_offset) line_to(from, cls, loc);  // VO changed
   const Vec6 target = transform_.to_machine(file_target);
+  const std::array<double, 3> working = {transform_.origin[0] + transform_.scale[0] * cx,
+                                         transform_.origin[1] + transform_.scale[1] * cy, sweep};
+  if (tab_move(target, &working, cls, loc)) return;
+  send_arc(target, working[0], working[1], sweep, cls, loc);
+}
+
+void CommandContext::send_arc(const Vec6& target, double cx, double cy, double sweep,
+                              SpeedClass cls, const SourceLoc& loc) {
   const Vec6 shift = state_.zero + state_.tool_offset + state_.machine_origin;
-  CanonMove m = arc;
+  CanonMove m;
+  m.kind = MoveKind::Arc;
   m.speed_class = cls;
   m.from = state_.position + shift;
   m.to = target + shift;
-  m.center_x = transform_.origin[0] + transform_.scale[0] * cx + shift[0];
-  m.center_y = transform_.origin[1] + transform_.scale[1] * cy + shift[1];
+  m.center_x = cx + shift[0];
+  m.center_y = cy + shift[1];
+  m.sweep = sweep;
   m.speeds = cls == SpeedClass::Move ? state_.speeds.move : state_.speeds.jog;
   if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15, as line_to
     for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c}) *v /= n;
@@ -109,6 +129,86 @@ void CommandContext::arc_to(const Vec6& file_target, double cx, double cy, doubl
   state_.last_xy_move = sweep > 0 ? std::array<double, 2>{-ey, ex} : std::array<double, 2>{ey, -ex};
   state_.position = target;
   ++moves_;
+}
+
+// Tabs on plain moves (docs/cuts.md, "Tabs on plain moves"): while VB's tabbing or FP's tab
+// feature is on, every move at move speed that ends below Safe-Z follows the tab profile
+// (VB's sizes) along the distance travelled in XY since the path began. A jog, or a move that
+// reaches Safe-Z, ends the path; the next cutting move starts a new series of tabs.
+bool CommandContext::tab_move(const Vec6& target, const std::array<double, 3>* arc, SpeedClass cls,
+                              const SourceLoc& loc) {
+  ModalState& st = state_;
+  const CutterSettings& cutter = settings_.cutter;
+  const double up = cutter.plunge_negative ? 1.0 : -1.0;
+  if (own_tabs_ || !(st.tabs_on || file_tabs_) || cls == SpeedClass::Jog ||
+      up * (target[2] - cutter.safe_z) >= 0) {
+    if (st.tab_travel != 0 || st.tab_lift != 0) end_tab_path();
+    return false;
+  }
+  const double lift_now = st.tab_lift;
+  Vec6 from = st.position;  // where the file has the tool: below the tab it may be on
+  from[2] -= lift_now;
+  cuts::Piece piece;
+  piece.from = cuts::V2(from[0], from[1]);
+  piece.to = cuts::V2(target[0], target[1]);
+  if (arc) {
+    piece.arc = true;
+    piece.centre = cuts::V2((*arc)[0], (*arc)[1]);
+    piece.sweep = (*arc)[2];
+  }
+  const double length = piece.length();
+  if (!(length > 1e-9)) {  // no travel along the path: the tab's height carries over
+    Vec6 lifted = target;
+    lifted[2] += lift_now;
+    check_working(lifted, loc);
+    send_line(lifted, cls, loc);
+    return true;
+  }
+  cuts::TabPlan plan;
+  plan.on = true;
+  plan.sizes = settings_.tabs;
+  plan.first = st.tabs_on && st.first_tab > 0 ? st.first_tab : settings_.tabs.spacing;
+  plan.most = st.tabs_on && st.tab_count > 0 ? st.tabs_passed + st.tab_count : 0;
+  int ended = 0;
+  const cuts::CutPath path =
+      cuts::tab_stretch(cuts::V3(st.position[0], st.position[1], st.position[2]), lift_now, piece,
+                        target[2], st.tab_travel, plan, up * settings_.tabs.pull_up, &ended);
+  // Each part's end: X, Y, Z from the path, the other axes in proportion to the distance.
+  std::vector<Vec6> ends;
+  cuts::V2 at = piece.from;
+  double along = 0;
+  for (const cuts::CutMove& m : path.moves) {
+    const cuts::V2 to = m.to.head<2>();
+    along += m.arc ? (at - m.centre).norm() * std::abs(m.sweep) : (to - at).norm();
+    at = to;
+    Vec6 p = from + (target - from) * std::min(1.0, along / length);
+    p.head<3>() = m.to;
+    ends.push_back(p);
+  }
+  if (!ends.empty()) ends.back().tail<3>() = target.tail<3>();
+  for (const Vec6& p : ends) check_working(p, loc);
+  for (size_t i = 0; i < ends.size(); ++i) {
+    const cuts::CutMove& m = path.moves[i];
+    if (m.arc)
+      send_arc(ends[i], m.centre.x(), m.centre.y(), m.sweep, cls, loc);
+    else
+      send_line(ends[i], cls, loc);
+  }
+  st.tab_travel += length;
+  st.tab_lift = std::abs(path.end().z() - target[2]) > 1e-12 ? path.end().z() - target[2] : 0;
+  // VB's count: tabs after an ON; a tab counts once the tool is past it.
+  if (plan.most > 0 && ended > st.tabs_passed) {
+    st.tab_count = std::max(0, st.tab_count - (ended - st.tabs_passed));
+    st.tabs_passed = ended;
+    if (st.tab_count == 0) st.tabs_on = false;
+  }
+  return true;
+}
+
+void CommandContext::end_tab_path() {
+  state_.tab_travel = 0;
+  state_.tab_lift = 0;
+  state_.tabs_passed = 0;
 }
 
 void CommandContext::dwell(double seconds, const SourceLoc& loc) {
@@ -192,6 +292,9 @@ void CommandContext::change_units(Units to, ValueScope scope, const SourceLoc& l
     (*st.last_xy_move)[0] *= scale[0];
     (*st.last_xy_move)[1] *= scale[1];
   }
+  st.tab_travel *= scale[0];
+  st.tab_lift *= scale[2];
+  if (interp_->start_) interp_->start_->machine = interp_->start_->machine.cwiseProduct(scale);
   // What running files will restore is in the new units too.
   for (Interpreter::Frame& fr : interp_->frames_) {
     scale_speeds(fr.saved_speeds.move, scale);
@@ -218,7 +321,7 @@ void CommandContext::clear_variables() {
 }
 
 bool CommandContext::in_file() const {
-  return !interp_->frames_.empty();
+  return !interp_->frames_.empty() && !interp_->frames_.back().call.lines;
 }
 
 void CommandContext::set_table_base(unsigned axes, const Vec6& location) {
@@ -231,13 +334,98 @@ void CommandContext::set_table_base(unsigned axes, const Vec6& location) {
     }
 }
 
+void CommandContext::home_axis(int axis, double table_base) {
+  const double machine = state_.machine_origin[axis] + state_.zero[axis] + state_.position[axis];
+  state_.machine_origin[axis] = machine - table_base;
+  state_.position[axis] = table_base - state_.zero[axis];
+}
+
+void CommandContext::homing_line(const Vec6& file_target, double speed, const SourceLoc& loc) {
+  const SpeedSettings speeds = state_.speeds;
+  state_.speeds.move = {speed, speed, speed, speed, speed};
+  send_line(transform_.to_machine(file_target), SpeedClass::Move, loc);
+  state_.speeds = speeds;
+}
+
+std::optional<std::array<bool, 12>> CommandContext::input_switches() {
+  sink_.sync();
+  return sink_.input_switches();
+}
+
+bool CommandContext::probe(const Vec6& file_target, double speed, int input, const SourceLoc& loc,
+                           MotionSink::Watching why) {
+  if (input < 1 || input > 12)
+    fail(loc, fmt::format("input switch {} does not exist; inputs are 1 to 12", input));
+  if (settings_.inputs.switch_bits[input - 1] < 0)
+    fail(loc, fmt::format("input switch {} is not wired in this profile (inputs.switch_bits): a "
+                          "probe on it would never stop; nothing moved",
+                          input));
+  if (!(speed > 0) || !std::isfinite(speed))
+    fail(loc, fmt::format("the probing speed must be above 0, not {}", speed));
+  if (why == MotionSink::Watching::Probe) check_reach(file_target, loc);
+  const Vec6 target = transform_.to_machine(file_target);
+  if (state_.preview) {
+    send_line(target, SpeedClass::Move, loc);
+    return false;
+  }
+  sink_.sync();
+  if (const std::optional<std::array<bool, 12>> in = sink_.input_switches(); in && (*in)[input - 1])
+    fail(loc, fmt::format("input switch {} is closed already (the probe is touching): move it "
+                          "clear first; nothing moved",
+                          input));
+  const std::array<InputTrigger, 1> watch{{{input, true, false}}};
+  sink_.watch_inputs(watch, why);
+  const Vec6 start = state_.position;
+  const SpeedSettings speeds = state_.speeds;
+  state_.speeds.move = {speed, speed, speed, speed, speed};
+  send_line(target, SpeedClass::Move, loc);
+  state_.speeds = speeds;
+  const std::optional<MotionReport> r = sink_.sync();
+  const bool hit = r && r->fired;
+  if (hit) {
+    // It came to rest a little past the point where the switch closed: back there. The
+    // axes the probe did not move keep their exact locations.
+    auto working = [&](const Vec6& machine) {
+      interp_->set_machine_position(machine);
+      for (int i = 0; i < kAxisCount; ++i)
+        if (target[i] == start[i]) state_.position[i] = start[i];
+      return state_.position;
+    };
+    const Vec6 back = working(r->latched);
+    working(r->machine);
+    homing_line(transform_.to_file(back), speed, loc);
+    sink_.sync();
+  }
+  interp_->arm_inputs();  // the file's ON INPUT handlers again
+  return hit;
+}
+
 void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {
   interp_->pending_call_ = call;
   interp_->pending_call_loc_ = loc;
 }
 
+void CommandContext::run_typed(std::shared_ptr<const Script> lines, int repetitions,
+                               const SourceLoc& loc) {
+  FileCall call;
+  call.path = *lines->name();
+  call.resolved = true;  // not a file FE should open next
+  call.repetitions = repetitions;
+  call.lines = std::move(lines);
+  call_file(call, loc);
+}
+
+CommandRecorder& CommandContext::recorder() {
+  return interp_->recorder_;
+}
+
 void CommandContext::speed_set(SpeedClass cls, int group, bool by_values) {
-  interp_->frames_.back().vs_owned[(cls == SpeedClass::Jog ? 5 : 0) + group] = by_values;
+  const int i = (cls == SpeedClass::Jog ? 5 : 0) + group;
+  if (!in_file()) {  // typed lines (RP, RR, SI) set speeds for good: no file end undoes them
+    for (Interpreter::Frame& f : interp_->frames_) f.vs_owned[i] = false;
+    return;
+  }
+  interp_->frames_.back().vs_owned[i] = by_values;
 }
 
 void CommandContext::print(std::string_view text) {
@@ -249,7 +437,7 @@ void CommandContext::warn(const SourceLoc& loc, std::string message) {
 }
 
 std::string CommandContext::write_file(const std::string& name, std::string_view text,
-                                       const SourceLoc& loc) {
+                                       const SourceLoc& loc, bool atomic) {
   const std::string path = interp_->file_path(name, loc);
   auto canonical = [](const std::string& p) {  // "" when it cannot be resolved
     std::error_code ec;
@@ -260,6 +448,15 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
   for (const Interpreter::Frame& f : interp_->frames_)
     if (f.script->name() && !target.empty() && canonical(*f.script->name()) == target)
       fail(loc, fmt::format("{} is running; a command cannot rewrite a running part file", path));
+  if (atomic && dynamic_cast<DiskFileSystem*>(interp_->files_system_)) {
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    std::error_code ec;
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+      fail(loc, fmt::format("cannot write {}: there is no folder {}", path, folder.string()));
+    if (!write_file_atomically(path, std::string(text)))
+      fail(loc, fmt::format("could not write {}", path));
+    return path;
+  }
   std::shared_ptr<std::ostream> out = interp_->files_system_->open_write(path, false);
   if (!out) fail(loc, fmt::format("cannot open {} for writing", path));
   out->write(text.data(), static_cast<std::streamsize>(text.size()));
@@ -367,12 +564,14 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
                          PersistentStore& store, InterpreterOptions options,
                          const CommandTable& table)
     : settings_(settings),
+      gated_sink_(std::make_unique<GatedSink>(sink)),
+      gated_io_(std::make_unique<GatedIO>(io)),
       table_(table),
-      sink_(sink),
-      io_(io),
+      sink_(*gated_sink_),
+      io_(*gated_io_),
       store_(store),
       options_(std::move(options)),
-      ctx_(state_, settings_, sink) {
+      ctx_(state_, settings_, sink_) {
   ctx_.interp_ = this;
   state_.speeds = settings.speeds;
   if (options_.files) {
@@ -417,6 +616,13 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
       }
   }
   if (!call.resolved && script->name()) last_file_ = *script->name();  // FE's blank opens it
+  // FG: from here to its start line nothing reaches the machine (the plunges below included).
+  if (call.start_line > 1 && !start_) begin_start(*script, call, from);
+  if (call.from_zero) {  // FP 9: first Z to the caller's 0, at move speed; plunges count from 0
+    Vec6 target = ctx_.position();
+    target[2] = 0;
+    ctx_.line_to(target, SpeedClass::Move, from);
+  }
   Frame f;
   f.script = std::move(script);
   f.pc = f.script->start();
@@ -429,9 +635,17 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
   // An offset run places the file's 0 at the current position: X, Y (2D) or X, Y, Z (3D).
   for (int i = 0; i < (call.offset == 1 ? 3 : call.offset == 2 ? 2 : 0); ++i)
     f.transform.origin[i] = state_.position[i];
+  if (call.lines) f.transform = Transform{};  // typed lines: the console's coordinates
   f.plunge_start_z = state_.position[2];
   frames_.push_back(std::move(f));
+  update_file_tabs();
   plunge_for_pass(frames_.back());
+}
+
+void Interpreter::update_file_tabs() {
+  bool on = false;  // a sub-file of a file in its tabbed repetition is tabbed too
+  for (const Frame& f : frames_) on = on || (f.call.tabs && f.repetition == f.call.repetitions - 1);
+  ctx_.file_tabs_ = on;
 }
 
 // FP's plunge: pass k (from 1) runs k * plunge lower. The file's Z is shifted, and the tool
@@ -452,10 +666,13 @@ void Interpreter::end_file() {
   if (++f.repetition < f.call.repetitions) {
     f.pc = f.script->start();
     f.gosubs.clear();
+    update_file_tabs();
     plunge_for_pass(f);
     return;
   }
+  if (start_ && start_->depth + 1 == frames_.size()) start_missed();
   frames_.pop_back();
+  update_file_tabs();
 }
 
 // Names the calling lines of the running files, outermost first, unless already named.
@@ -478,11 +695,133 @@ void Interpreter::unwind_all() {
     restore_file_values(frames_.back());
     frames_.pop_back();
   }
+  update_file_tabs();
+}
+
+// ---- starting at a line ----------------------------------------------------------------
+
+namespace {
+
+// The top-level file's call: no transform, maybe a start line.
+FileCall top_call(const Script& script, int start_line) {
+  FileCall call;
+  call.start_line = start_line;
+  call.start_loc = SourceLoc{script.name(), start_line, 0};
+  return call;
+}
+
+// The first line at or after `line` that holds a statement other than a label (a line with
+// a syntax error counts: the check reports it); 0 when there is none.
+int statement_line_from(const Script& script, int line) {
+  Cursor c = script.start(), next;
+  Statement scratch;
+  while (!script.at_end(c)) {
+    const std::string_view text = script.line_at(c, &next);
+    if (c.line >= line) {
+      if (parse_simple_command(text, script.name(), c.line, &scratch)) return c.line;
+      const std::shared_ptr<const LineParse> lp = script.parse(c, &next);
+      if (lp->error || (lp->statement && !std::holds_alternative<LabelStmt>(lp->statement->body)))
+        return c.line;
+    }
+    c = next;
+  }
+  return 0;
+}
+
+}  // namespace
+
+// The lines before the start line run as a full run would run them (variables, modes,
+// values, the location), but nothing reaches the machine, the operator or a file.
+void Interpreter::begin_start(const Script& script, const FileCall& call, const SourceLoc& from) {
+  const SourceLoc at = call.start_loc.file ? call.start_loc : from;
+  const int line = statement_line_from(script, call.start_line);
+  if (line == 0)
+    fail(at, fmt::format("start line {} is past the end of {}: it has {} lines and no statement "
+                         "from line {} on; nothing was moved",
+                         call.start_line, script.name() ? *script.name() : "the file",
+                         script.line_count(), call.start_line));
+  auto s = std::make_unique<StartLine>();
+  s->depth = frames_.size();
+  s->line = line;
+  s->at = at;
+  s->machine = state_.machine_origin + state_.zero + state_.position + state_.applied_offset;
+  s->outputs = state_.outputs;
+  s->moves = ctx_.moves_;
+  s->dry_run = options_.dry_run;
+  s->files = files_system_;
+  s->sandbox = std::make_unique<SandboxFileSystem>(files_system_);
+  files_system_ = s->sandbox.get();
+  options_.dry_run = true;  // SHELL and FE start nothing
+  gated_sink_->closed = true;
+  gated_sink_->changed = false;
+  gated_io_->closed = true;
+  start_ = std::move(s);
+}
+
+void Interpreter::end_quiet() {
+  if (!start_ || !gated_sink_->closed) return;
+  gated_sink_->open();
+  gated_io_->closed = false;
+  options_.dry_run = start_->dry_run;
+  files_system_ = start_->files;
+  ctx_.moves_ = start_->moves;  // the moves the machine was sent
+}
+
+// The start line is reached: the machine catches up with what the lines before changed (the
+// values the planner uses, the output switches), then the tool moves from where it really is
+// to where they left it: up to Safe-Z (or higher, when it or the target is above it) at jog
+// speed, across at jog speed, and down at move speed.
+void Interpreter::reach_start(const SourceLoc& at) {
+  if (state_.preview)
+    fail(at, fmt::format("line {} is inside a preview (SP before it, and no SM yet): nothing "
+                         "reached the machine there, so there is no place to resume from; start "
+                         "before the SP or after the SM; nothing was moved",
+                         start_->line));
+  end_quiet();
+  const StartLine s = std::move(*start_);
+  start_.reset();
+  // The approach, checked before anything is sent.
+  const Vec6 target = state_.position;
+  const auto last_move = state_.last_xy_move;  // MD turns from the file's last move
+  const Vec6 from = s.machine - state_.machine_origin - state_.zero - state_.applied_offset;
+  const CutterSettings& c = settings_.cutter;
+  auto higher = [&](double a, double b) {
+    return c.plunge_negative ? std::max(a, b) : std::min(a, b);
+  };
+  const double lift = higher(higher(c.safe_z, from[2]), target[2]);
+  Vec6 up = from, across = target;
+  up[2] = across[2] = lift;
+  const std::uint32_t outputs = state_.outputs;
+  state_.position = from;  // where the tool and the switches really are
+  state_.outputs = s.outputs;
+  for (const Vec6& p : {up, across, target}) ctx_.check_working(p, at);
+  if (gated_sink_->changed) ctx_.values_reach_motion(at);
+  for (int n = 1; n <= 32; ++n) {
+    const std::uint32_t bit = 1u << (n - 1);
+    if ((outputs ^ s.outputs) & bit) ctx_.set_output(n, (outputs & bit) != 0, at);
+  }
+  if (from != target) {                       // (a tool already there stays)
+    ctx_.send_line(up, SpeedClass::Jog, at);  // no tabs: the tabbed path goes on after
+    ctx_.send_line(across, SpeedClass::Jog, at);
+    ctx_.send_line(target, SpeedClass::Move, at);
+  }
+  state_.last_xy_move = last_move;
+}
+
+void Interpreter::start_missed() {
+  const StartLine& s = *start_;
+  const std::string file = frames_.size() > s.depth && frames_[s.depth].script->name()
+                               ? *frames_[s.depth].script->name()
+                               : (s.at.file ? *s.at.file : std::string("the file"));
+  fail(s.at, fmt::format("line {} of {} is never reached when the file runs (it is after its "
+                         "END, in a subroutine no GOSUB calls, or jumped over); nothing was "
+                         "moved",
+                         s.line, file));
 }
 
 // ---- the statement loop ---------------------------------------------------------------
 
-void Interpreter::run(std::shared_ptr<const Script> script) {
+void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
   parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
   auto clear_run_flag = [&] {  // SetUsrValClrd lives for one top-level run
     if (store_.registry_value("uValueClrd")) store_.registry().erase("uValueClrd");
@@ -494,13 +833,21 @@ void Interpreter::run(std::shared_ptr<const Script> script) {
   auto finish = [&] {
     unwind_all();
     files_.clear();
-    on_input_.clear();
+    if (!on_input_.empty()) {
+      on_input_.clear();
+      sink_.watch_inputs({}, MotionSink::Watching::Handlers);
+    }
     pending_call_.reset();
     ctx_.end_preview();  // first: a preview switches no output
-    // Output switches go off when the job ends, however it ends (SB3's standard mode).
-    for (int n = 1; state_.outputs != 0; ++n)
-      if (state_.outputs & (1u << (n - 1))) ctx_.set_output(n, false, SourceLoc{});
-    state_.tool_offset = Vec6::Zero();  // VO lasts until the part file is exited
+    // Output switches go off when the job ends, however it ends (SB3's standard mode); VO
+    // lasts until the part file is exited. Typed lines are no part file.
+    if (!typed) {
+      for (int n = 1; state_.outputs != 0; ++n)
+        if (state_.outputs & (1u << (n - 1))) ctx_.set_output(n, false, SourceLoc{});
+      state_.tool_offset = Vec6::Zero();
+    }
+    end_quiet();  // a start line never reached: the machine was never told otherwise
+    start_.reset();
     sink_.flush();
     settings_.speeds = state_.speeds;  // MS and JS changes stay; VS ones were undone above
     if (!options_.dry_run && options_.save_values) options_.save_values(settings_);
@@ -508,13 +855,19 @@ void Interpreter::run(std::shared_ptr<const Script> script) {
     store_.save();
   };
   try {
-    push_file(std::move(script), FileCall{}, SourceLoc{});
+    FileCall call = top_call(*script, options_.start_line);
+    if (typed) call.lines = script;
+    push_file(script, call, SourceLoc{});
     loop(nullptr);
+    if (start_) start_missed();  // ENDALL before it
   } catch (...) {
     finish();
     throw;
   }
   finish();
+  if (typed)
+    for (Cursor c = script->start(), next; !script->at_end(c); c = next)
+      recorder_.record(script->line_at(c, &next));
 }
 
 std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script) {
@@ -525,8 +878,10 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
   try {
     frames_.clear();
     // A check goes through a file with syntax errors too (they are reported already).
-    push_file(script, FileCall{}, SourceLoc{}, /*refuse_broken=*/false);
+    push_file(script, top_call(*script, options_.start_line), SourceLoc{},
+              /*refuse_broken=*/false);
     loop(&out);
+    if (start_) start_missed();  // ENDALL before it
   } catch (const NeedsOperator& e) {
     // The rest depends on an answer. With an operator at the run that is fine (a warning);
     // without one the run would stop here, part-way through the job: an error now.
@@ -540,6 +895,8 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
   } catch (const GantryError& e) {
     append_once(out, e.diagnostic());
   }
+  end_quiet();
+  start_.reset();
   sink_.flush();
   return out;
 }
@@ -562,6 +919,8 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
     }
     const Diagnostic* error = lp && lp->error ? &*lp->error : nullptr;
     f.pc = next;
+    if (start_ && start_->depth + 1 == frames_.size() && current_.line == start_->line)
+      reach_start(SourceLoc{f.script->name(), current_.line, 0});
     if (!st && !error) continue;
     if (error && collect) continue;  // already reported by the script's own pass
     ++executed_;
@@ -574,13 +933,16 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
     try {
       if (error) throw GantryError(*error);
       ctx_.transform_ = f.transform;
+      const std::size_t moves_before = ctx_.moves();
       execute(*st);
+      service_inputs(moves_before);
       if (pending_call_) {
         FileCall call = *pending_call_;
         pending_call_.reset();
         const std::string path =
             call.resolved ? call.path : file_path(call.path, pending_call_loc_);
-        push_file(files_system_->load_script(path), call, pending_call_loc_);
+        push_file(call.lines ? call.lines : files_system_->load_script(path), call,
+                  pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;
@@ -665,11 +1027,47 @@ void Interpreter::exec(const OnInputStmt& s, const SourceLoc& loc) {
     fail(loc, fmt::format("ON INPUT state {} is not 0 (off), 1 (on), 2 (off, ramped) or 3 (on, "
                           "ramped)",
                           cond));
-  const std::pair<int, int> key{static_cast<int>(input), static_cast<int>(cond) % 2};
+  const int n = static_cast<int>(input), c = static_cast<int>(cond);
+  if (settings_.inputs.switch_bits[n - 1] < 0 && s.action)
+    io_.warn({loc, Severity::Warning,
+              fmt::format("input switch {} is not wired in this profile (inputs.switch_bits): "
+                          "this handler never runs",
+                          n)});
+  // States 1 and 3 watch the switch closing, 0 and 2 opening; 0 and 1 stop at once.
+  const std::pair<int, int> key{n, c % 2};
   if (s.action)
-    on_input_[key] = s.action;
+    on_input_[key] = {s.action, c < 2, frames_.size()};
   else
     on_input_.erase(key);
+  arm_inputs();
+}
+
+// The machine comes to rest first: the new handlers apply from the next move on.
+void Interpreter::arm_inputs() {
+  std::vector<InputTrigger> triggers;
+  for (const auto& [key, h] : on_input_)
+    triggers.push_back({key.first, key.second == 1, h.instant});
+  sink_.sync();
+  sink_.watch_inputs(triggers, MotionSink::Watching::Handlers);
+}
+
+// While handlers are armed, each statement's motion plays out before the next statement
+// runs, so the statement an edge cuts is the one just executed and its successor is where
+// the file goes on (a GOTO action aside). The price: no look-ahead across moves while a
+// handler is armed (docs/language.md).
+void Interpreter::service_inputs(std::size_t moves_before) {
+  if (on_input_.empty() || ctx_.moves() == moves_before) return;
+  const std::optional<MotionReport> r = sink_.sync();
+  if (!r || !r->fired) return;
+  set_machine_position(r->machine);  // where it came to rest
+  auto it = on_input_.find({r->fired->input, r->fired->closing ? 1 : 0});
+  if (it == on_input_.end()) return;
+  const InputHandler h = it->second;
+  on_input_.erase(it);  // one-shot
+  arm_inputs();
+  if (const auto* jump = std::get_if<JumpStmt>(&h.action->body); jump && !jump->gosub)
+    while (frames_.size() > h.depth && frames_.size() > 1) end_file();
+  execute(*h.action);
 }
 
 // ---- variables ------------------------------------------------------------------------
@@ -684,6 +1082,8 @@ const nlohmann::json* Interpreter::persistent_variable(std::string_view name) co
 }
 
 Value Interpreter::system_variable(int n, const SourceLoc& loc) {
+  // An input is read where the motion is: the moves before this line play out first.
+  if ((n >= 51 && n <= 58) || (n >= 126 && n <= 129)) sink_.sync();
   if (std::optional<Value> v = read_system_variable(n, snapshot())) return *v;
   fail(loc, fmt::format("unknown system variable %({}); docs/system_variables.md lists them", n));
 }
@@ -734,6 +1134,7 @@ MachineSnapshot Interpreter::snapshot() const {
     m.file_offset = f.transform.origin;
     m.file_proportion = f.transform.scale;
   }
+  if (std::optional<std::array<bool, 12>> in = sink_.input_switches()) m.inputs = *in;
   return m;
 }
 
@@ -880,6 +1281,7 @@ void Interpreter::call_macro(int number, const SourceLoc& loc) {
       return;
     }
   }
+  if (number == 3) return home_on_switches(ctx_, loc);  // the built-in homing
   fail(loc, fmt::format("C{0} runs custom cut {0}, but there is no C{0}.sbp or macro_{0}.sbp in "
                         "{1}; put the macro there or give its folder with --macros",
                         number, dir.empty() ? "." : dir));

@@ -89,7 +89,18 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
     if (in != std::round(in) || in < 1 || in > 12)
       fail(loc, fmt::format("input switch {} does not exist; inputs are 1 to 12", in));
     // Level-triggered: an input already in the state does not wait.
-    if (snapshot().inputs[static_cast<int>(in) - 1] == (state != 0)) return;
+    const int n = static_cast<int>(in) - 1;
+    sink_.sync();
+    if (snapshot().inputs[n] == (state != 0)) return;
+    if (sink_.input_switches()) {
+      // The live machine: it waits for the switch, in short dwells, so time passes on the
+      // card (virtual time too) and a stop ends the wait.
+      while ((*sink_.input_switches())[n] != (state != 0)) {
+        ctx_.dwell(0.01, loc);
+        sink_.sync();
+      }
+      return;
+    }
     if (!io_.confirm(fmt::format("{} (waiting for input {} to {})", pause_message(loc), in,
                                  state != 0 ? "close" : "open"),
                      loc))

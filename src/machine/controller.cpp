@@ -15,15 +15,24 @@ namespace gantry {
 class Controller::QueueSink : public SegmentSink {
  public:
   explicit QueueSink(Controller& c) : c_(c) {}
-  void segment(const PlannedSegment& s) override { push({FeedItem::kSegment, s, nullptr}); }
-  void flush() override { push({FeedItem::kFlush, {}, nullptr}); }
+  void segment(const PlannedSegment& s) override {
+    push({FeedItem::kSegment, s, nullptr, nullptr});
+  }
+  void flush() override { push({FeedItem::kFlush, {}, nullptr, nullptr}); }
   void settings_changed(const Settings& s) override {
-    push({FeedItem::kSettings, {}, std::make_shared<const Settings>(s)});
+    push({FeedItem::kSettings, {}, std::make_shared<const Settings>(s), nullptr});
+  }
+  void watch(std::span<const InputTrigger> t) {
+    push({FeedItem::kWatch,
+          {},
+          nullptr,
+          std::make_shared<const std::vector<InputTrigger>>(t.begin(), t.end())},
+         /*abortable=*/false);  // disarming is pushed as a run winds down
   }
   // The activity's last item, pushed whatever happened: once it is done the queue is empty.
   void fence() {
     dead_ = false;
-    push({FeedItem::kFlush, {}, nullptr}, /*abortable=*/false);
+    push({FeedItem::kFlush, {}, nullptr, nullptr}, /*abortable=*/false);
   }
 
  private:
@@ -46,13 +55,42 @@ class Controller::QueueSink : public SegmentSink {
   bool dead_ = false;
 };
 
-// The interpreter's sink: the planner of the current activity.
+// The interpreter's sink: the planner of the current activity, and the live machine's
+// answers (sync, inputs) for probes and ON INPUT.
 class Controller::ForwardSink : public MotionSink {
  public:
+  explicit ForwardSink(Controller& c) : c_(c) {}
   MotionSink* to = nullptr;
   void move(const CanonMove& m) override { to->move(m); }
   void flush() override { to->flush(); }
   void settings_changed(const Settings& s) override { to->settings_changed(s); }
+
+  std::optional<MotionReport> sync() override {
+    to->flush();
+    c_.wait_for_motion();
+    if (c_.abort_.load(std::memory_order_acquire))
+      throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
+    MotionReport r;
+    r.machine = c_.played_machine();
+    r.fired = std::exchange(c_.fired_, std::nullopt);  // the feeder is idle: its flush is done
+    r.latched = c_.latched_;
+    return r;
+  }
+  void watch_inputs(std::span<const InputTrigger> t, Watching w) override {
+    c_.qsink_->watch(t);
+    std::lock_guard lock(c_.m_);
+    if (c_.state_ == MachineState::Running || c_.state_ == MachineState::Homing ||
+        c_.state_ == MachineState::Probing)
+      c_.state_ = w == Watching::Probe  ? MachineState::Probing
+                  : w == Watching::Home ? MachineState::Homing
+                                        : MachineState::Running;
+  }
+  std::optional<std::array<bool, 12>> input_switches() const override {
+    return c_.input_switches(c_.inputs_.load(std::memory_order_acquire));
+  }
+
+ private:
+  Controller& c_;
 };
 
 Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, PersistentStore& store,
@@ -65,10 +103,16 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
       feeder_(steps_),
       queue_(256),
       qsink_(std::make_unique<QueueSink>(*this)),
-      forward_(std::make_unique<ForwardSink>()) {
+      forward_(std::make_unique<ForwardSink>(*this)) {
   planner_ = std::make_unique<LookAheadPlanner>(settings, *qsink_);
   forward_->to = planner_.get();
   interp_ = std::make_unique<Interpreter>(settings, *forward_, io, store, std::move(options));
+  interp_->on_progress([this](std::size_t done, std::size_t total) {
+    line_.store(done, std::memory_order_relaxed);
+    lines_.store(total, std::memory_order_relaxed);
+    if (progress_) progress_(done, total);  // set while idle only
+  });
+  steps_.on_block([this] { publish(); });  // the readout moves during long segments
   feeder_thread_ = std::thread([this] { feeder_main(); });
   job_thread_ = std::thread([this] { job_main(); });
 }
@@ -103,30 +147,53 @@ Outcome Controller::refuse_or(Request r, const std::function<void()>& accept) {
   return {};
 }
 
-Outcome Controller::run(std::shared_ptr<const Script> script) {
+Outcome Controller::run(std::shared_ptr<const Script> script, bool checked,
+                        double estimated_time_s) {
+  return start_run(std::move(script), checked, estimated_time_s, false);
+}
+
+Outcome Controller::run_typed(std::shared_ptr<const Script> lines) {
+  return start_run(std::move(lines), false, 0, true);
+}
+
+Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked,
+                              double estimated_time_s, bool typed) {
   {
     std::lock_guard lock(m_);
     const Verdict v = decide(state_, Request::Run);
     if (!v.next || busy_) return {false, fmt::format("run: refused, {}", v.refusal), {}};
   }
+  if (std::optional<std::string> why = limit_refusal(Vec6::Zero()))
+    return {false, fmt::format("run: refused, {}", *why), {}};
   // The check runs from the live state: soft limits are checked for the whole file before
   // anything moves, with the offending line named.
   JobOptions check;
   const ModalState start = interp_->state();
   check.start_state = &start;
+  const auto variables = interp_->variables();  // &X = 5 typed before: MX, &X checks
+  check.start_variables = &variables;
+  check.record = &interp_->recorder();  // RP, RR: the lines they would play are checked
   std::vector<Diagnostic> errors;
-  for (Diagnostic& d : check_program(script, interp_->settings(), store_, check, false))
-    if (d.severity == Severity::Error) errors.push_back(std::move(d));
+  double estimate = estimated_time_s;
+  if (!checked)
+    for (Diagnostic& d :
+         check_program(script, interp_->settings(), store_, check, false, &estimate))
+      if (d.severity == Severity::Error) errors.push_back(std::move(d));
   if (!errors.empty()) return {false, "run: refused, the file has errors", std::move(errors)};
   return refuse_or(Request::Run, [&] {
     message_.clear();
-    start_activity([this, script] {
+    estimate_s_ = estimate;
+    line_ = 0;
+    lines_ = script->line_count();
+    start_activity([this, script, typed] {
       try {
-        interp_->run(script);
+        interp_->run(script, typed);
       } catch (const GantryError& e) {
         std::lock_guard lock(m_);
         if (message_.empty() && !abort_) message_ = e.diagnostic().message;
         if (!abort_) stopped_at_ = e.diagnostic().loc;
+        if (!error_)
+          error_ = abort_ ? Diagnostic{stopped_at_, Severity::Error, message_} : e.diagnostic();
         abort_ = true;
       }
     });
@@ -184,6 +251,8 @@ Outcome Controller::jog(const JogRequest& j) {
   }
   const CanonMove m = keypad_move(j);
   if (m.from == m.to) return {false, "jog: refused, the tool is at the soft limit that way", {}};
+  if (std::optional<std::string> why = limit_refusal(m.to - m.from))
+    return {false, fmt::format("jog: refused, {}", *why), {}};
   return refuse_or(Request::Jog, [&] {
     message_.clear();
     start_activity([this, m] {
@@ -220,6 +289,29 @@ void Controller::wait() {
   });
 }
 
+Controller::Summary Controller::summary() const {
+  std::lock_guard lock(m_);
+  Summary s;
+  s.error = error_;
+  if (!s.error && !message_.empty()) s.error = Diagnostic{stopped_at_, Severity::Error, message_};
+  s.fault = fault_;
+  s.lines = interp_->statements_executed();
+  s.moves = interp_->moves_emitted();
+  s.commanded = fault_ == CardFault::None ? steps_.position() : fault_commanded_;
+  s.planned_time_s = planner_->planned_time();
+  return s;
+}
+
+void Controller::set_feed_override(double factor) {
+  std::lock_guard lock(m_);
+  feed_override_ = factor;
+}
+
+void Controller::on_progress(std::function<void(std::size_t, std::size_t)> f) {
+  std::lock_guard lock(m_);
+  progress_ = std::move(f);
+}
+
 ControllerStatus Controller::status() const {
   ControllerStatus s;
   {
@@ -229,6 +321,15 @@ ControllerStatus Controller::status() const {
     s.stopped_at = stopped_at_;
   }
   s.phase = feeder_.phase();
+  s.line = line_.load(std::memory_order_relaxed);
+  s.lines = lines_.load(std::memory_order_relaxed);
+  s.playing_line = playing_line_.load(std::memory_order_relaxed);
+  {
+    std::lock_guard lock(m_);
+    s.elapsed_s = static_cast<double>(tick_.load() - start_tick_) / settings_.card.pacer_hz();
+    s.remaining_s = std::max(0.0, estimate_s_ - s.elapsed_s);
+  }
+  s.inputs = input_switches(inputs_.load(std::memory_order_acquire));
   for (int i = 0; i < kAxisCount; ++i) s.steps[i] = played_[i].load(std::memory_order_acquire);
   s.machine = played_machine(s.steps);
   return s;
@@ -299,6 +400,9 @@ void Controller::start_activity(std::function<void()> work) {
   busy_ = true;
   interrupted_ = false;
   jog_target_.reset();
+  error_.reset();
+  fault_ = CardFault::None;
+  start_tick_ = tick_.load();
   work_ = std::move(work);
   // Scheduled requests become ticks of this activity (the feeder is idle: tick_ is settled).
   const double hz = settings_.card.pacer_hz();
@@ -339,6 +443,7 @@ void Controller::job_main() {
       work.swap(work_);
     }
     planner_ = std::make_unique<LookAheadPlanner>(interp_->settings(), *qsink_);
+    planner_->feed_override(feed_override_);
     forward_->to = planner_.get();
     work();
     qsink_->fence();
@@ -351,16 +456,16 @@ void Controller::job_main() {
     dropping_ = false;
     effect_state_.reset();
     const bool cut = interrupted_ || abort_;
+    const bool jogged = jog_target_.has_value();
     if (cut)
       interp_->set_machine_position(played_machine());  // where the pulses brought the tool
     else if (jog_target_)
       interp_->set_machine_position(*jog_target_);  // exact: fixed steps never drift
     abort_ = false;
     if (state_ != MachineState::EStop)
-      state_ = state_ == MachineState::Jogging || (state_ == MachineState::Stopping && jog_target_)
-                   ? MachineState::Idle
-               : cut ? MachineState::Stopped
-                     : MachineState::Idle;
+      state_ = jogged || state_ == MachineState::Jogging ? MachineState::Idle  // released too
+               : cut                                     ? MachineState::Stopped
+                                                         : MachineState::Idle;
     busy_ = false;
     cv_.notify_all();
   }
@@ -400,20 +505,39 @@ void Controller::feeder_main() {
     }
     if (dropping_) {
       flushes_dropped_ += item.kind == FeedItem::kFlush;
+    } else if (drop_to_flush_ && item.kind != FeedItem::kSettings) {
+      // The rest of the statement an input edge cut; what follows its flush plays.
+      if (item.kind == FeedItem::kFlush) {
+        ++flushes_dropped_;
+        drop_to_flush_ = false;
+      } else if (item.kind == FeedItem::kWatch) {
+        feed(item);
+      }
     } else {
       try {
         feed(item);
+        if (input_cut_) finish_input_cut(item.kind == FeedItem::kFlush);
       } catch (const GantryError& e) {  // the card faulted: it stopped by itself
+        const CardFault fault = card_.fault();
         {
           std::lock_guard lock(m_);
           message_ = e.diagnostic().message;
+          if (fault == CardFault::Limit) message_ = active_limits(card_.inputs()) + ": " + message_;
           stopped_at_ = e.diagnostic().loc;
-          if (card_.fault() == CardFault::EStop) state_ = MachineState::EStop;
+          fault_ = fault;
+          fault_commanded_ = steps_.position();  // before the card starts again
+          error_ = Diagnostic{stopped_at_, Severity::Error, message_};
+          if (fault == CardFault::EStop) state_ = MachineState::EStop;
         }
         interrupted_ = true;
         abort_ = true;
         dropping_ = true;
         flushes_dropped_ += item.kind == FeedItem::kFlush;
+        if (fault != CardFault::EStop) {  // the card starts again: the tool can move off it
+          feeder_.halt_now();
+          feeder_.discard();
+          last_phase_ = FeedPhase::Playing;
+        }
       }
     }
     if (feeder_.phase() != last_phase_) on_feeder_event();
@@ -431,14 +555,122 @@ void Controller::feed(FeedItem& item) {
       break;
     case FeedItem::kFlush:
       feeder_.flush();
+      if (feeder_.phase() == FeedPhase::Playing) {  // a real card still plays its queue
+        card_.drain();
+        steps_.check_card();  // a fault in the last words
+      }
+      break;
+    case FeedItem::kWatch:
+      arm_watch(item.triggers);
       break;
   }
+}
+
+// ---- input edges (ON INPUT, probes, homing) ------------------------------------------------
+
+void Controller::arm_watch(std::shared_ptr<const std::vector<InputTrigger>> triggers) {
+  watched_ = std::move(triggers);  // shared: nothing allocated here
+  InputWatch w;
+  for (const InputTrigger& t : *watched_) {
+    const int bit = settings_.inputs.switch_bits[t.input - 1];
+    if (bit < 0) continue;  // the interpreter has said it never fires
+    w.mask |= 1u << bit;
+    if (t.closing) w.levels |= 1u << bit;
+    if (t.instant) w.stop |= 1u << bit;
+  }
+  fired_.reset();
+  steps_.watch_inputs(w, [this](const InputEdge& e) { on_input_edge(e); });
+}
+
+// Inside the step generator, right after the block in which the card saw the edge: the tool
+// was where the words before the edge's tick left it; the motion is cut there (instant) or
+// ramps down from the next word on.
+void Controller::on_input_edge(const InputEdge& e) {
+  const bool closed = (e.bits >> e.bit & 1u) != 0;
+  for (const InputTrigger& t : *watched_)
+    if (settings_.inputs.switch_bits[t.input - 1] == e.bit && t.closing == closed) fired_ = t;
+  if (!fired_) return;
+  const std::optional<Steps6> at = steps_.position_at(e.tick);
+  latched_ = played_machine(at ? *at : steps_.played_position());
+  input_cut_ = true;
+  if (fired_->instant)
+    feeder_.request_halt(0);
+  else
+    feeder_.request_hold(0);
+}
+
+// After each item while an edge's cut is under way. At rest, what the cut left of the
+// statement's motion is dropped (up to its flush); still slowing, it goes on.
+void Controller::finish_input_cut(bool consumed_flush) {
+  const FeedPhase ph = feeder_.phase();
+  if (ph == FeedPhase::Playing && consumed_flush) {
+    // The edge came in the statement's last words: the motion ended before the cut.
+    if (fired_->instant) {
+      feeder_.halt_now();
+      feeder_.discard();
+    }
+    feeder_.request_hold(StepGenerator::kNever);
+    feeder_.request_halt(StepGenerator::kNever);
+    input_cut_ = false;
+  } else if (ph == FeedPhase::Held || ph == FeedPhase::Halted) {
+    drop_to_flush_ = !(ph == FeedPhase::Held && feeder_.flush_kept());
+    feeder_.discard();
+    input_cut_ = false;
+  }
+}
+
+std::array<bool, 12> Controller::input_switches(std::uint32_t bits) const {
+  std::array<bool, 12> out{};
+  for (int n = 0; n < 12; ++n) {
+    const int bit = settings_.inputs.switch_bits[n];
+    out[n] = bit >= 0 && (bits >> bit & 1u) != 0;
+  }
+  return out;
+}
+
+std::string Controller::active_limits(std::uint32_t bits) const {
+  const InputSettings& in = settings_.inputs;
+  auto active = [&](int bit) {
+    return bit >= 0 && ((bits >> bit & 1u) != 0) != in.limits_active_low;
+  };
+  std::string out;
+  for (int i = 0; i < kAxisCount; ++i)
+    for (const auto& [bit, side] : {std::pair{in.min_bit[i], "low"}, {in.max_bit[i], "high"}})
+      if (active(bit))
+        out += fmt::format("{}{} {} limit switch (input bit {})", out.empty() ? "" : ", ",
+                           static_cast<char>(kAxisLetters[i] - 'a' + 'A'), side, bit);
+  return out.empty() ? "a limit switch" : out;
+}
+
+// With a direction (a jog): refused only towards an active limit switch. Without (a run):
+// refused while any is active.
+std::optional<std::string> Controller::limit_refusal(const Vec6& direction) const {
+  const InputSettings& in = settings_.inputs;
+  const std::uint32_t bits = inputs_.load(std::memory_order_acquire);
+  auto active = [&](int bit) {
+    return bit >= 0 && ((bits >> bit & 1u) != 0) != in.limits_active_low;
+  };
+  const bool any_way = direction.isZero();
+  for (int i = 0; i < kAxisCount; ++i) {
+    const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');
+    if (active(in.min_bit[i]) && (any_way || direction[i] < 0))
+      return fmt::format(
+          "the {} low limit switch is closed: {}", L,
+          any_way ? "jog off it with the keypad first" : fmt::format("jog away from it (+{})", L));
+    if (active(in.max_bit[i]) && (any_way || direction[i] > 0))
+      return fmt::format(
+          "the {} high limit switch is closed: {}", L,
+          any_way ? "jog off it with the keypad first" : fmt::format("jog away from it (-{})", L));
+  }
+  return std::nullopt;
 }
 
 void Controller::publish() {
   const Steps6 p = steps_.played_position();
   for (int i = 0; i < kAxisCount; ++i) played_[i].store(p[i], std::memory_order_release);
   tick_.store(steps_.tick(), std::memory_order_release);
+  inputs_.store(card_.inputs(), std::memory_order_release);
+  playing_line_.store(steps_.loc().line, std::memory_order_relaxed);
   flushes_done_.store(feeder_.flushes_completed() + flushes_dropped_, std::memory_order_release);
   flushes_done_.notify_all();
 }

@@ -1,13 +1,14 @@
-// Wiring of one job through the pipeline: interpreter -> planner -> step generator -> card.
+// One job: the whole file checked, then run by the controller (interpreter -> planner ->
+// motion feeder -> step generator -> card).
 #include "gantry/machine/job.hpp"
 
 #include <algorithm>  // stable_sort
 #include <climits>    // INT_MAX
 
 #include "gantry/core/text_file.hpp"            // read_text_file
+#include "gantry/machine/controller.hpp"        // Controller
 #include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
 #include "gantry/settings/values_file.hpp"      // values_text
-#include "gantry/step/step_generator.hpp"       // StepGenerator
 
 namespace gantry {
 namespace {
@@ -44,6 +45,8 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   opt.operator_present = options.operator_present;
   Interpreter interp(settings, sink, io, scratch, opt);
   if (options.start_state) interp.restore_state(*options.start_state);
+  if (options.start_variables) interp.restore_variables(*options.start_variables);
+  if (options.record) interp.recorder() = *options.record;
   std::vector<Diagnostic> out = interp.check(std::move(script));
   if (estimated_time_s) *estimated_time_s = planner.planned_time();
   if (runtime_warnings)
@@ -71,10 +74,8 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
     (d.severity == Severity::Error ? result.errors : result.warnings).push_back(std::move(d));
   if (!result.ok()) return result;
 
-  card.start(settings.card.pacer_hz());
-  StepGenerator steps(settings, card);
-  LookAheadPlanner planner(settings, steps);
-  planner.feed_override(options.feed_override);
+  // The live machine runs it: the same controller as the console's, so probes, ON INPUT,
+  // limit switches and faults behave alike everywhere.
   InterpreterOptions interp_options = options.interpreter;
   interp_options.save_values = [&](const Settings& s) {
     result.settings = s;
@@ -86,25 +87,24 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
                                  "cannot save the values this run changed; the previous values "
                                  "file is kept"});
   };
-  Interpreter interp(settings, planner, io, store, interp_options);
-  if (options.progress) interp.on_progress(options.progress);
-  try {
-    interp.run(std::move(script));
-  } catch (const GantryError& e) {
-    result.errors.push_back(e.diagnostic());  // run() has flushed: planned pulses completed
+  Controller machine(settings, card, io, store, interp_options);
+  machine.set_feed_override(options.feed_override);
+  if (options.progress) machine.on_progress(options.progress);
+  const std::string name = *script->name();
+  if (const Outcome o = machine.run(std::move(script), /*checked=*/true, result.estimated_time_s);
+      !o) {
+    result.errors.push_back({file_loc(name), Severity::Error, o.reason});
+    return result;
   }
-  card.drain();
-  try {
-    steps.check_card();  // a fault while the last words played
-  } catch (const GantryError& e) {
-    result.errors.push_back(e.diagnostic());
-  }
-  result.lines = interp.statements_executed();
-  result.moves = interp.moves_emitted();
-  result.commanded_steps = steps.position();
-  result.played_steps = steps.played_position();
-  result.fault = card.fault();
-  result.planned_time_s = planner.planned_time();
+  machine.wait();
+  const Controller::Summary s = machine.summary();
+  if (s.error) result.errors.push_back(*s.error);
+  result.lines = s.lines;
+  result.moves = s.moves;
+  result.commanded_steps = s.commanded;
+  result.played_steps = machine.status().steps;
+  result.fault = s.fault;
+  result.planned_time_s = s.planned_time_s;
   return result;
 }
 

@@ -59,13 +59,16 @@ const std::array<std::array<Verdict, kRequests>, kMachineStates> kTable = {{
      no("a jog is running: release the key first"), go(S::Stopping), go(S::EStop),
      no("there is no E-stop to acknowledge"), no("a jog is running: release the key first"),
      go(S::Idle)},
+    // Homing, Probing: a file runs, as Running
+    {},
+    {},
 }};
 
 }  // namespace
 
 const char* state_name(MachineState s) {
-  static const char* const names[] = {"idle",    "running", "paused", "stopping",
-                                      "stopped", "estop",   "jogging"};
+  static const char* const names[] = {"idle",  "running", "paused", "stopping", "stopped",
+                                      "estop", "jogging", "homing", "probing"};
   return names[static_cast<int>(s)];
 }
 
@@ -76,6 +79,7 @@ const char* request_name(Request r) {
 }
 
 Verdict decide(MachineState s, Request r) {
+  if (s == S::Homing || s == S::Probing) s = S::Running;
   return kTable[static_cast<int>(s)][static_cast<int>(r)];
 }
 

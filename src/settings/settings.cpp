@@ -468,7 +468,26 @@ void read_profile(TableReader root, Settings& s) {
     in.home_bit[i] = ax.integer("home_bit", -1, 31, -1);
     ax.finish();
   }
+  const std::vector<int> switches = inputs.int_list("switch_bits", -1, 31, 12);
+  if (switches.size() == 12) std::copy(switches.begin(), switches.end(), in.switch_bits.begin());
   inputs.finish();
+
+  TableReader homing = root.table("homing");
+  HomingSettings& h = s.homing;
+  h.input = homing.integer("input", 1, 12, 3);
+  h.order = homing.choice("order", {}, "zxy");
+  if (h.order.empty() || h.order.find_first_not_of("xyzabc") != std::string::npos)
+    homing.fail("order", "must list the axes to home, in order, as letters x y z a b c");
+  h.fast_speed = homing.number("fast_speed", {0, 1e6, true}, 1);
+  h.slow_speed = homing.number("slow_speed", {0, 1e6, true}, 0.1);
+  h.back_off = homing.number("back_off", {0, 1e6, true}, 0.25);
+  for (int i = 0; i < kAxisCount; ++i) {
+    TableReader ax = homing.table(std::string(1, kAxisLetters[i]));
+    h.direction[i] = ax.choice("direction", {"-", "+"}, i == 2 ? "+" : "-") == "+" ? 1 : -1;
+    h.at[i] = ax.number("at", {-1e9, 1e9}, 0);
+    ax.finish();
+  }
+  homing.finish();
   root.finish();
 }
 
@@ -514,12 +533,15 @@ static void check_consistency(const Settings& s, const std::string& origin,
       err(fmt::format("outputs.{}: output bit {} is already used by another pin", name, bit));
     used |= 1u << bit;
   }
-  std::uint32_t inputs_used = 0;
-  auto input = [&](const std::string& name, int bit) {
+  // Each bit has one role, but the proximity switches of several axes may share one (wired
+  // in parallel), and switch_bits only names bits for part files.
+  std::uint32_t inputs_used = 0, home_bits = 0;
+  auto input = [&](const std::string& name, int bit, bool home = false) {
     if (bit < 0) return;
-    if (inputs_used & (1u << bit))
+    if ((inputs_used & (1u << bit)) && !(home && (home_bits & (1u << bit))))
       err(fmt::format("inputs.{}: input bit {} is already used by another input", name, bit));
     inputs_used |= 1u << bit;
+    if (home) home_bits |= 1u << bit;
   };
   input("estop_bit", s.inputs.estop_bit);
   input("probe_bit", s.inputs.probe_bit);
@@ -527,8 +549,9 @@ static void check_consistency(const Settings& s, const std::string& origin,
     const std::string axis(1, kAxisLetters[i]);
     input(axis + ".min_bit", s.inputs.min_bit[i]);
     input(axis + ".max_bit", s.inputs.max_bit[i]);
-    input(axis + ".home_bit", s.inputs.home_bit[i]);
   }
+  for (int i = 0; i < kAxisCount; ++i)
+    input(std::string(1, kAxisLetters[i]) + ".home_bit", s.inputs.home_bit[i], true);
   auto check_group = [&](const char* what, const GroupSpeeds& g) {
     const double xy_limit = std::min(s.axes[0].max_speed, s.axes[1].max_speed);
     const std::array<std::pair<const char*, std::pair<double, double>>, 5> items{{

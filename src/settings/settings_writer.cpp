@@ -27,7 +27,7 @@ toml::table settings_table(const Settings& s) {
   toml::table root{{"name", s.name},
                    {"units", units_name(s.units)},
                    {"dialect", s.dialect == Dialect::FabMo ? "fabmo" : "sb3"}};
-  toml::table axes, pins, inputs;
+  toml::table axes, pins, inputs, homing;
   for (int i = 0; i < kAxisCount; ++i) {
     const std::string L(1, kAxisLetters[i]);
     const AxisSettings& a = s.axes[i];
@@ -44,6 +44,8 @@ toml::table settings_table(const Settings& s) {
     inputs.insert(L, toml::table{{"min_bit", s.inputs.min_bit[i]},
                                  {"max_bit", s.inputs.max_bit[i]},
                                  {"home_bit", s.inputs.home_bit[i]}});
+    homing.insert(L, toml::table{{"direction", s.homing.direction[i] > 0 ? "+" : "-"},
+                                 {"at", s.homing.at[i]}});
   }
   root.insert("axes", std::move(axes));
   root.insert("speeds",
@@ -90,7 +92,14 @@ toml::table settings_table(const Settings& s) {
   inputs.insert("estop_active_low", s.inputs.estop_active_low);
   inputs.insert("probe_bit", s.inputs.probe_bit);
   inputs.insert("limits_active_low", s.inputs.limits_active_low);
+  inputs.insert("switch_bits", joined(s.inputs.switch_bits, number));
   root.insert("inputs", std::move(inputs));
+  homing.insert("input", s.homing.input);
+  homing.insert("order", s.homing.order);
+  homing.insert("fast_speed", s.homing.fast_speed);
+  homing.insert("slow_speed", s.homing.slow_speed);
+  homing.insert("back_off", s.homing.back_off);
+  root.insert("homing", std::move(homing));
 
   const CutterSettings& k = s.cutter;
   root.insert("cutter", toml::table{{"diameter", k.diameter},

@@ -50,6 +50,7 @@ void convert_units(Settings& s, Units to) {
     a.max_accel = round12(a.max_accel * scale[i]);
     a.min = round12(a.min * scale[i]);
     a.max = round12(a.max * scale[i]);
+    s.homing.at[i] = round12(s.homing.at[i] * scale[i]);
   }
   RampSettings& r = s.ramps;
   for (GroupSpeeds* g : {&s.speeds.move, &s.speeds.jog, &r.move_ramp_speed, &r.jog_ramp_speed})
@@ -69,6 +70,9 @@ void convert_units(Settings& s, Units to) {
                     &s.tabs.size,
                     &s.tabs.leads,
                     &s.display.keypad_step,
+                    &s.homing.fast_speed,
+                    &s.homing.slow_speed,
+                    &s.homing.back_off,
                     &s.preview.grid,
                     &s.preview.table_x,
                     &s.preview.table_y,

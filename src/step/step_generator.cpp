@@ -40,6 +40,7 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
   if (settings.outputs.spindle_bit >= 0) spindle_mask_ = 1u << settings.outputs.spindle_bit;
   aux_bits_ = settings.outputs.aux_bits;
   step_log_.resize(4096);
+  history_ticks_ = std::llround(settings.card.pacer_hz());
 }
 
 // At rest (the planner stopped first): pending pulses go out, then steps per unit and the
@@ -70,31 +71,65 @@ bool StepGenerator::set_output(int n, bool on) {
 }
 
 Steps6 StepGenerator::played_position() const {
-  const std::uint64_t played = card_.ticks_played();
+  return *position_at(card_.ticks_played());
+}
+
+// From the confirmed counts: back over the history kept, or on over the steps not confirmed.
+std::optional<Steps6> StepGenerator::position_at(std::uint64_t tick) const {
+  const auto t = static_cast<std::int64_t>(tick);
+  if (t < history_from_) return std::nullopt;  // older than the history kept
   Steps6 p = confirmed_;
-  for (std::size_t k = log_begin_; k != log_end_; k = (k + 1) % step_log_.size()) {
+  const std::size_t n = step_log_.size();
+  std::size_t k = log_played_;
+  while (k != log_begin_) {
+    const StepRecord& r = step_log_[(k + n - 1) % n];
+    if (r.tick < t) break;
+    p[r.axis] -= r.delta;
+    k = (k + n - 1) % n;
+  }
+  for (k = log_played_; k != log_end_; k = (k + 1) % n) {
     const StepRecord& r = step_log_[k];
-    if (static_cast<std::uint64_t>(r.tick) >= played) break;
+    if (r.tick >= t) break;
     p[r.axis] += r.delta;
   }
   return p;
 }
 
+void StepGenerator::watch_inputs(const InputWatch& w, std::function<void(const InputEdge&)> fired) {
+  card_.watch(w);
+  on_edge_ = w.mask ? std::move(fired) : nullptr;
+}
+
 // After each block the card has played up to ticks_played(): steps before it are confirmed.
 // A fault stops everything: the rest of the job is dropped, and the error names where the
 // tool stopped, counted from the pulses the card actually played.
+// Confirmed steps stay as history for about a second of ticks: an input edge found late (a
+// card that samples its inputs in its own thread) is still placed exactly.
 void StepGenerator::check_card() {
   const std::uint64_t played = card_.ticks_played();
-  while (log_begin_ != log_end_ &&
-         static_cast<std::uint64_t>(step_log_[log_begin_].tick) < played) {
-    confirmed_[step_log_[log_begin_].axis] += step_log_[log_begin_].delta;
-    log_begin_ = (log_begin_ + 1) % step_log_.size();
+  const std::size_t n = step_log_.size();
+  while (log_played_ != log_end_ &&
+         static_cast<std::uint64_t>(step_log_[log_played_].tick) < played) {
+    confirmed_[step_log_[log_played_].axis] += step_log_[log_played_].delta;
+    log_played_ = (log_played_ + 1) % n;
   }
+  const auto keep_from = static_cast<std::int64_t>(played) - history_ticks_;
+  while (log_begin_ != log_played_ && step_log_[log_begin_].tick < keep_from) {
+    log_begin_ = (log_begin_ + 1) % n;
+    history_from_ = keep_from;
+  }
+  if (on_block_) on_block_();
+  if (on_edge_)
+    if (const std::optional<InputEdge> e = card_.watch_fired()) {
+      auto fired = std::move(on_edge_);
+      on_edge_ = nullptr;
+      fired(*e);
+    }
   const CardFault f = card_.fault();
   if (f == CardFault::None || faulted_) return;
   faulted_ = true;
   const Steps6 at = played_position();
-  std::string where;
+  std::string where;  // the message is built once, on the way out of a run
   for (int i = 0; i < kAxisCount; ++i)
     if (at[i] != 0 || i < 3)
       where += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'),
@@ -220,7 +255,8 @@ void StepGenerator::halt() {
 
 void StepGenerator::restart() {
   position_ = confirmed_ = played_position();
-  log_begin_ = log_end_ = 0;
+  log_begin_ = log_played_ = log_end_ = 0;
+  history_from_ = static_cast<std::int64_t>(card_.ticks_played());
   pulse_end_.fill(0);
   last_step_.fill(std::numeric_limits<std::int64_t>::min() / 2);
   positive_.fill(true);  // the levels card.stop() left (as at construction)
@@ -239,13 +275,18 @@ void StepGenerator::apply(const Event& e) {
   pulse_end_[e.axis] = e.tick + timing_.pulse_ticks;
   position_[e.axis] += e.positive ? 1 : -1;
   if ((log_end_ + 1) % step_log_.size() == log_begin_) {
-    // Full: the card's queue holds more steps than ever before. Grow (doubling, so this
-    // happens a few times per job at most), keeping the ring's order.
+    // Full: the card's queue and the history hold more steps than ever before. Grow
+    // (doubling, so this happens a few times per job at most), keeping the ring's order.
     std::vector<StepRecord> bigger;
     bigger.reserve(step_log_.size() * 2);
-    for (std::size_t k = log_begin_; k != log_end_; k = (k + 1) % step_log_.size())
+    std::size_t played = 0;
+    for (std::size_t k = log_begin_; k != log_end_; k = (k + 1) % step_log_.size()) {
+      if (k == log_played_) played = bigger.size();
       bigger.push_back(step_log_[k]);
+    }
+    if (log_played_ == log_end_) played = bigger.size();
     log_begin_ = 0;
+    log_played_ = played;
     log_end_ = bigger.size();
     bigger.resize(step_log_.size() * 2);
     step_log_ = std::move(bigger);

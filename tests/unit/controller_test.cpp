@@ -219,3 +219,33 @@ TEST(Controller, RequestsOutOfTurnAreRefusedWithAReason) {
 
 }  // namespace
 }  // namespace gantry
+
+namespace gantry {
+namespace {
+
+TEST(Controller, TypedLinesKeepTheirValuesAndOutputsAFileDoesNot) {
+  Machine m;
+  ASSERT_TRUE(m.c.run_typed(Script::from_text("SO, 1, 1\nVS, 3\n", "console")));
+  m.c.wait();
+  EXPECT_EQ(m.c.modal().outputs, 1u);
+  EXPECT_DOUBLE_EQ(m.c.modal().speeds.move.xy, 3);
+  ASSERT_TRUE(m.run("SO, 2, 1\nVS, 1\n"));
+  m.c.wait();
+  EXPECT_EQ(m.c.modal().outputs, 0u);               // a file's end turns them off
+  EXPECT_DOUBLE_EQ(m.c.modal().speeds.move.xy, 3);  // and undoes its VS
+}
+
+TEST(Controller, ProgressGivesTheLineTheMachineTimeAndWhatRemains) {
+  Machine m;
+  ASSERT_TRUE(m.run(kSquare));
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.lines, 6u);
+  EXPECT_EQ(s.line, 6u);
+  EXPECT_EQ(s.playing_line, 6);  // the last motion played was line 6's jog
+  EXPECT_NEAR(s.elapsed_s, m.card.time_s(), 1e-9);
+  EXPECT_LT(s.remaining_s, 0.01 * s.elapsed_s);  // the estimate was the cycle time
+}
+
+}  // namespace
+}  // namespace gantry

@@ -1,6 +1,7 @@
 // The cut commands CA, CC, CG, CP and CR through the interpreter: the testable facts of
 // shared/spec/commands.md §8.2-8.6 (each test names its fact), the decisions of docs/cuts.md,
-// located errors that move nothing, soft limits, FP's transforms and CommandContext::arc_to.
+// located errors that move nothing, soft limits, FP's transforms (tabs and plunge from Z 0
+// included), VB's tabs on plain moves and CommandContext::arc_to.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -911,6 +912,171 @@ TEST_F(CutCommands, VbTabCountEndsTabbingWhenUsedUp) {
   EXPECT_EQ(tabs_of(2), 2);  // 4 would fit on 18.8; the count allows 2
   EXPECT_EQ(tabs_of(4), 0);  // used up: tabbing is off
   EXPECT_FALSE(interp().state().tabs_on);
+}
+
+// ---- tabs on plain moves (VB on, FP's tab feature) and FP's plunge from Z 0 -----------------
+
+// The end points of the moves of `line` (all lines when 0) in `file` (all files when null).
+std::vector<P3> ends_of(const std::vector<CanonMove>& moves, int line, const char* file = nullptr) {
+  std::vector<P3> out;
+  for (const CanonMove& m : moves)
+    if ((line == 0 || m.loc.line == line) && (!file || (m.loc.file && *m.loc.file == file)))
+      out.push_back({m.to[0], m.to[1], m.to[2]});
+  return out;
+}
+
+void expect_points(const std::vector<P3>& got, const std::vector<P3>& want, const char* what) {
+  ASSERT_EQ(got.size(), want.size()) << what;
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_NEAR(got[i].x, want[i].x, 1e-12) << what << " " << i;
+    EXPECT_NEAR(got[i].y, want[i].y, 1e-12) << what << " " << i;
+    EXPECT_NEAR(got[i].z, want[i].z, 1e-12) << what << " " << i;
+  }
+}
+
+// SB3's VB turns tab insertion on and off "in a file": the file's own cutting moves get
+// tabs, the first at VB's distance from where the tool came down, then every spacing; a tab
+// may run over several moves; lifting to Safe-Z starts a new series; OFF ends it.
+TEST_F(CutCommands, VbOnTabsThePlainMovesOfAFile) {
+  settings.tabs = {0.1, 4, 1, 0.5};  // up 0.1, every 4, level 1, leads 0.5
+  settings.cutter.safe_z = 0.5;
+  run("J3, 0, 0, 0.5\n"       // 1
+      "VB, , , , , 1, , 2\n"  // 2: on, the first tab 2 along
+      "M3, 0, 0, -0.25\n"     // 3
+      "M2, 6, 0\n"            // 4: 0 to 6 along: the tab 2 to 4
+      "M2, 6, 6\n"            // 5: 6 to 12: tabs 6 to 8 and 10 to 12
+      "JZ, 0.5\n"             // 6: up to Safe-Z: the path ends
+      "MZ, -0.25\n"           // 7
+      "M2, 6, 9\n"            // 8: a new path, 0 to 3: up the tab that starts at 2
+      "M2, 3, 9\n"            // 9: 3 to 6: the rest of it
+      "VB, , , , , 0\n"       // 10: off
+      "M2, 0, 9\n");          // 11
+  const double cut = -0.25, tab = -0.15;
+  expect_points(ends_of(motion(), 3), {{0, 0, cut}}, "line 3");
+  expect_points(ends_of(motion(), 4),
+                {{2, 0, cut}, {2.5, 0, tab}, {3.5, 0, tab}, {4, 0, cut}, {6, 0, cut}}, "line 4");
+  expect_points(ends_of(motion(), 5),
+                {{6, 0.5, tab},
+                 {6, 1.5, tab},
+                 {6, 2, cut},
+                 {6, 4, cut},
+                 {6, 4.5, tab},
+                 {6, 5.5, tab},
+                 {6, 6, cut}},
+                "line 5");
+  expect_points(ends_of(motion(), 8), {{6, 8, cut}, {6, 8.5, tab}, {6, 9, tab}}, "line 8");
+  expect_points(ends_of(motion(), 9), {{5.5, 9, tab}, {5, 9, cut}, {3, 9, cut}}, "line 9");
+  expect_points(ends_of(motion(), 11), {{0, 9, cut}}, "line 11");
+  for (const CanonMove& m : motion())
+    if (m.loc.line != 1 && m.loc.line != 6) {
+      EXPECT_EQ(m.speed_class, SpeedClass::Move);
+    }
+}
+
+// VB's number: that many tabs after the ON, then tabbing is off.
+TEST_F(CutCommands, VbTabCountOnPlainMovesEndsTabbingWhenUsedUp) {
+  settings.tabs = {0.1, 4, 1, 0.5};
+  run("VB, , , , , 1, 2\nMZ, -0.25\nM2, 20, 0\nM2, 20, 4\n");
+  int rises = 0;
+  for (const CanonMove& m : of_line(3))
+    if (m.to[2] > m.from[2] + 1e-9) ++rises;
+  EXPECT_EQ(rises, 2);  // at 4 and 8; 12 and 16 would fit
+  expect_points(ends_of(motion(), 4), {{20, 4, -0.25}}, "line 4");
+  EXPECT_FALSE(interp().state().tabs_on);
+  EXPECT_EQ(interp().state().tab_count, 0);
+}
+
+// FP 8: tabs on the last repetition only (a 2D template cut in two passes), measured along
+// the file's path from where the pass starts; the plunge of each pass carries none.
+TEST_F(CutCommands, FpTabFeatureTabsTheLastRepetitionOnly) {
+  settings.tabs = {0.1, 4, 1, 0.5};
+  files.texts["square.sbp"] = "M2, 4, 0\nM2, 4, 4\nM2, 0, 4\nM2, 0, 0\n";
+  run("FP, square.sbp, , , , 2, , -0.25, 1\n");
+  const double a = -0.25, b = -0.5, t = -0.4;
+  expect_points(ends_of(motion(), 0, "square.sbp"),
+                {{4, 0, a},
+                 {4, 4, a},
+                 {0, 4, a},
+                 {0, 0, a},  // pass 1: none
+                 {4, 0, b},  // 0 to 4: the first at 4
+                 {4, 0.5, t},
+                 {4, 1.5, t},
+                 {4, 2, b},
+                 {4, 4, b},  // 4 to 8
+                 {3.5, 4, t},
+                 {2.5, 4, t},
+                 {2, 4, b},
+                 {0, 4, b},  // 8 to 12
+                 {0, 3.5, t},
+                 {0, 2.5, t},
+                 {0, 2, b},
+                 {0, 0, b}},  // 12 to 16 (none at 16)
+                "square.sbp");
+  expect_points(ends_of(motion(), 1, "part.sbp"), {{0, 0, a}, {0, 0, b}}, "the plunges");
+  EXPECT_FALSE(interp().state().tabs_on);     // FP's tabs are not VB's: nothing is left on
+  run("FP, square.sbp, , , , 2, , -0.25\n");  // without: flat (from -0.5, where it ended)
+  for (const P3& p : ends_of(motion(), 0, "square.sbp")) EXPECT_TRUE(p.z == -0.75 || p.z == -1);
+}
+
+// "If TABbing is turned on for a File, it remains on for individual sub-files within the
+// file", and the cut commands in it leave tabs on their last pass; jogs carry none.
+TEST_F(CutCommands, FpTabsReachSubFilesAndCutCommands) {
+  settings.tabs = {0.1, 4, 1, 0.5};
+  files.texts["square.sbp"] = "M2, 4, 0\nM2, 4, 4\nM2, 0, 4\nM2, 0, 0\n";
+  files.texts["outer.sbp"] =
+      "M3, 0, 0, -0.5\nFP, square.sbp\nJZ, 1\nJ3, 10, 10, 0\nCC, 6, T, 1, , , -0.5\n";
+  run("FP, outer.sbp, , , , , , , 1\nM3, 0, 0, -0.5\nM2, 20, 0\n");
+  int rises = 0;
+  for (const CanonMove& m : motion())
+    if (m.loc.file && *m.loc.file == "square.sbp" && m.to[2] > m.from[2] + 1e-9) ++rises;
+  EXPECT_EQ(rises, 3);
+  double top = -kInf;
+  for (const CanonMove& m : motion())
+    if (m.loc.file && *m.loc.file == "outer.sbp" && m.loc.line == 5 &&
+        m.speed_class == SpeedClass::Move && m.to[2] < 0)
+      top = std::max(top, m.to[2]);
+  EXPECT_NEAR(top, -0.4, 1e-12);  // the CC's tabs, 0.1 above its depth
+  expect_points(ends_of(motion(), 4, "outer.sbp"), {{10, 10, 0}}, "a jog is never tabbed");
+  // After the FP the feature is off: the main file's own cut is flat.
+  expect_points(ends_of(motion(), 3, "part.sbp"), {{20, 0, -0.5}}, "after the FP");
+}
+
+// FP 9: Z first goes to 0 (at move speed, where the tool is), and the plunges count from 0.
+// Fact 103: FP's tabs "work with 3D moves": the tab rises above a ramp as it goes down.
+TEST_F(CutCommands, Fact103_FpTabsWorkWith3DMoves) {
+  settings.tabs = {0.1, 4, 1, 0.5};
+  files.texts["ramp.sbp"] = "M3, 8, 0, -0.4\n";
+  run("FP, ramp.sbp, , , , , , , 1\n");
+  expect_points(ends_of(motion(), 0, "ramp.sbp"),
+                {{4, 0, -0.2}, {4.5, 0, -0.125}, {5.5, 0, -0.175}, {6, 0, -0.3}, {8, 0, -0.4}},
+                "ramp");
+}
+
+TEST_F(CutCommands, FpPlungeFromZeroMovesZToZeroFirst) {
+  files.texts["square.sbp"] = "M2, 4, 0\nM2, 4, 4\nM2, 0, 4\nM2, 0, 0\n";
+  run("M3, 1, 1, 0.5\nFP, square.sbp, , , , 2, , -0.25, , 1\n");
+  expect_points(ends_of(motion(), 2, "part.sbp"), {{1, 1, 0}, {1, 1, -0.25}, {0, 0, -0.5}},
+                "from Z 0");
+  for (const CanonMove& m : motion())
+    if (m.loc.file && *m.loc.file == "part.sbp" && m.loc.line == 2) {
+      EXPECT_EQ(m.speed_class, SpeedClass::Move);
+    }
+  run("M3, 1, 1, 0.5\nFP, square.sbp, , , , 2, , -0.25\n");  // from where Z is
+  expect_points(ends_of(motion(), 2, "part.sbp"), {{1, 1, 0.25}, {0, 0, 0}}, "from Z 0.5");
+  // With the 3D offset, the file's 0 is placed after the move to Z 0: on the surface.
+  run("M3, 1, 1, 0.5\nFP, square.sbp, , , , , 1, -0.25, , 1\n");
+  expect_points(ends_of(motion(), 0, "square.sbp"),
+                {{5, 1, -0.25}, {5, 5, -0.25}, {1, 5, -0.25}, {1, 1, -0.25}}, "3D offset");
+}
+
+TEST_F(CutCommands, FpTabAndFromZeroFlagsAreZeroOrOne) {
+  files.texts["c.sbp"] = "MX, 1\n";
+  const Diagnostic tabs = run_error("FP, c.sbp, , , , , , , 2\n");
+  EXPECT_EQ(format(tabs),
+            "part.sbp:1:24: error: FP parameter 8 (tab feature) is 2; allowed: 0 to 1");
+  const Diagnostic zero = run_error("FP, c.sbp, , , , , , , , -1\n");
+  EXPECT_EQ(zero.message, "FP parameter 9 (plunge from Z 0) is -1; allowed: 0 to 1");
+  EXPECT_TRUE(motion().empty());
 }
 
 TEST(CutPlanner, SmallArcsRunAtTheRampSpeedLikeSmallCircles) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -472,6 +473,94 @@ TEST(CutGeometry, TabProfileStartsAtFirstAndRepeatsStartToStart) {
   t.most = 2;
   tab_profile(12, t, 0.1, &n);
   EXPECT_EQ(n, 2);
+}
+
+// Plain moves get their tabs one move at a time: the window of the series over [2.5, 6)
+// holds the end of the tab at 1 (down from 2.5 to 3) and the start of the one at 5.
+TEST(CutGeometry, TabWindowIsThePartOfTheSeriesOnOneMove) {
+  TabPlan t;
+  t.on = true;
+  t.sizes = {0.1, 4, 1, 0.5};
+  t.first = 1;
+  int ended = -1;
+  const Profile w = tab_window(t, 0.1, 2.5, 6, &ended);
+  EXPECT_EQ(ended, 1);                 // the tab at 1 ends at 3; the one at 5 is still on at 6
+  EXPECT_DOUBLE_EQ(w.at(0), 0.1);      // 2.5: the end of the first tab's top
+  EXPECT_DOUBLE_EQ(w.at(0.25), 0.05);  // 2.75: half way down
+  EXPECT_DOUBLE_EQ(w.at(1.5), 0);      // 4: between tabs
+  EXPECT_DOUBLE_EQ(w.at(2.75), 0.05);  // 5.25: half way up the next
+  EXPECT_DOUBLE_EQ(w.at(3.5), 0.1);    // 6: on its top
+  tab_window(t, 0.1, 2.5, 7, &ended);
+  EXPECT_EQ(ended, 2);
+  // Cut into any moves, the windows make the same profile as the whole path's (every tab
+  // fits on 11: at 1, 5 and 9).
+  const Profile whole = tab_profile(11, t, 0.1, nullptr);
+  const double cuts[] = {0, 0.7, 1.2, 2.5, 2.6, 5.5, 8.9, 9.75, 11};
+  for (size_t i = 0; i + 1 < std::size(cuts); ++i) {
+    const Profile part = tab_window(t, 0.1, cuts[i], cuts[i + 1], nullptr);
+    for (int k = 0; k <= 20; ++k) {
+      const double s = cuts[i] + (cuts[i + 1] - cuts[i]) * k / 20;
+      EXPECT_NEAR(part.at(s - cuts[i]), whole.at(s), 1e-12) << s;
+    }
+  }
+  t.most = 2;  // a count: the third tab is left out
+  EXPECT_DOUBLE_EQ(tab_window(t, 0.1, 8, 11, &ended).at(2), 0);
+  EXPECT_EQ(ended, 2);
+}
+
+// One move through the tab profile: exact breakpoints, each part a straight line.
+TEST(CutGeometry, TabStretchCutsAMoveAtTheTabBreakpoints) {
+  TabPlan t;
+  t.on = true;
+  t.sizes = {0.1, 4, 1, 0.5};
+  t.first = 4;
+  Piece line;
+  line.from = V2(0, 0);
+  line.to = V2(10, 0);
+  int ended = 0;
+  const CutPath p = tab_stretch(V3(0, 0, -0.5), 0, line, -0.5, 0, t, 0.1, &ended);
+  const double want[][2] = {{4, -0.5}, {4.5, -0.4}, {5.5, -0.4}, {6, -0.5},
+                            {8, -0.5}, {8.5, -0.4}, {9.5, -0.4}, {10, -0.5}};
+  ASSERT_EQ(p.moves.size(), std::size(want));
+  for (size_t i = 0; i < p.moves.size(); ++i) {
+    EXPECT_FALSE(p.moves[i].arc);
+    EXPECT_NEAR(p.moves[i].to.x(), want[i][0], 1e-12) << i;
+    EXPECT_EQ(p.moves[i].to.y(), 0) << i;
+    EXPECT_NEAR(p.moves[i].to.z(), want[i][1], 1e-12) << i;
+  }
+  EXPECT_EQ(ended, 2);
+  // Ending half way up a tab, the next move starts there, lifted, and carries on.
+  const CutPath a = tab_stretch(V3(0, 0, -0.5), 0, line, -0.5, 0, t, 0.1, nullptr);
+  Piece first = line, second = line;
+  first.to = V2(4.25, 0);
+  second.from = V2(4.25, 0);
+  const CutPath b1 = tab_stretch(V3(0, 0, -0.5), 0, first, -0.5, 0, t, 0.1, nullptr);
+  EXPECT_NEAR(b1.end().z(), -0.45, 1e-12);
+  const CutPath b2 = tab_stretch(b1.end(), 0.05, second, -0.5, 4.25, t, 0.1, nullptr);
+  EXPECT_NEAR(b2.moves.front().to.x(), 4.5, 1e-12);
+  EXPECT_NEAR(b2.moves.front().to.z(), -0.4, 1e-12);
+  EXPECT_NEAR(b2.end().z(), a.end().z(), 1e-12);
+  EXPECT_EQ(b2.moves.size(), a.moves.size() - 1);  // the same moves, the first one split
+  // On an arc, the parts are arcs about the same centre (helices where Z changes).
+  Piece arc;
+  arc.arc = true;
+  arc.from = V2(2, 0);
+  arc.to = V2(2, 0);
+  arc.centre = V2(0, 0);
+  arc.sweep = 2 * M_PI;  // 12.566 around: tabs at 4, 8 and 12, the last one still going up
+  const CutPath c = tab_stretch(V3(2, 0, -0.5), 0, arc, -0.5, 0, t, 0.1, &ended);
+  ASSERT_EQ(c.moves.size(), 11u);
+  double swept = 0;
+  for (const CutMove& m : c.moves) {
+    EXPECT_TRUE(m.arc);
+    EXPECT_EQ(m.centre, V2(0, 0));
+    EXPECT_NEAR(m.to.head<2>().norm(), 2, 1e-12);
+    swept += m.sweep;
+  }
+  EXPECT_NEAR(swept, 2 * M_PI, 1e-12);
+  EXPECT_NEAR(c.moves[1].to.z(), -0.4, 1e-12);  // at 4.5 along
+  EXPECT_NEAR(c.end().z(), -0.4, 1e-12);        // on the third tab's top: the path may go on
+  EXPECT_EQ(ended, 2);
 }
 
 TEST(CutGeometry, OpenArcsGoBackToTheStartAboveTheWorkBetweenPasses) {

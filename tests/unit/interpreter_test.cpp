@@ -760,12 +760,12 @@ TEST_F(InterpreterTest, AParameterThatIsNotANumberIsLocated) {
 
 TEST_F(InterpreterTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
   const ModalState before = interp().state();
-  const Diagnostic d = run_error("SA\n  PZ, 1, .5, -1\nMX, 1\n");
+  const Diagnostic d = run_error("SA\n  SK, hello\nMX, 1\n");
   EXPECT_EQ(d.loc.line, 2);
   EXPECT_EQ(d.loc.column, 3);
   EXPECT_EQ(d.message,
-            "PZ (probe in Z) is not implemented yet in Gantry; probing needs live inputs, which "
-            "arrive with issue 8");
+            "SK (set to keypad mode) is not implemented yet in Gantry; Gantry has no keypad; jog "
+            "with J commands");
   EXPECT_TRUE(moves().empty());  // the file stopped there: MX never ran
   EXPECT_EQ(interp().state().position, before.position);
   EXPECT_EQ(interp().state().speeds.move.xy, before.speeds.move.xy);
@@ -793,14 +793,14 @@ TEST_F(InterpreterTest, MotorsOffTurnsEveryOutputOff) {
 }
 
 TEST_F(InterpreterTest, CheckCountsEachSuchLineAndEveryOtherError) {
-  const std::vector<Diagnostic> errors = check("MX, 1\nPX, 1, 1, 2\nQQ\nMN\nMY, 2\n");
+  const std::vector<Diagnostic> errors = check("MX, 1\nSK\nQQ\nTC\nMY, 2\n");
   ASSERT_EQ(errors.size(), 3u);
   EXPECT_EQ(errors[0].loc.line, 2);
-  EXPECT_EQ(errors[0].message.rfind("PX (probe in X) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[0].message.rfind("SK (set to keypad mode) is not implemented yet", 0), 0u);
   EXPECT_EQ(errors[1].loc.line, 3);
   EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
   EXPECT_EQ(errors[2].loc.line, 4);
-  EXPECT_EQ(errors[2].message.rfind("MN (move nudge) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[2].message.rfind("TC (tools: copy machine) is not implemented yet", 0), 0u);
   EXPECT_EQ(moves().size(), 2u);  // the good lines still ran dry
 }
 

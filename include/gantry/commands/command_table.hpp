@@ -133,6 +133,10 @@ const char* group_name(CommandGroup g);
 
 // Registration of each family (one file each in src/commands).
 void add_move_commands(std::vector<CommandSpec>& out);
+void add_probe_commands(std::vector<CommandSpec>& out);
+// C3 when there is no custom file C3.sbp or macro_3.sbp: homing on the proximity switches
+// as the profile's [homing] says.
+void home_on_switches(CommandContext& ctx, const SourceLoc& loc);
 void add_mode_commands(std::vector<CommandSpec>& out);
 void add_file_commands(std::vector<CommandSpec>& out);
 void add_output_commands(std::vector<CommandSpec>& out);
@@ -144,6 +148,8 @@ void add_help_commands(std::vector<CommandSpec>& out);
 void add_tool_commands(std::vector<CommandSpec>& out);
 void add_utility_commands(std::vector<CommandSpec>& out);
 void add_cut_commands(std::vector<CommandSpec>& out);
+void add_record_commands(std::vector<CommandSpec>& out);  // and SI
+void add_nudge_commands(std::vector<CommandSpec>& out);   // MN, MI
 // Every other code of the SB3 and FabMo references, not in `implemented` (which may be `out`):
 // each says by name that it is not implemented yet, and does nothing else.
 void add_catalogue_commands(std::vector<CommandSpec>& out,

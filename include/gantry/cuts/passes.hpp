@@ -44,6 +44,20 @@ struct PassPlan {
 // that would run past the end is left out. `count` receives how many there are.
 Profile tab_profile(double length, const TabPlan& t, double lift, int* count);
 
+// Tabs on a path that arrives one move at a time (plain moves while VB's tabbing or FP's tab
+// feature is on): the part of the same tab series, the tabs of `t` laid along a path from
+// distance 0, that lies between `from` and `to` on it, as a profile of the distance from
+// `from`. Tabs do not have to fit before `to` (the path may go on). `ended` receives how many
+// of the series' tabs end at or before `to`.
+Profile tab_window(const TabPlan& t, double lift, double from, double to, int* ended);
+
+// One move of such a path: the tool is at `tool`, `lift_now` above where the file has it
+// (the height of a tab it is on), and follows `piece` (in XY) to Z `z_to`, `travel` along the
+// path from its start. The move is cut at the breakpoints of the tab profile, each part a
+// line or a helix; the path ends `path.end().z() - z_to` above `z_to`. `ended` as above.
+CutPath tab_stretch(const V3& tool, double lift_now, const Piece& piece, double z_to, double travel,
+                    const TabPlan& t, double lift, int* ended);
+
 // Runs the passes over `rings` from `start`: rings[0] is the tool path; the others, inner
 // rings for pocketing, each starting on a straight line from rings[0]'s start that stays in
 // the cleared area. `closed`: the path ends where it starts.

@@ -2,7 +2,9 @@
 // and a 32-bit input port (limits, home switches, probe, E-stop) sampled by the card.
 #pragma once
 
+#include <bit>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 namespace gantry {
@@ -25,6 +27,48 @@ const char* fault_name(CardFault f);
 struct InputSample {
   std::uint64_t tick = 0;
   std::uint32_t bits = 0;
+};
+
+// Input edges to watch for while the card plays (ON INPUT handlers, probes, homing): bit b of
+// `mask` fires when it changes to its level in `levels`. An edge, not a level: a bit already at
+// its level when armed must first leave it. A bit also in `stop` stops the card at the word
+// where it fired (an instant stop: the words after it are dropped, and no fault is raised).
+struct InputWatch {
+  std::uint32_t mask = 0, levels = 0, stop = 0;
+};
+
+// Where a watch fired: the words before `tick` had played when the edge was seen (the tool
+// was where they left it), the bit, and all 32 bits.
+struct InputEdge {
+  std::uint64_t tick = 0;
+  int bit = 0;
+  std::uint32_t bits = 0;
+};
+
+// The edge logic of InputWatch over successive samples; fires once until armed again.
+class EdgeDetector {
+ public:
+  void arm(const InputWatch& w, std::uint32_t bits_now) {
+    w_ = w;
+    armed_ = (bits_now ^ w.levels) & w.mask;  // bits away from their level may fire
+    fired_ = false;
+  }
+  // The bit that fired at this sample, if one did.
+  std::optional<int> sample(std::uint32_t bits) {
+    if (fired_ || w_.mask == 0) return std::nullopt;
+    const std::uint32_t away = (bits ^ w_.levels) & w_.mask;
+    const std::uint32_t hit = armed_ & ~away & w_.mask;
+    armed_ |= away;
+    if (hit == 0) return std::nullopt;
+    fired_ = true;
+    return std::countr_zero(hit);
+  }
+  const InputWatch& watch() const { return w_; }
+
+ private:
+  InputWatch w_;
+  std::uint32_t armed_ = 0;
+  bool fired_ = false;
 };
 
 class Card {
@@ -51,6 +95,26 @@ class Card {
   // The calibration changed (VU, VD's units) for the words written from now on. A real card
   // plays words and cares not; the simulator, which checks the machine's limits, follows.
   virtual void calibration_changed(const Settings&) {}
+  // Arms (replaces) the input watch; an empty mask disarms it.
+  virtual void watch(const InputWatch& w) {
+    watcher_.arm(w, inputs());
+    fired_.reset();
+  }
+  // The edge the watch fired on, once it has. This default compares the inputs each time it
+  // is asked (the feeder asks after every block): a card that samples its inputs itself
+  // overrides it with the exact tick, and stops on `stop` bits in hardware.
+  virtual std::optional<InputEdge> watch_fired() {
+    if (!fired_) {
+      const InputSample s = sample_inputs();
+      if (std::optional<int> bit = watcher_.sample(s.bits))
+        fired_ = InputEdge{s.tick, *bit, s.bits};
+    }
+    return fired_;
+  }
+
+ private:
+  EdgeDetector watcher_;
+  std::optional<InputEdge> fired_;
 };
 
 }  // namespace gantry

@@ -31,10 +31,12 @@ class DiskFileSystem : public FileSystem {
   std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
 };
 
-// Reads the disk but keeps every write in memory, where later reads find it: a check or a
-// preview behaves as the run would and changes nothing on disk.
+// Reads the disk (or another file system) but keeps every write in memory, where later reads find
+// it: a check or a preview behaves as the run would and changes nothing on disk.
 class SandboxFileSystem : public FileSystem {
  public:
+  // `base`: where reads go when the sandbox has not written the file (null: the disk).
+  explicit SandboxFileSystem(FileSystem* base = nullptr) : base_(base ? base : &disk_) {}
   std::shared_ptr<const Script> load_script(const std::string& path) override;
   bool is_file(const std::string& path) override;
   std::shared_ptr<std::istream> open_read(const std::string& path) override;
@@ -42,6 +44,7 @@ class SandboxFileSystem : public FileSystem {
 
  private:
   DiskFileSystem disk_;
+  FileSystem* base_;
   std::map<std::string, std::shared_ptr<std::stringstream>> written_;
 };
 

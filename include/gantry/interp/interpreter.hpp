@@ -10,15 +10,16 @@
 #include <unordered_map>
 #include <vector>
 
-#include "gantry/commands/command_table.hpp"   // CommandTable, CommandCall
-#include "gantry/interp/evaluator.hpp"         // EvalEnv
-#include "gantry/interp/file_system.hpp"       // FileSystem
-#include "gantry/interp/operator_io.hpp"       // OperatorIO
-#include "gantry/interp/persistent_store.hpp"  // PersistentStore
-#include "gantry/interp/system_variables.hpp"  // MachineSnapshot
-#include "gantry/lang/script.hpp"              // Script, Cursor
-#include "gantry/motion/canon_move.hpp"        // CanonMove, MotionSink
-#include "gantry/settings/settings.hpp"        // Settings
+#include "gantry/commands/command_recorder.hpp"  // CommandRecorder
+#include "gantry/commands/command_table.hpp"     // CommandTable, CommandCall
+#include "gantry/interp/evaluator.hpp"           // EvalEnv
+#include "gantry/interp/file_system.hpp"         // FileSystem
+#include "gantry/interp/operator_io.hpp"         // OperatorIO
+#include "gantry/interp/persistent_store.hpp"    // PersistentStore
+#include "gantry/interp/system_variables.hpp"    // MachineSnapshot
+#include "gantry/lang/script.hpp"                // Script, Cursor
+#include "gantry/motion/canon_move.hpp"          // CanonMove, MotionSink
+#include "gantry/settings/settings.hpp"          // Settings
 
 namespace gantry {
 
@@ -45,6 +46,12 @@ struct ModalState {
   bool tabs_on = false;
   int tab_count = 0;
   double first_tab = 0;
+  // Tabs on plain moves (VB on, FP's tab feature): how far the tool has gone along the path
+  // since it last came down from Safe-Z, how far above the file's Z a tab holds it now, and
+  // how many tabs of this path it has passed.
+  double tab_travel = 0;
+  double tab_lift = 0;
+  int tabs_passed = 0;
   std::optional<PreviewReturn> preview;  // SP: moves reach no motor until SM
   // CG's centre offsets I and J: modal, as in G-code; a blank one keeps the last given.
   std::array<double, 2> cg_center_offset{0, 0};
@@ -71,7 +78,16 @@ struct FileCall {
   int repetitions = 1;
   int offset = 0;  // 0 none, 1 3D (X, Y, Z from here), 2 2D (X, Y from here)
   double plunge = 0;
+  bool tabs = false;       // tabs (VB's sizes) on the cutting moves of the last repetition
+  bool from_zero = false;  // Z goes to 0 first; the plunges are measured from there
+  // FG, --from-line: the first line to run (0 or 1: all); the lines before it run without
+  // motion, then the tool approaches where they leave it (docs/language.md, start line).
+  int start_line = 0;
+  SourceLoc start_loc;    // where the start line was given, for its errors
   bool resolved = false;  // `path` is final (C<n> found it), not relative to the parts folder
+  // Set: these lines run instead of a file, as if typed at the console (RP, RR, SI): not
+  // scaled or offset, and the values they change stay when they end.
+  std::shared_ptr<const Script> lines;
 };
 
 class Interpreter;
@@ -102,14 +118,20 @@ class CommandContext {
   void end_preview();
   // SL: every &variable is deleted.
   void clear_variables();
-  // Whether a part file is running (false: a command typed at the console).
+  // Whether a part file is running (false: a command typed at the console, or lines played
+  // as typed: RP, RR, SI).
   bool in_file() const;
   // Sets the table base location of the current position for `axes` (bits 0 X .. 5 C)
   // without moving: working locations keep their values.
   void set_table_base(unsigned axes, const Vec6& location);
 
-  // The current position in the running file's coordinates (FP may scale and offset them).
-  Vec6 position() const { return transform_.to_file(state_.position); }
+  // The current position in the running file's coordinates (FP may scale and offset them),
+  // where the file has the tool: below the tab (VB) it may be on.
+  Vec6 position() const {
+    Vec6 p = state_.position;
+    p[2] -= state_.tab_lift;
+    return transform_.to_file(p);
+  }
   // A straight move to `target` (file coordinates). A target outside the soft limits is an
   // error at `loc`, and nothing is emitted.
   void line_to(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
@@ -122,6 +144,23 @@ class CommandContext {
   // A located error, as line_to gives, if the tool cannot pass through `point` (file
   // coordinates): outside the soft limits, or not a number. Nothing moves.
   void check_reach(const Vec6& point, const SourceLoc& loc) const;
+  // A probe (P*, homing): a straight move towards `target` (file coordinates) at `speed`
+  // that stops where input switch `input` closes. True: it closed, and the tool is exactly
+  // where it closed (it comes to rest a little past it, then goes back). False: the move
+  // reached the target; always so without a live machine (a check, a preview). An input
+  // closed already is an error, as is an unwired one. Soft limits are checked for probes,
+  // not for homing (the table base is what homing finds).
+  bool probe(const Vec6& target, double speed, int input, const SourceLoc& loc,
+             MotionSink::Watching why = MotionSink::Watching::Probe);
+  // Homing: the tool's table base location on `axis` becomes `table_base`; working 0 keeps
+  // its place on the table.
+  void home_axis(int axis, double table_base);
+  // Homing's moves: straight, at `speed`, without the soft-limit check (the table base is
+  // not known yet).
+  void homing_line(const Vec6& target, double speed, const SourceLoc& loc);
+  // The input switches 1-12 once the moves so far have played (closed: true); nullopt
+  // without a live machine.
+  std::optional<std::array<bool, 12>> input_switches();
   // A timed wait in the motion stream.
   void dwell(double seconds, const SourceLoc& loc);
   // The machine ramps down to rest here before the next move (MS, JS).
@@ -133,6 +172,12 @@ class CommandContext {
   void zero_axes(unsigned axes);
   // FP: runs a file as a subroutine once this command returns.
   void call_file(const FileCall& call, const SourceLoc& loc);
+  // RP, RR, SI: runs `lines` `repetitions` times once this command returns, as if the
+  // operator typed them (in_file() is false while they run). A syntax error in any of them
+  // is an error before the first runs.
+  void run_typed(std::shared_ptr<const Script> lines, int repetitions, const SourceLoc& loc);
+  // The console's command record (RA, RI, RZ change it; RP, RR, RS read it).
+  CommandRecorder& recorder();
   // Records who set a speed group (0 xy .. 4 c): values set by VS are undone when the file
   // that set them ends; MS and JS values stay.
   void speed_set(SpeedClass cls, int group, bool by_values);
@@ -142,14 +187,35 @@ class CommandContext {
   void warn(const SourceLoc& loc, std::string message);
   // A file a command writes (TD, TU, TH): a relative name is found beside the top-level
   // file, as FP finds it; a check or a preview writes into its sandbox, never the disk. A
-  // file that is running is refused. Returns the path written.
-  std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc);
+  // file that is running is refused. `atomic`: on disk, written beside and renamed over the
+  // old file (a crash leaves one or the other), into an existing folder. Returns the path.
+  std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc,
+                         bool atomic = false);
   // The text of a file found as write_file finds it (a check sees its own writes); nullopt
   // when it cannot be read. `path` receives where it looked.
   std::optional<std::string> read_file(const std::string& name, const SourceLoc& loc,
                                        std::string* path = nullptr);
 
   std::size_t moves() const { return moves_; }
+
+  // Whether FP's tab feature is on here: in the last repetition of a file run with it, or in
+  // a file that one calls.
+  bool file_tabs() const { return file_tabs_; }
+  // While one lives, the moves sent carry their own tabs (a cut command's path): tabs on
+  // plain moves leave them alone, and the tabbed path starts again after them.
+  class OwnTabs {
+   public:
+    explicit OwnTabs(CommandContext& c) : c_(c) { c_.own_tabs_ = true; }
+    ~OwnTabs() {
+      c_.own_tabs_ = false;
+      c_.end_tab_path();
+    }
+    OwnTabs(const OwnTabs&) = delete;
+    OwnTabs& operator=(const OwnTabs&) = delete;
+
+   private:
+    CommandContext& c_;
+  };
 
   // ---- for the utility and file commands (UL, VV, FS, FE, UV, UD, UR) ----
   // Every &variable (names upper case, without the &), sorted by name.
@@ -172,6 +238,18 @@ class CommandContext {
  private:
   // A motion-stream item at the current location, in table base coordinates.
   CanonMove here(MoveKind kind, const SourceLoc& loc) const;
+  // check_reach for a point in working coordinates.
+  void check_working(const Vec6& target, const SourceLoc& loc) const;
+  // A line or an arc to `target` (working coordinates, checked), as it is: no tabs.
+  void send_line(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
+  void send_arc(const Vec6& target, double cx, double cy, double sweep, SpeedClass cls,
+                const SourceLoc& loc);
+  // Tabs on plain moves: sends the move with the tabs that fall on it and returns true, or
+  // returns false when it is not tabbed (the caller sends it). `arc`: centre X, Y and sweep
+  // (working coordinates), null for a line.
+  bool tab_move(const Vec6& target, const std::array<double, 3>* arc, SpeedClass cls,
+                const SourceLoc& loc);
+  void end_tab_path();
   friend class Interpreter;
   ModalState& state_;
   Settings& settings_;
@@ -179,6 +257,8 @@ class CommandContext {
   Interpreter* interp_ = nullptr;
   Transform transform_;
   std::size_t moves_ = 0;
+  bool file_tabs_ = false;
+  bool own_tabs_ = false;
 };
 
 struct InterpreterOptions {
@@ -191,6 +271,10 @@ struct InterpreterOptions {
   std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
   std::string macro_dir;             // where C<n> finds its files ("" = beside the file)
   int max_file_depth = 8;            // FP nesting, the top-level file included
+  // The top-level file's first line to run (0 or 1: all of it): the lines before it run
+  // without motion, output or questions, then the tool approaches where they leave it
+  // (docs/language.md, "Starting at a line").
+  int start_line = 0;
   int max_gosub_depth = 256;
   // Called when a run ends (not in a dry run) with the settings as the run leaves them:
   // file-scoped values undone, the speeds MS/JS left in force. The job saves the values.
@@ -211,7 +295,9 @@ class Interpreter : private EvalEnv {
 
   // Runs the script to its end (or END/ENDALL); throws GantryError at the first error,
   // located through every nested file. The motion sink is flushed either way.
-  void run(std::shared_ptr<const Script> script);
+  // `typed`: lines the operator typed at the console: they run as typed lines do (values they
+  // change stay, output switches stay on), and each is recorded (RA...) once it ran cleanly.
+  void run(std::shared_ptr<const Script> script, bool typed = false);
 
   // Runs without stopping at errors: each statement that fails is reported and skipped.
   // Includes the script's own syntax errors. Stops (with a warning) where the rest of the
@@ -227,16 +313,33 @@ class Interpreter : private EvalEnv {
   // tool really is after a stop or a jog (machine frame, units: the step counts over
   // steps per unit); working and table base locations follow, the zero stays.
   void restore_state(const ModalState& s) { state_ = s; }
+  void restore_variables(const std::unordered_map<std::string, Value>& v) { vars_ = v; }
+  const std::unordered_map<std::string, Value>& variables() const { return vars_; }
   void set_machine_position(const Vec6& machine);
   std::size_t statements_executed() const { return executed_; }
   std::size_t moves_emitted() const { return ctx_.moves(); }
   const Value* variable(std::string_view upper_name) const { return user_variable(upper_name); }
   MachineSnapshot snapshot() const;
 
+  // For console front ends: call record_typed() with each line the operator typed, once it
+  // has run without an error (a line that failed is not worth playing again), including
+  // the Record commands themselves (they are left out here). Lines run from part files and
+  // lines played back are never passed. Returns whether the line was kept: recording is on
+  // (RA, the default; RI pauses it) and the line can be played again (see CommandRecorder).
+  // RP and RR play the record as typed lines; RS saves it as a part file. Not thread-safe:
+  // call it from the thread that runs the interpreter, between lines.
+  bool record_typed(std::string_view line) { return recorder_.record(line); }
+  // The record, for a console that shows it (its lines) or shows whether recording is on.
+  const CommandRecorder& recorder() const { return recorder_; }
+  CommandRecorder& recorder() { return recorder_; }  // a check starts from the live record
+
  private:
   friend class CommandContext;
   struct Frame;
   struct UserFile;
+  class GatedSink;
+  class GatedIO;
+  struct StartLine;
 
   // EvalEnv
   const Value* user_variable(std::string_view name) const override;
@@ -247,6 +350,15 @@ class Interpreter : private EvalEnv {
   void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from,
                  bool refuse_broken = true);
   void end_file();
+  // FP's tab feature for the frames running now (CommandContext::file_tabs).
+  void update_file_tabs();
+  // Start at a line: the lines before it run quietly (begin_start), then, when it is reached,
+  // the machine catches up and the tool approaches (reach_start); a line never reached is an
+  // error (start_missed).
+  void begin_start(const Script& script, const FileCall& call, const SourceLoc& from);
+  void reach_start(const SourceLoc& at);
+  void end_quiet();
+  [[noreturn]] void start_missed();
   void restore_file_values(Frame& f);
   void plunge_for_pass(Frame& f);
   void loop(std::vector<Diagnostic>* collect);
@@ -285,9 +397,12 @@ class Interpreter : private EvalEnv {
   void unwind_all();
 
   Settings settings_;  // the profile as the V commands change it
+  // The motion stream and the operator, closed while the lines before a start line run.
+  std::unique_ptr<GatedSink> gated_sink_;
+  std::unique_ptr<GatedIO> gated_io_;
   const CommandTable& table_;
-  MotionSink& sink_;
-  OperatorIO& io_;
+  MotionSink& sink_;  // *gated_sink_
+  OperatorIO& io_;    // *gated_io_
   PersistentStore& store_;
   InterpreterOptions options_;
   ModalState state_;
@@ -297,7 +412,15 @@ class Interpreter : private EvalEnv {
   std::set<std::string> failed_vars_;      // check: assignments that failed
   std::unique_ptr<FileSystem> own_files_;  // when options_.files is null
   FileSystem* files_system_ = nullptr;
-  std::map<std::pair<int, int>, std::shared_ptr<const Statement>> on_input_;
+  // ON INPUT handlers by (switch, 1 closing or 0 opening): one-shot, for the run.
+  struct InputHandler {
+    std::shared_ptr<const Statement> action;
+    bool instant = true;    // states 0 and 1 stop at once; 2 and 3 ramp down
+    std::size_t depth = 0;  // the file that armed it (a GOTO action continues there)
+  };
+  std::map<std::pair<int, int>, InputHandler> on_input_;
+  void arm_inputs();                              // the machine watches the handlers' edges
+  void service_inputs(std::size_t moves_before);  // after a statement: did an edge cut it?
   std::vector<std::unique_ptr<UserFile>> files_;
   std::optional<FileCall> pending_call_;
   SourceLoc pending_call_loc_;
@@ -305,13 +428,15 @@ class Interpreter : private EvalEnv {
   // FS's file mask, and the last file loaded (FE's blank opens it).
   std::string parts_mask_ = "*.sb?";
   std::string last_file_;
-  Cursor current_;    // the line being executed
-  Statement simple_;  // the last simple command line, its storage reused line after line
+  CommandRecorder recorder_;  // the lines typed at the console (RA ... RZ)
+  Cursor current_;            // the line being executed
+  Statement simple_;          // the last simple command line, its storage reused line after line
   std::vector<std::optional<Value>> values_storage_;  // a command's values, reused likewise
   bool warning_off_ = false;
   bool stop_all_ = false;
   std::size_t executed_ = 0;
   std::function<void(std::size_t, std::size_t)> progress_;
+  std::unique_ptr<StartLine> start_;  // a start line not reached yet
 };
 
 }  // namespace gantry

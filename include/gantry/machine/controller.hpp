@@ -23,10 +23,16 @@ namespace gantry {
 struct ControllerStatus {
   MachineState state = MachineState::Idle;
   FeedPhase phase = FeedPhase::Playing;
-  Steps6 steps{};               // played by the card: where the tool is
-  Vec6 machine = Vec6::Zero();  // the same in units (machine frame)
-  std::string message;          // why the last activity stopped, if it did not end
-  SourceLoc stopped_at;         // the line the motion came to rest in (Stopped, Paused)
+  Steps6 steps{};                 // played by the card: where the tool is
+  Vec6 machine = Vec6::Zero();    // the same in units (machine frame)
+  std::string message;            // why the last activity stopped, if it did not end
+  SourceLoc stopped_at;           // the line the motion came to rest in (Stopped, Paused)
+  std::array<bool, 12> inputs{};  // input switches 1-12: closed
+  // Progress of the file running (or the last one run).
+  std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
+  int playing_line = 0;             // the line whose motion the card plays (in its own file)
+  double elapsed_s = 0;             // machine time since it started
+  double remaining_s = 0;           // the check's cycle-time estimate less elapsed (0: none)
 };
 
 // A keypad jog: each axis -1, 0 or +1 (several: a diagonal). Continuous: runs towards the
@@ -57,7 +63,13 @@ class Controller {
   Controller& operator=(const Controller&) = delete;
 
   // Checks the file from the live state (every error, soft limits included); a clean file runs.
-  Outcome run(std::shared_ptr<const Script> script);
+  // `checked`: the caller has checked it already (run_job, with its operator answers).
+  // `estimated_time_s` with `checked`: the caller's cycle-time estimate, for the progress.
+  Outcome run(std::shared_ptr<const Script> script, bool checked = false,
+              double estimated_time_s = 0);
+  // A line the operator typed at the console: checked and run as run() does, but as typed
+  // (the values it changes stay, outputs stay on) and recorded for RP, RR, RS.
+  Outcome run_typed(std::shared_ptr<const Script> lines);
   Outcome pause();
   Outcome resume();
   Outcome stop();
@@ -74,20 +86,36 @@ class Controller {
   // or halted (E-stop).
   void wait();
   ControllerStatus status() const;
+  // What the last activity did; read once it has ended (wait()).
+  struct Summary {
+    std::optional<Diagnostic> error;  // why it stopped short, located
+    CardFault fault = CardFault::None;
+    std::size_t lines = 0, moves = 0;  // statements executed, canonical moves issued
+    Steps6 commanded{};                // steps the generator emitted
+    double planned_time_s = 0;         // the planner's sum of segment durations
+  };
+  Summary summary() const;
+  // For the runs that follow: the speeds' factor (0.1-2), and a call after each statement
+  // with (line reached in the top-level file, its line count), on the job thread.
+  void set_feed_override(double factor);
+  void on_progress(std::function<void(std::size_t, std::size_t)> f);
   MachineState state() const;
   ModalState modal() const;  // the interpreter's state (meaningful while idle)
 
  private:
   struct FeedItem {
-    enum Kind { kSegment, kSettings, kFlush } kind = kSegment;
+    enum Kind { kSegment, kSettings, kFlush, kWatch } kind = kSegment;
     PlannedSegment seg;
     std::shared_ptr<const Settings> settings;
+    std::shared_ptr<const std::vector<InputTrigger>> triggers;  // kWatch
   };
   class QueueSink;
   class ForwardSink;
   enum class OnHold { Wait, Discard };
 
   Outcome refuse_or(Request r, const std::function<void()>& accept);
+  Outcome start_run(std::shared_ptr<const Script> script, bool checked, double estimated_time_s,
+                    bool typed);
   void start_activity(std::function<void()> work);
   void job_main();
   void feeder_main();
@@ -95,6 +123,12 @@ class Controller {
   void wait_for_motion();  // job thread: every flush pushed has played (or was dropped)
   void publish();          // feeder thread: position and phase for status()
   void on_feeder_event();  // feeder thread: a hold or halt took effect
+  void arm_watch(std::shared_ptr<const std::vector<InputTrigger>> triggers);  // feeder thread
+  void on_input_edge(const InputEdge& e);      // feeder thread, from the card
+  void finish_input_cut(bool consumed_flush);  // feeder thread: at rest
+  std::array<bool, 12> input_switches(std::uint32_t bits) const;
+  std::string active_limits(std::uint32_t bits) const;  // "X high limit switch", ...
+  std::optional<std::string> limit_refusal(const Vec6& direction) const;
   CanonMove keypad_move(const JogRequest& j) const;
   Vec6 played_machine(const Steps6& steps) const;
   Vec6 played_machine() const;  // the played counts now, in units
@@ -116,7 +150,15 @@ class Controller {
   std::uint64_t flushes_dropped_ = 0;
   std::array<std::atomic<std::int64_t>, kAxisCount> played_{};
   std::atomic<std::int64_t> tick_{0};
+  std::atomic<std::uint32_t> inputs_{0};  // the card's input bits, as last published
   FeedPhase last_phase_ = FeedPhase::Playing;
+  // The watched edges and what fired (feeder thread; read by the job once the motion has
+  // played out, after flushes_done_ says so).
+  std::shared_ptr<const std::vector<InputTrigger>> watched_;
+  bool input_cut_ = false;  // an edge cut the motion: stopping, then dropping to the flush
+  bool drop_to_flush_ = false;
+  std::optional<InputTrigger> fired_;
+  Vec6 latched_ = Vec6::Zero();
 
   // Job side.
   std::unique_ptr<QueueSink> qsink_;
@@ -137,6 +179,15 @@ class Controller {
   std::optional<MachineState> effect_state_;  // entered when a scheduled hold takes effect
   std::string message_;
   SourceLoc stopped_at_;
+  std::optional<Diagnostic> error_;
+  CardFault fault_ = CardFault::None;
+  Steps6 fault_commanded_{};  // the steps generated when the card faulted
+  double feed_override_ = 1;
+  std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
+  std::atomic<std::size_t> line_{0}, lines_{0};
+  std::atomic<int> playing_line_{0};
+  std::int64_t start_tick_ = 0;  // the activity's first tick
+  double estimate_s_ = 0;
 
   std::thread feeder_thread_, job_thread_;  // last: they start once everything exists
 };

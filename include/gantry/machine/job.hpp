@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "gantry/hal/card.hpp"                 // Card
@@ -31,6 +32,9 @@ struct JobOptions {
   const Settings* profile = nullptr;
   // Where the check starts (the machine controller's live state); null: a fresh machine.
   const ModalState* start_state = nullptr;
+  const std::unordered_map<std::string, Value>* start_variables = nullptr;  // and its &variables
+  // The console's command record, for a check of RP, RR and RS; null: an empty one.
+  const CommandRecorder* record = nullptr;
 };
 
 struct JobResult {

@@ -16,11 +16,13 @@ enum class MachineState {
   Stopped,   // a file ended by a stop or a fault, with the line it stopped at
   EStop,     // pulses stopped at once; nothing moves until it is acknowledged
   Jogging,   // a keypad jog, continuous or a fixed step
+  Homing,    // a part file (or C3) runs its homing moves towards the proximity switches
+  Probing,   // a part file runs a probe move (P*), watching its input
 };
 
 enum class Request { Run, Pause, Resume, Stop, EStop, Acknowledge, Jog, JogRelease };
 
-inline constexpr int kMachineStates = 7;
+inline constexpr int kMachineStates = 9;
 inline constexpr int kRequests = 8;
 
 const char* state_name(MachineState s);

@@ -1,6 +1,10 @@
 // Canonical moves: what the interpreter asks the machine to do, in machine units.
 #pragma once
 
+#include <array>
+#include <optional>
+#include <span>
+
 #include "gantry/core/axes.hpp"          // Vec6
 #include "gantry/core/diagnostic.hpp"    // SourceLoc
 #include "gantry/settings/settings.hpp"  // GroupSpeeds
@@ -26,13 +30,31 @@ struct CanonMove {
   double sweep = 0;                   // Arc: signed angle, radians; 2 pi is a full circle
   double dwell_s = 0;                 // Dwell: how long the machine waits, s
   int output = 0;                     // Output: the switch, 1-based as SO numbers it
-  bool keypad = false;  // a keypad jog: it ramps at VR's keypad ramp rate
+  bool keypad = false;                // a keypad jog: it ramps at VR's keypad ramp rate
   bool output_on = false;
   SourceLoc loc;  // the statement that asked for it
 };
 
 const char* kind_name(MoveKind k);
 const char* speed_class_name(SpeedClass c);
+
+// An input switch edge to watch for while moving (ON INPUT handlers, probes): switch
+// `input` (1-12) closing or opening; `instant`: the pulses stop at the edge, otherwise the
+// motion ramps down along the path.
+struct InputTrigger {
+  int input = 0;
+  bool closing = true;
+  bool instant = false;
+};
+
+// What the live machine reports once the motion has played out (MotionSink::sync).
+struct MotionReport {
+  Vec6 machine = Vec6::Zero();  // where the tool is, machine frame, from the pulses played
+  // A watched edge cut the motion: which, and where the tool was at that instant (the
+  // motion after it was dropped; the tool came to rest at `machine`).
+  std::optional<InputTrigger> fired;
+  Vec6 latched = Vec6::Zero();
+};
 
 // Receives canonical moves in order. `flush` marks the end of the stream: nothing more will
 // come, so everything buffered must be completed.
@@ -44,6 +66,20 @@ class MotionSink {
   // New values (VR ramps, VU steps per unit, VI channels) for the moves that follow; the
   // sender has brought the machine to rest just before (a Stop move).
   virtual void settings_changed(const Settings&) {}
+
+  // The live machine only (a check, a preview or a list of moves has none: nullopt).
+  // Plays out every move sent so far and reports where the tool is and whether a watched
+  // input cut the motion.
+  virtual std::optional<MotionReport> sync() {
+    flush();
+    return std::nullopt;
+  }
+  // Replaces the edges watched from the next move on (the machine is at rest: after sync),
+  // for ON INPUT handlers, a probe or homing (what the machine's state shows).
+  enum class Watching { Handlers, Probe, Home };
+  virtual void watch_inputs(std::span<const InputTrigger>, Watching) {}
+  // The input switches 1-12 now: closed (true) or open.
+  virtual std::optional<std::array<bool, 12>> input_switches() const { return std::nullopt; }
 };
 
 }  // namespace gantry

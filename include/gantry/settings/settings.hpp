@@ -79,6 +79,24 @@ struct InputSettings {
   int probe_bit = 1;
   std::array<int, kAxisCount> min_bit{}, max_bit{}, home_bit{};  // limit and proximity switches
   bool limits_active_low = false;
+  // The input switches 1-12 that part files read (%(51)...) and watch (ON INPUT, probes): the
+  // bit each one is (-1: not wired). A switch reads closed (1) when its bit reads 1. Several
+  // may name a bit already named above (the Z zero plate is the probe bit).
+  std::array<int, 12> switch_bits{1, -1, 8, 0, -1, -1, -1, -1, -1, -1, -1, -1};
+};
+
+// C3's homing on proximity switches. Each axis of `order` runs towards its switch at
+// fast_speed until the switch closes, backs off by back_off, comes back at slow_speed, and
+// the table base location where the switch closed is set to at[axis]; the tool then backs
+// off the switch again. Lengths in the profile's units.
+struct HomingSettings {
+  int input = 3;  // the input switch the proximity switches close (1-12)
+  std::string order = "zxy";
+  double fast_speed = 1.0;  // units/s
+  double slow_speed = 0.1;
+  double back_off = 0.25;
+  std::array<int, kAxisCount> direction{-1, -1, 1, -1, -1, -1};  // towards the switch
+  std::array<double, kAxisCount> at{};                           // table base at the switch
 };
 
 // A GPIO line and the bit of the card's word it carries (type = "gpiod").
@@ -182,6 +200,7 @@ struct Settings {
   std::array<PinSettings, kAxisCount> pins{};
   OutputSettings outputs;
   InputSettings inputs;
+  HomingSettings homing;
   CutterSettings cutter;
   TabSettings tabs;
   DisplaySettings display;

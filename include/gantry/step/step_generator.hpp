@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -66,6 +67,14 @@ class StepGenerator : public SegmentSink {
   // Steps the card has actually played (its ticks_played()): where the tool is after a
   // fault or a stop. Steps are logged until the card confirms them played.
   Steps6 played_position() const;
+  // The steps the words before `tick` make: where the tool was then. Exact for ticks not
+  // yet played and for about the last second played; nullopt when older.
+  std::optional<Steps6> position_at(std::uint64_t tick) const;
+  // Arms the card's input watch; `fired` is called once, on this thread, right after the
+  // block in which the card reports the edge. An empty mask disarms it.
+  void watch_inputs(const InputWatch& w, std::function<void(const InputEdge&)> fired);
+  // Called after every block handed to the card (the controller publishes the position).
+  void on_block(std::function<void()> f) { on_block_ = std::move(f); }
   // The spindle output bit, from the next word on.
   void set_spindle(bool on);
   // Output switch n (1-based, as SO numbers them), from the next word on; false when the
@@ -80,7 +89,8 @@ class StepGenerator : public SegmentSink {
   // the fault and where the tool stopped. Called after every block, and by the job after
   // the card drains.
   void check_card();
-  std::int64_t tick() const { return cursor_; }  // words emitted so far
+  std::int64_t tick() const { return cursor_; }          // words emitted so far
+  const SourceLoc& loc() const { return current_loc_; }  // the segment being generated
   const StepTiming& timing() const { return timing_; }
 
  private:
@@ -119,9 +129,15 @@ class StepGenerator : public SegmentSink {
   std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
   std::vector<int> aux_bits_;
   std::int64_t pump_half_ticks_ = 1;
-  std::vector<StepRecord> step_log_;  // ring [log_begin_, log_end_) of steps not yet played
-  std::size_t log_begin_ = 0, log_end_ = 0;
-  Steps6 confirmed_{};  // steps known played
+  // A ring of steps: [log_begin_, log_played_) played (kept as history), [log_played_,
+  // log_end_) not yet confirmed played.
+  std::vector<StepRecord> step_log_;
+  std::size_t log_begin_ = 0, log_played_ = 0, log_end_ = 0;
+  Steps6 confirmed_{};  // steps known played: the count at log_played_
+  std::int64_t history_ticks_ = 0;
+  std::int64_t history_from_ = 0;  // steps before this tick are no longer kept
+  std::function<void(const InputEdge&)> on_edge_;
+  std::function<void()> on_block_;
   bool faulted_ = false;
   SourceLoc current_loc_;  // the segment being generated, for the fault message
 };

@@ -1,0 +1,1122 @@
+// `gantry console`: the live machine at a terminal (docs/console.md).
+//
+// One thread (the caller's) reads the keys, draws the prompt and the status line, and makes
+// every request of the Controller; the controller's job thread reaches the operator only
+// through ConsoleIO, which queues PRINT text and hands questions (PAUSE, INPUT, MSGBOX) to
+// the console thread. A watcher thread takes the termination signals and E-stops.
+#include "console.hpp"
+
+#include <fmt/format.h>  // output
+#include <poll.h>        // poll
+#include <pthread.h>     // pthread_sigmask
+#include <sys/ioctl.h>   // TIOCGWINSZ
+#include <termios.h>     // raw mode
+#include <unistd.h>      // read, isatty
+#include <CLI/CLI.hpp>   // the subcommand
+
+#include <atomic>
+#include <cctype>  // toupper, tolower
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <csignal>  // sigtimedwait
+#include <cstdio>   // stdout
+#include <map>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "gantry/commands/command_docs.hpp"  // command_help, command_list
+#include "gantry/core/text_file.hpp"         // write_file_atomically
+#include "gantry/lang/script.hpp"            // Script
+#include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/settings/values_file.hpp"   // values_text
+#include "line_editor.hpp"                   // KeyDecoder, LineEditor
+#include "machine_profile.hpp"               // load_machine_profile
+#include "open_card.hpp"                     // open_card
+
+namespace gantry {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+// The name of the one-line scripts typed at the console: errors located there get a caret.
+const char* const kConsoleName = "console";
+const char* const kPrompt = "gantry> ";
+const char* const kEStopPrompt = "gantry [E-stop: type ack]> ";
+
+std::string upper(std::string_view s) {
+  std::string u(s);
+  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return u;
+}
+
+std::string trim(std::string_view s) {
+  const size_t b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string_view::npos) return {};
+  const size_t e = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+void write_out(std::string_view s) {
+  std::fwrite(s.data(), 1, s.size(), stdout);
+  std::fflush(stdout);
+}
+
+int terminal_columns() {
+  winsize w{};
+  return ioctl(STDOUT_FILENO, TIOCGWINSZ, &w) == 0 && w.ws_col > 0 ? w.ws_col : 80;
+}
+
+// Raw mode for the keys: no echo, no line buffering, no signals from Ctrl-C (it is the
+// console's E-stop key), no flow control. Output processing stays on, so "\n" starts a line.
+class RawTerminal {
+ public:
+  explicit RawTerminal(int fd) : fd_(fd) {
+    if (tcgetattr(fd_, &saved_) != 0) return;
+    termios raw = saved_;
+    raw.c_iflag &= ~static_cast<tcflag_t>(BRKINT | ICRNL | INPCK | ISTRIP | IXON);
+    raw.c_lflag &= ~static_cast<tcflag_t>(ECHO | ICANON | IEXTEN | ISIG);
+    raw.c_cflag |= CS8;
+    raw.c_cc[VMIN] = 1;
+    raw.c_cc[VTIME] = 0;
+    active_ = tcsetattr(fd_, TCSAFLUSH, &raw) == 0;
+  }
+  ~RawTerminal() { restore(); }
+  RawTerminal(const RawTerminal&) = delete;
+  RawTerminal& operator=(const RawTerminal&) = delete;
+  void restore() {
+    if (active_) tcsetattr(fd_, TCSAFLUSH, &saved_);
+    active_ = false;
+  }
+
+ private:
+  int fd_;
+  termios saved_{};
+  bool active_ = false;
+};
+
+// SIGINT, SIGTERM, SIGHUP and SIGQUIT are blocked from construction on, in this thread and in
+// every thread started after (the controller's: construct this first), and taken by one
+// watcher thread, which calls `on_signal` from an ordinary thread (a signal handler could not
+// E-stop: that takes a lock). stop() ends the watcher; the destructor restores the mask.
+class SignalWatch {
+ public:
+  SignalWatch() {
+    sigemptyset(&set_);
+    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&set_, s);
+    pthread_sigmask(SIG_BLOCK, &set_, &old_);
+  }
+  ~SignalWatch() {
+    stop();
+    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  SignalWatch(const SignalWatch&) = delete;
+  SignalWatch& operator=(const SignalWatch&) = delete;
+  void start(std::function<void(int)> on_signal) {
+    thread_ = std::thread([this, f = std::move(on_signal)] {
+      const timespec period{0, 100'000'000};
+      while (!done_) {
+        const int sig = sigtimedwait(&set_, nullptr, &period);
+        if (sig > 0) f(sig);
+      }
+    });
+  }
+  void stop() {
+    done_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  sigset_t set_{}, old_{};
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
+std::string where(const SourceLoc& loc) {
+  return loc.file && *loc.file != kConsoleName ? fmt::format("{}:{}", *loc.file, loc.line)
+                                               : std::string("console");
+}
+
+// ---- the operator, as the controller's interpreter sees the console ----------------------
+
+// PRINT text and warnings: queued for the console thread when interactive, written at once
+// when piped (the console thread is waiting for the line then). Questions are answered by
+// --yes and --input when they can be; otherwise, at a terminal, the job thread waits while the
+// console thread asks the operator; piped, the line fails, saying which option would answer.
+class ConsoleIO : public OperatorIO {
+ public:
+  struct Question {
+    std::string text;    // printed above the answer line
+    std::string prompt;  // the answer line's prompt
+  };
+
+  ConsoleIO(bool interactive, bool yes, std::map<std::string, std::string> inputs)
+      : interactive_(interactive), scripted_(yes, std::move(inputs)) {}
+
+  void print(std::string_view text) override {
+    if (!interactive_) return write_out(text);
+    std::lock_guard lock(m_);
+    output_ += text;
+  }
+  void warn(const Diagnostic& d) override { print(format(d) + "\n"); }
+
+  bool confirm(std::string_view message, const SourceLoc& loc) override {
+    try {
+      return scripted_.confirm(message, loc);
+    } catch (const NeedsOperator&) {
+      if (!interactive_) throw;
+    }
+    const std::optional<std::string> a =
+        ask_operator({fmt::format("[{}] {}", where(loc), message),
+                      "Enter continues, c then Enter cancels (Esc cancels): "});
+    return a && (a->empty() || std::tolower(static_cast<unsigned char>((*a)[0])) != 'c');
+  }
+
+  std::optional<std::string> ask(std::string_view prompt, std::string_view variable,
+                                 std::string_view default_value, const SourceLoc& loc) override {
+    try {
+      return scripted_.ask(prompt, variable, default_value, loc);
+    } catch (const NeedsOperator&) {
+      if (!interactive_) throw;
+    }
+    const bool several = variable.find(',') != std::string_view::npos;
+    std::optional<std::string> a = ask_operator(
+        {fmt::format("[{}] {}", where(loc), prompt.empty() ? "Input" : prompt),
+         fmt::format(
+             "{}{}{}: ", variable, several ? " (separated by commas)" : "",
+             !several && !default_value.empty() ? fmt::format(" [{}]", default_value) : "")});
+    if (a && a->empty() && !several) *a = std::string(default_value);
+    return a;
+  }
+
+  std::string choose(std::string_view text, const std::vector<std::string>& buttons,
+                     size_t default_button, std::string_view title, const SourceLoc& loc) override {
+    try {
+      return scripted_.choose(text, buttons, default_button, title, loc);
+    } catch (const NeedsOperator&) {
+      if (!interactive_) throw;
+    }
+    std::string q = fmt::format("[{}] {}: {}", where(loc), title, text);
+    for (size_t i = 0; i < buttons.size(); ++i)
+      q += fmt::format("\n  {}) {}{}", i + 1, buttons[i], i == default_button ? " (Enter)" : "");
+    while (true) {
+      const std::optional<std::string> a = ask_operator({q, "choice: "});
+      if (!a) return buttons.back();  // cancelled: the last button (Cancel or No)
+      if (a->empty()) return buttons[default_button];
+      for (size_t i = 0; i < buttons.size(); ++i)
+        if (trim(*a) == std::to_string(i + 1)) return buttons[i];
+      q = fmt::format("choose 1 to {}", buttons.size());
+    }
+  }
+
+  // ---- the console thread's side ----
+
+  std::string take_output() {
+    std::lock_guard lock(m_);
+    return std::exchange(output_, {});
+  }
+  // A question waiting to be shown (once).
+  std::optional<Question> new_question() {
+    std::lock_guard lock(m_);
+    if (!question_ || shown_) return std::nullopt;
+    shown_ = true;
+    return question_;
+  }
+  void answer(std::string a) {
+    {
+      std::lock_guard lock(m_);
+      if (!question_) return;
+      answer_ = std::move(a);
+      question_.reset();
+    }
+    cv_.notify_all();
+  }
+  // Cancels the question being asked, if any (Esc, a stop, the E-stop).
+  void cancel() {
+    {
+      std::lock_guard lock(m_);
+      if (!question_) return;
+      answer_.reset();
+      question_.reset();
+    }
+    cv_.notify_all();
+  }
+
+ private:
+  // Job thread: waits for the console thread to show the question and take the answer.
+  std::optional<std::string> ask_operator(Question q) {
+    std::unique_lock lock(m_);
+    question_ = std::move(q);
+    shown_ = false;
+    answer_.reset();
+    cv_.wait(lock, [&] { return !question_; });
+    return answer_;
+  }
+
+  bool interactive_;
+  ScriptedIO scripted_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::string output_;
+  std::optional<Question> question_;
+  bool shown_ = false;
+  std::optional<std::string> answer_;
+};
+
+// ---- what the console shows --------------------------------------------------------------
+
+// The settings the last run left in force (units, calibration), kept for the readout, and
+// the values file written when they differ from the profile (as `gantry run` does).
+class ValuesKeeper {
+ public:
+  ValuesKeeper(const MachineProfile& p, ConsoleIO& io) : profile_(p), io_(io), now_(p.settings) {}
+  // Job thread: a run ended with `s` in force.
+  void ran(const Settings& s) {
+    {
+      std::lock_guard lock(m_);
+      now_ = s;
+    }
+    const std::string text = values_text(s, profile_.bare);
+    if (read_text_file(profile_.values_path) == text) return;
+    if (!write_file_atomically(profile_.values_path, text))
+      io_.warn({file_loc(profile_.values_path), Severity::Warning,
+                "cannot save the values this line changed; the previous values file is kept"});
+  }
+  Settings settings() const {
+    std::lock_guard lock(m_);
+    return now_;
+  }
+
+ private:
+  const MachineProfile& profile_;
+  ConsoleIO& io_;
+  mutable std::mutex m_;
+  Settings now_;
+};
+
+double shown(double v) {
+  return std::abs(v) < 5e-5 ? 0.0 : v;  // no "-0.0000"
+}
+
+// The position readout: state, X Y Z A B C in working coordinates, units.
+std::string readout_text(std::string_view state, const Vec6& p, Units u) {
+  return fmt::format("{:<9}X {:.4f}  Y {:.4f}  Z {:.4f}  A {:.4f}  B {:.4f}  C {:.4f}  {}", state,
+                     shown(p[0]), shown(p[1]), shown(p[2]), shown(p[3]), shown(p[4]), shown(p[5]),
+                     units_name(u));
+}
+
+bool at_rest(MachineState s) {
+  return s == MachineState::Idle || s == MachineState::Stopped || s == MachineState::EStop;
+}
+
+const char* const kConsoleHelp =
+    "Type a line and Enter: it runs on the machine, e.g.  MX, 5   J2, 1, 1   VS, 2   &D = 0.5\n"
+    "  FP, part.sbp   (a file runs from the current folder).\n"
+    "Editing: Left/Right, Home/End (Ctrl-A/Ctrl-E), Backspace/Delete, Ctrl-K/Ctrl-U, Up/Down\n"
+    "  recall earlier lines, Tab completes a two-letter code or lists the matches.\n"
+    "Words: help [CODE]   help commands   status   ack (after an E-stop)   K (keypad)   quit\n"
+    "While a line runs: space pauses (then space or Enter resumes, Esc or q quits the file),\n"
+    "  Esc stops, ! or Ctrl-C is the E-stop. Other lines wait until the machine is at rest.\n"
+    "Keypad (K or SK): arrows X and Y, PageUp/PageDown Z, / and \\ diagonals, Ctrl+key fast;\n"
+    "  S (or D) fixed steps or continuous, F fast or slow, space stops a jog, Esc leaves.\n"
+    "  A continuous jog runs while the key repeats and slows to rest once the repeats stop.\n";
+
+// The console's words and the command table's codes, for Tab.
+std::vector<CompletionWord> completion_words() {
+  std::vector<CompletionWord> words;
+  for (const CommandSpec& s : CommandTable::standard().all())
+    words.push_back({std::string(s.code), s.params.empty() ? "" : ", ", std::string(s.name)});
+  for (const char* w : {"help", "status", "ack", "quit", "exit"})
+    words.push_back({w, "", "console word"});
+  return words;
+}
+
+// ---- the console -------------------------------------------------------------------------
+
+class Console {
+ public:
+  Console(Controller& c, ConsoleIO& io, ValuesKeeper& values, const ConsoleArgs& args,
+          bool realtime, std::atomic<int>& signal)
+      : c_(c),
+        io_(io),
+        values_(values),
+        args_(args),
+        realtime_(realtime),
+        signal_(signal),
+        editor_(write_out, completion_words()) {}
+
+  int interactive(const std::string& banner);
+  int piped();
+
+ private:
+  enum class Mode { Prompt, Job, Keypad };
+
+  // Shared.
+  void snapshot();  // at rest: the interpreter's exact position, the frame and units
+  Vec6 live_position(const ControllerStatus& st) const;
+  std::string readout(const ControllerStatus& st) const;
+  std::string state_text(const ControllerStatus& st) const;
+  std::string help(const std::string& arg) const;
+  std::string status_report() const;
+  std::string located(const std::string& prefix, const std::string& line, const Diagnostic& d,
+                      bool echo) const;
+  std::string refusal(const std::string& prefix, const std::string& line, const Outcome& o,
+                      bool echo_first) const;
+  std::string ended(const ControllerStatus& st) const;
+
+  // Interactive.
+  void on_key(const Key& k);
+  void prompt_key(const Key& k);
+  void job_key(const Key& k);
+  void answer_key(const Key& k);
+  void keypad_key(const Key& k);
+  void tick();
+  void handle_line(const std::string& line);
+  void end_job();
+  void show_prompt();
+  void print_above(std::string_view text);  // clears the current line, prints, redraws
+  void draw_status(bool force);
+  void flash(std::string text);
+  void estop();
+  // Keypad.
+  void enter_keypad(const std::string& message);
+  void leave_keypad();
+  void jog_key(const std::array<int, kAxisCount>& dir, bool fast);
+  bool start_jog(const JogRequest& j);
+  void keypad_tick(Clock::time_point now);
+  std::string keypad_text() const;
+
+  Controller& c_;
+  ConsoleIO& io_;
+  ValuesKeeper& values_;
+  const ConsoleArgs& args_;
+  bool realtime_;
+  std::atomic<int>& signal_;
+
+  // At rest (snapshot): where working 0 is in the machine frame, the exact position, and
+  // where working 0 is in table base coordinates.
+  Vec6 offset_ = Vec6::Zero(), position_ = Vec6::Zero(), table_zero_ = Vec6::Zero();
+  Units units_ = Units::Inches;
+  std::array<double, kAxisCount> steps_per_unit_{};
+  double keypad_step_ = 0.1;
+
+  LineEditor editor_;
+  std::string prompt_ = kPrompt;  // the prompt the last line was typed at
+  Mode mode_ = Mode::Prompt;
+  bool quit_ = false;
+  bool asking_ = false;  // a question from the running file has the answer line
+  Vec6 line_start_ = Vec6::Zero();
+  bool status_drawn_ = false;
+  Clock::time_point last_draw_{};
+  std::string flash_;
+  Clock::time_point flash_until_{};
+
+  struct Keypad {
+    bool step = false, fast = false;
+    bool active = false;    // a jog we started has not come to rest yet
+    bool released = false;  // ... and its key has been released (or it was stopped)
+    bool leaving = false;   // Esc: leave once at rest
+    JogRequest current;
+    int repeats = 0;  // key repeats seen for the current jog
+    Clock::time_point last_key{};
+    std::optional<JogRequest> queued;  // the next press, while a jog is under way
+    Clock::time_point queued_at{};
+  } kp_;
+};
+
+void Console::snapshot() {
+  const ModalState m = c_.modal();
+  const Settings s = values_.settings();
+  table_zero_ = m.zero + m.applied_offset;
+  offset_ = m.machine_origin + table_zero_;
+  position_ = m.position;
+  units_ = s.units;
+  for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = s.axes[i].steps_per_unit;
+  keypad_step_ = s.display.keypad_step;
+}
+
+// While moving: the played steps in the units and frame of the last snapshot.
+Vec6 Console::live_position(const ControllerStatus& st) const {
+  Vec6 p;
+  for (int i = 0; i < kAxisCount; ++i)
+    p[i] = static_cast<double>(st.steps[i]) / steps_per_unit_[i] - offset_[i];
+  return p;
+}
+
+std::string Console::state_text(const ControllerStatus& st) const {
+  if (st.state == MachineState::Paused && st.phase != FeedPhase::Held) return "pausing";
+  return state_name(st.state);
+}
+
+std::string Console::readout(const ControllerStatus& st) const {
+  // At rest the interpreter's position is exact (a step jog ends on its commanded point);
+  // under way, the pulses played say where the tool is.
+  const bool rest = at_rest(st.state) && mode_ != Mode::Job && !kp_.active;
+  return readout_text(state_text(st), rest ? position_ : live_position(st), units_);
+}
+
+std::string Console::help(const std::string& arg) const {
+  if (arg.empty()) return kConsoleHelp;
+  if (upper(arg) == "COMMANDS") return command_list(CommandTable::standard());
+  if (const CommandSpec* spec = CommandTable::standard().find(upper(arg)))
+    return command_help(*spec);
+  return fmt::format("error: unknown command '{}'; help commands lists them all\n", arg);
+}
+
+std::string Console::status_report() const {
+  const ControllerStatus st = c_.status();
+  std::string out = readout(st) + "\n";
+  const Vec6 table = position_ + table_zero_;
+  out += fmt::format("table base X {:.4f}  Y {:.4f}  Z {:.4f}; keypad step {:.4f} {}\n",
+                     shown(table[0]), shown(table[1]), shown(table[2]), keypad_step_,
+                     units_name(units_));
+  if (!st.message.empty())
+    out += fmt::format("last stop: {}{}\n", st.message,
+                       st.stopped_at.file ? " at " + where(st.stopped_at) : "");
+  if (st.state == MachineState::EStop) out += "E-stop: nothing moves until you type ack\n";
+  return out;
+}
+
+// A diagnostic: under the line typed with a caret at its column, when it is located there;
+// otherwise as `FILE:LINE:COL: error: ...`. `echo`: print the line again first.
+std::string Console::located(const std::string& prefix, const std::string& line,
+                             const Diagnostic& d, bool echo) const {
+  const bool here = d.loc.file && *d.loc.file == kConsoleName && d.loc.line == 1 && d.via.empty();
+  if (!here) return format(d) + "\n";
+  const char* what = d.severity == Severity::Error ? "error" : "warning";
+  if (d.loc.column <= 0) return fmt::format("{}: {}\n", what, d.message);
+  std::string out = echo ? prefix + line + "\n" : "";
+  out += std::string(prefix.size() + static_cast<size_t>(d.loc.column) - 1, ' ') + "^\n";
+  out += fmt::format("{}: column {}: {}\n", what, d.loc.column, d.message);
+  return out;
+}
+
+std::string Console::refusal(const std::string& prefix, const std::string& line, const Outcome& o,
+                             bool echo_first) const {
+  if (o.errors.empty())
+    return o.reason + (c_.state() == MachineState::EStop ? " (type ack)\n" : "\n");
+  std::string out;
+  bool echo = echo_first;  // otherwise the line is on the screen just above the first caret
+  for (const Diagnostic& d : o.errors) {
+    out += located(prefix, line, d, echo);
+    echo = true;
+  }
+  return out;
+}
+
+// What a line that ran says when it ended other than by running to its end.
+std::string Console::ended(const ControllerStatus& st) const {
+  if (st.state == MachineState::EStop)
+    return fmt::format(
+        "E-STOP{}: the pulses stopped at once; the position above is where the tool is.\n"
+        "Nothing moves until you type ack.\n",
+        st.message.empty() || st.message == "E-stop" ? "" : " (" + st.message + ")");
+  if (st.state != MachineState::Stopped) return {};
+  // Where the motion came to rest: in a file the line typed ran (FP), that file's line.
+  const SourceLoc& at = st.stopped_at;
+  return fmt::format("stopped: {}{}\n", st.message.empty() ? "the line did not end" : st.message,
+                     at.file && *at.file != kConsoleName ? " (at " + where(at) + ")" : "");
+}
+
+// ---- interactive ---------------------------------------------------------------------------
+
+int Console::interactive(const std::string& banner) {
+  RawTerminal raw(STDIN_FILENO);
+  snapshot();
+  write_out(banner);
+  write_out(readout(c_.status()) + "\n");
+  show_prompt();
+  KeyDecoder decoder;
+  std::vector<Key> keys;
+  Clock::time_point last_byte = Clock::now();
+  bool input_open = true;
+  while (!quit_ && signal_ == 0) {
+    pollfd p{STDIN_FILENO, POLLIN, 0};
+    const int ready =
+        input_open ? poll(&p, 1, 20) : (std::this_thread::sleep_for(milliseconds(20)), 0);
+    if (ready > 0) {
+      char buf[256];
+      const ssize_t n = read(STDIN_FILENO, buf, sizeof buf);
+      if (n > 0) {
+        decoder.feed(std::string_view(buf, static_cast<size_t>(n)), keys);
+        last_byte = Clock::now();
+      } else if (n == 0 || (errno != EINTR && errno != EAGAIN)) {
+        input_open = false;  // the terminal went away: stop what runs, then leave
+        if (!at_rest(c_.state())) c_.stop();
+        io_.cancel();
+      }
+    }
+    if (decoder.pending() && Clock::now() - last_byte > milliseconds(30)) decoder.flush(keys);
+    for (const Key& k : keys) {
+      on_key(k);
+      if (quit_) break;
+    }
+    keys.clear();
+    tick();
+    if (!input_open && mode_ == Mode::Prompt) quit_ = true;
+  }
+  if (signal_ != 0) {
+    io_.cancel();
+    c_.wait();
+    editor_.erase();
+    write_out(fmt::format("signal {}: E-stop; the console ends\n", signal_.load()));
+  }
+  raw.restore();
+  write_out("\n");
+  return signal_ != 0 ? 1 : 0;
+}
+
+void Console::show_prompt() {
+  editor_.set_columns(terminal_columns());
+  editor_.remember = true;
+  prompt_ = c_.state() == MachineState::EStop ? kEStopPrompt : kPrompt;
+  editor_.start(prompt_);
+}
+
+void Console::print_above(std::string_view text) {
+  editor_.erase();
+  std::string t(text);
+  if (!t.empty() && t.back() != '\n') t += '\n';
+  write_out(t);
+  if (mode_ == Mode::Prompt || asking_)
+    editor_.redraw();
+  else if (status_drawn_)
+    draw_status(true);  // otherwise the next tick draws it, if the line runs that long
+}
+
+void Console::flash(std::string text) {
+  flash_ = std::move(text);
+  flash_until_ = Clock::now() + milliseconds(2500);
+  draw_status(true);
+}
+
+void Console::draw_status(bool force) {
+  const Clock::time_point now = Clock::now();
+  if (!force && now - last_draw_ < milliseconds(100)) return;
+  last_draw_ = now;
+  const ControllerStatus st = c_.status();
+  std::string text = mode_ == Mode::Keypad ? keypad_text() + readout(st) : readout(st);
+  if (!flash_.empty() && now < flash_until_) text = flash_;
+  const auto width = static_cast<size_t>(std::max(20, terminal_columns() - 1));
+  if (text.size() > width) text.resize(width);
+  write_out("\r" + text + "\x1b[K");
+  status_drawn_ = true;
+}
+
+void Console::estop() {
+  io_.cancel();  // a question the job thread waits on would keep it from winding down
+  const Outcome o = c_.estop();
+  if (!o) flash(o.reason);
+}
+
+void Console::on_key(const Key& k) {
+  if (asking_) return answer_key(k);
+  switch (mode_) {
+    case Mode::Prompt:
+      return prompt_key(k);
+    case Mode::Job:
+      return job_key(k);
+    case Mode::Keypad:
+      return keypad_key(k);
+  }
+}
+
+void Console::prompt_key(const Key& k) {
+  switch (editor_.key(k)) {
+    case LineEditor::Event::Submit:
+      handle_line(editor_.take());
+      if (mode_ == Mode::Prompt && !quit_) show_prompt();
+      break;
+    case LineEditor::Event::EndOfInput:
+      quit_ = true;
+      break;
+    case LineEditor::Event::Interrupt:
+      write_out(
+          "^C\r\n(Ctrl-C clears the line; while a line runs it is the E-stop. quit or "
+          "Ctrl-D leaves.)\r\n");
+      show_prompt();
+      break;
+    case LineEditor::Event::Escape:
+    case LineEditor::Event::None:
+      break;
+  }
+}
+
+void Console::job_key(const Key& k) {
+  const MachineState s = c_.state();
+  Outcome o;
+  if (k.code == KeyCode::Interrupt || k.is_char('!')) {
+    estop();
+    return;
+  } else if (k.is_char(' ')) {
+    o = s == MachineState::Paused ? c_.resume() : c_.pause();
+  } else if (k.code == KeyCode::Enter && s == MachineState::Paused) {
+    o = c_.resume();
+  } else if (k.code == KeyCode::Escape ||
+             (s == MachineState::Paused && (k.is_char('q') || k.is_char('Q')))) {
+    o = c_.stop();
+  } else {
+    flash("a line runs: space pauses, Esc stops, ! or Ctrl-C is the E-stop");
+    return;
+  }
+  if (!o) flash(o.reason);
+  draw_status(true);
+}
+
+void Console::answer_key(const Key& k) {
+  if (k.code == KeyCode::Interrupt) {
+    asking_ = false;
+    estop();
+    return;
+  }
+  switch (editor_.key(k)) {
+    case LineEditor::Event::Submit:
+      asking_ = false;
+      io_.answer(editor_.take());
+      break;
+    case LineEditor::Event::Escape:
+      asking_ = false;
+      editor_.erase();
+      write_out("(cancelled)\n");
+      io_.cancel();
+      break;
+    default:
+      break;
+  }
+}
+
+void Console::handle_line(const std::string& typed) {
+  const std::string line = trim(typed);
+  if (line.empty()) return;
+  // The line runs as typed (leading blanks too), so that its columns are the screen's.
+  const std::string text = typed.substr(0, typed.find_last_not_of(" \t\r\n") + 1);
+  const size_t space = line.find_first_of(" \t");
+  const std::string word = upper(line.substr(0, space));
+  const std::string rest = space == std::string::npos ? "" : trim(line.substr(space));
+  if ((word == "QUIT" || word == "EXIT") && rest.empty()) {
+    quit_ = true;
+    return;
+  }
+  if (word == "HELP") return write_out(help(rest));
+  if (word == "STATUS" && rest.empty()) return write_out(status_report());
+  if (word == "ACK" && rest.empty()) {
+    const Outcome o = c_.acknowledge();
+    if (o) snapshot();
+    return write_out(o ? "E-stop acknowledged: the machine is ready\n" : o.reason + "\n");
+  }
+  if (word == "K" && rest.empty()) return enter_keypad("");
+  const std::string code = upper(line.substr(0, std::min<size_t>(2, line.size())));
+  if (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' ')) {
+    const size_t comma = line.find(',');
+    return enter_keypad(comma == std::string::npos ? "" : trim(line.substr(comma + 1)));
+  }
+  const Outcome o = c_.run_typed(Script::from_text(text, kConsoleName));
+  if (!o) {
+    // The caret goes under the line on the screen, unless it did not fit there whole.
+    const bool scrolled =
+        prompt_.size() + text.size() + 1 >= static_cast<size_t>(terminal_columns());
+    return write_out(refusal(prompt_, text, o, scrolled));
+  }
+  line_start_ = position_;
+  status_drawn_ = false;
+  mode_ = Mode::Job;
+}
+
+void Console::tick() {
+  if (std::string text = io_.take_output(); !text.empty()) print_above(text);
+  if (!asking_) {
+    if (std::optional<ConsoleIO::Question> q = io_.new_question()) {
+      editor_.erase();
+      write_out(q->text + "\n");
+      asking_ = true;
+      editor_.remember = false;
+      editor_.set_columns(terminal_columns());
+      editor_.start(q->prompt);
+      return;
+    }
+  }
+  if (mode_ == Mode::Job && at_rest(c_.state())) return end_job();
+  if (mode_ == Mode::Keypad) keypad_tick(Clock::now());
+  if (mode_ != Mode::Prompt && !asking_) draw_status(false);
+}
+
+void Console::end_job() {
+  io_.cancel();
+  asking_ = false;
+  c_.wait();
+  mode_ = Mode::Prompt;  // first: the readout is the snapshot's, exact
+  snapshot();
+  editor_.erase();
+  if (std::string text = io_.take_output(); !text.empty())
+    write_out(text.back() == '\n' ? text : text + "\n");
+  const ControllerStatus st = c_.status();
+  const bool moved = position_ != line_start_;
+  if (moved || status_drawn_ || st.state != MachineState::Idle) write_out(readout(st) + "\n");
+  write_out(ended(st));
+  show_prompt();
+}
+
+// ---- keypad --------------------------------------------------------------------------------
+
+void Console::enter_keypad(const std::string& message) {
+  if (c_.state() == MachineState::EStop) {
+    write_out("E-stop: type ack before the keypad\n");
+    return;
+  }
+  kp_ = Keypad{};
+  mode_ = Mode::Keypad;
+  if (!message.empty()) write_out(message + "\n");
+  write_out(
+      "keypad: arrows X and Y, PageUp/PageDown Z, / and \\ diagonals, Ctrl+key fast;\n"
+      "  S fixed step or continuous, F fast or slow, space stops a jog, Esc leaves\n");
+  if (!realtime_)
+    write_out(
+        "  (virtual time: a continuous jog would run to the soft limit at once, so it needs\n"
+        "  --realtime; fixed steps work: press S)\n");
+  draw_status(true);
+}
+
+std::string Console::keypad_text() const {
+  return fmt::format("[keypad {} {}] ",
+                     kp_.step ? fmt::format("step {:.4f}", keypad_step_) : "continuous",
+                     kp_.fast ? "fast" : "slow");
+}
+
+void Console::leave_keypad() {
+  mode_ = Mode::Prompt;
+  editor_.erase();
+  const ControllerStatus st = c_.status();
+  write_out(readout(st) + "\n");
+  write_out(ended(st));
+  show_prompt();
+}
+
+void Console::keypad_key(const Key& k) {
+  std::array<int, kAxisCount> dir{};
+  switch (k.code) {
+    case KeyCode::Left:
+      dir[0] = -1;
+      break;
+    case KeyCode::Right:
+      dir[0] = 1;
+      break;
+    case KeyCode::Up:
+      dir[1] = 1;
+      break;
+    case KeyCode::Down:
+      dir[1] = -1;
+      break;
+    case KeyCode::PageUp:
+      dir[2] = 1;
+      break;
+    case KeyCode::PageDown:
+      dir[2] = -1;
+      break;
+    default:
+      if (k.is_char('/')) dir = {1, 1, 0, 0, 0, 0};
+      if (k.is_char('\\')) dir = {-1, 1, 0, 0, 0, 0};
+      break;
+  }
+  if (dir != std::array<int, kAxisCount>{}) return jog_key(dir, kp_.fast || k.ctrl);
+  if (k.code == KeyCode::Interrupt || k.is_char('!')) {
+    estop();
+    kp_.leaving = true;
+    return;
+  }
+  if (k.code == KeyCode::Escape) {
+    kp_.leaving = true;
+    kp_.queued.reset();
+    if (kp_.active) {
+      c_.stop();
+      kp_.released = true;
+    }
+    return;
+  }
+  if (k.is_char(' ')) {
+    kp_.queued.reset();
+    if (kp_.active) {
+      c_.stop();
+      kp_.released = true;
+    }
+    return;
+  }
+  if (k.is_char('s') || k.is_char('S') || k.is_char('d') || k.is_char('D')) {
+    kp_.step = !kp_.step;
+  } else if (k.is_char('f') || k.is_char('F')) {
+    kp_.fast = !kp_.fast;
+  } else {
+    flash("keypad: arrows, PageUp/PageDown, / \\ jog; S step, F fast, space stops, Esc leaves");
+    return;
+  }
+  draw_status(true);
+}
+
+void Console::jog_key(const std::array<int, kAxisCount>& dir, bool fast) {
+  const Clock::time_point now = Clock::now();
+  JogRequest j;
+  j.direction = dir;
+  j.fast = fast;
+  j.step = kp_.step;
+  if (j.step) {
+    // One step per press; a press while a step is under way waits (one, not a backlog).
+    if (kp_.active)
+      kp_.queued = j;
+    else
+      start_jog(j);
+    return;
+  }
+  if (!realtime_) {
+    flash("continuous jogs need --realtime on the simulated card; S switches to fixed steps");
+    return;
+  }
+  if (kp_.active && !kp_.released && kp_.current.direction == dir && kp_.current.fast == fast) {
+    kp_.last_key = now;  // the key repeats: it is still held
+    ++kp_.repeats;
+    return;
+  }
+  if (kp_.active) {  // another key: release this jog, then start that one once at rest
+    if (!kp_.released) c_.jog_release();
+    kp_.released = true;
+    kp_.queued = j;
+    kp_.queued_at = now;
+    return;
+  }
+  start_jog(j);
+}
+
+bool Console::start_jog(const JogRequest& j) {
+  const Outcome o = c_.jog(j);
+  if (!o) {
+    flash(o.reason);
+    return false;
+  }
+  kp_.active = true;
+  kp_.released = false;
+  kp_.current = j;
+  kp_.repeats = 0;
+  kp_.last_key = Clock::now();
+  draw_status(true);
+  return true;
+}
+
+// Key release: a terminal sends key repeats, not key-up. A continuous jog is released once
+// no repeat has come for `release_ms`, or, before the first repeat, for `repeat_delay_ms`
+// (the terminal waits that long before it starts repeating a held key).
+void Console::keypad_tick(Clock::time_point now) {
+  if (kp_.active) {
+    const MachineState s = c_.state();
+    if (!at_rest(s)) {
+      if (!kp_.current.step && !kp_.released) {
+        const milliseconds window(kp_.repeats == 0 ? args_.repeat_delay_ms : args_.release_ms);
+        if (now - kp_.last_key > window) {
+          c_.jog_release();
+          kp_.released = true;
+        }
+      }
+      return;
+    }
+    c_.wait();
+    kp_.active = false;
+    snapshot();
+    const ControllerStatus st = c_.status();
+    if (st.state == MachineState::EStop) {
+      kp_.queued.reset();
+      kp_.leaving = true;  // back to the prompt, which says how to go on
+    } else if (!st.message.empty() && !kp_.released) {
+      kp_.queued.reset();  // a limit switch, say: the operator decides what next
+      print_above("jog stopped: " + st.message);
+    }
+    draw_status(true);
+  }
+  if (kp_.leaving) return leave_keypad();
+  if (kp_.queued) {
+    const JogRequest j = *kp_.queued;
+    const bool fresh = j.step || now - kp_.queued_at < milliseconds(args_.repeat_delay_ms);
+    kp_.queued.reset();
+    if (fresh) start_jog(j);
+  }
+}
+
+// ---- piped ---------------------------------------------------------------------------------
+
+// Lines from a file descriptor, waiting with poll so that a signal is noticed.
+class LineReader {
+ public:
+  explicit LineReader(int fd) : fd_(fd) {}
+  bool next(std::string& line, const std::atomic<int>& signal) {
+    while (signal == 0) {
+      if (const size_t nl = buf_.find('\n'); nl != std::string::npos) {
+        line = buf_.substr(0, nl);
+        buf_.erase(0, nl + 1);
+        return true;
+      }
+      if (eof_) {
+        if (buf_.empty()) return false;
+        line = std::exchange(buf_, {});
+        return true;
+      }
+      pollfd p{fd_, POLLIN, 0};
+      if (poll(&p, 1, 100) <= 0) continue;
+      char buf[4096];
+      const ssize_t n = read(fd_, buf, sizeof buf);
+      if (n > 0)
+        buf_.append(buf, static_cast<size_t>(n));
+      else if (n == 0 || (errno != EINTR && errno != EAGAIN))
+        eof_ = true;
+    }
+    return false;
+  }
+
+ private:
+  int fd_;
+  std::string buf_;
+  bool eof_ = false;
+};
+
+int Console::piped() {
+  snapshot();
+  const std::string prefix = "> ";
+  LineReader in(STDIN_FILENO);
+  std::string typed;
+  while (in.next(typed, signal_)) {
+    const std::string line = trim(typed);
+    if (line.empty()) continue;
+    write_out(prefix + line + "\n");
+    const size_t space = line.find_first_of(" \t");
+    const std::string word = upper(line.substr(0, space));
+    const std::string rest = space == std::string::npos ? "" : trim(line.substr(space));
+    if ((word == "QUIT" || word == "EXIT") && rest.empty()) return 0;
+    if (word == "HELP") {
+      write_out(help(rest));
+      continue;
+    }
+    if (word == "STATUS" && rest.empty()) {
+      write_out(status_report());
+      continue;
+    }
+    if (word == "ACK" && rest.empty()) {
+      const Outcome o = c_.acknowledge();
+      if (!o) return write_out(o.reason + "\n"), 1;
+      snapshot();
+      write_out("E-stop acknowledged: the machine is ready\n");
+      continue;
+    }
+    const std::string code = upper(line.substr(0, std::min<size_t>(2, line.size())));
+    if ((word == "K" && rest.empty()) ||
+        (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' '))) {
+      write_out("error: the keypad needs a terminal (standard input is not one)\n");
+      return 1;
+    }
+    const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
+    if (!o) return write_out(refusal(prefix, line, o, false)), 1;
+    c_.wait();
+    snapshot();
+    const ControllerStatus st = c_.status();
+    write_out(readout(st) + "\n");
+    if (signal_ != 0) break;
+    if (st.state != MachineState::Idle) return write_out(ended(st)), 1;
+  }
+  if (signal_ != 0) {
+    c_.wait();
+    write_out(fmt::format("signal {}: E-stop; the console ends\n", signal_.load()));
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+// ---- the command ---------------------------------------------------------------------------
+
+CLI::App* add_console_command(CLI::App& app, ConsoleArgs& a) {
+  CLI::App* cmd = app.add_subcommand(
+      "console", "The live machine at a terminal: type lines, pause, stop, jog (docs/console.md)");
+  cmd->add_option("--card", a.card, "Card to run on (default: the profile's card.type)")
+      ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
+  cmd->add_flag("--realtime", a.realtime,
+                "Play the simulated card in real time (continuous keypad jogs and pausing a "
+                "move need it)");
+  cmd->add_option("--profile,--settings", a.profile, "Machine profile (TOML); default: built-in");
+  cmd->add_option("--values", a.values,
+                  "File of the V commands' values (TOML); default: the profile's in "
+                  "~/.config/gantry/values");
+  cmd->add_option("--persistent", a.persistent, "File of persistent $variables (JSON)");
+  cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
+  cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
+  cmd->add_flag("--yes", a.yes, "Continue every PAUSE and press each MSGBOX's default button");
+  cmd->add_option("--input", a.inputs, "Answer INPUT for a variable: --input '&DEPTH=0.5'");
+  cmd->add_option("--key-release-ms", a.release_ms,
+                  "Keypad: a continuous jog stops when its key has not repeated for this long")
+      ->check(CLI::Range(30, 2000));
+  cmd->add_option("--key-repeat-delay-ms", a.repeat_delay_ms,
+                  "Keypad: the terminal's delay before a held key repeats (the first window)")
+      ->check(CLI::Range(50, 3000));
+  return cmd;
+}
+
+int run_console(const ConsoleArgs& a) {
+  MachineProfile profile;
+  if (!load_machine_profile(a.profile, a.values, profile)) return 1;
+  const Settings& settings = profile.settings;
+  std::map<std::string, std::string> inputs;
+  for (const std::string& kv : a.inputs) {
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      fmt::print(stderr, "error: --input {} must be NAME=VALUE, e.g. --input '&DEPTH=0.5'\n", kv);
+      return 1;
+    }
+    std::string name = upper(kv.substr(0, eq));
+    if (name[0] != '&' && name[0] != '$') name = "&" + name;
+    inputs[name] = kv.substr(eq + 1);
+  }
+  const bool interactive = isatty(STDIN_FILENO) && isatty(STDOUT_FILENO);
+
+  SignalWatch signals;  // before the controller starts its threads: they inherit the mask
+  PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
+  ConsoleIO io(interactive, a.yes, inputs);
+  ValuesKeeper values(profile, io);
+  InterpreterOptions opt;
+  opt.allow_shell = a.allow_shell;
+  opt.macro_dir = a.macros;
+  opt.trig_in_degrees = settings.dialect == Dialect::FabMo;
+  opt.profile = &profile.bare;
+  opt.profile_path = profile.path;
+  opt.values_path = profile.values_path;
+  opt.save_values = [&values](const Settings& s) { values.ran(s); };
+
+  CardChoice choice;
+  choice.type = a.card.empty() ? settings.card.type : a.card;
+  choice.realtime = a.realtime;
+  std::string why;
+  const std::unique_ptr<Card> card = open_card(choice, settings, &why);
+  if (!card) {
+    fmt::print(stderr, "error: cannot open the {} card: {}\n", choice.type, why);
+    return 1;
+  }
+  const bool sim = choice.type == "sim";
+  Controller controller(settings, *card, io, store, opt);
+  std::atomic<int> signal{0};
+  signals.start([&](int sig) {
+    signal = sig;
+    controller.estop();
+    io.cancel();
+  });
+  struct StopFirst {  // the watcher ends before the controller it E-stops
+    SignalWatch& w;
+    ~StopFirst() { w.stop(); }
+  } stop_first{signals};
+
+  Console console(controller, io, values, a, a.realtime || !sim, signal);
+  if (!interactive) return console.piped();
+  const std::string banner = fmt::format(
+      "gantry console: profile \"{}\" on the {}{}\nhelp lists the keys; quit leaves.\n",
+      settings.name, sim ? "simulated card" : choice.type + " card",
+      !sim         ? ""
+      : a.realtime ? " (real time)"
+                   : " (virtual time: moves end at once; --realtime plays them in real time)");
+  return console.interactive(banner);
+}
+
+}  // namespace gantry

@@ -1,0 +1,36 @@
+// `gantry console`: the live machine at a terminal. A prompt that runs each line on the
+// controller, the position readout, the stop keys and the keypad (docs/console.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace gantry {
+
+struct ConsoleArgs {
+  std::string card;     // empty: the profile's card.type
+  std::string profile;  // empty: the built-in default
+  std::string values, persistent, macros;
+  bool realtime = false;
+  bool yes = false;
+  bool allow_shell = false;
+  std::vector<std::string> inputs;  // NAME=VALUE
+  // Keypad: a held key is released when no key repeat arrives within `release_ms`, or before
+  // the first repeat within `repeat_delay_ms` (the terminal's delay before it repeats).
+  int release_ms = 150;
+  int repeat_delay_ms = 600;
+};
+
+// Adds the `console` subcommand, its options filling `args`.
+CLI::App* add_console_command(CLI::App& app, ConsoleArgs& args);
+
+// Runs the console until quit (interactive, at a terminal) or until standard input ends.
+// The exit status: 0, or 1 when a line failed (non-interactive) or the machine could not
+// be opened.
+int run_console(const ConsoleArgs& args);
+
+}  // namespace gantry

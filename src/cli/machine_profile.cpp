@@ -1,0 +1,52 @@
+// Loading the machine profile and the values file for the command line.
+#include "machine_profile.hpp"
+
+#include <fmt/format.h>  // errors
+
+#include <cstdio>      // stderr
+#include <filesystem>  // exists
+#include <optional>
+
+#include "gantry/core/text_file.hpp"        // read_text_file
+#include "gantry/settings/values_file.hpp"  // parse_settings with values, default_values_path
+
+namespace gantry {
+
+bool load_machine_profile(const std::string& profile_path, const std::string& values_path,
+                          MachineProfile& out) {
+  auto print_errors = [](const std::vector<Diagnostic>& errors) {
+    for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));
+  };
+  const std::optional<std::string> text = profile_path.empty()
+                                              ? std::optional<std::string>(default_profile_text())
+                                              : read_text_file(profile_path);
+  const std::string origin = profile_path.empty() ? "settings/default.toml" : profile_path;
+  const SettingsLoad bare = text ? parse_settings(*text, origin) : load_settings_file(profile_path);
+  if (!bare.ok()) {
+    print_errors(bare.errors);
+    return false;
+  }
+  out.bare = out.settings = bare.settings;
+  out.path = profile_path;
+  out.values_path = values_path.empty() ? default_values_path(bare.settings.name) : values_path;
+  if (!std::filesystem::exists(out.values_path)) return true;  // nothing changed yet
+  const std::optional<std::string> values_text = read_text_file(out.values_path);
+  if (!values_text) {
+    fmt::print(stderr, "{}: error: cannot read the values file; check its permissions\n",
+               out.values_path);
+    return false;
+  }
+  const SettingsLoad load = parse_settings(*text, origin, values_text, out.values_path);
+  if (!load.ok()) {
+    print_errors(load.errors);
+    fmt::print(stderr,
+               "the values file {} holds the V commands' changes; fix the key named above, or "
+               "delete the file to return to the profile's values\n",
+               out.values_path);
+    return false;
+  }
+  out.settings = load.settings;
+  return true;
+}
+
+}  // namespace gantry

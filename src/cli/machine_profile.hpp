@@ -1,0 +1,24 @@
+// The machine profile a command runs with: the profile file (or the built-in default) with
+// the operator's values file laid over it.
+#pragma once
+
+#include <string>
+
+#include "gantry/settings/settings.hpp"  // Settings
+
+namespace gantry {
+
+struct MachineProfile {
+  Settings bare;      // the profile alone: the values file holds what differs from it
+  Settings settings;  // with the values
+  std::string values_path;
+  std::string path;  // of the profile; "" the built-in default
+};
+
+// Loads `profile_path` ("" the built-in default) and the values file (`values_path`, or ""
+// for the profile's file in the config folder, which may not exist yet). On an error, prints
+// every error to stderr (naming the file, line and key) and returns false.
+bool load_machine_profile(const std::string& profile_path, const std::string& values_path,
+                          MachineProfile& out);
+
+}  // namespace gantry

@@ -1,0 +1,116 @@
+// Probes (PX ... P6) and homing on proximity switches (C3 without a custom file).
+#include <fmt/format.h>  // messages
+
+#include <cmath>  // round
+
+#include "gantry/commands/command_table.hpp"
+#include "gantry/interp/interpreter.hpp"
+
+namespace gantry {
+namespace {
+
+// The targets first, then the speed and the input switch: the order FabMo's runtime reads and
+// its stock macros write (`PZ, -0.5, 1.0, 1`), not the reverse order its reference lists
+// (docs/controller.md, Inputs).
+template <Axis... Axes>
+void probe_axes(CommandContext& ctx, const CommandCall& call) {
+  constexpr size_t n = sizeof...(Axes);
+  const Vec6 here = ctx.position();
+  const bool absolute = ctx.state().absolute;
+  Vec6 target = here;
+  size_t i = 0;
+  for (Axis a : {Axes...})
+    if (const std::optional<double> v = call.number(i++))
+      target[index(a)] = absolute ? *v : here[index(a)] + *v;
+  const double speed = *call.number(n);
+  const double input = *call.number(n + 1);
+  if (input != std::round(input))
+    fail(call.param_loc(n + 1), fmt::format("input switch {} is not a whole number", input));
+  ctx.probe(target, speed, static_cast<int>(input), call.loc);
+}
+
+std::vector<ParamSpec> probe_params(std::string_view axes) {
+  static const std::string names[] = {"target X", "target Y", "target Z",
+                                      "target A", "target B", "target C"};
+  static constexpr std::string_view letters = "XYZABC";
+  std::vector<ParamSpec> out;
+  for (char a : axes)
+    out.push_back({names[letters.find(a)], "units", false, std::nullopt,
+                   "Where the move ends if the switch never closes (SA), or how far (SR); blank: "
+                   "the axis stays."});
+  out.push_back({"speed", "units/s", true, std::nullopt, "How fast the probe moves."});
+  out.push_back({"input", "", true, std::nullopt,
+                 "The input switch (1-12) whose closing stops it; 1 is the Z zero plate."});
+  return out;
+}
+
+}  // namespace
+
+// Each axis of the profile's order: fast to its switch, back off, slowly to it again (the
+// measured approach), set the table base there, back off the switch. Without a switch
+// within a table's length and a bit, it stops with an error.
+void home_on_switches(CommandContext& ctx, const SourceLoc& loc) {
+  const Settings& s = ctx.settings();
+  const HomingSettings& h = s.homing;
+  for (const char letter : h.order) {
+    const int i = static_cast<int>(std::string_view("xyzabc").find(letter));
+    const double dir = h.direction[i];
+    const double reach = s.axes[i].max - s.axes[i].min + 2 * h.back_off;
+    const char L = static_cast<char>(letter - 'a' + 'A');
+    auto toward = [&](double distance) {
+      Vec6 t = ctx.position();
+      t[i] += dir * distance;
+      return t;
+    };
+    auto back_off = [&] { ctx.homing_line(toward(-h.back_off), h.fast_speed, loc); };
+    if (const auto in = ctx.input_switches(); in && (*in)[h.input - 1]) {
+      back_off();  // resting on the switch: off it first
+      if (const auto again = ctx.input_switches(); again && (*again)[h.input - 1])
+        fail(loc, fmt::format("homing {}: input {} stays closed after backing off {}: check the "
+                              "switch and its wiring",
+                              L, h.input, h.back_off));
+    }
+    const bool live =
+        ctx.probe(toward(reach), h.fast_speed, h.input, loc, MotionSink::Watching::Home);
+    if (!live && ctx.input_switches())
+      fail(loc, fmt::format("homing {}: input {} never closed within {} (the table's length): "
+                            "check the switch and its wiring",
+                            L, h.input, reach));
+    back_off();
+    if (!ctx.probe(toward(2 * h.back_off), h.slow_speed, h.input, loc,
+                   MotionSink::Watching::Home) &&
+        ctx.input_switches())
+      fail(loc,
+           fmt::format("homing {}: input {} did not close again on the slow approach", L, h.input));
+    ctx.home_axis(i, h.at[i]);
+    back_off();
+  }
+}
+
+void add_probe_commands(std::vector<CommandSpec>& out) {
+  using enum Axis;
+  const auto P = CommandGroup::Probe;
+  const char* one =
+      "Moves one axis at the given speed until the input switch closes, and stops exactly where "
+      "it closed; if it never closes, the move ends at the target.";
+  const char* many =
+      "Moves several axes together in a straight line at the given speed until the input "
+      "switch closes, and stops exactly where it closed; if it never closes, the move ends at "
+      "the target.";
+  out.push_back({"PX", "Probe in X", P, one, probe_params("X"), probe_axes<X>});
+  out.push_back({"PY", "Probe in Y", P, one, probe_params("Y"), probe_axes<Y>});
+  out.push_back({"PZ", "Probe in Z", P, one, probe_params("Z"), probe_axes<Z>});
+  out.push_back({"PA", "Probe in A", P, one, probe_params("A"), probe_axes<A>});
+  out.push_back({"PB", "Probe in B", P, one, probe_params("B"), probe_axes<B>});
+  out.push_back({"PC", "Probe in C", P, one, probe_params("C"), probe_axes<C>});
+  out.push_back({"P2", "Probe in 2 dimensions", P, many, probe_params("XY"), probe_axes<X, Y>});
+  out.push_back({"P3", "Probe in 3 dimensions", P, many, probe_params("XYZ"), probe_axes<X, Y, Z>});
+  out.push_back(
+      {"P4", "Probe in 4 dimensions", P, many, probe_params("XYZA"), probe_axes<X, Y, Z, A>});
+  out.push_back(
+      {"P5", "Probe in 5 dimensions", P, many, probe_params("XYZAB"), probe_axes<X, Y, Z, A, B>});
+  out.push_back({"P6", "Probe in 6 dimensions", P, many, probe_params("XYZABC"),
+                 probe_axes<X, Y, Z, A, B, C>});
+}
+
+}  // namespace gantry

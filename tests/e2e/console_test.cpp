@@ -1,0 +1,571 @@
+// `gantry console`: its line editor (keys, editing, history, completion) directly, and the
+// console itself end to end through a pipe and at a terminal under tmux, on the simulated card.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/line_editor.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using gantry::Key;
+using gantry::KeyCode;
+using gantry::KeyDecoder;
+using gantry::LineBuffer;
+
+// ---- keys ----------------------------------------------------------------------------------
+
+std::vector<Key> decode(const std::vector<std::string>& reads, bool flush = false) {
+  KeyDecoder d;
+  std::vector<Key> keys;
+  for (const std::string& r : reads) d.feed(r, keys);
+  if (flush) d.flush(keys);
+  return keys;
+}
+
+std::vector<KeyCode> codes(const std::vector<Key>& keys) {
+  std::vector<KeyCode> out;
+  for (const Key& k : keys) out.push_back(k.code);
+  return out;
+}
+
+TEST(ConsoleKeys, DecodesCursorAndPageKeysInBothCursorModes) {
+  const std::vector<Key> keys = decode(
+      {"\x1b[A\x1b[B\x1b[C\x1b[D\x1bOA\x1bOD\x1b[H\x1b[F\x1b[1~\x1b[4~\x1b[3~\x1b[5~\x1b[6~"});
+  EXPECT_EQ(codes(keys), (std::vector<KeyCode>{
+                             KeyCode::Up, KeyCode::Down, KeyCode::Right, KeyCode::Left, KeyCode::Up,
+                             KeyCode::Left, KeyCode::Home, KeyCode::End, KeyCode::Home,
+                             KeyCode::End, KeyCode::Delete, KeyCode::PageUp, KeyCode::PageDown}));
+}
+
+TEST(ConsoleKeys, ReadsModifiersAndSequencesSplitAcrossReads) {
+  const std::vector<Key> keys = decode({"\x1b", "[1;", "5C", "\x1b[5;3~"});
+  ASSERT_EQ(keys.size(), 2u);
+  EXPECT_EQ(keys[0].code, KeyCode::Right);
+  EXPECT_TRUE(keys[0].ctrl);
+  EXPECT_FALSE(keys[0].alt);
+  EXPECT_EQ(keys[1].code, KeyCode::PageUp);
+  EXPECT_TRUE(keys[1].alt);
+  EXPECT_FALSE(keys[1].ctrl);
+}
+
+TEST(ConsoleKeys, ALoneEscapeIsAKeyOnlyOnceNothingFollows) {
+  KeyDecoder d;
+  std::vector<Key> keys;
+  d.feed("\x1b", keys);
+  EXPECT_TRUE(keys.empty());
+  EXPECT_TRUE(d.pending());
+  d.flush(keys);
+  EXPECT_EQ(codes(keys), std::vector<KeyCode>{KeyCode::Escape});
+  EXPECT_FALSE(d.pending());
+  // Escape then a letter (typed quickly): both keys, the letter as text.
+  keys = decode({"\x1bq"});
+  ASSERT_EQ(keys.size(), 2u);
+  EXPECT_EQ(keys[0].code, KeyCode::Escape);
+  EXPECT_TRUE(keys[1].is_char('q'));
+}
+
+TEST(ConsoleKeys, ControlKeysTextAndUtf8) {
+  const std::vector<Key> keys = decode({"a \x7f\x03\x04\t\r\n\r\xc3", "\xa9!"});
+  EXPECT_EQ(codes(keys),
+            (std::vector<KeyCode>{KeyCode::Char, KeyCode::Char, KeyCode::Backspace,
+                                  KeyCode::Interrupt, KeyCode::EndOfInput, KeyCode::Tab,
+                                  KeyCode::Enter, KeyCode::Enter, KeyCode::Char, KeyCode::Char}));
+  EXPECT_TRUE(keys[1].is_char(' '));
+  EXPECT_EQ(keys[8].text, "\xc3\xa9");  // é, whole although split across reads
+  EXPECT_TRUE(keys[9].is_char('!'));
+}
+
+// ---- editing, history, completion ------------------------------------------------------------
+
+TEST(ConsoleLine, EditsAtTheCursorOverWholeCharacters) {
+  LineBuffer b;
+  b.insert("MX 5");
+  b.left();
+  b.left();
+  b.insert(",");
+  EXPECT_EQ(b.text(), "MX, 5");
+  EXPECT_EQ(b.cursor_column(), 3u);
+  b.home();
+  b.del();
+  EXPECT_EQ(b.text(), "X, 5");
+  b.end();
+  b.backspace();
+  EXPECT_EQ(b.text(), "X, ");
+  b.set("a\xc3\xa9z");  // aéz
+  b.left();
+  b.left();
+  EXPECT_EQ(b.cursor(), 1u);
+  EXPECT_EQ(b.cursor_column(), 1u);
+  b.del();
+  EXPECT_EQ(b.text(), "az");
+  b.kill_to_end();
+  EXPECT_EQ(b.text(), "a");
+  b.set("abc");
+  b.left();
+  b.kill_to_start();
+  EXPECT_EQ(b.text(), "c");
+  EXPECT_EQ(b.cursor(), 0u);
+}
+
+TEST(ConsoleLine, HistoryWalksBackAndKeepsTheLineBeingTyped) {
+  gantry::History h;
+  h.add("MX, 1");
+  h.add("MY, 2");
+  h.add("MY, 2");  // a repeat is kept once
+  h.add("");
+  EXPECT_EQ(h.lines(), (std::vector<std::string>{"MX, 1", "MY, 2"}));
+  LineBuffer b;
+  b.insert("MZ");
+  EXPECT_TRUE(h.up(b));
+  EXPECT_EQ(b.text(), "MY, 2");
+  EXPECT_TRUE(h.up(b));
+  EXPECT_EQ(b.text(), "MX, 1");
+  EXPECT_FALSE(h.up(b));
+  EXPECT_TRUE(h.down(b));
+  EXPECT_TRUE(h.down(b));
+  EXPECT_EQ(b.text(), "MZ");
+  EXPECT_FALSE(h.down(b));
+}
+
+TEST(ConsoleLine, TabCompletesTwoLetterCodesAndConsoleWords) {
+  const std::vector<gantry::CompletionWord> words = {{"MX", ", ", "Move X"},
+                                                     {"MY", ", ", "Move Y"},
+                                                     {"ST", "", "Set table base"},
+                                                     {"status", "", "console word"},
+                                                     {"help", "", "console word"}};
+  LineBuffer b;
+  b.insert("mx");
+  gantry::Completion c = gantry::complete(b, words);
+  EXPECT_EQ(c.replacement, "MX, ");  // the only match, in its own case, and its separator
+  b.set("m");
+  c = gantry::complete(b, words);
+  EXPECT_TRUE(c.replacement.empty());
+  ASSERT_EQ(c.list.size(), 2u);  // MX and MY
+  b.set("he");
+  EXPECT_EQ(gantry::complete(b, words).replacement, "help");
+  b.set("s");
+  c = gantry::complete(b, words);
+  EXPECT_EQ(c.replacement, "ST");  // what ST and status share
+  b.set("st");
+  EXPECT_EQ(gantry::complete(b, words).list.size(), 2u);
+  b.set("mx, 5");  // the cursor is not in the first word
+  EXPECT_TRUE(gantry::complete(b, words).replacement.empty());
+  b.set("zz");
+  c = gantry::complete(b, words);
+  EXPECT_TRUE(c.replacement.empty() && c.list.empty());
+}
+
+TEST(ConsoleLine, EditorSubmitsTheEditedLineAndRemembersIt) {
+  std::string screen;
+  gantry::LineEditor ed([&](std::string_view s) { screen.append(s); },
+                        {{"MX", ", ", "Move X"}, {"MY", ", ", "Move Y"}});
+  ed.start("gantry> ");
+  auto type = [&](const std::string& bytes) {
+    KeyDecoder d;
+    std::vector<Key> keys;
+    d.feed(bytes, keys);
+    d.flush(keys);
+    gantry::LineEditor::Event last = gantry::LineEditor::Event::None;
+    for (const Key& k : keys) last = ed.key(k);
+    return last;
+  };
+  EXPECT_EQ(type("mx\t3\x1b[D\x1b[D\x7f"), gantry::LineEditor::Event::None);
+  EXPECT_EQ(ed.buffer().text(), "MX 3");
+  EXPECT_EQ(type("\x1b[F\r"), gantry::LineEditor::Event::Submit);
+  EXPECT_EQ(ed.take(), "MX 3");
+  EXPECT_EQ(type("\x1b[A"), gantry::LineEditor::Event::None);
+  EXPECT_EQ(ed.buffer().text(), "MX 3");
+  EXPECT_EQ(type("\x03"), gantry::LineEditor::Event::Interrupt);
+  EXPECT_NE(screen.find("gantry> MX 3"), std::string::npos);
+}
+
+// ---- the console through a pipe ------------------------------------------------------------
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// A private folder per test: the config folder (values, $variables) and the working folder.
+class TempDir {
+ public:
+  TempDir() {
+    static int n = 0;
+    path_ = fs::temp_directory_path() / fmt::format("gantry_console_{}_{}", getpid(), ++n);
+    fs::create_directories(path_ / "config");
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+  fs::path config() const { return path_ / "config"; }
+
+ private:
+  fs::path path_;
+};
+
+// Runs `gantry console ARGS` with `input` on its standard input (a file, so not a terminal).
+Result console_piped(const std::string& input, const std::string& args = "--card sim") {
+  TempDir dir;
+  const fs::path in = dir.path() / "in.txt", err = dir.path() / "err.txt";
+  std::ofstream(in) << input;
+  const std::string cmd = fmt::format(
+      "cd '{}' && XDG_CONFIG_HOME='{}' '{}' console {} <'{}' 2>'{}'", dir.path().string(),
+      dir.config().string(), GANTRY_BIN, args, in.string(), err.string());
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::stringstream ss;
+  ss << std::ifstream(err).rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+// The readout line, written out here so the test does not trust the code under test to
+// format it.
+std::string readout(const std::string& state, std::array<double, 6> p) {
+  return fmt::format("{:<9}X {:.4f}  Y {:.4f}  Z {:.4f}  A {:.4f}  B {:.4f}  C {:.4f}  in", state,
+                     p[0], p[1], p[2], p[3], p[4], p[5]);
+}
+
+TEST(ConsolePiped, RunsEachLineInTurnAndPrintsTheExactPosition) {
+  const Result r = console_piped("MX, 5\nJ2, 1.5, 2.25\n\nMZ, -0.5\nSR\nMY, 0.25\nstatus\n");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::string want = "> MX, 5\n" + readout("idle", {5, 0, 0, 0, 0, 0}) + "\n" +  //
+                           "> J2, 1.5, 2.25\n" + readout("idle", {1.5, 2.25, 0, 0, 0, 0}) + "\n" +
+                           "> MZ, -0.5\n" + readout("idle", {1.5, 2.25, -0.5, 0, 0, 0}) + "\n" +  //
+                           "> SR\n" + readout("idle", {1.5, 2.25, -0.5, 0, 0, 0}) + "\n" +
+                           "> MY, 0.25\n" + readout("idle", {1.5, 2.5, -0.5, 0, 0, 0}) + "\n" +  //
+                           "> status\n" + readout("idle", {1.5, 2.5, -0.5, 0, 0, 0}) + "\n" +
+                           "table base X 1.5000  Y 2.5000  Z -0.5000; keypad step 0.1000 in\n";
+  EXPECT_EQ(r.out, want);
+}
+
+TEST(ConsolePiped, TheReadoutIsInWorkingCoordinatesAndFollowsTheUnits) {
+  // ZX puts working 0 where the tool is; VD's linear units switch the readout to mm.
+  const Result r = console_piped("MX, 5\nZX\nMX, 1\nstatus\nVD, , , 1\nMY, 25.4\n");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("> ZX\n" + readout("idle", {0, 0, 0, 0, 0, 0}) + "\n"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("> status\n" + readout("idle", {1, 0, 0, 0, 0, 0}) +
+                       "\ntable base X 6.0000  Y 0.0000  Z 0.0000; keypad step 0.1000 in\n"),
+            std::string::npos)
+      << r.out;
+  const std::string mm =
+      "idle     X 25.4000  Y 25.4000  Z 0.0000  A 0.0000  B 0.0000  C 0.0000  mm";
+  EXPECT_NE(r.out.find("> MY, 25.4\n" + mm + "\n"), std::string::npos) << r.out;
+}
+
+TEST(ConsolePiped, AnErrorShowsItsColumnWithACaretAndEndsTheInput) {
+  const Result r = console_piped("MX, 2\nMX, 1, 2\nMX, 7\n");
+  EXPECT_EQ(r.exit_code, 1);
+  // Column 8 of the line: under the "2", past the two-character echo prefix.
+  const std::string want = "> MX, 2\n" + readout("idle", {2, 0, 0, 0, 0, 0}) +
+                           "\n"
+                           "> MX, 1, 2\n"
+                           "         ^\n"
+                           "error: column 8: MX takes 1 parameter; this is parameter 2\n";
+  EXPECT_EQ(r.out, want);  // MX, 7 never ran
+}
+
+TEST(ConsolePiped, AMoveOffTheTableIsRefusedBeforeAnythingMoves) {
+  const Result r = console_piped("MX, 30\n");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("error: column"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("X 30"), std::string::npos) << r.out;
+}
+
+TEST(ConsolePiped, AQuestionNeedsYesWithoutATerminal) {
+  Result r = console_piped("MX, 1\nPAUSE\nMX, 2\n");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("stopped: the file waits for the operator"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--yes"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("> MX, 2"), std::string::npos) << r.out;
+  r = console_piped("MX, 1\nPAUSE\nMX, 2\n", "--card sim --yes");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find(readout("idle", {2, 0, 0, 0, 0, 0})), std::string::npos) << r.out;
+}
+
+TEST(ConsolePiped, WordsHelpQuitAndTheKeypadNeedsATerminal) {
+  Result r = console_piped("help MX\nquit\nMX, 3\n");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("MX - Move X axis"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("> MX, 3"), std::string::npos) << r.out;  // quit ends the input
+  r = console_piped("K\n");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("the keypad needs a terminal"), std::string::npos) << r.out;
+}
+
+// ---- the console at a terminal, under tmux -------------------------------------------------
+
+bool have_tmux() {
+  return std::system("command -v tmux >/dev/null 2>&1") == 0;
+}
+
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string rtrim(std::string s) {
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\n')) s.pop_back();
+  return s;
+}
+
+// One console in a detached tmux session on a private server (its own socket, no config).
+class TmuxConsole {
+ public:
+  explicit TmuxConsole(const std::string& args) {
+    static int n = 0;
+    socket_ = fmt::format("gantry_console_test_{}_{}", getpid(), ++n);
+    // When the console ends, the pane says so and stays, so a failure shows why it ended.
+    const std::string cmd = fmt::format(
+        "cd {} && XDG_CONFIG_HOME={} {} console {}; echo \"[console exited: $?]\"; sleep 60",
+        quoted(dir_.path().string()), quoted(dir_.config().string()), quoted(GANTRY_BIN), args);
+    started_ = tmux("new-session -d -x 120 -y 50 -s main " + quoted(cmd)) == 0;
+  }
+  ~TmuxConsole() { tmux("kill-server"); }
+  bool started() const { return started_; }
+
+  void keys(const std::string& tmux_keys) { tmux("send-keys -t main " + tmux_keys); }
+  void type(const std::string& text) { tmux("send-keys -t main -l " + quoted(text)); }
+  void line(const std::string& text) {
+    type(text);
+    keys("Enter");
+  }
+
+  // The screen's lines, trailing blanks removed, empty lines at the bottom dropped.
+  std::vector<std::string> screen() {
+    const std::string cmd = fmt::format("tmux -L {} -f /dev/null capture-pane -p -t main", socket_);
+    std::string text;
+    if (FILE* p = popen(cmd.c_str(), "r")) {
+      std::array<char, 4096> buf{};
+      size_t n;
+      while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) text.append(buf.data(), n);
+      pclose(p);
+    }
+    std::vector<std::string> lines;
+    std::stringstream ss(text);
+    for (std::string l; std::getline(ss, l);) lines.push_back(rtrim(l));
+    while (!lines.empty() && lines.back().empty()) lines.pop_back();
+    return lines;
+  }
+  std::string last_line() {
+    const std::vector<std::string> s = screen();
+    return s.empty() ? "" : s.back();
+  }
+  std::string text() {
+    std::string t;
+    for (const std::string& l : screen()) t += l + "\n";
+    return t;
+  }
+
+  // Polls the screen until `ok` holds (true) or `seconds` pass (false).
+  bool wait_for(const std::function<bool()>& ok, double seconds = 20) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < end) {
+      if (ok()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return ok();
+  }
+  bool wait_for_line(const std::string& exact, double seconds = 20) {
+    return wait_for(
+        [&] {
+          for (const std::string& l : screen())
+            if (l == exact) return true;
+          return false;
+        },
+        seconds);
+  }
+  bool wait_for_last(const std::string& exact, double seconds = 20) {
+    return wait_for([&] { return last_line() == exact; }, seconds);
+  }
+  bool wait_for_prompt() { return wait_for_last("gantry>"); }
+
+ private:
+  int tmux(const std::string& args) {
+    return std::system(
+        fmt::format("tmux -L {} -f /dev/null {} >/dev/null 2>&1", socket_, args).c_str());
+  }
+  TempDir dir_;
+  std::string socket_;
+  bool started_ = false;
+};
+
+// The X of a readout line ("paused   X 5.0898  Y ..."), if it is one.
+std::optional<double> readout_x(const std::string& line) {
+  const size_t x = line.find(" X ");
+  if (x == std::string::npos) return std::nullopt;
+  return std::stod(line.substr(x + 3));
+}
+
+#define REQUIRE_TMUX() \
+  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed (scripts/setup.sh installs it)"
+
+TEST(ConsoleTerminal, ACommandTypedAtThePromptMovesAndTheReadoutShowsTheExactPosition) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 3");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {3, 0, 0, 0, 0, 0}))) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  // Tab completes the code (with its comma); the line runs as completed.
+  t.type("j2");
+  t.keys("Tab");
+  ASSERT_TRUE(t.wait_for_last("gantry> J2,")) << t.text();
+  t.line("1.5, 2.25");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {1.5, 2.25, 0, 0, 0, 0}))) << t.text();
+  // Up recalls the line before; editing it (Home, Delete, a new first letter) runs the edit.
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.keys("Up");
+  ASSERT_TRUE(t.wait_for_last("gantry> J2, 1.5, 2.25")) << t.text();
+  t.keys("C-u");
+  t.line("MY, 4");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {1.5, 4, 0, 0, 0, 0}))) << t.text();
+}
+
+TEST(ConsoleTerminal, AnErrorPutsACaretUnderTheColumnTyped) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 1, 2");
+  ASSERT_TRUE(t.wait_for_line("error: column 8: MX takes 1 parameter; this is parameter 2"))
+      << t.text();
+  const std::vector<std::string> s = t.screen();
+  for (size_t i = 0; i + 1 < s.size(); ++i)
+    if (s[i] == "gantry> MX, 1, 2") {
+      EXPECT_EQ(s[i + 1], std::string(8 + 7, ' ') + "^") << t.text();  // under the "2"
+      return;
+    }
+  ADD_FAILURE() << "the line typed is not on the screen:\n" << t.text();
+}
+
+TEST(ConsoleTerminal, KeypadStepModeMovesExactlyOneStepPerPress) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("J2, 2, 3");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {2, 3, 0, 0, 0, 0}))) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("K");
+  const std::string step = "[keypad step 0.1000 slow] ";
+  const std::string continuous = "[keypad continuous slow] ";
+  ASSERT_TRUE(t.wait_for_last(continuous + readout("idle", {2, 3, 0, 0, 0, 0}))) << t.text();
+  t.keys("S");
+  ASSERT_TRUE(t.wait_for_last(step + readout("idle", {2, 3, 0, 0, 0, 0}))) << t.text();
+  t.keys("Right");
+  ASSERT_TRUE(t.wait_for_last(step + readout("idle", {2.1, 3, 0, 0, 0, 0}))) << t.text();
+  t.keys("Down");
+  ASSERT_TRUE(t.wait_for_last(step + readout("idle", {2.1, 2.9, 0, 0, 0, 0}))) << t.text();
+  t.keys("PageDown");
+  ASSERT_TRUE(t.wait_for_last(step + readout("idle", {2.1, 2.9, -0.1, 0, 0, 0}))) << t.text();
+  t.keys("Left");
+  ASSERT_TRUE(t.wait_for_last(step + readout("idle", {2, 2.9, -0.1, 0, 0, 0}))) << t.text();
+  // Esc leaves the keypad: the position stays on the screen, the prompt is back.
+  t.keys("Escape");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  const std::vector<std::string> s = t.screen();
+  ASSERT_GE(s.size(), 2u);
+  EXPECT_EQ(s[s.size() - 2], readout("idle", {2, 2.9, -0.1, 0, 0, 0})) << t.text();
+}
+
+TEST(ConsoleTerminal, SpacePausesALongMoveAndSpaceResumesItToTheEnd) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim --realtime");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 16");  // 8 s at the default move speed
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("running "); })) << t.text();
+  t.keys("Space");
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("paused "); })) << t.text();
+  const std::string held = t.last_line();
+  const std::optional<double> x = readout_x(held);
+  ASSERT_TRUE(x) << held;
+  EXPECT_GT(*x, 0.0);
+  EXPECT_LT(*x, 16.0);
+  // Held at rest: the position does not change while paused.
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(t.last_line(), held);
+  // Space resumes, and the move ends exactly where it should.
+  t.keys("Space");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {16, 0, 0, 0, 0, 0}), 40)) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+}
+
+TEST(ConsoleTerminal, BangIsTheEStopAndAckIsNeededBeforeTheNextMove) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim --realtime");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 16");
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("running "); })) << t.text();
+  t.type("!");
+  ASSERT_TRUE(t.wait_for_last("gantry [E-stop: type ack]>")) << t.text();
+  EXPECT_NE(t.text().find("Nothing moves until you type ack."), std::string::npos) << t.text();
+  const std::vector<std::string> s = t.screen();
+  std::optional<double> x;
+  for (const std::string& l : s)
+    if (l.starts_with("estop ")) x = readout_x(l);
+  ASSERT_TRUE(x) << t.text();
+  EXPECT_LT(*x, 16.0);
+  t.line("MX, 1");
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("(type ack)") != std::string::npos; }))
+      << t.text();
+  t.line("ack");
+  ASSERT_TRUE(t.wait_for_line("E-stop acknowledged: the machine is ready")) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 1");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {1, 0, 0, 0, 0, 0}), 40)) << t.text();
+}
+
+TEST(ConsoleTerminal, AContinuousJogStopsOnceTheKeyNoLongerRepeats) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim --realtime");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("K");
+  const std::string prefix = "[keypad continuous slow] ";
+  ASSERT_TRUE(t.wait_for_last(prefix + readout("idle", {0, 0, 0, 0, 0, 0}))) << t.text();
+  t.keys("Up");  // one press, no repeats: released after the repeat delay, then at rest
+  // At rest again, and idle: a released jog is no stopped file.
+  ASSERT_TRUE(t.wait_for([&] {
+    const std::string l = t.last_line();
+    return l.starts_with(prefix + "idle ") &&
+           readout_x(l.substr(prefix.size())) == 0.0 && l.find(" Y 0.0000 ") == std::string::npos;
+  })) << t.text();
+  const std::string l = t.last_line();
+  const size_t y = l.find(" Y ");
+  ASSERT_NE(y, std::string::npos) << l;
+  const double at = std::stod(l.substr(y + 3));
+  EXPECT_GT(at, 0.0);
+  EXPECT_LT(at, 18.0);  // it did not run to the end of the table
+  EXPECT_EQ(readout_x(l.substr(prefix.size())), 0.0);
+  t.keys("Escape");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+}
+
+}  // namespace

@@ -1,0 +1,271 @@
+// The controller and the card's inputs on the simulated card in virtual time: probes latch
+// at the step where the switch closed, ON INPUT handlers cut the motion and run, homing
+// sets the table base at the switches, a limit switch stops the tool and is named.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gantry/interp/operator_io.hpp"
+#include "gantry/lang/script.hpp"
+#include "gantry/machine/controller.hpp"
+#include "gantry/motion/path_limits.hpp"
+#include "sim/sim_card.hpp"
+
+namespace gantry {
+namespace {
+
+struct Machine {
+  explicit Machine(SimWorld world = {}) : card(settings, false, world) {}
+  Settings settings = default_settings();
+  SimCard card;
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+
+  double spu(int axis) const { return settings.axes[axis].steps_per_unit; }
+  // The first whole step at or beyond `units` going down (a switch active at or below it).
+  std::int64_t first_step_below(double units, int axis) const {
+    return static_cast<std::int64_t>(std::floor(units * spu(axis)));
+  }
+  std::int64_t first_step_above(double units, int axis) const {
+    return static_cast<std::int64_t>(std::ceil(units * spu(axis)));
+  }
+  void run_to_end(const std::string& text) {
+    const Outcome o = c.run(Script::from_text(text, "part.sbp"));
+    ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : " " + o.errors[0].message);
+    c.wait();
+  }
+};
+
+constexpr int kZ = 2;
+
+TEST(Probe, StopsExactlyWhereTheSwitchClosed) {
+  SimWorld w;
+  w.probe_z = -0.3;  // the Z zero plate's surface: input 1 closes at or below it
+  Machine m(w);
+  m.run_to_end("PZ, -1, 0.5, 1\n");
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Idle) << s.message;
+  const std::int64_t touch = m.first_step_below(-0.3, kZ);
+  EXPECT_EQ(s.steps[kZ], touch);  // it came back to the step where the plate closed
+  EXPECT_DOUBLE_EQ(m.c.modal().position[kZ], static_cast<double>(touch) / m.spu(kZ));
+  EXPECT_TRUE(s.inputs[0]);  // resting on the plate
+}
+
+TEST(Probe, WithoutContactItEndsAtItsTarget) {
+  SimWorld w;
+  w.probe_z = -2;
+  Machine m(w);
+  m.run_to_end("PZ, -1, 0.5, 1\n");
+  EXPECT_EQ(m.c.status().steps[kZ], std::llround(-1 * m.spu(kZ)));
+  EXPECT_DOUBLE_EQ(m.c.modal().position[kZ], -1);
+}
+
+TEST(Probe, TheLatchIsReadByThePartFileAndAZeroFollows) {
+  SimWorld w;
+  w.probe_z = -0.3;
+  Machine m(w);
+  // FabMo's Z-zero pattern: probe, read %(3), zero there, pull up.
+  m.run_to_end("PZ, -1, 0.5, 1\n&touch = %(3)\nZZ\nJZ, 0.5\nIF &touch > -0.31 THEN JX, 1\n");
+  const ModalState st = m.c.modal();
+  EXPECT_DOUBLE_EQ(st.position[kZ], 0.5);
+  EXPECT_DOUBLE_EQ(st.position[0], 1);  // &touch was the plate's height, not the target
+  EXPECT_NEAR(st.zero[kZ], static_cast<double>(m.first_step_below(-0.3, kZ)) / m.spu(kZ), 1e-12);
+}
+
+TEST(Probe, AnInputClosedAlreadyIsAnErrorAndNothingMoves) {
+  SimWorld w;
+  w.probe_z = 0.5;  // the plate is under the tool already
+  Machine m(w);
+  m.run_to_end("MX, 1\nPZ, -1, 0.5, 1\nMX, 2\n");
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Stopped);
+  EXPECT_NE(s.message.find("input switch 1 is closed already"), std::string::npos) << s.message;
+  EXPECT_EQ(s.stopped_at.line, 2);
+  EXPECT_EQ(s.steps[0], std::llround(1 * m.spu(0)));
+  EXPECT_EQ(s.steps[kZ], 0);
+}
+
+TEST(Probe, AnUnwiredInputIsRefusedByTheCheck) {
+  Machine m;
+  const Outcome o = m.c.run(Script::from_text("PZ, -1, 0.5, 2\n", "part.sbp"));
+  EXPECT_FALSE(o);
+  ASSERT_EQ(o.errors.size(), 1u);
+  EXPECT_NE(o.errors[0].message.find("input switch 2 is not wired"), std::string::npos);
+  EXPECT_EQ(m.c.status().steps[kZ], 0);
+}
+
+TEST(Probe, ParametersAreTargetsThenSpeedThenInput) {
+  SimWorld w;
+  w.probe_z = -5;  // never reached
+  Machine m(w);
+  m.run_to_end("P2, 1.5, 0.5, 1, 1\n");
+  EXPECT_DOUBLE_EQ(m.c.modal().position[0], 1.5);
+  EXPECT_DOUBLE_EQ(m.c.modal().position[1], 0.5);
+}
+
+// Input 3 (bit 8) closes at 0.5 s while MX, 10 runs at 2 in/s.
+SimWorld switch3_closes_at(double t) {
+  SimWorld w;
+  w.input_events.push_back({t, 8, true});
+  return w;
+}
+
+TEST(OnInput, AnInstantStopCutsTheMoveAndTheHandlerRuns) {
+  Machine m(switch3_closes_at(0.5));
+  m.run_to_end(
+      "ON INPUT(3, 1) GOTO hit\n"
+      "MX, 10\n"
+      "MY, 1\n"
+      "END\n"
+      "hit:\n"
+      "&x = %(1)\n"
+      "MY, 2\n"
+      "IF &x = %(1) THEN MZ, -0.125\n");
+  const ControllerStatus s = m.c.status();
+  const ModalState st = m.c.modal();
+  EXPECT_EQ(s.state, MachineState::Idle) << s.message;
+  EXPECT_GT(st.position[0], 0.1);
+  EXPECT_LT(st.position[0], 2);
+  EXPECT_DOUBLE_EQ(st.position[0], static_cast<double>(s.steps[0]) / m.spu(0));
+  EXPECT_DOUBLE_EQ(st.position[1], 2);  // the handler's line ran; MY, 1 never did
+  EXPECT_DOUBLE_EQ(st.position[kZ], -0.125);
+  EXPECT_EQ(s.steps[1], std::llround(2 * m.spu(1)));
+}
+
+TEST(OnInput, ARampedStopComesToRestPastTheEdgeWithinTheRamp) {
+  Machine instant(switch3_closes_at(0.5)), ramped(switch3_closes_at(0.5));
+  const char* body = "MX, 10\nMY, 1\nEND\nhit:\nMY, 2\n";
+  instant.run_to_end(std::string("ON INPUT(3, 1) GOTO hit\n") + body);
+  ramped.run_to_end(std::string("ON INPUT(3, 3) GOTO hit\n") + body);
+  const double at_edge = instant.c.modal().position[0];
+  const double at_rest = ramped.c.modal().position[0];
+  EXPECT_GT(at_rest, at_edge);  // it ramped down past the point of the edge
+  // Braking from the move speed at the move ramp's acceleration, once the block in which
+  // the card saw the edge has played (the simulated card reports edges block by block).
+  const Settings& s = ramped.settings;
+  const double v = s.speeds.move.xy;
+  const double a =
+      std::min(ramp_accel(s.ramps.move_ramp_speed.xy, s.ramps.move_ramp_rate), s.axes[0].max_accel);
+  const double block_s = 4096 / s.card.pacer_hz();
+  EXPECT_GT(at_rest - at_edge, v * v / (2 * a));
+  EXPECT_LT(at_rest - at_edge, v * v / (2 * a) + v * block_s);
+  EXPECT_DOUBLE_EQ(ramped.c.modal().position[1], 2);
+}
+
+TEST(OnInput, AHandlerFiresOnceAndAGosubReturnsAfterTheCutStatement) {
+  SimWorld w = switch3_closes_at(0.3);
+  w.input_events.push_back({2.0, 8, false});
+  w.input_events.push_back({2.5, 8, true});  // closes again: no handler left
+  Machine m(w);
+  m.run_to_end(
+      "&hits = 0\n"
+      "ON INPUT(3, 1) GOSUB count\n"
+      "MX, 10\n"
+      "MY, 1\n"
+      "MX, 0\n"
+      "MY, 0.5\n"
+      "END\n"
+      "count:\n"
+      "&hits = &hits + 1\n"
+      "MZ, -&hits\n"
+      "RETURN\n");
+  const ModalState st = m.c.modal();
+  EXPECT_DOUBLE_EQ(st.position[kZ], -1);  // one hit only
+  EXPECT_DOUBLE_EQ(st.position[0], 0);    // the file went on after MX, 10 was cut
+  EXPECT_DOUBLE_EQ(st.position[1], 0.5);
+}
+
+TEST(OnInput, AnEdgeIsNeededNotALevel) {
+  Machine m(switch3_closes_at(0.1));  // closed before the handler is armed
+  m.run_to_end("MX, 0.5\nON INPUT(3, 1) GOTO hit\nMX, 2\nEND\nhit:\nMY, 2\n");
+  EXPECT_DOUBLE_EQ(m.c.modal().position[0], 2);
+  EXPECT_DOUBLE_EQ(m.c.modal().position[1], 0);
+}
+
+TEST(Homing, TheTableBaseIsSetWhereEachSwitchCloses) {
+  SimWorld w;
+  // Proximity switches on input 3 (bit 8): X and Y at or below, Z at or above.
+  w.home_switch[0] = -1.2345;
+  w.home_switch[1] = -0.5;
+  w.home_switch[kZ] = 0.75;
+  w.home_above[kZ] = true;
+  Machine m(w);
+  m.run_to_end("C3\n");
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Idle) << s.message;
+  const ModalState st = m.c.modal();
+  // Table base 0 (homing.at) is exactly the step where each switch closed.
+  EXPECT_NEAR(st.machine_origin[0], static_cast<double>(m.first_step_below(-1.2345, 0)) / m.spu(0),
+              1e-12);
+  EXPECT_NEAR(st.machine_origin[1], static_cast<double>(m.first_step_below(-0.5, 1)) / m.spu(1),
+              1e-12);
+  EXPECT_NEAR(st.machine_origin[kZ], static_cast<double>(m.first_step_above(0.75, kZ)) / m.spu(kZ),
+              1e-12);
+  // It ends backed off the switches, which are open again.
+  EXPECT_FALSE(s.inputs[2]);
+  const double back = m.settings.homing.back_off;
+  EXPECT_NEAR(st.position[0] + st.zero[0], back, 1e-12);
+  EXPECT_NEAR(st.position[1] + st.zero[1], back, 1e-12);
+  EXPECT_NEAR(st.position[kZ] + st.zero[kZ], -back, 1e-12);
+}
+
+TEST(Homing, AMissingSwitchStopsWithAnError) {
+  Machine m;  // no switches in this world
+  m.run_to_end("C3\n");
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Stopped);
+  EXPECT_NE(s.message.find("homing Z: input 3 never closed"), std::string::npos) << s.message;
+}
+
+TEST(LimitSwitch, StopsTheToolNamesTheSwitchAndOnlyAJogAwayIsAllowed) {
+  SimWorld w;
+  w.max_switch[0] = 5;
+  Machine m(w);
+  m.run_to_end("MX, 10\nMY, 1\n");
+  ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Stopped);
+  EXPECT_NE(s.message.find("X high limit switch (input bit 3)"), std::string::npos) << s.message;
+  EXPECT_EQ(s.steps[0], m.first_step_above(5, 0));  // the step that closed it, no further
+  EXPECT_EQ(s.steps[1], 0);
+  EXPECT_DOUBLE_EQ(m.c.modal().position[0], static_cast<double>(s.steps[0]) / m.spu(0));
+
+  const Outcome again = m.c.run(Script::from_text("MY, 1\n", "part.sbp"));
+  EXPECT_FALSE(again);
+  EXPECT_NE(again.reason.find("X high limit switch is closed"), std::string::npos);
+  JogRequest toward;
+  toward.direction[0] = 1;
+  toward.step = true;
+  EXPECT_FALSE(m.c.jog(toward));
+  JogRequest away;
+  away.direction[0] = -1;
+  away.step = true;
+  ASSERT_TRUE(m.c.jog(away));
+  m.c.wait();
+  s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Idle);
+  EXPECT_EQ(s.steps[0], m.first_step_above(5, 0) - std::llround(0.1 * m.spu(0)));
+  m.run_to_end("MY, 1\n");  // off the switch: files run again
+  EXPECT_DOUBLE_EQ(m.c.modal().position[1], 1);
+}
+
+}  // namespace
+}  // namespace gantry
+
+namespace gantry {
+namespace {
+
+TEST(PauseUntil, TheLiveMachineWaitsForTheSwitchAsTimePasses) {
+  SimWorld w;
+  w.input_events.push_back({1.25, 8, true});  // input 3 closes at 1.25 s
+  Machine m(w);
+  m.run_to_end("MX, 0.5\nPAUSE UNTIL 3, 1\nMY, 0.5\n");
+  EXPECT_DOUBLE_EQ(m.c.modal().position[1], 0.5);
+  // The wait ended within one 10 ms dwell of the switch, then MY played.
+  const double my = 0.5 / m.settings.speeds.move.xy;  // at least its cruise time
+  EXPECT_GT(m.card.time_s(), 1.25 + my * 0.9);
+  EXPECT_LT(m.card.time_s(), 1.25 + 0.01 + 2 * my + 0.5);
+}
+
+}  // namespace
+}  // namespace gantry
