@@ -62,7 +62,7 @@ const std::vector<Entry>& catalogue() {
                  G::Settings,
                  "Manual jogging from the keypad; a file resumes when it is closed.",
                  {text("message", "Shown on the keypad (FabMo).")},
-                 "Gantry has no keypad; jog with J commands"});
+                 "a file cannot hand the keypad over yet; at the console, K opens it"});
     // Values
     {
       std::vector<ParamSpec> vn = {

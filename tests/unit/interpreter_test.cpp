@@ -764,8 +764,8 @@ TEST_F(InterpreterTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
   EXPECT_EQ(d.loc.line, 2);
   EXPECT_EQ(d.loc.column, 3);
   EXPECT_EQ(d.message,
-            "SK (set to keypad mode) is not implemented yet in Gantry; Gantry has no keypad; jog "
-            "with J commands");
+            "SK (set to keypad mode) is not implemented yet in Gantry; a file cannot hand the "
+            "keypad over yet; at the console, K opens it");
   EXPECT_TRUE(moves().empty());  // the file stopped there: MX never ran
   EXPECT_EQ(interp().state().position, before.position);
   EXPECT_EQ(interp().state().speeds.move.xy, before.speeds.move.xy);
