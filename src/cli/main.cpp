@@ -17,6 +17,7 @@
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
 #include "gantry/settings/values_file.hpp"   // the values file
+#include "machine_profile.hpp"               // MachineProfile, load_machine_profile
 #include "open_card.hpp"                     // open_card
 #include "progress.hpp"                      // ProgressBar
 #include "report.hpp"                        // RunReport, to_json, to_text
@@ -33,52 +34,11 @@ void print_errors(const std::vector<Diagnostic>& errors) {  // and warnings
   for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));
 }
 
-// The machine profile (--settings, or the compiled-in default) and the operator's values
-// laid over it (--values, or the values file of that profile in the config folder).
-struct Profile {
-  Settings bare;      // the profile alone: the values file holds what differs from it
-  Settings settings;  // with the values
-  std::string values_path;
-  std::string path;  // of the profile; "" the built-in default
-
-  // UV, UD and UR show or load the profile and say where it and the values live.
-  void describe(InterpreterOptions& o) const {
-    o.profile = &bare;
-    o.profile_path = path;
-    o.values_path = values_path;
-  }
-};
-
-bool load_profile(const std::string& path, const std::string& values, Profile& out) {
-  const std::optional<std::string> text =
-      path.empty() ? std::optional<std::string>(default_profile_text()) : read_text_file(path);
-  const std::string origin = path.empty() ? "settings/default.toml" : path;
-  SettingsLoad bare = text ? parse_settings(*text, origin) : load_settings_file(path);
-  if (!bare.ok()) {
-    print_errors(bare.errors);
-    return false;
-  }
-  out.bare = out.settings = bare.settings;
-  out.path = path;
-  out.values_path = values.empty() ? default_values_path(bare.settings.name) : values;
-  if (!std::filesystem::exists(out.values_path)) return true;  // nothing changed yet
-  const std::optional<std::string> values_text = read_text_file(out.values_path);
-  if (!values_text) {
-    fmt::print(stderr, "{}: error: cannot read the values file; check its permissions\n",
-               out.values_path);
-    return false;
-  }
-  const SettingsLoad load = parse_settings(*text, origin, values_text, out.values_path);
-  if (!load.ok()) {
-    print_errors(load.errors);
-    fmt::print(stderr,
-               "the values file {} holds the V commands' changes; fix the key named "
-               "above, or delete the file to return to the profile's values\n",
-               out.values_path);
-    return false;
-  }
-  out.settings = load.settings;
-  return true;
+// UV, UD and UR show or load the profile and say where it and the values live.
+void describe(const MachineProfile& p, InterpreterOptions& o) {
+  o.profile = &p.bare;
+  o.profile_path = p.path;
+  o.values_path = p.values_path;
 }
 
 struct RunArgs {
@@ -165,13 +125,13 @@ struct LanguageArgs {
 };
 
 int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
-  Profile profile;
+  MachineProfile profile;
   RunReport report;
-  if (!load_profile(a.settings, lang.values, profile)) return 1;
+  if (!load_machine_profile(a.settings, lang.values, profile)) return 1;
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
-  profile.describe(opt.interpreter);
+  describe(profile, opt.interpreter);
   PersistentStore store = lang.store();
   report.units = settings.units;
   std::shared_ptr<const Script> script = Script::load(a.file);
@@ -243,12 +203,12 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
 }
 
 int cmd_check(const std::string& file, const std::string& settings_path, const LanguageArgs& lang) {
-  Profile profile;
-  if (!load_profile(settings_path, lang.values, profile)) return 1;
+  MachineProfile profile;
+  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
-  profile.describe(opt.interpreter);
+  describe(profile, opt.interpreter);
   std::shared_ptr<const Script> script = Script::load(file);
   const std::vector<Diagnostic> found = check_program(script, settings, lang.store(), opt);
   print_errors(found);
@@ -261,12 +221,12 @@ int cmd_check(const std::string& file, const std::string& settings_path, const L
 // The cycle time of a file, from the same check and planner a run uses.
 int cmd_estimate(const std::string& file, const std::string& settings_path, bool json,
                  const LanguageArgs& lang) {
-  Profile profile;
-  if (!load_profile(settings_path, lang.values, profile)) return 1;
+  MachineProfile profile;
+  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
-  profile.describe(opt.interpreter);
+  describe(profile, opt.interpreter);
   opt.operator_present = false;  // an estimate answers nothing: --yes and --input do
   std::shared_ptr<const Script> script = Script::load(file);
   double seconds = 0;
@@ -316,12 +276,12 @@ class KeepingSink : public MotionSink {
 
 int cmd_moves(const std::string& file, const std::string& settings_path, const std::string& format,
               const std::string& svg, const LanguageArgs& lang) {
-  Profile profile;
-  if (!load_profile(settings_path, lang.values, profile)) return 1;
+  MachineProfile profile;
+  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
-  profile.describe(opt.interpreter);
+  describe(profile, opt.interpreter);
   std::shared_ptr<const Script> script = Script::load(file);
   const PersistentStore scratch = lang.store().scratch_copy();
   const std::vector<Diagnostic> found = check_program(script, settings, scratch, opt);

@@ -7,38 +7,32 @@ namespace gantry::cuts {
 
 namespace {
 
-void check_diameter(double d, size_t param) {
-  if (!(d > 0)) throw CutError(param, fmt::format("the diameter must be above 0, not {:g}", d));
+// What CC and CP share; `direction_param` and `index` place their parameters for errors.
+template <class Params>
+CurveCut circle_curve(const Params& p, size_t direction_param, const OptionIndex& index) {
+  if (!(p.diameter > 0))
+    throw CutError(0, fmt::format("the diameter must be above 0, not {:g}", p.diameter));
+  CurveCut c;
+  c.radius = p.diameter / 2;
+  c.proportion_x = p.proportion_x;
+  c.proportion_y = p.proportion_y;
+  c.side = p.side;
+  c.direction = checked_direction(p.direction, direction_param);
+  angles(p.begin, p.end, p.direction, &c.begin, &c.sweep);
+  c.pass = p.pass;
+  c.index = index;
+  return c;
 }
 
 }  // namespace
 
 CutPath cut_circle(const CutSetup& setup, const CircleParams& p) {
-  check_diameter(p.diameter, 0);
-  CurveCut c;
-  c.radius = p.diameter / 2;
-  c.proportion_x = p.proportion_x;
-  c.proportion_y = p.proportion_y;
-  c.side = p.side;
-  c.direction = checked_direction(p.direction, 2);
-  angles(p.begin, p.end, p.direction, &c.begin, &c.sweep);
-  c.pass = p.pass;
-  c.index = {1, 2, 7, 8, 9, 6};
-  return cut_curve(setup, c);
+  return cut_curve(setup, circle_curve(p, 2, {1, 2, 7, 8, 9, 6}));
 }
 
 CutPath cut_center_circle(const CutSetup& setup, const CenterCircleParams& p) {
-  check_diameter(p.diameter, 0);
-  CurveCut c;
-  c.radius = p.diameter / 2;
-  c.proportion_x = p.proportion_x;
-  c.proportion_y = p.proportion_y;
-  c.side = p.side;
-  c.direction = checked_direction(p.direction, 4);
-  angles(p.begin, p.end, p.direction, &c.begin, &c.sweep);
+  CurveCut c = circle_curve(p, 4, {3, 4, 9, 10, 11, 8});
   c.centre = p.center;
-  c.pass = p.pass;
-  c.index = {3, 4, 9, 10, 11, 8};
   return cut_curve(setup, c);
 }
 

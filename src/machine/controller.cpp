@@ -628,11 +628,13 @@ std::array<bool, 12> Controller::input_switches(std::uint32_t bits) const {
   return out;
 }
 
+bool Controller::limit_active(int bit, std::uint32_t bits) const {
+  return bit >= 0 && ((bits >> bit & 1u) != 0) != settings_.inputs.limits_active_low;
+}
+
 std::string Controller::active_limits(std::uint32_t bits) const {
   const InputSettings& in = settings_.inputs;
-  auto active = [&](int bit) {
-    return bit >= 0 && ((bits >> bit & 1u) != 0) != in.limits_active_low;
-  };
+  auto active = [&](int bit) { return limit_active(bit, bits); };
   std::string out;
   for (int i = 0; i < kAxisCount; ++i)
     for (const auto& [bit, side] : {std::pair{in.min_bit[i], "low"}, {in.max_bit[i], "high"}})
@@ -647,9 +649,7 @@ std::string Controller::active_limits(std::uint32_t bits) const {
 std::optional<std::string> Controller::limit_refusal(const Vec6& direction) const {
   const InputSettings& in = settings_.inputs;
   const std::uint32_t bits = inputs_.load(std::memory_order_acquire);
-  auto active = [&](int bit) {
-    return bit >= 0 && ((bits >> bit & 1u) != 0) != in.limits_active_low;
-  };
+  auto active = [&](int bit) { return limit_active(bit, bits); };
   const bool any_way = direction.isZero();
   for (int i = 0; i < kAxisCount; ++i) {
     const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');

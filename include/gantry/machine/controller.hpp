@@ -127,7 +127,8 @@ class Controller {
   void on_input_edge(const InputEdge& e);      // feeder thread, from the card
   void finish_input_cut(bool consumed_flush);  // feeder thread: at rest
   std::array<bool, 12> input_switches(std::uint32_t bits) const;
-  std::string active_limits(std::uint32_t bits) const;  // "X high limit switch", ...
+  bool limit_active(int bit, std::uint32_t bits) const;  // a limit switch's bit, by polarity
+  std::string active_limits(std::uint32_t bits) const;   // "X high limit switch", ...
   std::optional<std::string> limit_refusal(const Vec6& direction) const;
   CanonMove keypad_move(const JogRequest& j) const;
   Vec6 played_machine(const Steps6& steps) const;
