@@ -87,6 +87,62 @@ void BM_LoadSimpleLines(benchmark::State& state) {
 }
 BENCHMARK(BM_LoadSimpleLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
+// `lines` G-code blocks `G1 X.. Y.. Z..` wandering inside the default table.
+std::string generated_gcode(int lines) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> x(1, 23), y(1, 17), z(-0.5, 0.5);
+  std::string text = "G20 G90 F240\n";
+  for (int i = 0; i < lines; ++i)
+    text += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", x(rng), y(rng), z(rng));
+  return text;
+}
+
+// G-code's block parser alone, one reused block (what the interpreter's fast path reads).
+void BM_ParseGcodeLines(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const auto script = Script::from_text(generated_gcode(n), "bench.nc");
+  Statement st;
+  for (auto _ : state) {
+    const std::uint64_t before = g_allocations;
+    for (Cursor c = script->start(), next; !script->at_end(c); c = next)
+      benchmark::DoNotOptimize(
+          parse_gcode_statement(script->line_at(c, &next), script->name(), c.line, &st));
+    state.counters["allocations"] = static_cast<double>(g_allocations - before);
+  }
+  state.counters["lines/s"] =
+      benchmark::Counter(static_cast<double>(n) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ParseGcodeLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+// The load pass (syntax check of every block) on the G-code file.
+void BM_LoadGcodeLines(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const std::string text = generated_gcode(n);
+  for (auto _ : state) benchmark::DoNotOptimize(Script::from_text(text, "bench.nc")->ok());
+  state.counters["lines/s"] =
+      benchmark::Counter(static_cast<double>(n) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_LoadGcodeLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+// G-code blocks interpreted into a null sink (modes, units, soft limits, canonical moves).
+void BM_InterpretGcodeLines(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Settings settings = default_settings();
+  const std::string text = generated_gcode(n);
+  for (auto _ : state) {
+    NullSink sink;
+    std::string printed;
+    ScriptedIO io(true, {}, &printed);
+    PersistentStore store;
+    Interpreter interp(settings, sink, io, store);
+    interp.run(Script::from_text(text, "bench.nc"));
+    benchmark::DoNotOptimize(interp.statements_executed());
+  }
+  state.counters["lines/s"] =
+      benchmark::Counter(static_cast<double>(n) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_InterpretGcodeLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
 // Expression-heavy lines in a counted loop with a GOSUB: every line evaluates variables.
 void BM_InterpretExpressionLoop(benchmark::State& state) {
   const int loops = static_cast<int>(state.range(0));
@@ -150,8 +206,8 @@ void BM_StepGeneratorSixAxesAt100kHz(benchmark::State& state) {
   const std::uint64_t allocs_before = g_allocations;
   for (auto _ : state) one_second();
   const auto words = static_cast<double>(card.ticks_played() - start);
-  state.counters["allocs_per_s"] = static_cast<double>(g_allocations - allocs_before) /
-                                   static_cast<double>(state.iterations());
+  state.counters["allocs_per_s"] =
+      static_cast<double>(g_allocations - allocs_before) / static_cast<double>(state.iterations());
   state.counters["words/s"] = benchmark::Counter(words, benchmark::Counter::kIsRate);
   state.counters["x_realtime"] =
       benchmark::Counter(words / s.card.pacer_hz(), benchmark::Counter::kIsRate);

@@ -8,12 +8,14 @@ PACKAGES=(
   cmake ninja-build g++ pkg-config
   # core libraries
   libeigen3-dev libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  # the preview's PNG pictures (stb_image_write)
+  libstb-dev
   # tests, benchmarks, fuzzing (clang's libFuzzer and sanitizer runtimes)
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
   # the console's terminal tests drive it under tmux
   tmux
   # console window, pendants, GPIO (the optional backends)
-  libglfw3-dev libimgui-dev libusb-1.0-0-dev libgpiod-dev libstb-dev xvfb
+  libglfw3-dev libimgui-dev libusb-1.0-0-dev libgpiod-dev xvfb
 )
 
 missing=()

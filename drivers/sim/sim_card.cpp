@@ -80,6 +80,8 @@ void SimCard::update_switches(int axis) {
     set_input(bit, home, false);
   }
   if (axis == 2 && world_.probe_z) set_input(input_bits_.probe_bit, at <= *world_.probe_z, false);
+  if (axis <= 2 && world_.probe_surface)
+    set_input(input_bits_.probe_bit, at_of(2) <= world_.probe_surface(at_of(0), at_of(1)), false);
   auto became_active = [&](int bit, bool active) {
     return active && bit >= 0 && ((before ^ inputs_) >> bit & 1u);
   };

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -24,9 +25,11 @@ struct SimWorld {
   // axes marked in home_above (a Z homing upwards).
   std::array<std::optional<double>, kAxisCount> home_switch{};
   std::array<bool, kAxisCount> home_above{};
-  std::optional<double> probe_z;     // a surface: the probe input is active at or below this Z
-  std::optional<double> estop_at_s;  // the operator presses E-stop at this machine time
-  std::optional<double> stall_at_s;  // the producer stalls here: words still due underrun
+  std::optional<double> probe_z;  // a surface: the probe input is active at or below this Z
+  // A shaped part instead (digitizing, TC): the probe is active at or below its height at X, Y.
+  std::function<double(double x, double y)> probe_surface;
+  std::optional<double> estop_at_s;         // the operator presses E-stop at this machine time
+  std::optional<double> stall_at_s;         // the producer stalls here: words still due underrun
   std::vector<SimInputEvent> input_events;  // in time order
 };
 

@@ -27,13 +27,12 @@
 #include <thread>
 
 #include "gantry/commands/command_docs.hpp"  // command_help, command_list
-#include "gantry/core/text_file.hpp"         // write_file_atomically
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/controller.hpp"     // Controller
-#include "gantry/settings/values_file.hpp"   // values_text
 #include "line_editor.hpp"                   // KeyDecoder, LineEditor
 #include "machine_profile.hpp"               // load_machine_profile
 #include "open_card.hpp"                     // open_card
+#include "values_keeper.hpp"                 // ValuesKeeper
 
 namespace gantry {
 namespace {
@@ -211,7 +210,20 @@ class ConsoleIO : public OperatorIO {
     }
   }
 
+  // SK in a file: the console opens its keypad once the controller waits (Keypad).
+  KeypadAnswer keypad(std::string_view message, const SourceLoc& loc) override {
+    if (!interactive_) return scripted_.keypad(message, loc);
+    std::lock_guard lock(m_);
+    keypad_message_ = message;
+    return KeypadAnswer::Jog;
+  }
+
   // ---- the console thread's side ----
+
+  std::string take_keypad_message() {
+    std::lock_guard lock(m_);
+    return std::exchange(keypad_message_, {});
+  }
 
   std::string take_output() {
     std::lock_guard lock(m_);
@@ -263,38 +275,10 @@ class ConsoleIO : public OperatorIO {
   std::optional<Question> question_;
   bool shown_ = false;
   std::optional<std::string> answer_;
+  std::string keypad_message_;
 };
 
 // ---- what the console shows --------------------------------------------------------------
-
-// The settings the last run left in force (units, calibration), kept for the readout, and
-// the values file written when they differ from the profile (as `gantry run` does).
-class ValuesKeeper {
- public:
-  ValuesKeeper(const MachineProfile& p, ConsoleIO& io) : profile_(p), io_(io), now_(p.settings) {}
-  // Job thread: a run ended with `s` in force.
-  void ran(const Settings& s) {
-    {
-      std::lock_guard lock(m_);
-      now_ = s;
-    }
-    const std::string text = values_text(s, profile_.bare);
-    if (read_text_file(profile_.values_path) == text) return;
-    if (!write_file_atomically(profile_.values_path, text))
-      io_.warn({file_loc(profile_.values_path), Severity::Warning,
-                "cannot save the values this line changed; the previous values file is kept"});
-  }
-  Settings settings() const {
-    std::lock_guard lock(m_);
-    return now_;
-  }
-
- private:
-  const MachineProfile& profile_;
-  ConsoleIO& io_;
-  mutable std::mutex m_;
-  Settings now_;
-};
 
 double shown(double v) {
   return std::abs(v) < 5e-5 ? 0.0 : v;  // no "-0.0000"
@@ -317,10 +301,12 @@ const char* const kConsoleHelp =
     "Editing: Left/Right, Home/End (Ctrl-A/Ctrl-E), Backspace/Delete, Ctrl-K/Ctrl-U, Up/Down\n"
     "  recall earlier lines, Tab completes a two-letter code or lists the matches.\n"
     "Words: help [CODE]   help commands   status   ack (after an E-stop)   K (keypad)   quit\n"
+    "  step [on|off] (single step: each statement holds once its motion has played)\n"
     "While a line runs: space pauses (then space or Enter resumes, Esc or q quits the file),\n"
     "  Esc stops, ! or Ctrl-C is the E-stop. Other lines wait until the machine is at rest.\n"
     "Keypad (K or SK): arrows X and Y, PageUp/PageDown Z, / and \\ diagonals, Ctrl+key fast;\n"
     "  S (or D) fixed steps or continuous, F fast or slow, space stops a jog, Esc leaves.\n"
+    "  SK in a file opens it too: Esc goes on with the file, q stops it.\n"
     "  A continuous jog runs while the key repeats and slows to rest once the repeats stop.\n";
 
 // The console's words and the command table's codes, for Tab.
@@ -381,7 +367,7 @@ class Console {
   void flash(std::string text);
   void estop();
   // Keypad.
-  void enter_keypad(const std::string& message);
+  void enter_keypad(const std::string& message, bool file = false);
   void leave_keypad();
   void jog_key(const std::array<int, kAxisCount>& dir, bool fast);
   bool start_jog(const JogRequest& j);
@@ -407,6 +393,7 @@ class Console {
   Mode mode_ = Mode::Prompt;
   bool quit_ = false;
   bool asking_ = false;  // a question from the running file has the answer line
+  bool single_step_ = false;
   Vec6 line_start_ = Vec6::Zero();
   bool status_drawn_ = false;
   Clock::time_point last_draw_{};
@@ -418,6 +405,7 @@ class Console {
     bool active = false;    // a jog we started has not come to rest yet
     bool released = false;  // ... and its key has been released (or it was stopped)
     bool leaving = false;   // Esc: leave once at rest
+    bool file = false;      // a file waits at SK: leaving resumes it
     JogRequest current;
     int repeats = 0;  // key repeats seen for the current jog
     Clock::time_point last_key{};
@@ -446,6 +434,7 @@ Vec6 Console::live_position(const ControllerStatus& st) const {
 }
 
 std::string Console::state_text(const ControllerStatus& st) const {
+  if (st.state == MachineState::Paused && st.step_hold) return "step";
   if (st.state == MachineState::Paused && st.phase != FeedPhase::Held) return "pausing";
   return state_name(st.state);
 }
@@ -453,7 +442,8 @@ std::string Console::state_text(const ControllerStatus& st) const {
 std::string Console::readout(const ControllerStatus& st) const {
   // At rest the interpreter's position is exact (a step jog ends on its commanded point);
   // under way, the pulses played say where the tool is.
-  const bool rest = at_rest(st.state) && mode_ != Mode::Job && !kp_.active;
+  const bool rest =
+      (at_rest(st.state) || st.state == MachineState::Keypad) && mode_ != Mode::Job && !kp_.active;
   return readout_text(state_text(st), rest ? position_ : live_position(st), units_);
 }
 
@@ -707,6 +697,13 @@ void Console::handle_line(const std::string& typed) {
     return write_out(o ? "E-stop acknowledged: the machine is ready\n" : o.reason + "\n");
   }
   if (word == "K" && rest.empty()) return enter_keypad("");
+  if (word == "STEP" && (rest.empty() || upper(rest) == "ON" || upper(rest) == "OFF")) {
+    single_step_ = rest.empty() ? !single_step_ : upper(rest) == "ON";
+    c_.set_single_step(single_step_);
+    return write_out(single_step_ ? "single step on: each statement holds once its motion has "
+                                    "played; space or Enter runs the next, Esc ends the file\n"
+                                  : "single step off\n");
+  }
   const std::string code = upper(line.substr(0, std::min<size_t>(2, line.size())));
   if (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' ')) {
     const size_t comma = line.find(',');
@@ -737,6 +734,8 @@ void Console::tick() {
       return;
     }
   }
+  if (mode_ == Mode::Job && c_.state() == MachineState::Keypad)
+    return enter_keypad(io_.take_keypad_message(), true);
   if (mode_ == Mode::Job && at_rest(c_.state())) return end_job();
   if (mode_ == Mode::Keypad) keypad_tick(Clock::now());
   if (mode_ != Mode::Prompt && !asking_) draw_status(false);
@@ -760,17 +759,21 @@ void Console::end_job() {
 
 // ---- keypad --------------------------------------------------------------------------------
 
-void Console::enter_keypad(const std::string& message) {
+void Console::enter_keypad(const std::string& message, bool file) {
   if (c_.state() == MachineState::EStop) {
     write_out("E-stop: type ack before the keypad\n");
     return;
   }
   kp_ = Keypad{};
+  kp_.file = file;
   mode_ = Mode::Keypad;
+  if (file) snapshot();  // the file's frame, and where its moves left the tool
+  editor_.erase();
   if (!message.empty()) write_out(message + "\n");
   write_out(
-      "keypad: arrows X and Y, PageUp/PageDown Z, / and \\ diagonals, Ctrl+key fast;\n"
-      "  S fixed step or continuous, F fast or slow, space stops a jog, Esc leaves\n");
+      fmt::format("keypad: arrows X and Y, PageUp/PageDown Z, / and \\ diagonals, Ctrl+key fast;\n"
+                  "  S fixed step or continuous, F fast or slow, space stops a jog, {}\n",
+                  file ? "Esc goes on with the file, q stops it" : "Esc leaves"));
   if (!realtime_)
     write_out(
         "  (virtual time: a continuous jog would run to the soft limit at once, so it needs\n"
@@ -785,6 +788,14 @@ std::string Console::keypad_text() const {
 }
 
 void Console::leave_keypad() {
+  if (kp_.file) {  // the file goes on from where the tool is (or it was stopped)
+    mode_ = Mode::Job;
+    if (c_.state() == MachineState::Keypad) {
+      const Outcome o = c_.resume();
+      if (!o) print_above(o.reason);
+    }
+    return;
+  }
   mode_ = Mode::Prompt;
   editor_.erase();
   const ControllerStatus st = c_.status();
@@ -825,21 +836,25 @@ void Console::keypad_key(const Key& k) {
     kp_.leaving = true;
     return;
   }
+  // A jog from a file's SK is released (stop would end the file); at the prompt, stopped.
+  auto stop_jog = [&] {
+    kp_.queued.reset();
+    if (!kp_.active || kp_.released) return;
+    if (kp_.file)
+      c_.jog_release();
+    else
+      c_.stop();
+    kp_.released = true;
+  };
   if (k.code == KeyCode::Escape) {
     kp_.leaving = true;
-    kp_.queued.reset();
-    if (kp_.active) {
-      c_.stop();
-      kp_.released = true;
-    }
-    return;
+    return stop_jog();
   }
-  if (k.is_char(' ')) {
-    kp_.queued.reset();
-    if (kp_.active) {
-      c_.stop();
-      kp_.released = true;
-    }
+  if (k.is_char(' ')) return stop_jog();
+  if (kp_.file && (k.is_char('q') || k.is_char('Q'))) {
+    c_.stop();
+    kp_.released = true;
+    kp_.leaving = true;
     return;
   }
   if (k.is_char('s') || k.is_char('S') || k.is_char('d') || k.is_char('D')) {
@@ -907,7 +922,7 @@ bool Console::start_jog(const JogRequest& j) {
 void Console::keypad_tick(Clock::time_point now) {
   if (kp_.active) {
     const MachineState s = c_.state();
-    if (!at_rest(s)) {
+    if (!at_rest(s) && s != MachineState::Keypad) {
       if (!kp_.current.step && !kp_.released) {
         const milliseconds window(kp_.repeats == 0 ? args_.repeat_delay_ms : args_.release_ms);
         if (now - kp_.last_key > window) {
@@ -1007,6 +1022,10 @@ int Console::piped() {
     if ((word == "K" && rest.empty()) ||
         (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' '))) {
       write_out("error: the keypad needs a terminal (standard input is not one)\n");
+      return 1;
+    }
+    if (word == "STEP") {
+      write_out("error: single step needs a terminal (standard input is not one)\n");
       return 1;
     }
     const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));

@@ -11,7 +11,11 @@
 #include <optional>
 #include <set>
 
-#include "console.hpp"                       // the console subcommand
+#include "console.hpp"       // the console subcommand
+#include "export_gcode.hpp"  // GcodeWriter
+#ifdef GANTRY_HAVE_GUI
+#include "gui_command.hpp"  // the gui subcommand (ui/)
+#endif
 #include "gantry/commands/command_docs.hpp"  // help text
 #include "gantry/core/text_file.hpp"         // read_text_file
 #include "gantry/lang/script.hpp"            // Script
@@ -19,6 +23,7 @@
 #include "gantry/settings/values_file.hpp"   // the values file
 #include "machine_profile.hpp"               // MachineProfile, load_machine_profile
 #include "open_card.hpp"                     // open_card
+#include "preview_command.hpp"               // PreviewArgs, run_preview
 #include "progress.hpp"                      // ProgressBar
 #include "report.hpp"                        // RunReport, to_json, to_text
 #include "sim/sim_card.hpp"                  // SimCard
@@ -301,7 +306,7 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
   if (!svg.empty()) {
     KeepingSink kept;
     interpret(script, settings, kept, io, preview, opt);
-    if (!write_file_atomically(svg, moves_svg(kept.moves))) {
+    if (!write_file_atomically(svg, moves_svg(kept.moves, settings))) {
       fmt::print(stderr, "error: cannot write {}\n", svg);
       return 1;
     }
@@ -309,6 +314,51 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
   }
   interpret(script, settings, sink, io, preview, opt);
   return 0;
+}
+
+// A program's canonical moves as G-code (docs/gcode.md, "Exporting"): checked first, as
+// `moves` does; the file is written only when the whole program ran.
+int cmd_export_gcode(const std::string& file, const std::string& out_path,
+                     const std::string& settings_path, const LanguageArgs& lang) {
+  MachineProfile profile;
+  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
+  const Settings& settings = profile.settings;
+  JobOptions opt;
+  if (!lang.job_options(settings, opt)) return 1;
+  describe(profile, opt.interpreter);
+  std::shared_ptr<const Script> script = Script::load(file);
+  const PersistentStore scratch = lang.store().scratch_copy();
+  const std::vector<Diagnostic> found = check_program(script, settings, scratch, opt);
+  print_errors(found);
+  if (std::any_of(found.begin(), found.end(),
+                  [](const Diagnostic& d) { return d.severity == Severity::Error; }))
+    return 1;
+  GcodeWriter writer(settings, std::filesystem::path(file).filename().string());
+  std::string printed;
+  ScriptedIO io(true, opt.inputs, &printed);
+  opt.interpreter.dry_run = true;
+  PersistentStore preview = scratch.scratch_copy();
+  interpret(script, settings, writer, io, preview, opt);
+  const std::string text = writer.finish();
+  if (out_path.empty()) {
+    std::cout << text;
+    return 0;
+  }
+  if (!write_file_atomically(out_path, text)) {
+    fmt::print(stderr, "error: cannot write {}\n", out_path);
+    return 1;
+  }
+  return 0;
+}
+
+// The toolpath drawn to a picture, with its bounds, estimate and violations.
+int cmd_preview(const PreviewArgs& args, const LanguageArgs& lang) {
+  MachineProfile profile;
+  if (!load_machine_profile(args.settings, lang.values, profile)) return 1;
+  JobOptions opt;
+  if (!lang.job_options(profile.settings, opt)) return 1;
+  describe(profile, opt.interpreter);
+  return run_preview(args, profile.settings, opt, lang.store());
 }
 
 // The command table, whole or one menu group, as text or JSON (for scripts and front ends).
@@ -375,7 +425,8 @@ int main(int argc, char** argv) {
 
   RunArgs run;
   CLI::App* run_cmd = app.add_subcommand("run", "Run a part file on the card");
-  run_cmd->add_option("file", run.file, "Part file (.sbp)")->required();
+  run_cmd->add_option("file", run.file, "Part file (.sbp, or G-code: .nc .tap .gcode .ngc)")
+      ->required();
   run_cmd->add_option("--settings", run.settings, "Machine profile (TOML); default: built-in");
   run_cmd->add_option("--card", run.card, "Card to run on (default: the profile's card.type)")
       ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
@@ -400,7 +451,7 @@ int main(int argc, char** argv) {
 
   std::string check_file, check_settings;
   CLI::App* check_cmd = app.add_subcommand("check", "Check a part file without motion");
-  check_cmd->add_option("file", check_file, "Part file (.sbp)")->required();
+  check_cmd->add_option("file", check_file, "Part file (.sbp, or G-code)")->required();
   check_cmd->add_option("--settings", check_settings, "Machine profile (TOML)");
   check_lang.add_to(check_cmd);
   check_cmd->add_option("--budget", check_lang.budget,
@@ -409,7 +460,7 @@ int main(int argc, char** argv) {
 
   std::string moves_file, moves_settings, moves_format = "text";
   CLI::App* moves_cmd = app.add_subcommand("moves", "Print the canonical moves of a part file");
-  moves_cmd->add_option("file", moves_file, "Part file (.sbp)")->required();
+  moves_cmd->add_option("file", moves_file, "Part file (.sbp, or G-code)")->required();
   moves_cmd->add_option("--settings", moves_settings, "Machine profile (TOML)");
   moves_cmd->add_option("--format", moves_format, "text or jsonl")
       ->check(CLI::IsMember({"text", "jsonl"}));
@@ -427,13 +478,22 @@ int main(int argc, char** argv) {
   LanguageArgs estimate_lang;
   CLI::App* estimate_cmd =
       app.add_subcommand("estimate", "Predict a part file's cycle time without running it");
-  estimate_cmd->add_option("file", estimate_file, "Part file (.sbp)")->required();
+  estimate_cmd->add_option("file", estimate_file, "Part file (.sbp, or G-code)")->required();
   estimate_cmd->add_option("--settings", estimate_settings, "Machine profile (TOML)");
   estimate_cmd->add_flag("--json", estimate_json, "Print the estimate as one JSON object");
   estimate_lang.add_to(estimate_cmd);
   estimate_cmd
       ->add_option("--feed-override", estimate_lang.feed_override, "Percent of the file's speeds")
       ->check(CLI::Range(10.0, 200.0));
+
+  std::string export_file, export_out, export_settings;
+  LanguageArgs export_lang;
+  CLI::App* export_cmd = app.add_subcommand(
+      "export-gcode", "Write a part file's canonical moves as G-code for another controller");
+  export_cmd->add_option("file", export_file, "Part file (.sbp, or G-code)")->required();
+  export_cmd->add_option("-o,--output", export_out, "The G-code file to write; default: stdout");
+  export_cmd->add_option("--settings", export_settings, "Machine profile (TOML)");
+  export_lang.add_to(export_cmd);
 
   std::string commands_group;
   bool commands_json = false;
@@ -450,6 +510,14 @@ int main(int argc, char** argv) {
 
   ConsoleArgs console_args;
   CLI::App* console_cmd = add_console_command(app, console_args);
+  PreviewArgs preview_args;
+  LanguageArgs preview_lang;
+  CLI::App* preview_cmd = add_preview_command(app, preview_args);
+  preview_lang.add_to(preview_cmd);
+#ifdef GANTRY_HAVE_GUI
+  GuiArgs gui_args;
+  CLI::App* gui_cmd = add_gui_command(app, gui_args);
+#endif
 
   try {
     app.parse(argc, argv);
@@ -464,7 +532,12 @@ int main(int argc, char** argv) {
     if (*estimate_cmd)
       return cmd_estimate(estimate_file, estimate_settings, estimate_json, estimate_lang);
     if (*help_cmd) return cmd_help(help_code, help_markdown);
+    if (*export_cmd) return cmd_export_gcode(export_file, export_out, export_settings, export_lang);
     if (*console_cmd) return run_console(console_args);
+    if (*preview_cmd) return cmd_preview(preview_args, preview_lang);
+#ifdef GANTRY_HAVE_GUI
+    if (*gui_cmd) return run_gui_command(gui_args);
+#endif
     if (*commands_cmd) return cmd_commands(commands_group, commands_json);
   } catch (const GantryError& e) {
     fmt::print(stderr, "{}\n", e.what());

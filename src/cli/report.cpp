@@ -97,6 +97,7 @@ nlohmann::ordered_json to_json(const CanonMove& m) {
   if (m.kind == MoveKind::Arc) {  // centre and signed sweep (radians, counter-clockwise +)
     j["center"] = {m.center_x, m.center_y};
     j["sweep"] = m.sweep;
+    if (m.plane != ArcPlane::XY) j["plane"] = m.plane == ArcPlane::ZX ? "ZX" : "YZ";
   }
   return j;
 }
@@ -126,10 +127,14 @@ std::string to_text(const CanonMove& m) {
                        p[5]);
   };
   if (m.kind == MoveKind::Arc)  // the XY speed runs along the arc
-    return fmt::format("{}:{}  {} {}  {} -> {}  centre {:.4f},{:.4f} sweep {:.4f} deg  at {:.4f}/s",
-                       m.loc.file ? *m.loc.file : "", m.loc.line, kind_name(m.kind),
-                       speed_class_name(m.speed_class), v(m.from), v(m.to), m.center_x, m.center_y,
-                       m.sweep * 180 / M_PI, m.speeds.xy);
+    return fmt::format(
+        "{}:{}  {} {}  {} -> {}  centre {:.4f},{:.4f}{} sweep {:.4f} deg  at {:.4f}/s",
+        m.loc.file ? *m.loc.file : "", m.loc.line, kind_name(m.kind),
+        speed_class_name(m.speed_class), v(m.from), v(m.to), m.center_x, m.center_y,
+        m.plane == ArcPlane::XY   ? ""
+        : m.plane == ArcPlane::ZX ? " (ZX plane)"
+                                  : " (YZ plane)",
+        m.sweep * 180 / M_PI, m.speeds.xy);
   return fmt::format("{}:{}  {} {}  {} -> {}  at {:.4f}/s", m.loc.file ? *m.loc.file : "",
                      m.loc.line, kind_name(m.kind), speed_class_name(m.speed_class), v(m.from),
                      v(m.to), nominal_path_speed(m.to - m.from, m.speeds));

@@ -1,17 +1,17 @@
-// A top view (XY) of canonical moves as an SVG picture, for docs/figures and for people.
+// `gantry moves --svg`: a top view of canonical moves for docs/figures, drawn by the
+// preview's SVG routine (one drawing code for both).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "gantry/motion/canon_move.hpp"  // CanonMove
+#include "gantry/settings/settings.hpp"  // Settings (the chord tolerance)
 
 namespace gantry {
 
-// Cutting moves solid, blue at the deepest Z of their command (source line) and orange
-// above it (tabs, spiral descents, upper passes); jogs dashed grey, those before the first
-// cut left out; arcs as true SVG arcs. The start is a green dot, the end a red one. Y points
-// up, as on the table.
-std::string moves_svg(const std::vector<CanonMove>& moves);
+// The moves from the first cut on (the jogs before it only place the tool), fitted to a
+// picture 440 pixels wide, without the table outline; styles as docs/preview.md gives them.
+std::string moves_svg(const std::vector<CanonMove>& moves, const Settings& settings);
 
 }  // namespace gantry

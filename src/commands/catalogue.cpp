@@ -21,6 +21,7 @@ struct Entry {
   std::string_view help;
   std::vector<ParamSpec> params;
   std::string_view instead;  // appended to the message; "" when there is nothing to suggest
+  std::string_view coverage = "not implemented";
 };
 
 ParamSpec num(std::string_view name, std::string_view unit, std::optional<double> def,
@@ -55,14 +56,8 @@ const std::vector<Entry>& catalogue() {
                  "it runs C3.sbp or macro_3.sbp, or without them the built-in homing on the "
                  "proximity switches; this entry is never dispatched.",
                  {},
+                 "",
                  ""});
-    // Settings
-    e.push_back({"SK",
-                 "Set to keypad mode",
-                 G::Settings,
-                 "Manual jogging from the keypad; a file resumes when it is closed.",
-                 {text("message", "Shown on the keypad (FabMo).")},
-                 "a file cannot hand the keypad over yet; at the console, K opens it"});
     // Values
     {
       std::vector<ParamSpec> vn = {
@@ -119,7 +114,7 @@ void add_catalogue_commands(std::vector<CommandSpec>& out,
   for (const CommandSpec& s : implemented) have.push_back(s.code);
   for (const Entry& e : catalogue()) {
     if (std::find(have.begin(), have.end(), e.code) != have.end()) continue;
-    out.push_back({e.code, e.name, e.group, e.help, e.params, not_implemented, "not implemented"});
+    out.push_back({e.code, e.name, e.group, e.help, e.params, not_implemented, e.coverage});
   }
 }
 

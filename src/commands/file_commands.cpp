@@ -166,9 +166,8 @@ void file_convert(CommandContext& ctx, const CommandCall& call) {
   const SourceLoc& at = call.param_loc(kFcFile);
   const Drawing kind = kind_of(name);
   if (kind == Drawing::GCode)
-    fail(at, fmt::format("FC: {} is a G-code file; there is nothing to convert: FP will run "
-                         "G-code files directly once Gantry reads G-code (issue 10). Nothing "
-                         "was done",
+    fail(at, fmt::format("FC: {} is a G-code file; there is nothing to convert: FP runs G-code "
+                         "files directly (docs/gcode.md). Nothing was done",
                          name));
   if (kind == Drawing::Raster)
     fail(at, fmt::format("FC: {} is a raster image; converting an image's grey levels into "
@@ -227,7 +226,7 @@ void add_file_commands(std::vector<CommandSpec>& out) {
                  "Runs another part file, then continues on the next line. Variables are "
                  "shared; the file may be scaled, repeated a plunge deeper each time, placed "
                  "relative to the current position, and tabbed on its last repetition.",
-                 part_params(), file_part, "G-code files (.tap, .nc) are not run yet (issue 10)"});
+                 part_params(), file_part});
   std::vector<ParamSpec> goto_params = part_params();
   goto_params.push_back(ParamSpec{"start line", "", false, 1.0,
                                   "Gantry's: the first line of the file to run. The lines "
@@ -282,8 +281,8 @@ void add_file_commands(std::vector<CommandSpec>& out) {
                   "DXF $INSUNITS, else 1)."}
             .at_least(1e-9)},
        file_convert,
-       "G-code (FP will run it directly, issue 10), raster images, HP-GL's arcs, circles and "
-       "labels, and DXF's other entities (SPLINE, ELLIPSE, TEXT, INSERT...)"});
+       "raster images, HP-GL's arcs, circles and labels, and DXF's other entities (SPLINE, "
+       "ELLIPSE, TEXT, INSERT...)"});
 }
 
 }  // namespace gantry

@@ -252,8 +252,8 @@ void add_record_commands(std::vector<CommandSpec>& out) {
                  "error in any line stops them all before the first runs. Without lines it "
                  "shows the ones sent last.",
                  send_params(), send_lines,
-                 "G-code lines (Gantry reads no G-code yet, issue 10); the pad that recalls the "
-                 "last lines for editing (FE, temp_code.sbp edits them)"});
+                 "the pad that recalls the last lines for editing (FE, temp_code.sbp edits "
+                 "them)"});
 }
 
 }  // namespace gantry

@@ -1,4 +1,4 @@
-// Settings commands that set modes of a run: SF, SV, SW, SL, SM, SP and FabMo's SU; and
+// Settings commands that set modes of a run: SF, SV, SW, SL, SM, SP, SK and FabMo's SU; and
 // FabMo's CN (call a macro).
 #include <fmt/format.h>  // messages
 
@@ -34,6 +34,13 @@ void set_preview(CommandContext& ctx, const CommandCall& call) {
   ctx.come_to_rest(call.loc);
   st.preview =
       PreviewReturn{st.position, st.zero, st.machine_origin, st.applied_offset, st.tool_offset};
+}
+
+// SK: the operator jogs with the keypad; the file goes on from where the tool is when they
+// close it. A preview (SP) has no machine to jog.
+void keypad(CommandContext& ctx, const CommandCall& call) {
+  if (ctx.state().preview) return;
+  ctx.keypad(call.text(0).value_or(""), call.loc);
 }
 
 void set_move_mode(CommandContext& ctx, const CommandCall&) {
@@ -148,6 +155,20 @@ void add_settings_commands(std::vector<CommandSpec>& out) {
        "FabMo: runs macro number n (C<n>.sbp or macro_<n>.sbp), as C<n> does.",
        {ParamSpec{"macro", "", true, std::nullopt, "The macro's number."}.integer(0, 1e6)},
        call_macro});
+  out.push_back({"SK",
+                 "Set to keypad mode",
+                 S,
+                 "Hands the machine to the keypad: the operator jogs (arrows X and Y, "
+                 "PageUp/PageDown Z) and closes the keypad to go on; a part file waits, then "
+                 "continues from where the tool is. Typed at the console it opens the keypad.",
+                 {ParamSpec{"message", "", false, std::nullopt,
+                            "Shown with the keypad, e.g. what to do before going on (FabMo).",
+                            ParamKind::Text}},
+                 keypad,
+                 {},
+                 {},
+                 true,
+                 "%(1)-%(10)"});
   out.push_back({"SP",
                  "Set to preview mode",
                  S,

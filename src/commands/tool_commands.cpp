@@ -583,6 +583,105 @@ void header_writer(CommandContext& ctx, const CommandCall& call) {
   ctx.print(fmt::format("TH wrote a header of {} lines to {}\n", lines.size(), written));
 }
 
+// ---- TC: copy machine (digitizing) --------------------------------------------------------
+
+enum Tc {
+  kTcFile,
+  kTcX,
+  kTcY,
+  kTcSizeX,
+  kTcSizeY,
+  kTcSpacing,
+  kTcBottom,
+  kTcSafeZ,
+  kTcSpeed,
+  kTcInput
+};
+
+// Probes a grid over a part and writes what it found: a part file whose moves follow the
+// surface row by row (a copy to cut with a ball-nose bit), or with a .csv name the points.
+// Rows run along X, back and forth; each point is a probe straight down from safe Z to the
+// bottom, so the part must not overhang. A point where nothing touched is at the bottom.
+void copy_machine(CommandContext& ctx, const CommandCall& call) {
+  const double x0 = *call.number(kTcX), y0 = *call.number(kTcY);
+  const double sx = positive(call, kTcSizeX), sy = positive(call, kTcSizeY);
+  const double step = positive(call, kTcSpacing);
+  const double bottom = *call.number(kTcBottom);
+  const double safe = safe_z(ctx, call, kTcSafeZ, bottom);
+  const double speed = positive(call, kTcSpeed, ctx.state().speeds.move.z);
+  const int input = whole(call, kTcInput, 1, 12);
+  const int nx = static_cast<int>(std::floor(sx / step + 1e-9)) + 1;
+  const int ny = static_cast<int>(std::floor(sy / step + 1e-9)) + 1;
+  if (static_cast<long long>(nx) * ny > 1'000'000)
+    fail(call.param_loc(kTcSpacing),
+         fmt::format("a spacing of {} makes {} x {} points; TC probes at most 1,000,000 (widen "
+                     "the spacing)",
+                     num(step), nx, ny));
+  const std::string name = *call.text(kTcFile);
+  const bool csv = name.size() > 4 && (name.ends_with(".csv") || name.ends_with(".CSV"));
+  // Every point is checked before the first probe: nothing moves for a grid off the table.
+  for (const double x : {x0, x0 + (nx - 1) * step})
+    for (const double y : {y0, y0 + (ny - 1) * step})
+      for (const double z : {safe, bottom}) {
+        Vec6 p = ctx.position();
+        p[0] = x, p[1] = y, p[2] = z;
+        ctx.check_reach(p, call.loc);
+      }
+  const bool live = ctx.input_switches().has_value();  // a check has no surface to find
+
+  struct Point {
+    double x, y, z;
+  };
+  std::vector<std::vector<Point>> rows(ny);
+  int missed = 0;
+  auto go = [&](double x, double y, double z, SpeedClass cls) {
+    Vec6 p = ctx.position();
+    p[0] = x, p[1] = y, p[2] = z;
+    ctx.line_to(p, cls, call.loc);
+  };
+  go(ctx.position()[0], ctx.position()[1], safe, SpeedClass::Jog);
+  for (int j = 0; j < ny; ++j)
+    for (int i0 = 0; i0 < nx; ++i0) {
+      const int i = j % 2 ? nx - 1 - i0 : i0;
+      const double x = x0 + i * step, y = y0 + j * step;
+      go(x, y, safe, SpeedClass::Jog);
+      Vec6 target = ctx.position();
+      target[2] = bottom;
+      const bool hit = ctx.probe(target, speed, input, call.loc);
+      missed += live && !hit;
+      rows[j].push_back({x, y, hit ? ctx.position()[2] : bottom});
+      go(x, y, safe, SpeedClass::Jog);
+    }
+  if (missed > 0)
+    ctx.warn(call.loc, fmt::format("{} of {} points found nothing down to Z {}; TC put them "
+                                   "there",
+                                   missed, nx * ny, num(bottom)));
+
+  std::string about =
+      fmt::format("{} x {} points {} apart from X {}, Y {}", nx, ny, num(step), num(x0), num(y0));
+  std::string text;
+  if (csv) {
+    text = "x,y,z\n";
+    for (const std::vector<Point>& row : rows)
+      for (const Point& p : row) text += fmt::format("{},{},{}\n", num(p.x), num(p.y), num(p.z));
+  } else {
+    PartFile f(ctx, "TC", "Copy of a probed surface",
+               {about, fmt::format("Follows the surface row by row: cut it with a ball-nose bit; "
+                                   "safe Z {}",
+                                   num(safe))});
+    f.jog_z(safe);
+    f.jog_xy(rows[0][0].x, rows[0][0].y);
+    for (const std::vector<Point>& row : rows)
+      for (const Point& p : row)
+        f.line(fmt::format("M3, {}, {}, {}", num(p.x), num(p.y), num(p.z)));
+    f.jog_z(safe);
+    text = f.text();
+  }
+  const std::string path = ctx.write_file(name, text, call.param_loc(kTcFile), true);
+  ctx.print(fmt::format("TC probed {} and wrote {}{}\n", about, path,
+                        csv ? "" : fmt::format("; run it with FP, {}", name)));
+}
+
 // ---- TS: setup -----------------------------------------------------------------------------
 
 // A setting as stored, every digit kept.
@@ -620,24 +719,32 @@ void setup(CommandContext& ctx, const CommandCall&) {
   ctx.print(out);
 }
 
-// ---- not implemented ---------------------------------------------------------------------
+// ---- TI: indexer ----------------------------------------------------------------------------
 
-// Why a tool Gantry does not have cannot run, and what to do instead.
-std::string_view why_not(std::string_view code) {
-  if (code == "TC")
-    return "it digitizes a part by touching it with a probe, and Gantry has no digitizing "
-           "routine; a part file can probe a grid itself with PZ and WRITE each point touched, "
-           "or digitize the part with other software and run the part file it makes with FP";
-  return "neither command reference says what this virtual tool does, so there is nothing to "
-         "reproduce; turn a rotary axis with MA, MB, JA or JB";
-}
+enum Ti { kTiFile, kTiPart, kTiAxis, kTiDivisions, kTiStart, kTiSafeZ };
 
-// Says so by name, as a catalogued code does, with the reason; nothing else happens.
-void not_implemented(CommandContext&, const CommandCall& call) {
-  std::string name(call.spec.name);
-  name[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(name[0])));
-  fail(call.loc, fmt::format("{} ({}) is not implemented yet in Gantry: {}", call.spec.code, name,
-                             why_not(call.spec.code)));
+// Writes a part file that runs another one at each of `divisions` equal turns of a rotary
+// axis (a column fluted all round, a pattern on each face): up to safe Z, index, run it.
+// SB3 names TI without describing it; this is what an indexer's virtual tool is for.
+void indexer(CommandContext& ctx, const CommandCall& call) {
+  const std::string part = *call.text(kTiPart);
+  std::string axis = call.text(kTiAxis).value_or("B");
+  for (char& c : axis) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const int n = whole(call, kTiDivisions, 1, 3600);
+  const double start = call.number(kTiStart).value_or(0);
+  const double safe = safe_z(ctx, call, kTiSafeZ, 0);
+  PartFile f(ctx, "TI", "Indexer",
+             {fmt::format("Runs {} at {} position{} of {}, {} degrees apart from {}", part, n,
+                          n == 1 ? "" : "s", axis, num(360.0 / n), num(start)),
+              fmt::format("Safe Z {} before each turn", num(safe))});
+  for (int k = 0; k < n; ++k) {
+    f.comment(fmt::format("Position {} of {}", k + 1, n));
+    f.jog_z(safe);
+    f.line(fmt::format("J{}, {}", axis, num(start + 360.0 * k / n)));
+    f.line(fmt::format("FP, {}", part));
+  }
+  f.jog_z(safe);
+  f.write(ctx, call, fmt::format("{} at {} positions of {}", part, n, axis));
 }
 
 }  // namespace
@@ -653,16 +760,27 @@ void add_tool_commands(std::vector<CommandSpec>& out) {
   const ParamSpec over = {"overlap", "%", false, std::nullopt,
                           "Of the bit, between neighbouring paths (blank: the profile's "
                           "cutter.pocket_overlap)."};
-  // SB3 opens these tools' screens; a part file may still pass values, which are ignored.
-  std::vector<ParamSpec> ignored;
-  for (std::string_view n : {"tool parameter 1", "tool parameter 2", "tool parameter 3",
-                             "tool parameter 4", "tool parameter 5", "tool parameter 6"})
-    ignored.push_back(
-        {n, "", false, std::nullopt, "Not used: the tool is not implemented.", ParamKind::Text});
-  out.push_back({"TC", "Tools: copy machine", T,
-                 "Digitizes a part with a probe (SB3 virtual tool). Not implemented: it stops "
-                 "the file and says why.",
-                 ignored, not_implemented, "not implemented"});
+  out.push_back(
+      {"TC",
+       "Tools: copy machine",
+       T,
+       "Digitizes a part: probes a grid straight down from safe Z (a probe on an input, as PZ "
+       "uses) and writes a part file that follows the surface row by row, or with a .csv "
+       "name the points X, Y, Z. The part must not overhang.",
+       {file_param("What to write: a part file (.sbp), or the points (.csv)."),
+        length("X start", 0.0, "Corner of the grid."),
+        length("Y start", 0.0, "Corner of the grid."),
+        length("X size", std::nullopt, "Extent of the grid along X.", true),
+        length("Y size", std::nullopt, "Extent of the grid along Y.", true),
+        length("spacing", std::nullopt, "Between points, both ways.", true),
+        length("bottom", std::nullopt, "How low each probe goes (below the part).", true),
+        length("safe Z", std::nullopt,
+               "Z above the part between points (blank: the profile's "
+               "safe Z above the bottom)."),
+        {"probe speed", "units/s", false, std::nullopt, "Blank: the Z move speed."},
+        count("input", 1.0, "The probe's input switch (1-12).")},
+       copy_machine,
+       "outline (2D) tracing, and normally closed probes: it probes a grid, closing"});
   out.push_back(
       {"TD",
        "Tools: drill press",
@@ -723,10 +841,21 @@ void add_tool_commands(std::vector<CommandSpec>& out) {
          ParamKind::Text},
         {"run last", "", false, std::nullopt, "A part file run (FP) after them.", ParamKind::Text}},
        header_writer});
-  out.push_back({"TI", "Tools: indexer", T,
-                 "A virtual tool SB3 names without describing it. Not implemented: it stops the "
-                 "file and says why.",
-                 ignored, not_implemented, "not implemented"});
+  out.push_back(
+      {"TI",
+       "Tools: indexer",
+       T,
+       "Writes a part file that runs another at equal turns of a rotary axis: up to safe Z, "
+       "turn, run it, for each division. Run the file it writes with FP.",
+       {file_param("The part file to write; a relative name goes beside this file."),
+        {"part file", "", true, std::nullopt, "The part file to run at each position.",
+         ParamKind::Text},
+        ParamSpec{"axis", "", false, std::nullopt, "A or B (blank: B).", ParamKind::Text}.one_of(
+            "A B"),
+        count("divisions", 4.0, "Equal positions in a turn."),
+        {"start angle", "deg", false, 0.0, "The first position."},
+        length("safe Z", std::nullopt, "Z before each turn (blank: the profile's safe Z).")},
+       indexer});
   out.push_back({"TS",
                  "Tools: ShopBot setup",
                  T,

@@ -362,7 +362,8 @@ void add_utility_commands(std::vector<CommandSpec>& out) {
                  "directly and has no control box: UI says so and does nothing.",
                  {},
                  install_firmware,
-                 "not implemented"});
+                 "refused by name: Gantry drives the step card directly; there is no control "
+                 "box whose firmware could be installed"});
   out.push_back({"UL",
                  "Utilities: list variables",
                  U,

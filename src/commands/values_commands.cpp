@@ -788,7 +788,7 @@ void add_values_commands(std::vector<CommandSpec>& out) {
                  "file and says so.",
                  {},
                  values_unknown,
-                 "not implemented"});
+                 "refused by name: neither reference says what VK does"});
 }
 
 }  // namespace gantry

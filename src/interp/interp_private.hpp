@@ -57,6 +57,10 @@ class Interpreter::GatedSink : public MotionSink {
   std::optional<std::array<bool, 12>> input_switches() const override {
     return out_.input_switches();
   }
+  std::optional<MotionReport> keypad(const SourceLoc& loc) override {
+    if (closed) return std::nullopt;
+    return out_.keypad(loc);
+  }
   // Opens the stream; the inputs the lines before last asked to watch are watched from here.
   void open() {
     closed = false;
@@ -93,6 +97,9 @@ class Interpreter::GatedIO : public OperatorIO {
     return out_.choose(text, buttons, default_button, title, loc);
   }
   void warn(const Diagnostic& d) override { out_.warn(d); }
+  KeypadAnswer keypad(std::string_view message, const SourceLoc& loc) override {
+    return closed ? KeypadAnswer::GoOn : out_.keypad(message, loc);
+  }
   bool closed = false;
 
  private:

@@ -8,11 +8,12 @@
 #include <cmath>       // isfinite, round
 #include <filesystem>  // path joining for FP and C#
 
-#include "../lang/scan.hpp"              // looks_like_expression
-#include "gantry/core/text_file.hpp"     // write_file_atomically
-#include "gantry/cuts/passes.hpp"        // tabs on plain moves
-#include "gantry/motion/arc_chords.hpp"  // arc_to under an uneven FP scale
-#include "interp_private.hpp"            // Frame, UserFile
+#include "../lang/scan.hpp"                  // looks_like_expression
+#include "gantry/core/text_file.hpp"         // write_file_atomically
+#include "gantry/cuts/passes.hpp"            // tabs on plain moves
+#include "gantry/interp/gcode_executor.hpp"  // G-code blocks
+#include "gantry/motion/arc_chords.hpp"      // arc_to under an uneven FP scale
+#include "interp_private.hpp"                // Frame, UserFile
 
 namespace gantry {
 
@@ -72,52 +73,58 @@ void CommandContext::send_line(const Vec6& target, SpeedClass cls, const SourceL
 }
 
 void CommandContext::arc_to(const Vec6& file_target, double cx, double cy, double sweep,
-                            SpeedClass cls, const SourceLoc& loc) {
+                            SpeedClass cls, const SourceLoc& loc, ArcPlane plane) {
+  const std::array<int, 3> ax = plane_axes(plane);
+  const int u = ax[0], v = ax[1];
   const Vec6 from = position();
   CanonMove arc;  // in file coordinates, for its chords and extreme points
   arc.kind = MoveKind::Arc;
+  arc.plane = plane;
   arc.from = from;
   arc.to = file_target;
   arc.center_x = cx;
   arc.center_y = cy;
   arc.sweep = sweep;
-  if (transform_.scale[0] != transform_.scale[1]) {
+  if (transform_.scale[u] != transform_.scale[v] ||
+      (plane != ArcPlane::XY && (state_.tabs_on || file_tabs_))) {
     // Scaling maps a chord of the circle to the chord of its image, and the chord's gap to
     // the arc grows by at most the larger scale: chords within tolerance / that scale.
-    const double scale = std::max(transform_.scale[0], transform_.scale[1]);
+    const double scale = std::max({transform_.scale[u], transform_.scale[v], 1.0});
     const std::vector<Vec6> chords = arc_chords(arc, settings_.planner.chord_tolerance / scale);
     for (const Vec6& p : chords) check_reach(p, loc);
     for (const Vec6& p : chords) line_to(p, cls, loc);
     return;
   }
   check_reach(file_target, loc);
-  const double r = std::hypot(from[0] - cx, from[1] - cy);
-  const double a0 = std::atan2(from[1] - cy, from[0] - cx);
+  const double r = std::hypot(from[u] - cx, from[v] - cy);
+  const double a0 = std::atan2(from[v] - cy, from[u] - cx);
   for (double k = std::floor(std::min(a0, a0 + sweep) / (M_PI / 2)) + 1;
-       k * M_PI / 2 < std::max(a0, a0 + sweep); ++k) {  // where X or Y is extreme
+       k * M_PI / 2 < std::max(a0, a0 + sweep); ++k) {  // where an axis of the plane is extreme
     Vec6 p = from;
-    p[0] = cx + r * std::cos(k * M_PI / 2);
-    p[1] = cy + r * std::sin(k * M_PI / 2);
+    p[u] = cx + r * std::cos(k * M_PI / 2);
+    p[v] = cy + r * std::sin(k * M_PI / 2);
     check_reach(p, loc);
   }
   if (state_.applied_offset != state_.tool_offset) line_to(from, cls, loc);  // VO changed
   const Vec6 target = transform_.to_machine(file_target);
-  const std::array<double, 3> working = {transform_.origin[0] + transform_.scale[0] * cx,
-                                         transform_.origin[1] + transform_.scale[1] * cy, sweep};
-  if (tab_move(target, &working, cls, loc)) return;
-  send_arc(target, working[0], working[1], sweep, cls, loc);
+  const std::array<double, 3> working = {transform_.origin[u] + transform_.scale[u] * cx,
+                                         transform_.origin[v] + transform_.scale[v] * cy, sweep};
+  if (plane == ArcPlane::XY && tab_move(target, &working, cls, loc)) return;
+  send_arc(target, working[0], working[1], sweep, cls, loc, plane);
 }
 
 void CommandContext::send_arc(const Vec6& target, double cx, double cy, double sweep,
-                              SpeedClass cls, const SourceLoc& loc) {
+                              SpeedClass cls, const SourceLoc& loc, ArcPlane plane) {
+  const std::array<int, 3> ax = plane_axes(plane);
   const Vec6 shift = state_.zero + state_.tool_offset + state_.machine_origin;
   CanonMove m;
   m.kind = MoveKind::Arc;
+  m.plane = plane;
   m.speed_class = cls;
   m.from = state_.position + shift;
   m.to = target + shift;
-  m.center_x = cx + shift[0];
-  m.center_y = cy + shift[1];
+  m.center_x = cx + shift[ax[0]];
+  m.center_y = cy + shift[ax[1]];
   m.sweep = sweep;
   m.speeds = cls == SpeedClass::Move ? state_.speeds.move : state_.speeds.jog;
   if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15, as line_to
@@ -126,7 +133,11 @@ void CommandContext::send_arc(const Vec6& target, double cx, double cy, double s
   if (!state_.preview) sink_.move(m);
   // MD's R and L turn from the direction of travel at the end: the tangent there.
   const double ex = m.to[0] - m.center_x, ey = m.to[1] - m.center_y;
-  state_.last_xy_move = sweep > 0 ? std::array<double, 2>{-ey, ex} : std::array<double, 2>{ey, -ex};
+  if (plane == ArcPlane::XY)
+    state_.last_xy_move =
+        sweep > 0 ? std::array<double, 2>{-ey, ex} : std::array<double, 2>{ey, -ex};
+  else if (target[0] != state_.position[0] || target[1] != state_.position[1])
+    state_.last_xy_move = {target[0] - state_.position[0], target[1] - state_.position[1]};
   state_.position = target;
   ++moves_;
 }
@@ -286,6 +297,7 @@ void CommandContext::change_units(Units to, ValueScope scope, const SourceLoc& l
   for (Vec6* v : {&st.position, &st.zero, &st.machine_origin, &st.tool_offset, &st.applied_offset,
                   &st.tool_offset_values})
     *v = v->cwiseProduct(scale);
+  st.gcode.scale(scale);
   scale_speeds(st.speeds.move, scale);
   scale_speeds(st.speeds.jog, scale);
   if (st.last_xy_move) {
@@ -353,7 +365,7 @@ std::optional<std::array<bool, 12>> CommandContext::input_switches() {
 }
 
 bool CommandContext::probe(const Vec6& file_target, double speed, int input, const SourceLoc& loc,
-                           MotionSink::Watching why) {
+                           MotionSink::Watching why, bool closing) {
   if (input < 1 || input > 12)
     fail(loc, fmt::format("input switch {} does not exist; inputs are 1 to 12", input));
   if (settings_.inputs.switch_bits[input - 1] < 0)
@@ -369,11 +381,13 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
     return false;
   }
   sink_.sync();
-  if (const std::optional<std::array<bool, 12>> in = sink_.input_switches(); in && (*in)[input - 1])
-    fail(loc, fmt::format("input switch {} is closed already (the probe is touching): move it "
-                          "clear first; nothing moved",
-                          input));
-  const std::array<InputTrigger, 1> watch{{{input, true, false}}};
+  if (const std::optional<std::array<bool, 12>> in = sink_.input_switches();
+      in && (*in)[input - 1] == closing)
+    fail(loc, fmt::format("input switch {} is {} already ({}): nothing moved", input,
+                          closing ? "closed" : "open",
+                          closing ? "the probe is touching: move it clear first"
+                                  : "the probe is not touching"));
+  const std::array<InputTrigger, 1> watch{{{input, closing, false}}};
   sink_.watch_inputs(watch, why);
   const Vec6 start = state_.position;
   const SpeedSettings speeds = state_.speeds;
@@ -398,6 +412,12 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
   }
   interp_->arm_inputs();  // the file's ON INPUT handlers again
   return hit;
+}
+
+void CommandContext::keypad(std::string_view message, const SourceLoc& loc) {
+  if (interp_->io_.keypad(message, loc) == KeypadAnswer::GoOn) return;
+  if (const std::optional<MotionReport> r = sink_.keypad(loc))
+    interp_->set_machine_position(r->machine);
 }
 
 void CommandContext::call_file(const FileCall& call, const SourceLoc& loc) {
@@ -574,6 +594,10 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
       ctx_(state_, settings_, sink_) {
   ctx_.interp_ = this;
   state_.speeds = settings.speeds;
+  gcode_ = std::make_unique<GcodeExecutor>(ctx_, io_, [this] {  // M2, M30: the file ends
+    Frame& f = frames_.back();
+    f.pc = Cursor{std::string::npos, f.pc.line};
+  });
   if (options_.files) {
     files_system_ = options_.files;
   } else {
@@ -623,6 +647,7 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
     target[2] = 0;
     ctx_.line_to(target, SpeedClass::Move, from);
   }
+  if (script->gcode()) gcode_->begin_file();
   Frame f;
   f.script = std::move(script);
   f.pc = f.script->start();
@@ -912,8 +937,9 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
     current_ = f.pc;
     std::shared_ptr<const LineParse> lp;  // only lines that are not simple commands need one
     const Statement* st = &simple_;
-    if (!parse_simple_command(f.script->line_at(f.pc, &next), f.script->name(), f.pc.line,
-                              &simple_)) {
+    const std::string_view text = f.script->line_at(f.pc, &next);
+    if (!(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
+                            : parse_simple_command(text, f.script->name(), f.pc.line, &simple_))) {
       lp = f.script->parse(f.pc, &next);
       st = lp->statement ? &*lp->statement : nullptr;
     }
@@ -1261,6 +1287,10 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
   }
   spec->handler(ctx_, call);
   values_storage_ = std::move(values);
+}
+
+void Interpreter::exec(const GcodeStmt& s, const SourceLoc& loc) {
+  gcode_->execute(s.block, loc);
 }
 
 void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {

@@ -7,6 +7,16 @@
 
 namespace gantry {
 
+KeypadAnswer OperatorIO::keypad(std::string_view message, const SourceLoc& loc) {
+  const std::string text = fmt::format(
+      "{}{}SK hands over the keypad, and there is none here (`gantry console` has "
+      "one): the file goes on without jogging",
+      message, message.empty() ? "" : " - ");
+  if (!confirm(text, loc))
+    throw OperatorStop({loc, Severity::Error, "stopped by the operator at SK"});
+  return KeypadAnswer::GoOn;
+}
+
 void ScriptedIO::print(std::string_view text) {
   if (out_)
     out_->append(text);
@@ -51,6 +61,15 @@ std::string ScriptedIO::choose(std::string_view text, const std::vector<std::str
        fmt::format("MSGBOX asks the operator (\"{}\"); run from a terminal, or with "
                    "--yes to press its default button",
                    text)});
+}
+
+KeypadAnswer ScriptedIO::keypad(std::string_view message, const SourceLoc& loc) {
+  if (yes_) return KeypadAnswer::GoOn;
+  throw NeedsOperator(
+      {loc, Severity::Error,
+       fmt::format("SK hands the keypad to the operator{}{}{}; run the file from `gantry "
+                   "console` to jog, or with --yes to go on without jogging",
+                   message.empty() ? "" : " (\"", message, message.empty() ? "" : "\")")});
 }
 
 void ScriptedIO::warn(const Diagnostic& d) {

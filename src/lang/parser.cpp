@@ -261,6 +261,7 @@ LineParse parse_line(std::string_view line, const std::shared_ptr<const std::str
     out.comment = std::string(trim(t.substr(3)));
     return out;
   }
+  if (is_gcode_line(t)) return parse_gcode_line(line, file, line_no);  // G-code in OpenSBP
   size_t e = std::min(line.size(), scan::comment_start(line));
   while (e > 0 && is_space(line[e - 1])) --e;
   size_t b = 0;

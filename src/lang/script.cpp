@@ -66,6 +66,7 @@ std::shared_ptr<const Script> Script::load(const std::string& path) {
   s->size_ = static_cast<size_t>(st.st_size);
   s->read_window(0, kWindow);
   if (s->window_.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
+  s->gcode_ = is_gcode_file(path, std::string_view(s->window_).substr(s->text_start_));
   s->index();
   return s;
 }
@@ -87,6 +88,7 @@ void Script::read_window(size_t offset, size_t len) const {
 
 std::shared_ptr<const Script> Script::from_text(std::string text, const std::string& name) {
   std::shared_ptr<Script> s(new Script(std::move(text), name));
+  s->gcode_ = is_gcode_file(name, std::string_view(s->window_).substr(s->text_start_));
   s->index();
   return s;
 }
@@ -163,11 +165,22 @@ std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
   const std::string_view text = line_at(c, next);  // also gives `next` on a hit
   if (slot.parse && slot.offset == c.offset) return slot.parse;
   slot.offset = c.offset;
-  slot.parse = std::make_shared<const LineParse>(parse_line(text, name_, c.line));
+  slot.parse = std::make_shared<const LineParse>(gcode_ ? parse_gcode_line(text, name_, c.line)
+                                                        : parse_line(text, name_, c.line));
   return slot.parse;
 }
 
 void Script::index() {
+  if (gcode_) {  // G-code has no labels: only each block's syntax
+    GcodeBlock block;
+    Diagnostic error;
+    for (Cursor c = start(), next; !at_end(c); c = next) {
+      ++lines_;
+      if (!parse_gcode_block(line_at(c, &next), name_, c.line, &block, &error))
+        errors_.push_back(error);
+    }
+    return;
+  }
   std::vector<std::pair<std::string, SourceLoc>> targets;
   Cursor c = start();
   while (!at_end(c)) {

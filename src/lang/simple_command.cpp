@@ -58,6 +58,7 @@ bool scan_line(std::string_view line, const std::shared_ptr<const std::string>* 
   const char c0 = upper(line[b]), c1 = upper(line[b + 1]);
   if (!is_letter(c1) && !literal::is_digit(c1)) return false;
   if (c0 == 'C' && literal::is_digit(c1)) return false;                    // a custom cut
+  if ((c0 == 'G' || c0 == 'N') && literal::is_digit(c1)) return false;     // G-code
   if ((c0 == 'I' && c1 == 'F') || (c0 == 'O' && c1 == 'N')) return false;  // statements
   size_t p = b + 2;
   if (p < e) {

@@ -88,6 +88,10 @@ class Controller::ForwardSink : public MotionSink {
   std::optional<std::array<bool, 12>> input_switches() const override {
     return c_.input_switches(c_.inputs_.load(std::memory_order_acquire));
   }
+  std::optional<MotionReport> keypad(const SourceLoc&) override {
+    sync();
+    return c_.keypad_session();
+  }
 
  private:
   Controller& c_;
@@ -111,6 +115,7 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
     line_.store(done, std::memory_order_relaxed);
     lines_.store(total, std::memory_order_relaxed);
     if (progress_) progress_(done, total);  // set while idle only
+    after_statement();
   });
   steps_.on_block([this] { publish(); });  // the readout moves during long segments
   feeder_thread_ = std::thread([this] { feeder_main(); });
@@ -185,6 +190,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
     estimate_s_ = estimate;
     line_ = 0;
     lines_ = script->line_count();
+    running_file_ = true;
     start_activity([this, script, typed] {
       try {
         interp_->run(script, typed);
@@ -208,7 +214,14 @@ Outcome Controller::pause() {
 }
 
 Outcome Controller::resume() {
-  return refuse_or(Request::Resume, [&] { cmd_resume_ = true; });
+  return refuse_or(Request::Resume, [&] {
+    if (step_waiting_)
+      step_waiting_ = false;  // single step: the next statement
+    else if (keypad_open_)
+      keypad_open_ = false;  // the file goes on once the last jog is at rest
+    else
+      cmd_resume_ = true;
+  });
 }
 
 Outcome Controller::stop() {
@@ -247,7 +260,11 @@ Outcome Controller::jog(const JogRequest& j) {
   {
     std::lock_guard lock(m_);
     const Verdict v = decide(state_, Request::Jog);
-    if (!v.next || busy_) return {false, fmt::format("jog: refused, {}", v.refusal), {}};
+    const bool keypad = state_ == MachineState::Keypad;
+    if (!v.next || (busy_ && !keypad))
+      return {false, fmt::format("jog: refused, {}", v.refusal), {}};
+    if (keypad && keypad_jogging_)
+      return {false, "jog: refused, the last jog is still slowing to rest", {}};
   }
   const CanonMove m = keypad_move(j);
   if (m.from == m.to) return {false, "jog: refused, the tool is at the soft limit that way", {}};
@@ -255,6 +272,12 @@ Outcome Controller::jog(const JogRequest& j) {
     return {false, fmt::format("jog: refused, {}", *why), {}};
   return refuse_or(Request::Jog, [&] {
     message_.clear();
+    if (keypad_open_) {  // the job thread waits at SK: it plays the jog
+      pending_jog_ = m;
+      keypad_jogging_ = true;
+      return;
+    }
+    running_file_ = false;
     start_activity([this, m] {
       LookAheadPlanner& p = *planner_;
       try {
@@ -272,6 +295,7 @@ Outcome Controller::jog_release() {
   return refuse_or(Request::JogRelease, [&] {
     on_hold_ = OnHold::Discard;
     feeder_.request_hold(0);
+    if (keypad_open_) state_ = MachineState::Keypad;
   });
 }
 
@@ -285,6 +309,8 @@ void Controller::wait() {
   cv_.wait(lock, [&] {
     const FeedPhase ph = feeder_.phase();
     return !busy_ || (state_ == MachineState::Paused && ph == FeedPhase::Held) ||
+           (state_ == MachineState::Paused && step_waiting_) ||
+           (state_ == MachineState::Keypad && !keypad_jogging_) ||
            (state_ == MachineState::EStop && ph == FeedPhase::Halted && !busy_);
   });
 }
@@ -305,6 +331,11 @@ Controller::Summary Controller::summary() const {
 void Controller::set_feed_override(double factor) {
   std::lock_guard lock(m_);
   feed_override_ = factor;
+  override_changed_ = true;
+}
+
+void Controller::set_single_step(bool on) {
+  single_step_ = on;
 }
 
 void Controller::on_progress(std::function<void(std::size_t, std::size_t)> f) {
@@ -319,6 +350,7 @@ ControllerStatus Controller::status() const {
     s.state = state_;
     s.message = message_;
     s.stopped_at = stopped_at_;
+    s.step_hold = step_waiting_;
   }
   s.phase = feeder_.phase();
   s.line = line_.load(std::memory_order_relaxed);
@@ -394,6 +426,69 @@ CanonMove Controller::keypad_move(const JogRequest& j) const {
 }
 
 // ---- job thread --------------------------------------------------------------------------
+
+// After each statement of a file. A new feed override goes to the planner (it re-plans what
+// it holds). Single step: the statement's motion plays out, then the file holds as Paused
+// until resume (the next statement) or stop.
+void Controller::after_statement() {
+  if (override_changed_.exchange(false)) {
+    std::lock_guard lock(m_);
+    planner_->feed_override(feed_override_);
+  }
+  if (!single_step_ || !running_file_) return;
+  forward_->sync();
+  std::unique_lock lock(m_);
+  if (state_ != MachineState::Running) return;  // homing, probing, at SK: not a step
+  state_ = MachineState::Paused;
+  step_waiting_ = true;
+  cv_.notify_all();
+  cv_.wait(lock, [&] { return !step_waiting_ || abort_ || quit_; });
+  step_waiting_ = false;
+  if (abort_ || quit_) throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
+}
+
+// SK, with the file's motion played out: the operator's jogs play here, one at a time, as
+// an activity's would, until resume closes the keypad (the last jog at rest first) or a
+// stop or E-stop ends the file.
+MotionReport Controller::keypad_session() {
+  std::unique_lock lock(m_);
+  keypad_open_ = true;
+  state_ = MachineState::Keypad;
+  cv_.notify_all();
+  while (true) {
+    cv_.wait(lock, [&] { return pending_jog_ || !keypad_open_ || abort_ || quit_; });
+    if (abort_ || quit_ || (!keypad_open_ && !pending_jog_)) break;
+    const CanonMove m = *std::exchange(pending_jog_, std::nullopt);
+    lock.unlock();
+    bool stopped = false;
+    try {
+      planner_->move(m);
+      planner_->flush();
+    } catch (const GantryError&) {  // a stop or E-stop: the file ends
+      stopped = true;
+    }
+    wait_for_motion();
+    lock.lock();
+    if (stopped || abort_) break;
+    // At rest, the jog's requests spent (as at the end of an activity).
+    feeder_.request_hold(StepGenerator::kNever);
+    on_hold_ = OnHold::Wait;
+    dropping_ = false;
+    interp_->set_machine_position(interrupted_ ? played_machine() : m.to);  // as for a jog
+    interrupted_ = false;
+    keypad_jogging_ = false;
+    if (state_ == MachineState::Jogging) state_ = MachineState::Keypad;
+    cv_.notify_all();
+  }
+  keypad_open_ = false;
+  keypad_jogging_ = false;
+  pending_jog_.reset();
+  if (abort_) throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
+  MotionReport r;  // where the jogs left the tool, exactly (a step ends on its point)
+  const ModalState& st = interp_->state();
+  r.machine = st.position + st.machine_origin + st.zero + st.applied_offset;
+  return r;
+}
 
 void Controller::start_activity(std::function<void()> work) {
   // Called under m_ with the state changed already.

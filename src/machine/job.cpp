@@ -19,6 +19,20 @@ class NullSink : public MotionSink {
   void flush() override {}
 };
 
+// The check's moves to the estimating planner (or nowhere) and to an observer.
+class TeeSink : public MotionSink {
+ public:
+  TeeSink(MotionSink& a, MotionSink& b) : a_(a), b_(b) {}
+  void move(const CanonMove& m) override { a_.move(m), b_.move(m); }
+  void flush() override { a_.flush(), b_.flush(); }
+  void settings_changed(const Settings& s) override {
+    a_.settings_changed(s), b_.settings_changed(s);
+  }
+
+ private:
+  MotionSink &a_, &b_;
+};
+
 class NullSegments : public SegmentSink {
  public:
   void segment(const PlannedSegment&) override {}
@@ -35,7 +49,9 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   NullSegments segments;
   LookAheadPlanner planner(settings, segments);
   planner.feed_override(options.feed_override);
-  MotionSink& sink = estimated_time_s ? static_cast<MotionSink&>(planner) : nothing;
+  MotionSink& planned = estimated_time_s ? static_cast<MotionSink&>(planner) : nothing;
+  TeeSink both(planned, options.check_moves ? *options.check_moves : nothing);
+  MotionSink& sink = options.check_moves ? static_cast<MotionSink&>(both) : planned;
   std::string printed;  // a check prints nothing
   ScriptedIO io(options.yes || options.operator_present, options.inputs, &printed);
   PersistentStore scratch = store.scratch_copy();  // a check may assign $variables, never saves

@@ -62,13 +62,17 @@ const std::array<std::array<Verdict, kRequests>, kMachineStates> kTable = {{
     // Homing, Probing: a file runs, as Running
     {},
     {},
+    // Keypad: the file waits at SK; the operator jogs, then resumes it
+    {no("a file waits at SK: close the keypad (resume) or stop the file first"),
+     no("the file waits at SK already"), go(S::Running), go(S::Stopping), go(S::EStop),
+     no("there is no E-stop to acknowledge"), go(S::Jogging), no("no jog is running")},
 }};
 
 }  // namespace
 
 const char* state_name(MachineState s) {
   static const char* const names[] = {"idle",  "running", "paused", "stopping", "stopped",
-                                      "estop", "jogging", "homing", "probing"};
+                                      "estop", "jogging", "homing", "probing",  "keypad"};
   return names[static_cast<int>(s)];
 }
 

@@ -6,24 +6,39 @@
 
 namespace gantry {
 
+std::array<int, 3> plane_axes(ArcPlane plane) {
+  switch (plane) {
+    case ArcPlane::ZX:
+      return {2, 0, 1};
+    case ArcPlane::YZ:
+      return {1, 2, 0};
+    case ArcPlane::XY:
+      break;
+  }
+  return {0, 1, 2};
+}
+
 double arc_radius(const CanonMove& arc) {
-  return std::hypot(arc.from[0] - arc.center_x, arc.from[1] - arc.center_y);
+  const std::array<int, 3> ax = plane_axes(arc.plane);
+  return std::hypot(arc.from[ax[0]] - arc.center_x, arc.from[ax[1]] - arc.center_y);
 }
 
 std::vector<Vec6> arc_chords(const CanonMove& arc, double tolerance) {
+  const std::array<int, 3> ax = plane_axes(arc.plane);
+  const int u = ax[0], v = ax[1];
   const double r = arc_radius(arc);
   const double sweep = std::abs(arc.sweep);
   double max_step = M_PI / 2;
   if (r > tolerance) max_step = std::min(max_step, 2 * std::acos(1 - tolerance / r));
   const int n = std::max(1, static_cast<int>(std::ceil(sweep / max_step - 1e-9)));
-  const double a0 = std::atan2(arc.from[1] - arc.center_y, arc.from[0] - arc.center_x);
+  const double a0 = std::atan2(arc.from[v] - arc.center_y, arc.from[u] - arc.center_x);
   std::vector<Vec6> out;
   out.reserve(static_cast<size_t>(n));
   for (int i = 1; i < n; ++i) {
     const double f = static_cast<double>(i) / n;
     Vec6 p = arc.from + (arc.to - arc.from) * f;  // the other axes move in proportion
-    p[0] = arc.center_x + r * std::cos(a0 + arc.sweep * f);
-    p[1] = arc.center_y + r * std::sin(a0 + arc.sweep * f);
+    p[u] = arc.center_x + r * std::cos(a0 + arc.sweep * f);
+    p[v] = arc.center_y + r * std::sin(a0 + arc.sweep * f);
     out.push_back(p);
   }
   out.push_back(arc.to);

@@ -376,6 +376,11 @@ void read_profile(TableReader root, Settings& s) {
   s.units = root.choice("units", {"in", "mm"}, "in") == "mm" ? Units::Millimetres : Units::Inches;
   s.dialect =
       root.choice("dialect", {"sb3", "fabmo"}, "sb3") == "fabmo" ? Dialect::FabMo : Dialect::SB3;
+  // A key added after profiles were written: a profile may leave it out.
+  const std::string gcode = root.optional_text("gcode_dialect", "standard");
+  if (gcode != "standard" && gcode != "wincnc")
+    root.fail("gcode_dialect", "is not allowed; use one of \"standard\", \"wincnc\"");
+  s.gcode_dialect = gcode == "wincnc" ? GcodeDialect::WinCNC : GcodeDialect::Standard;
 
   TableReader axes = root.table("axes");
   for (int i = 0; i < kAxisCount; ++i) {

@@ -24,9 +24,11 @@ const char* axis_unit_name(AxisUnit u) {
 }  // namespace
 
 toml::table settings_table(const Settings& s) {
-  toml::table root{{"name", s.name},
-                   {"units", units_name(s.units)},
-                   {"dialect", s.dialect == Dialect::FabMo ? "fabmo" : "sb3"}};
+  toml::table root{
+      {"name", s.name},
+      {"units", units_name(s.units)},
+      {"dialect", s.dialect == Dialect::FabMo ? "fabmo" : "sb3"},
+      {"gcode_dialect", s.gcode_dialect == GcodeDialect::WinCNC ? "wincnc" : "standard"}};
   toml::table axes, pins, inputs, homing;
   for (int i = 0; i < kAxisCount; ++i) {
     const std::string L(1, kAxisLetters[i]);

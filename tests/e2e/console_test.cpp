@@ -402,6 +402,10 @@ class TmuxConsole {
     return wait_for([&] { return last_line() == exact; }, seconds);
   }
   bool wait_for_prompt() { return wait_for_last("gantry>"); }
+  // A file in the console's working folder.
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_.path() / name) << text;
+  }
 
  private:
   int tmux(const std::string& args) {
@@ -493,6 +497,31 @@ TEST(ConsoleTerminal, KeypadStepModeMovesExactlyOneStepPerPress) {
   EXPECT_EQ(s[s.size() - 2], readout("idle", {2, 2.9, -0.1, 0, 0, 0})) << t.text();
 }
 
+TEST(ConsoleTerminal, SkInAFileOpensTheKeypadAndEscGoesOnFromWhereTheToolIs) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim");
+  ASSERT_TRUE(t.started());
+  t.write("sk.sbp", "MX, 1\nSK, \"Jog to the corner\"\nZY\nMY, 0.5\nMX, 2\n");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("FP, sk.sbp");
+  ASSERT_TRUE(t.wait_for_line("Jog to the corner")) << t.text();
+  const std::string step = "[keypad step 0.1000 slow] ";
+  t.keys("S");
+  ASSERT_TRUE(t.wait_for_last(step + readout("keypad", {1, 0, 0, 0, 0, 0}))) << t.text();
+  t.keys("Up");
+  ASSERT_TRUE(t.wait_for_last(step + readout("keypad", {1, 0.1, 0, 0, 0, 0}))) << t.text();
+  t.keys("Up");
+  ASSERT_TRUE(t.wait_for_last(step + readout("keypad", {1, 0.2, 0, 0, 0, 0}))) << t.text();
+  // Esc: the file goes on; ZY made the jogged-to place Y 0, so MY, 0.5 ends 0.5 above it.
+  t.keys("Escape");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {2, 0.5, 0, 0, 0, 0}))) << t.text();
+  t.line("status");
+  ASSERT_TRUE(t.wait_for([&] {
+    return t.text().find("table base X 2.0000  Y 0.7000") != std::string::npos;
+  })) << t.text();
+}
+
 TEST(ConsoleTerminal, SpacePausesALongMoveAndSpaceResumesItToTheEnd) {
   REQUIRE_TMUX();
   TmuxConsole t("--card sim --realtime");
@@ -554,8 +583,8 @@ TEST(ConsoleTerminal, AContinuousJogStopsOnceTheKeyNoLongerRepeats) {
   // At rest again, and idle: a released jog is no stopped file.
   ASSERT_TRUE(t.wait_for([&] {
     const std::string l = t.last_line();
-    return l.starts_with(prefix + "idle ") &&
-           readout_x(l.substr(prefix.size())) == 0.0 && l.find(" Y 0.0000 ") == std::string::npos;
+    return l.starts_with(prefix + "idle ") && readout_x(l.substr(prefix.size())) == 0.0 &&
+           l.find(" Y 0.0000 ") == std::string::npos;
   })) << t.text();
   const std::string l = t.last_line();
   const size_t y = l.find(" Y ");

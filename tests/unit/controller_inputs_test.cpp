@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/script.hpp"
@@ -50,6 +53,42 @@ TEST(Probe, StopsExactlyWhereTheSwitchClosed) {
   EXPECT_EQ(s.steps[kZ], touch);  // it came back to the step where the plate closed
   EXPECT_DOUBLE_EQ(m.c.modal().position[kZ], static_cast<double>(touch) / m.spu(kZ));
   EXPECT_TRUE(s.inputs[0]);  // resting on the plate
+}
+
+TEST(Probe, TcDigitizesAShapedPartIntoAFileThatFollowsIt) {
+  SimWorld w;
+  // A ramp rising 0.1 per inch of X, from -0.5 at X 0; nothing beyond X 2.4.
+  w.probe_surface = [](double x, double) { return x > 2.4 ? -5.0 : -0.5 + 0.1 * x; };
+  Machine m(w);
+  const std::string dir = ::testing::TempDir();
+  const std::string csv = dir + "/gantry_tc_points.csv", sbp = dir + "/gantry_tc_copy.sbp";
+  std::remove(csv.c_str());
+  std::remove(sbp.c_str());
+  m.run_to_end("TC, " + csv + ", 0, 0, 3, 1, 1, -1, 0.5, 1\n");
+  EXPECT_EQ(m.c.state(), MachineState::Idle) << m.c.status().message;
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header, "x,y,z");
+  int n = 0;
+  while (std::getline(in, line)) {
+    double x = 0, y = 0, z = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &x, &y, &z), 3) << line;
+    // The step where the probe closed: within one step of the surface; the last column
+    // found nothing and is at the bottom.
+    const double surface = x > 2.4 ? -1 : -0.5 + 0.1 * x;
+    EXPECT_NEAR(z, surface, 1.0 / m.spu(kZ) + 1e-4) << line;
+    ++n;
+  }
+  EXPECT_EQ(n, 8);                                  // 4 x 2 points
+  EXPECT_DOUBLE_EQ(m.c.modal().position[kZ], 0.5);  // back at safe Z
+  // The same grid as a part file: the M3 moves pass through the points.
+  m.run_to_end("TC, " + sbp + ", 0, 0, 3, 1, 1, -1, 0.5, 1\n");
+  std::ifstream part(sbp);
+  std::stringstream text;
+  text << part.rdbuf();
+  EXPECT_NE(text.str().find("M3, 1, 0, -0.4"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("M3, 3, 1, -1"), std::string::npos) << text.str();
 }
 
 TEST(Probe, WithoutContactItEndsAtItsTarget) {

@@ -11,6 +11,7 @@
 
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/script.hpp"
+#include "gantry/machine/job.hpp"
 #include "sim/sim_card.hpp"
 
 namespace gantry {
@@ -245,6 +246,164 @@ TEST(Controller, ProgressGivesTheLineTheMachineTimeAndWhatRemains) {
   EXPECT_EQ(s.playing_line, 6);  // the last motion played was line 6's jog
   EXPECT_NEAR(s.elapsed_s, m.card.time_s(), 1e-9);
   EXPECT_LT(s.remaining_s, 0.01 * s.elapsed_s);  // the estimate was the cycle time
+}
+
+}  // namespace
+}  // namespace gantry
+
+namespace gantry {
+namespace {
+
+// An operator at a console: SK hands them the keypad.
+struct KeypadIO : ScriptedIO {
+  KeypadIO() : ScriptedIO(true, {}) {}
+  KeypadAnswer keypad(std::string_view message, const SourceLoc&) override {
+    messages.emplace_back(message);
+    return KeypadAnswer::Jog;
+  }
+  std::vector<std::string> messages;
+};
+
+struct KeypadMachine {
+  Settings settings = default_settings();
+  SimCard card{settings};
+  KeypadIO io;
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  std::int64_t steps(double units, int axis = 0) const {
+    return std::llround(units * settings.axes[axis].steps_per_unit);
+  }
+};
+
+const char* kZeroAtTheKeypad =
+    "MX, 1\n"
+    "SK, \"Jog to the corner, then close the keypad\"\n"
+    "ZY\n"
+    "MY, 0.5\n"
+    "MX, 2\n";
+
+TEST(Controller, SkWaitsWhileTheOperatorJogsThenTheFileGoesOnFromThere) {
+  KeypadMachine m;
+  const Outcome o = m.c.run(Script::from_text(kZeroAtTheKeypad, "part.sbp"));
+  ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : ": " + o.errors[0].message);
+  m.c.wait();
+  ASSERT_EQ(m.c.state(), MachineState::Keypad);
+  EXPECT_EQ(m.c.status().steps[0], m.steps(1));  // the moves before SK have played
+  ASSERT_EQ(m.io.messages.size(), 1u);
+  EXPECT_EQ(m.io.messages[0], "Jog to the corner, then close the keypad");
+  EXPECT_FALSE(m.c.run(Script::from_text("MX, 3\n", "other.sbp")));
+  JogRequest j;
+  j.step = true;
+  j.direction[1] = 1;
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(m.c.jog(j)) << k;
+    m.c.wait();
+    EXPECT_EQ(m.c.state(), MachineState::Keypad) << k;
+  }
+  const double d = m.settings.display.keypad_step;
+  EXPECT_EQ(m.c.status().steps[1], m.steps(3 * d, 1));
+  ASSERT_TRUE(m.c.resume());  // closes the keypad
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Idle);
+  EXPECT_EQ(s.steps[0], m.steps(2));
+  EXPECT_EQ(s.steps[1], m.steps(3 * d + 0.5, 1));  // ZY zeroed Y where the jogs left it
+  EXPECT_EQ(m.card.steps()[1], m.steps(3 * d + 0.5, 1));
+}
+
+TEST(Controller, AStopAtSkEndsTheFileWhereTheToolIs) {
+  KeypadMachine m;
+  const Outcome o = m.c.run(Script::from_text(kZeroAtTheKeypad, "part.sbp"));
+  ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : ": " + o.errors[0].message);
+  m.c.wait();
+  ASSERT_EQ(m.c.state(), MachineState::Keypad);
+  JogRequest j;
+  j.step = true;
+  j.direction[0] = -1;
+  ASSERT_TRUE(m.c.jog(j));
+  m.c.wait();
+  EXPECT_FALSE(m.c.pause());  // refused, with a reason
+  ASSERT_TRUE(m.c.stop());
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Stopped);
+  EXPECT_EQ(s.steps[0], m.steps(1 - m.settings.display.keypad_step));
+  EXPECT_EQ(s.steps[1], 0);  // MY never ran
+  // After a stop the location is the pulses played (not the jog's commanded end).
+  EXPECT_DOUBLE_EQ(m.c.modal().position[0],
+                   static_cast<double>(s.steps[0]) / m.settings.axes[0].steps_per_unit);
+}
+
+TEST(Controller, SkWithoutAKeypadGoesOnOnlyWhenTheOperatorSaysSo) {
+  Machine m;  // --yes: SK goes on without jogging
+  const Outcome o = m.run(kZeroAtTheKeypad);
+  ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : ": " + o.errors[0].message);
+  m.c.wait();
+  EXPECT_EQ(m.c.state(), MachineState::Idle);
+  EXPECT_EQ(m.c.status().steps[1], m.steps(0.5, 1));
+  // Nobody at the machine: the check refuses the file at SK, before anything moves.
+  Settings settings = default_settings();
+  PersistentStore store;
+  JobOptions opt;
+  opt.operator_present = false;
+  const std::vector<Diagnostic> errors =
+      check_program(Script::from_text(kZeroAtTheKeypad, "part.sbp"), settings, store, opt);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].loc.line, 2);
+  EXPECT_NE(errors[0].message.find("SK hands the keypad to the operator (\"Jog to"),
+            std::string::npos)
+      << errors[0].message;
+}
+
+}  // namespace
+}  // namespace gantry
+
+namespace gantry {
+namespace {
+
+TEST(Controller, SingleStepHoldsAfterEachStatementWithItsMotionPlayed) {
+  Machine m;
+  m.c.set_single_step(true);
+  ASSERT_TRUE(m.run("MX, 1\n&a = 2\nMY, &a\nMX, 3\n"));
+  const std::vector<std::array<double, 2>> after = {{1, 0}, {1, 0}, {1, 2}};
+  for (const auto& [x, y] : after) {
+    m.c.wait();
+    const ControllerStatus s = m.c.status();
+    ASSERT_EQ(s.state, MachineState::Paused);
+    EXPECT_EQ(s.steps[0], m.steps(x));
+    EXPECT_EQ(s.steps[1], m.steps(y, 1));
+    ASSERT_TRUE(m.c.resume());
+  }
+  m.c.wait();  // the last statement holds too; a stop there ends the file
+  EXPECT_EQ(m.c.state(), MachineState::Paused);
+  ASSERT_TRUE(m.c.stop());
+  m.c.wait();
+  EXPECT_EQ(m.c.status().steps[0], m.steps(3));
+  m.c.set_single_step(false);
+  ASSERT_TRUE(m.run("MX, 0\n"));
+  m.c.wait();
+  EXPECT_EQ(m.c.state(), MachineState::Idle);
+  EXPECT_EQ(m.c.status().steps[0], 0);
+}
+
+TEST(Controller, AFeedOverrideReachesTheMovesOfTheFileRunning) {
+  // Halved from the file's first statement on (while it runs) plans as halved before it.
+  enum When { kNever, kBefore, kWhileRunning };
+  auto time_of = [](When when) {
+    Machine m;
+    if (when == kBefore) m.c.set_feed_override(0.5);
+    if (when == kWhileRunning)
+      m.c.on_progress([&](std::size_t done, std::size_t) {
+        if (done == 1) m.c.set_feed_override(0.5);
+      });
+    EXPECT_TRUE(m.run("MS, 1\nMX, 10\nMX, 0\n"));
+    m.c.wait();
+    EXPECT_EQ(m.c.status().steps[0], 0);
+    return m.c.summary().planned_time_s;
+  };
+  const double full = time_of(kNever), live = time_of(kWhileRunning);
+  EXPECT_GT(live, 1.8 * full);  // 20 in at 0.5 in/s instead of 1 in/s, ramps aside
+  EXPECT_NEAR(live, time_of(kBefore), 1e-9);
 }
 
 }  // namespace

@@ -143,7 +143,7 @@ TEST_F(HelpToolsTest, HeGivesEachCommandsParametersInPartFileOrder) {
       << printed;
   EXPECT_TRUE(std::regex_search(printed, std::regex("\n  M2  [^\n]+  X location, Y location\n")));
   EXPECT_TRUE(std::regex_search(printed, std::regex("\n  ZX  Zero X axis\n")));  // no parameters
-  EXPECT_TRUE(std::regex_search(printed, std::regex("\n  TC  [^\n]+\\[not implemented\\]\n")));
+  EXPECT_TRUE(std::regex_search(printed, std::regex("\n  MI  [^\n]+\\[not implemented\\]\n")));
   // One line per command, under its group.
   size_t lines = 0;
   for (const CommandSpec& s : CommandTable::standard().all())
@@ -470,20 +470,52 @@ TEST_F(HelpToolsTest, TsPrintsTheSetup) {
   EXPECT_NE(printed.find("Move speeds (in/s): XY 1.5, Z 0.25,"), std::string::npos) << printed;
 }
 
-TEST_F(HelpToolsTest, ToolsNotImplementedSayWhyByName) {
-  const std::pair<std::string, std::string> cases[] = {
-      {"TC", "TC (tools: copy machine) is not implemented yet in Gantry: it digitizes a part "},
-      {"TI", "TI (tools: indexer) is not implemented yet in Gantry: neither command reference "}};
-  for (const auto& [code, start] : cases) {
-    for (const std::string params : {"", ", 1500, small, 2"}) {
-      const Diagnostic d = run_error("MX, 1\n  " + code + params + "\nMX, 2\n");
-      EXPECT_TRUE(d.message.starts_with(start)) << d.message;
-      EXPECT_EQ(d.loc.line, 2);
-      EXPECT_EQ(d.loc.column, 3);
+TEST_F(HelpToolsTest, TiRunsAPartFileAtEachEqualTurnOfTheAxis) {
+  write("flute.sbp", "MX, 1\nMX, 0\n");
+  run("TI, index.sbp, flute.sbp, , 3, 30, 0.5\n");
+  EXPECT_TRUE(sink.moves.empty());
+  const std::string text = slurp(path("index.sbp"));
+  EXPECT_NE(text.find("JZ, 0.5\nJB, 30\nFP, flute.sbp\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("JB, 150\nFP, flute.sbp\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("JB, 270\nFP, flute.sbp\n"), std::string::npos) << text;
+  // Run: the flute's moves three times, each after a turn of B at safe Z.
+  const std::vector<CanonMove> moves = moves_of("index.sbp");
+  std::vector<double> turns;
+  int flutes = 0;
+  for (const CanonMove& m : moves) {
+    if (m.to[4] != m.from[4]) {
+      EXPECT_DOUBLE_EQ(m.from[2], 0.5);  // turned up at safe Z only
+      turns.push_back(m.to[4]);
     }
-    EXPECT_EQ(CommandTable::standard().find(code)->coverage, "not implemented");
+    flutes += m.to[0] == 1 && m.from[0] == 0;
   }
-  EXPECT_EQ(sink.moves.size(), 4u);  // the first MX of each run, nothing after
+  EXPECT_EQ(turns, (std::vector<double>{30, 150, 270}));
+  EXPECT_EQ(flutes, 3);
+}
+
+TEST_F(HelpToolsTest, TiErrorsAreLocated) {
+  Diagnostic d = run_error("TI, index.sbp, flute.sbp, X\n");
+  EXPECT_EQ(d.loc.line, 1);
+  EXPECT_EQ(d.loc.column, 27) << d.message;  // the axis
+  d = run_error("TI, index.sbp\n");
+  EXPECT_NE(d.message.find("part file"), std::string::npos) << d.message;
+  EXPECT_FALSE(fs::exists(path("index.sbp")));
+}
+
+TEST_F(HelpToolsTest, TcChecksTheWholeGridBeforeTheFirstProbe) {
+  const Diagnostic d = run_error("TC, copy.sbp, 20, 1, 10, 2, 0.5, -1\n");  // X to 30: off
+  EXPECT_EQ(d.loc.line, 1);
+  EXPECT_NE(d.message.find("soft limits"), std::string::npos) << d.message;
+  EXPECT_TRUE(sink.moves.empty());
+  EXPECT_FALSE(fs::exists(path("copy.sbp")));
+}
+
+TEST_F(HelpToolsTest, TcWithoutAMachineWritesTheGridAtTheBottom) {
+  // No live machine (a check, a preview): every probe reaches the bottom, quietly.
+  run("TC, points.csv, 1, 1, 1, 0.5, 0.5, -0.25, 0.5\n");
+  EXPECT_EQ(slurp(path("points.csv")),
+            "x,y,z\n1,1,-0.25\n1.5,1,-0.25\n2,1,-0.25\n2,1.5,-0.25\n1.5,1.5,-0.25\n1,1.5,-0.25\n");
+  EXPECT_TRUE(io.warnings().empty());
 }
 
 }  // namespace

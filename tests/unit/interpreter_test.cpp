@@ -760,12 +760,11 @@ TEST_F(InterpreterTest, AParameterThatIsNotANumberIsLocated) {
 
 TEST_F(InterpreterTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
   const ModalState before = interp().state();
-  const Diagnostic d = run_error("SA\n  SK, hello\nMX, 1\n");
+  const Diagnostic d = run_error("SA\n  MI, B, 1, 10\nMX, 1\n");
   EXPECT_EQ(d.loc.line, 2);
   EXPECT_EQ(d.loc.column, 3);
-  EXPECT_EQ(d.message,
-            "SK (set to keypad mode) is not implemented yet in Gantry; a file cannot hand the "
-            "keypad over yet; at the console, K opens it");
+  EXPECT_TRUE(d.message.starts_with("MI (move indexer or oscillate) cannot run on this machine"))
+      << d.message;
   EXPECT_TRUE(moves().empty());  // the file stopped there: MX never ran
   EXPECT_EQ(interp().state().position, before.position);
   EXPECT_EQ(interp().state().speeds.move.xy, before.speeds.move.xy);
@@ -793,14 +792,14 @@ TEST_F(InterpreterTest, MotorsOffTurnsEveryOutputOff) {
 }
 
 TEST_F(InterpreterTest, CheckCountsEachSuchLineAndEveryOtherError) {
-  const std::vector<Diagnostic> errors = check("MX, 1\nSK\nQQ\nTC\nMY, 2\n");
+  const std::vector<Diagnostic> errors = check("MX, 1\nMI\nQQ\nUI\nMY, 2\n");
   ASSERT_EQ(errors.size(), 3u);
   EXPECT_EQ(errors[0].loc.line, 2);
-  EXPECT_EQ(errors[0].message.rfind("SK (set to keypad mode) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[0].message.rfind("MI (move indexer or oscillate) cannot run", 0), 0u);
   EXPECT_EQ(errors[1].loc.line, 3);
   EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
   EXPECT_EQ(errors[2].loc.line, 4);
-  EXPECT_EQ(errors[2].message.rfind("TC (tools: copy machine) is not implemented yet", 0), 0u);
+  EXPECT_EQ(errors[2].message.rfind("UI (install control box firmware) cannot run", 0), 0u);
   EXPECT_EQ(moves().size(), 2u);  // the good lines still ran dry
 }
 

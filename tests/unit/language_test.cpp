@@ -814,18 +814,18 @@ TEST_F(LanguageTest, Example12DryRunStillReportsADisabledShell) {
             "--allow-shell to permit it");
 }
 
-// Example 13 — virtual tools (T commands) are not implemented yet; the variable is set.
-TEST_F(LanguageTest, Example13VirtualToolIsNotImplementedYet) {
+// Example 13 — a virtual tool with a variable parameter: TR is no command; TC (the copy
+// machine) checks its parameters like any command.
+TEST_F(LanguageTest, Example13VirtualToolTakesVariableParameters) {
   const auto script = Script::from_text("&speed = 11500\nTR, &speed\n", "part.sbp");
   EXPECT_TRUE(script->errors().empty());
   const Outcome o = execute(script);
   EXPECT_EQ(format(o.diag), "part.sbp:2:1: error: unknown command 'TR'" + kUnknownSuffix);
   expect_number("SPEED", 11500);
   EXPECT_TRUE(Script::from_text("TC, 1500, small, 2\nTC, &some_value\n", "p.sbp")->ok());
-  // TC is a known code (the copy machine tool), named as not implemented yet.
-  EXPECT_EQ(format(run_error("TC, 1500, small, 2\n"))
-                .rfind("part.sbp:1:1: error: TC (tools: copy machine) is not implemented yet", 0),
-            0u);
+  // TC is a known code (the copy machine tool); its parameter 2 is a number, not "small".
+  EXPECT_EQ(format(run_error("TC, 1500, small, 2\n")).rfind("part.sbp:1:11: error: ", 0), 0u)
+      << format(run_error("TC, 1500, small, 2\n"));
 }
 
 // Example 14 — WRITE. §7.77-79: all three forms write `M2, 23.5, 23.5`-style lines.

@@ -14,6 +14,7 @@
 #include "gantry/commands/command_table.hpp"     // CommandTable, CommandCall
 #include "gantry/interp/evaluator.hpp"           // EvalEnv
 #include "gantry/interp/file_system.hpp"         // FileSystem
+#include "gantry/interp/gcode_state.hpp"         // GcodeOffsets
 #include "gantry/interp/operator_io.hpp"         // OperatorIO
 #include "gantry/interp/persistent_store.hpp"    // PersistentStore
 #include "gantry/interp/system_variables.hpp"    // MachineSnapshot
@@ -57,6 +58,7 @@ struct ModalState {
   std::array<double, 2> cg_center_offset{0, 0};
   // SC 0 (table base system): the user system's offsets (`zero` when SC 1), set aside.
   std::optional<Vec6> user_zero;
+  GcodeOffsets gcode;  // G54..G59.3, G92, G28/G30 positions, the tool table (docs/gcode.md)
 };
 
 // How long a value command's change lasts: for good, or (VS, VU, VI, VL, SF in a part
@@ -92,6 +94,7 @@ struct FileCall {
 
 class Interpreter;
 struct InterpreterOptions;
+class GcodeExecutor;
 
 // What a command handler may touch: the modal state, the profile, and the move stream.
 class CommandContext {
@@ -135,12 +138,15 @@ class CommandContext {
   // A straight move to `target` (file coordinates). A target outside the soft limits is an
   // error at `loc`, and nothing is emitted.
   void line_to(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
-  // An arc in XY about (cx, cy) through `sweep` radians (positive counter-clockwise) to
-  // `target`, the other axes moving in proportion (file coordinates). Its extreme points
-  // are checked against the soft limits too. When FP scales X and Y differently the arc is
-  // no longer circular: it is sent as lines within the chord tolerance.
+  // An arc in `plane` about (cx, cy) (along the plane's first and second axes) through
+  // `sweep` radians (positive counter-clockwise) to `target`, the other axes moving in
+  // proportion (file coordinates). Its extreme points are checked against the soft limits
+  // too. When FP scales the plane's axes differently the arc is no longer circular, and tabs
+  // follow only XY arcs: such an arc is sent as lines within the chord tolerance.
   void arc_to(const Vec6& target, double cx, double cy, double sweep, SpeedClass cls,
-              const SourceLoc& loc);
+              const SourceLoc& loc, ArcPlane plane = ArcPlane::XY);
+  // How the running file's coordinates map to working ones (FP's proportions and offsets).
+  const Transform& transform() const { return transform_; }
   // A located error, as line_to gives, if the tool cannot pass through `point` (file
   // coordinates): outside the soft limits, or not a number. Nothing moves.
   void check_reach(const Vec6& point, const SourceLoc& loc) const;
@@ -149,9 +155,10 @@ class CommandContext {
   // where it closed (it comes to rest a little past it, then goes back). False: the move
   // reached the target; always so without a live machine (a check, a preview). An input
   // closed already is an error, as is an unwired one. Soft limits are checked for probes,
-  // not for homing (the table base is what homing finds).
+  // not for homing (the table base is what homing finds). `closing` false: the probe stops
+  // where the switch opens instead (G38.4, G38.5), and one open already is the error.
   bool probe(const Vec6& target, double speed, int input, const SourceLoc& loc,
-             MotionSink::Watching why = MotionSink::Watching::Probe);
+             MotionSink::Watching why = MotionSink::Watching::Probe, bool closing = true);
   // Homing: the tool's table base location on `axis` becomes `table_base`; working 0 keeps
   // its place on the table.
   void home_axis(int axis, double table_base);
@@ -161,6 +168,9 @@ class CommandContext {
   // The input switches 1-12 once the moves so far have played (closed: true); nullopt
   // without a live machine.
   std::optional<std::array<bool, 12>> input_switches();
+  // SK: the moves so far play out, then the operator jogs with the keypad until they close
+  // it (or, with no keypad here, confirms to go on); the location is where the tool is then.
+  void keypad(std::string_view message, const SourceLoc& loc);
   // A timed wait in the motion stream.
   void dwell(double seconds, const SourceLoc& loc);
   // The machine ramps down to rest here before the next move (MS, JS).
@@ -243,7 +253,7 @@ class CommandContext {
   // A line or an arc to `target` (working coordinates, checked), as it is: no tabs.
   void send_line(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
   void send_arc(const Vec6& target, double cx, double cy, double sweep, SpeedClass cls,
-                const SourceLoc& loc);
+                const SourceLoc& loc, ArcPlane plane = ArcPlane::XY);
   // Tabs on plain moves: sends the move with the tabs that fall on it and returns true, or
   // returns false when it is not tabbed (the caller sends it). `arc`: centre X, Y and sweep
   // (working coordinates), null for a line.
@@ -387,6 +397,7 @@ class Interpreter : private EvalEnv {
   void exec(const WarningOffStmt& s, const SourceLoc& loc);
   void exec(const PlayStmt& s, const SourceLoc& loc);
   void exec(const RegistryStmt& s, const SourceLoc& loc);
+  void exec(const GcodeStmt& s, const SourceLoc& loc);
   UserFile& user_file(const Expr& number, const SourceLoc& loc, bool must_be_open);
   std::string pause_message(const SourceLoc& loc) const;
   Value value_of(const Arg& a);
@@ -436,7 +447,8 @@ class Interpreter : private EvalEnv {
   bool stop_all_ = false;
   std::size_t executed_ = 0;
   std::function<void(std::size_t, std::size_t)> progress_;
-  std::unique_ptr<StartLine> start_;  // a start line not reached yet
+  std::unique_ptr<StartLine> start_;      // a start line not reached yet
+  std::unique_ptr<GcodeExecutor> gcode_;  // G-code's modes and parameters
 };
 
 }  // namespace gantry

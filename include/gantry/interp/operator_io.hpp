@@ -11,6 +11,10 @@
 
 namespace gantry {
 
+// SK's answer: the operator jogs with the machine's keypad and the file waits until they
+// close it (the console), or there is no keypad here and the file goes on.
+enum class KeypadAnswer { Jog, GoOn };
+
 class OperatorIO {
  public:
   virtual ~OperatorIO() = default;
@@ -27,6 +31,9 @@ class OperatorIO {
                              const SourceLoc& loc) = 0;
   // A warning during the run (PLAY not played, a CLOSE of a closed file, ...).
   virtual void warn(const Diagnostic& d) = 0;
+  // SK: the file hands the keypad to the operator. This default is a front end without a
+  // keypad: it asks to go on without jogging (confirm), and a refusal ends the run.
+  virtual KeypadAnswer keypad(std::string_view message, const SourceLoc& loc);
 };
 
 // Answers without a person: `yes` continues every PAUSE and presses a MSGBOX's default
@@ -43,6 +50,7 @@ class ScriptedIO : public OperatorIO {
   std::string choose(std::string_view text, const std::vector<std::string>& buttons,
                      size_t default_button, std::string_view title, const SourceLoc& loc) override;
   void warn(const Diagnostic& d) override;
+  KeypadAnswer keypad(std::string_view message, const SourceLoc& loc) override;
   const std::vector<Diagnostic>& warnings() const { return warnings_; }
 
  private:

@@ -30,4 +30,14 @@ bool parse_simple_command(std::string_view line, const std::shared_ptr<const std
 // Whether parse_simple_command would accept `line`: such a line has no syntax error.
 bool is_simple_command(std::string_view line);
 
+// A line of a G-code file (docs/gcode.md): a G-code block (GcodeStmt), nothing (blank,
+// comments, `%`), or the reason it is not G-code.
+LineParse parse_gcode_line(std::string_view line, const std::shared_ptr<const std::string>& file,
+                           int line_no);
+// The same without allocating for a plain block: true when `line` holds a block without error,
+// which `out` receives (pass the same Statement line after line); otherwise false, and
+// parse_gcode_line reads it.
+bool parse_gcode_statement(std::string_view line, const std::shared_ptr<const std::string>& file,
+                           int line_no, Statement* out);
+
 }  // namespace gantry

@@ -34,6 +34,8 @@ class Script {
   const std::vector<Diagnostic>& errors() const { return errors_; }  // all severities
   bool ok() const;                                                   // no errors (warnings ok)
   int line_count() const { return lines_; }
+  // A G-code file (by its extension or first line: is_gcode_file): every line is a block.
+  bool gcode() const { return gcode_; }
 
   Cursor start() const { return {text_start_, 1}; }
   bool at_end(Cursor c) const { return c.offset >= size_; }
@@ -74,6 +76,7 @@ class Script {
   std::unordered_map<std::string, Cursor> labels_;
   std::vector<Diagnostic> errors_;
   int lines_ = 0;
+  bool gcode_ = false;
 };
 
 }  // namespace gantry

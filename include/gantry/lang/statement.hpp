@@ -9,6 +9,7 @@
 
 #include "gantry/core/diagnostic.hpp"  // SourceLoc, Diagnostic
 #include "gantry/lang/expression.hpp"  // Expr, LValue
+#include "gantry/lang/gcode.hpp"       // GcodeBlock
 
 namespace gantry {
 
@@ -108,16 +109,19 @@ struct WarningOffStmt {};
 struct PlayStmt {
   Arg path;
 };
+struct GcodeStmt {  // a G-code block: a line of a G-code file, or a G-code line in OpenSBP
+  GcodeBlock block;
+};
 struct RegistryStmt {  // SetUsrVal, GetUsrVal, ... (name upper case)
   std::string name;
   Arg arg;
   std::optional<LValue> target;  // Get* statements
 };
 
-using StatementBody =
-    std::variant<CommandStmt, CustomCutStmt, LabelStmt, AssignStmt, JumpStmt, ReturnStmt, EndStmt,
-                 IfStmt, OnInputStmt, PauseStmt, PrintStmt, InputStmt, MsgBoxStmt, DialogStmt,
-                 FailStmt, OpenStmt, CloseStmt, ShellStmt, WarningOffStmt, PlayStmt, RegistryStmt>;
+using StatementBody = std::variant<CommandStmt, CustomCutStmt, LabelStmt, AssignStmt, JumpStmt,
+                                   ReturnStmt, EndStmt, IfStmt, OnInputStmt, PauseStmt, PrintStmt,
+                                   InputStmt, MsgBoxStmt, DialogStmt, FailStmt, OpenStmt, CloseStmt,
+                                   ShellStmt, WarningOffStmt, PlayStmt, RegistryStmt, GcodeStmt>;
 
 struct Statement {
   SourceLoc loc;  // where the statement starts

@@ -28,6 +28,7 @@ struct ControllerStatus {
   std::string message;            // why the last activity stopped, if it did not end
   SourceLoc stopped_at;           // the line the motion came to rest in (Stopped, Paused)
   std::array<bool, 12> inputs{};  // input switches 1-12: closed
+  bool step_hold = false;         // paused by single step, after a statement (at rest)
   // Progress of the file running (or the last one run).
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
@@ -75,6 +76,7 @@ class Controller {
   Outcome stop();
   Outcome estop();
   Outcome acknowledge();
+  // Jogs run at rest, and while a file waits at SK (Keypad): a jog from there returns there.
   Outcome jog(const JogRequest& j);
   Outcome jog_release();
   // Virtual time (tests, previews of operator timing): the next activity's Pause, Stop,
@@ -95,9 +97,15 @@ class Controller {
     double planned_time_s = 0;         // the planner's sum of segment durations
   };
   Summary summary() const;
-  // For the runs that follow: the speeds' factor (0.1-2), and a call after each statement
-  // with (line reached in the top-level file, its line count), on the job thread.
+  // The speeds' factor (0.1-2). While a file runs it reaches the moves not planned yet (the
+  // planner re-plans what it holds; what is queued for the card keeps its speed).
   void set_feed_override(double factor);
+  // Single step: after each statement of a file (its motion played out) the file holds
+  // (Paused) until resume runs the next one; stop ends it there. For the runs that follow
+  // and the one running.
+  void set_single_step(bool on);
+  // A call after each statement with (line reached in the top-level file, its line count),
+  // on the job thread.
   void on_progress(std::function<void(std::size_t, std::size_t)> f);
   MachineState state() const;
   ModalState modal() const;  // the interpreter's state (meaningful while idle)
@@ -132,7 +140,9 @@ class Controller {
   std::optional<std::string> limit_refusal(const Vec6& direction) const;
   CanonMove keypad_move(const JogRequest& j) const;
   Vec6 played_machine(const Steps6& steps) const;
-  Vec6 played_machine() const;  // the played counts now, in units
+  Vec6 played_machine() const;    // the played counts now, in units
+  MotionReport keypad_session();  // job thread: SK's wait, playing jogs
+  void after_statement();         // job thread: single step, a new feed override
 
   Settings settings_;
   Card& card_;
@@ -170,6 +180,11 @@ class Controller {
   std::atomic<bool> abort_{false};
   std::atomic<bool> interrupted_{false};  // a stop, release, halt or fault cut the motion
   std::optional<Vec6> jog_target_;        // the jog's commanded end (machine frame)
+  // SK: the file waits on the job thread, which plays the operator's jogs (pending_jog_)
+  // until resume closes the keypad (keypad_open_ false).
+  bool keypad_open_ = false;
+  std::optional<CanonMove> pending_jog_;
+  bool keypad_jogging_ = false;  // a jog from the keypad state has not come to rest
 
   mutable std::mutex m_;
   std::condition_variable cv_;
@@ -184,6 +199,9 @@ class Controller {
   CardFault fault_ = CardFault::None;
   Steps6 fault_commanded_{};  // the steps generated when the card faulted
   double feed_override_ = 1;
+  std::atomic<bool> override_changed_{false}, single_step_{false};
+  bool step_waiting_ = false;  // single step: the file holds after a statement
+  bool running_file_ = false;  // the activity is a file (not a jog)
   std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
   std::atomic<std::size_t> line_{0}, lines_{0};
   std::atomic<int> playing_line_{0};

@@ -35,6 +35,8 @@ struct JobOptions {
   const std::unordered_map<std::string, Value>* start_variables = nullptr;  // and its &variables
   // The console's command record, for a check of RP, RR and RS; null: an empty one.
   const CommandRecorder* record = nullptr;
+  // The check's moves go here as well (a preview draws them); null: nowhere.
+  MotionSink* check_moves = nullptr;
 };
 
 struct JobResult {

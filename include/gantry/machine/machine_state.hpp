@@ -18,11 +18,12 @@ enum class MachineState {
   Jogging,   // a keypad jog, continuous or a fixed step
   Homing,    // a part file (or C3) runs its homing moves towards the proximity switches
   Probing,   // a part file runs a probe move (P*), watching its input
+  Keypad,    // a part file waits at SK while the operator jogs; resume closes the keypad
 };
 
 enum class Request { Run, Pause, Resume, Stop, EStop, Acknowledge, Jog, JogRelease };
 
-inline constexpr int kMachineStates = 9;
+inline constexpr int kMachineStates = 10;
 inline constexpr int kRequests = 8;
 
 const char* state_name(MachineState s);

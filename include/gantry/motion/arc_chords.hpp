@@ -1,11 +1,16 @@
 // Arcs as chords: the points a planner runs an arc through, within a chordal tolerance.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "gantry/motion/canon_move.hpp"  // CanonMove (Arc)
 
 namespace gantry {
+
+// The axes (0 X .. 5 C) of an arc plane: its first, second and third (normal) axis.
+// XY: X, Y, Z; ZX: Z, X, Y; YZ: Y, Z, X.
+std::array<int, 3> plane_axes(ArcPlane plane);
 
 // The chord ends of `arc` after its start, the last one exactly arc.to. A chord across an
 // angle t of a circle of radius r strays from the arc by its sagitta r (1 - cos(t / 2)), so
@@ -14,7 +19,7 @@ namespace gantry {
 // a coarse tolerance still gives a shape).
 std::vector<Vec6> arc_chords(const CanonMove& arc, double tolerance);
 
-// The arc's radius (from its centre to its start, in XY).
+// The arc's radius (from its centre to its start, in its plane).
 double arc_radius(const CanonMove& arc);
 
 }  // namespace gantry

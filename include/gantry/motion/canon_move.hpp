@@ -11,26 +11,34 @@
 
 namespace gantry {
 
-// Line: a straight move. Arc: a circular move in the XY plane about `center`, through
-// `sweep` radians (positive: counter-clockwise), the other axes moving in proportion (a
-// helix). Dwell: a timed wait at rest. Stop: come to rest, then go on (MS and JS punctuate
-// the moves around them this way). Output: at rest, switch output `output` on or off (SO).
+// Line: a straight move. Arc: a circular move in `plane` (XY unless G-code's G18/G19 chose
+// another) about `center`, through `sweep` radians (positive: counter-clockwise), the other
+// axes moving in proportion (a helix). Dwell: a timed wait at rest. Stop: come to rest, then go on
+// (MS and JS punctuate the moves around them this way). Output: at rest, switch output `output` on
+// or off (SO).
 enum class MoveKind { Line, Arc, Dwell, Stop, Output };
 
 // Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
 enum class SpeedClass { Move, Jog };
+
+// The plane of an arc, named by its first and second axes; the sweep is counter-clockwise seen
+// from the positive third axis (XY: Z, ZX: Y, YZ: X), as G-code's G17, G18 and G19 define.
+enum class ArcPlane { XY, ZX, YZ };
 
 struct CanonMove {
   MoveKind kind = MoveKind::Line;
   SpeedClass speed_class = SpeedClass::Move;
   Vec6 from = Vec6::Zero();
   Vec6 to = Vec6::Zero();
-  GroupSpeeds speeds;                 // the class's speeds in force when the move was issued
-  double center_x = 0, center_y = 0;  // Arc: the centre of the circle
-  double sweep = 0;                   // Arc: signed angle, radians; 2 pi is a full circle
-  double dwell_s = 0;                 // Dwell: how long the machine waits, s
-  int output = 0;                     // Output: the switch, 1-based as SO numbers it
-  bool keypad = false;                // a keypad jog: it ramps at VR's keypad ramp rate
+  GroupSpeeds speeds;  // the class's speeds in force when the move was issued
+  // Arc: the centre of the circle along the plane's first and second axes: X, Y in the XY
+  // plane (every OpenSBP arc); Z, X in ZX; Y, Z in YZ.
+  double center_x = 0, center_y = 0;
+  ArcPlane plane = ArcPlane::XY;  // Arc: the plane the circle lies in
+  double sweep = 0;               // Arc: signed angle, radians; 2 pi is a full circle
+  double dwell_s = 0;             // Dwell: how long the machine waits, s
+  int output = 0;                 // Output: the switch, 1-based as SO numbers it
+  bool keypad = false;            // a keypad jog: it ramps at VR's keypad ramp rate
   bool output_on = false;
   SourceLoc loc;  // the statement that asked for it
 };
@@ -80,6 +88,10 @@ class MotionSink {
   virtual void watch_inputs(std::span<const InputTrigger>, Watching) {}
   // The input switches 1-12 now: closed (true) or open.
   virtual std::optional<std::array<bool, 12>> input_switches() const { return std::nullopt; }
+  // SK: plays out the moves sent so far, then the operator jogs the machine with the keypad
+  // until they close it; reports where the tool is then. A machine without a keypad reports
+  // at once.
+  virtual std::optional<MotionReport> keypad(const SourceLoc&) { return sync(); }
 };
 
 }  // namespace gantry

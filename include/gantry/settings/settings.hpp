@@ -15,6 +15,9 @@ enum class Units { Inches, Millimetres };
 // Which OpenSBP the part files are written in: SB3 (trigonometry in radians) or FabMo
 // (degrees).
 enum class Dialect { SB3, FabMo };
+// Which G-code G-code files are written in: LinuxCNC's RS274/NGC (standard) or WinCNC's
+// (docs/gcode.md, "The WinCNC dialect").
+enum class GcodeDialect { Standard, WinCNC };
 
 // One speed (or ramp speed) per group, as MS/JS/VS/VR name them: XY is a vector speed.
 struct GroupSpeeds {
@@ -192,6 +195,7 @@ struct Settings {
   std::string name;
   Units units = Units::Inches;
   Dialect dialect = Dialect::SB3;
+  GcodeDialect gcode_dialect = GcodeDialect::Standard;
   std::array<AxisSettings, kAxisCount> axes{};
   SpeedSettings speeds;
   RampSettings ramps;

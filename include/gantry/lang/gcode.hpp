@@ -1,0 +1,83 @@
+// G-code text to blocks, one physical line at a time: pure, no I/O (docs/gcode.md).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gantry/core/diagnostic.hpp"  // SourceLoc, Diagnostic
+
+namespace gantry {
+
+// One word of a block: a letter and its value. The value is a plain number, or an
+// expression (`[...]`, `#n`, a function) kept as text and evaluated when the block runs, or
+// nothing at all (WinCNC's bare axis letters, `G28 Z`).
+struct GcodeWord {
+  char letter = 0;  // upper case
+  double number = 0;
+  int expr = -1;  // index into GcodeBlock::exprs, or -1
+  bool bare = false;
+  int column = 0;  // 1-based, the letter's
+};
+
+// `#n = value` or `#<name> = value`: applied after every word of the block is read.
+struct GcodeAssign {
+  std::string target;  // "5" or "<name>" (name lower case, spaces removed)
+  double number = 0;
+  int expr = -1;  // index into GcodeBlock::exprs, or -1
+  int column = 0;
+};
+
+struct GcodeBlock {
+  std::vector<GcodeWord> words;  // in the order written; N line numbers are left out
+  std::vector<GcodeAssign> assigns;
+  std::vector<std::string> exprs;      // expression texts; each starts at exprs_column
+  std::vector<int> exprs_column;       // 1-based column of each expression's first character
+  std::optional<std::string> message;  // (MSG, text), (PRINT, text), (DEBUG, text)
+  bool empty() const { return words.empty() && assigns.empty() && !message; }
+  void clear() {
+    words.clear();
+    assigns.clear();
+    exprs.clear();
+    exprs_column.clear();
+    message.reset();
+  }
+};
+
+// Reads one line into `out` (cleared first, its storage reused: a plain block such as
+// `G1 X1.5 Y2 Z-.1` allocates nothing once the vectors have grown). Returns false with
+// `error` set when the line is not G-code; a line of only comments or `%` gives an empty
+// block.
+bool parse_gcode_block(std::string_view line, const std::shared_ptr<const std::string>& file,
+                       int line_no, GcodeBlock* out, Diagnostic* error);
+
+// Numbered (`#5`) and named (`#<depth>`) parameters, for expressions.
+class GcodeParameters {
+ public:
+  virtual ~GcodeParameters() = default;
+  // The value of parameter `n` or `name` (lower case); fails at `loc` when it has none.
+  virtual double numbered(int n, const SourceLoc& loc) const = 0;
+  virtual double named(std::string_view name, const SourceLoc& loc) const = 0;
+  virtual bool exists(std::string_view name) const = 0;
+};
+
+// The value of an expression as the block stores it (`[1 + #2]`, `#5`, `SIN[30]`): LinuxCNC's
+// operators (** * / MOD + - EQ NE GT GE LT LE AND OR XOR) and functions (ABS ACOS ASIN ATAN
+// COS EXP FIX FUP ROUND LN SIN SQRT TAN EXISTS), angles in degrees. `params` null: only
+// checks the syntax (every parameter reads 0). Errors are located at `at` plus the offset.
+double evaluate_gcode_expression(std::string_view text, const SourceLoc& at,
+                                 const GcodeParameters* params);
+
+// Whether a line of an OpenSBP file is G-code (docs/gcode.md, "G-code in OpenSBP files"):
+// it starts with G or N followed by a digit, or, on a line without commas, with M and two
+// or more digits or M and a digit followed by a G-code word (`M30`, `M3 S12000`; `M3, 1, 2`,
+// `M23, 3` and `M5` stay OpenSBP).
+bool is_gcode_line(std::string_view line);
+
+// Whether a file is G-code: by its extension (.nc .tap .gcode .ngc, any case), or, for any
+// extension but .sbp, by its first line that is not blank: `%`, `(`, `;` or a G-code line.
+bool is_gcode_file(std::string_view path, std::string_view first_text);
+
+}  // namespace gantry

@@ -1,0 +1,72 @@
+// The toolpath of a part file as a preview draws it: one small record per straight segment,
+// so a million-segment file stays near 20 MB. Shared by `gantry preview` and the console
+// window's 3D view.
+#pragma once
+
+#include <Eigen/Geometry>  // AlignedBox3f
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gantry/core/diagnostic.hpp"          // Diagnostic
+#include "gantry/interp/persistent_store.hpp"  // PersistentStore
+#include "gantry/machine/job.hpp"              // JobOptions
+#include "gantry/motion/canon_move.hpp"        // CanonMove
+#include "gantry/settings/settings.hpp"        // Settings
+
+namespace gantry {
+
+// Cut: a move at move speed (M*, C*); Jog: at jog speed (J*); Keypad: a keypad jog.
+enum class PathKind : std::uint8_t { Cut, Jog, Keypad };
+
+// One straight piece of the path. It ends at (x, y, z) (machine frame, profile units) and
+// starts where the previous one ended (the first at Toolpath::start). `line`: the source
+// line of the statement that made it (in the file that statement is in: FP and C<n> files
+// number their own lines).
+struct ToolpathSegment {
+  float x, y, z;
+  std::uint32_t line;
+  PathKind kind;
+};
+
+struct Toolpath {
+  Eigen::Vector3f start = Eigen::Vector3f::Zero();  // where the first segment starts
+  std::vector<ToolpathSegment> segments;            // arcs as chords within the chord tolerance
+  Eigen::AlignedBox3f bounds;   // of every segment, start included (empty: no segments)
+  std::size_t moves = 0;        // canonical moves (lines, arcs, dwells, stops, outputs)
+  double estimated_time_s = 0;  // the planner's cycle time (0 unless asked for)
+  // What the check found: errors (soft limits, syntax, a missing file ...) and warnings,
+  // each with its file, line and column. A move refused by the soft limits is not drawn:
+  // the tool stays where it was, as it would on the machine.
+  std::vector<Diagnostic> violations;
+  bool cancelled = false;  // ToolpathOptions::cancel stopped the load part-way
+
+  // Appends the segments of one canonical move (lines and arcs; the others only count).
+  void add(const CanonMove& m, double chord_tolerance);
+  bool has_errors() const;  // any violation of Severity::Error
+};
+
+struct ToolpathOptions {
+  // How the file is interpreted, as `gantry moves` does it: `yes` and `inputs` answer
+  // PAUSE and INPUT, `interpreter` (macros folder, dialect), `check_budget`, and
+  // `feed_override` for the estimate.
+  JobOptions job;
+  const PersistentStore* store = nullptr;  // the $variables the file reads; null: none
+  bool estimate = false;                   // also plan the moves for estimated_time_s
+  // Called every few tens of thousands of segments with the toolpath so far, on the thread
+  // that loads (it must copy what it keeps: the toolpath grows after the call returns).
+  std::function<void(const Toolpath& so_far)> progress;
+  const std::atomic<bool>* cancel = nullptr;  // set: the load stops soon, `cancelled` set
+};
+
+// Interprets a part file with no machine (as `gantry moves` does) into its toolpath.
+// Never throws on a bad file: a file that cannot be read or parsed gives violations (and
+// the segments of whatever ran). Settings give the chord tolerance and the soft limits.
+Toolpath load_toolpath(const std::string& path, const Settings& settings,
+                       const ToolpathOptions& opts = {});
+
+}  // namespace gantry

@@ -1,0 +1,149 @@
+// `gantry preview`: toolpath, picture, summary.
+#include "preview_command.hpp"
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>  // transform
+#include <cctype>     // tolower
+#include <charconv>   // from_chars
+#include <iostream>   // JSON to stdout
+
+#include "gantry/core/text_file.hpp"    // write_file_atomically
+#include "gantry/preview/material.hpp"  // carve, render_material
+#include "gantry/preview/render.hpp"    // render_lines, render_svg
+#include "gantry/preview/toolpath.hpp"  // load_toolpath
+#include "report.hpp"                   // to_json(Diagnostic)
+
+namespace gantry {
+namespace {
+
+// "WxH" with both from 16 to 8192 pixels.
+bool parse_size(const std::string& text, int& w, int& h) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) return false;
+  const char* end = text.data() + text.size();
+  const auto a = std::from_chars(text.data(), text.data() + x, w);
+  const auto b = std::from_chars(text.data() + x + 1, end, h);
+  return a.ec == std::errc{} && a.ptr == text.data() + x && b.ec == std::errc{} && b.ptr == end &&
+         w >= 16 && h >= 16 && w <= 8192 && h <= 8192;
+}
+
+std::string extension(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+CLI::App* add_preview_command(CLI::App& app, PreviewArgs& a) {
+  CLI::App* cmd = app.add_subcommand(
+      "preview",
+      "Draw a part file's toolpath to a PNG or SVG file, without a display or a machine");
+  cmd->add_option("file", a.file, "Part file (.sbp)")->required();
+  cmd->add_option("-o,--output", a.output, "Picture to write: NAME.png or NAME.svg")->required();
+  cmd->add_option("--settings", a.settings, "Machine profile (TOML)");
+  cmd->add_option("--view", a.view, "top, iso, front or side")
+      ->check(CLI::IsMember({"top", "iso", "front", "side"}));
+  cmd->add_option("--size", a.size, "Picture size in pixels, WxH (16 to 8192 each)");
+  cmd->add_flag("--material", a.material,
+                "Draw the stock as the cutter leaves it (VC's diameter) instead of the lines");
+  cmd->add_option("--cutter", a.cutter,
+                  "Cutter shape for --material: flat, ball, v (90 degrees) or v<angle>, e.g. v60");
+  cmd->add_option("--stock-top", a.stock_top,
+                  "Z of the material's surface for --material (default 0)");
+  cmd->add_flag("--json", a.json, "Print the summary as one JSON object");
+  return cmd;
+}
+
+int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions& job,
+                const PersistentStore& store) {
+  PreviewOptions opts;
+  opts.view = *parse_view(a.view);  // CLI11 checked the name
+  if (!parse_size(a.size, opts.width, opts.height)) {
+    fmt::print(stderr, "error: --size {} must be WIDTHxHEIGHT in pixels, e.g. 800x600\n", a.size);
+    return 1;
+  }
+  const std::string ext = extension(a.output);
+  if (ext != "png" && ext != "svg") {
+    fmt::print(stderr, "error: -o {}: the picture must be a .png or an .svg file\n", a.output);
+    return 1;
+  }
+  if (a.material && ext != "png") {
+    fmt::print(stderr, "error: --material draws an image: write it to a .png file\n");
+    return 1;
+  }
+  const std::optional<Cutter> cutter = parse_cutter(a.cutter, settings.cutter.diameter);
+  if (!cutter) {
+    fmt::print(stderr,
+               "error: --cutter {} must be flat, ball, v or v<angle> (0 to 180), e.g. v60\n",
+               a.cutter);
+    return 1;
+  }
+
+  ToolpathOptions topts;
+  topts.job = job;
+  topts.store = &store;
+  topts.estimate = true;
+  const Toolpath path = load_toolpath(a.file, settings, topts);
+  const bool failed = path.has_errors();
+
+  // A file that cannot be read (or makes no move for its errors) has nothing to draw.
+  const bool draw = !(failed && path.moves == 0);
+  bool written = false;
+  if (draw) {
+    if (a.material) {
+      if (path.bounds.isEmpty() || path.bounds.min().z() >= a.stock_top)
+        fmt::print(stderr,
+                   "warning: no move goes below the stock top (Z {:g}; --stock-top sets it): "
+                   "the material map shows uncut stock\n",
+                   a.stock_top);
+      const HeightMap map =
+          carve(path, *cutter, static_cast<float>(a.stock_top), std::max(opts.width, opts.height));
+      written = write_png(a.output, render_material(map, opts));
+    } else if (ext == "png") {
+      written = write_png(a.output, render_lines(path, settings, opts));
+    } else {
+      written = write_file_atomically(a.output, render_svg(path, settings, opts));
+    }
+    if (!written) fmt::print(stderr, "error: cannot write {}\n", a.output);
+  }
+
+  const char* units = units_name(settings.units);
+  const Eigen::AlignedBox3f& b = path.bounds;
+  if (a.json) {
+    nlohmann::ordered_json j;
+    j["file"] = a.file;
+    j["output"] = written ? a.output : "";
+    j["view"] = a.view;
+    j["material"] = a.material;
+    j["moves"] = path.moves;
+    j["segments"] = path.segments.size();
+    j["units"] = units;
+    if (!b.isEmpty())
+      j["bounds"] = {{"min", {b.min().x(), b.min().y(), b.min().z()}},
+                     {"max", {b.max().x(), b.max().y(), b.max().z()}}};
+    j["estimated_time_s"] = path.estimated_time_s;
+    j["violations"] = nlohmann::ordered_json::array();
+    for (const Diagnostic& d : path.violations) j["violations"].push_back(to_json(d));
+    std::cout << j.dump() << "\n";
+  } else {
+    for (const Diagnostic& d : path.violations) fmt::print(stderr, "{}\n", format(d));
+    if (!draw) return 1;
+    fmt::print("{}: {} moves, {} segments, estimated time {:.3f} s\n", a.file, path.moves,
+               path.segments.size(), path.estimated_time_s);
+    if (b.isEmpty())
+      fmt::print("bounds: none (no motion)\n");
+    else
+      fmt::print("bounds ({}): X {:.4f} to {:.4f}, Y {:.4f} to {:.4f}, Z {:.4f} to {:.4f}\n", units,
+                 b.min().x(), b.max().x(), b.min().y(), b.max().y(), b.min().z(), b.max().z());
+    if (written)
+      fmt::print("wrote {}: {} view{}\n", a.output, a.view, a.material ? ", material" : "");
+  }
+  return failed || (draw && !written) ? 1 : 0;
+}
+
+}  // namespace gantry

@@ -1,0 +1,27 @@
+// The values a live machine's runs leave in force (units, speeds, calibration), for the
+// front ends' readouts, saved to the operator's values file whenever they change (as
+// `gantry run` saves them). Shared by `gantry console` and `gantry gui`.
+#pragma once
+
+#include <mutex>
+
+#include "gantry/interp/operator_io.hpp"  // OperatorIO
+#include "machine_profile.hpp"            // MachineProfile
+
+namespace gantry {
+
+class ValuesKeeper {
+ public:
+  ValuesKeeper(const MachineProfile& p, OperatorIO& io) : profile_(p), io_(io), now_(p.settings) {}
+  // Job thread: a run ended with `s` in force.
+  void ran(const Settings& s);
+  Settings settings() const;
+
+ private:
+  const MachineProfile& profile_;
+  OperatorIO& io_;  // says when the file cannot be written
+  mutable std::mutex m_;
+  Settings now_;
+};
+
+}  // namespace gantry

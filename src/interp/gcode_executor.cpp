@@ -1,0 +1,932 @@
+// G-code's modes, codes and canned cycles, executed through CommandContext (docs/gcode.md).
+// A block runs as RS274/NGC says: its values are read, the modal groups and the words are
+// checked, then it runs in a fixed order (feed mode, F, S, T, M6, spindle, coolant, dwell,
+// plane, units, compensation, tool length, coordinate system, path mode, distance modes,
+// retract mode, G10/G28/G30/G92, motion, then M0/M1/M2/M30).
+#include "gantry/interp/gcode_executor.hpp"
+
+#include <fmt/format.h>  // messages
+
+#include <cmath>  // atan2, hypot, round
+
+#include "gantry/commands/command_table.hpp"  // home_on_switches (WinCNC's G28)
+#include "gantry/motion/arc_chords.hpp"       // plane_axes
+#include "gantry/motion/path_limits.hpp"      // nominal_path_speed
+
+namespace gantry {
+namespace {
+
+constexpr int kProbeInput = 1;  // the Z zero plate: input switch 1
+constexpr int kSpindleOutput = 1;
+constexpr int kFloodOutput = 2;  // M8
+constexpr int kMistOutput = 3;   // M7
+constexpr std::string_view kAxes = "XYZABC";
+
+// RS274/NGC's modal groups (0: non-modal). -1: not a code Gantry knows.
+int g_group(int code) {
+  switch (code) {
+    case 0:
+    case 10:
+    case 20:
+    case 30:
+    case 382:
+    case 383:
+    case 384:
+    case 385:
+    case 730:
+    case 800:
+    case 810:
+    case 820:
+    case 830:
+      return 1;
+    case 170:
+    case 180:
+    case 190:
+      return 2;
+    case 900:
+    case 910:
+      return 3;
+    case 901:
+    case 911:
+      return 4;
+    case 930:
+    case 940:
+      return 5;
+    case 200:
+    case 210:
+    case 220:
+    case 230:
+      return 6;
+    case 400:
+    case 410:
+    case 420:
+      return 7;
+    case 430:
+    case 431:
+    case 490:
+      return 8;
+    case 980:
+    case 990:
+      return 10;
+    case 540:
+    case 550:
+    case 560:
+    case 570:
+    case 580:
+    case 590:
+    case 591:
+    case 592:
+    case 593:
+      return 12;
+    case 610:
+    case 611:
+    case 640:
+      return 13;
+    case 40:
+    case 100:
+    case 280:
+    case 281:
+    case 300:
+    case 301:
+    case 530:
+    case 920:
+    case 921:
+    case 922:
+    case 923:
+      return 0;
+    default:
+      return -1;
+  }
+}
+
+int m_group(int code) {
+  switch (code) {
+    case 0:
+    case 10:
+    case 20:
+    case 300:
+      return 4;
+    case 60:
+      return 6;
+    case 30:
+    case 40:
+    case 50:
+      return 7;
+    case 70:
+    case 80:
+    case 90:
+      return 8;
+    case 620:
+    case 630:
+    case 640:
+    case 650:
+      return 5;
+    default:
+      return -1;
+  }
+}
+
+std::string code_name(char letter, int code) {
+  return code % 10 ? fmt::format("{}{}.{}", letter, code / 10, code % 10)
+                   : fmt::format("{}{}", letter, code / 10);
+}
+
+bool is_cycle(int motion) {
+  return motion == 730 || (motion >= 810 && motion <= 830);
+}
+
+// The non-modal codes whose axis words are theirs, not a motion's.
+bool takes_axis_words(int non_modal, bool wincnc) {
+  return non_modal == 100 || non_modal == 280 || non_modal == 300 || non_modal == 920 ||
+         (wincnc && (non_modal == 922 || non_modal == 40));
+}
+
+}  // namespace
+
+// One block's values: every letter but G and M at most once, the G and M codes by group.
+struct GcodeExecutor::Words {
+  std::array<double, 26> value{};
+  std::array<int, 26> column{};
+  std::uint32_t present = 0;
+  std::array<int, 16> g{};  // by group: code x10, or -1
+  std::array<int, 16> g_col{};
+  int non_modal = -1;  // group 0 other than G53
+  bool g53 = false;
+  std::array<int, 10> m{};  // by group
+  std::array<int, 10> m_col{};
+  bool m7 = false, m8 = false;  // both may be given
+  bool has(char c) const { return present & (1u << (c - 'A')); }
+  double get(char c) const { return value[c - 'A']; }
+  SourceLoc at(char c, const SourceLoc& loc) const {
+    SourceLoc l = loc;
+    l.column = column[c - 'A'];
+    return l;
+  }
+  bool any_axis() const {
+    for (char c : kAxes)
+      if (has(c)) return true;
+    return false;
+  }
+};
+
+GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end)
+    : ctx_(ctx), io_(io), end_program_(std::move(end)) {
+  begin_file();
+}
+
+void GcodeExecutor::begin_file() {
+  modes_ = Modes{};  // a file gives its own feed rate too
+  modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
+                                             ? ProgramUnits::Millimetres
+                                             : ProgramUnits::Inches;
+}
+
+// ---- parameters -------------------------------------------------------------------------
+
+double GcodeExecutor::numbered(int n, const SourceLoc&) const {
+  const ModalState& st = ctx_.state();
+  const GcodeOffsets& o = st.gcode;
+  const Vec6 k = axis_scale();
+  auto axis = [&](const Vec6& v, int base) -> std::optional<double> {
+    if (n >= base && n < base + 6) return v[n - base] / k[n - base];
+    return std::nullopt;
+  };
+  if (n <= 5000) {
+    auto it = params_.find(n);
+    return it == params_.end() ? 0 : it->second;
+  }
+  if (auto v = axis(probed_, 5061)) return *v;
+  if (n == 5070) return probe_hit_ ? 1 : 0;
+  if (auto v = axis(o.stored[0], 5161)) return *v;
+  if (auto v = axis(o.stored[1], 5181)) return *v;
+  if (auto v = axis(o.axis_offset, 5211)) return *v;
+  if (n == 5220) return o.system + 1;
+  for (int s = 0; s < 9; ++s)
+    if (auto v = axis(s == o.system ? st.zero : o.origin[s], 5221 + 20 * s)) return *v;
+  if (n == 5400) return o.tool;
+  if (n == 5403) return o.tool_length / length_scale();
+  if (auto v = axis(program_position(), 5420)) return *v;
+  return 0;
+}
+
+double GcodeExecutor::named(std::string_view name, const SourceLoc& loc) const {
+  auto it = named_.find(name);
+  if (it == named_.end())
+    fail(loc, fmt::format("#<{}> has no value yet; set it first, as #<{}> = 1", name, name));
+  return it->second;
+}
+
+bool GcodeExecutor::exists(std::string_view name) const {
+  return named_.count(name) > 0;
+}
+
+// ---- reading and checking a block -------------------------------------------------------
+
+void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words& w) {
+  const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
+  w.g.fill(-1);
+  w.m.fill(-1);
+  auto value_of = [&](double number, int expr) {
+    if (expr < 0) return number;
+    SourceLoc at = loc;
+    at.column = b.exprs_column[static_cast<size_t>(expr)];
+    return evaluate_gcode_expression(b.exprs[static_cast<size_t>(expr)], at, this);
+  };
+  for (const GcodeWord& word : b.words) {
+    SourceLoc at = loc;
+    at.column = word.column;
+    if (word.bare && !wincnc)
+      fail(at, fmt::format("{} needs a value, as in {}1.5 (a bare letter means 0 only in the "
+                           "WinCNC dialect)",
+                           word.letter, word.letter));
+    const double v = word.bare ? 0 : value_of(word.number, word.expr);
+    if (!std::isfinite(v))
+      fail(at, fmt::format("the value of {} is not a finite number", word.letter));
+    if (word.letter == 'G' || word.letter == 'M') {
+      const double tenths = v * 10;
+      const int code = static_cast<int>(std::lround(tenths));
+      if (std::abs(tenths - code) > 1e-6 || code < 0)
+        fail(at, fmt::format("{}{} is not a code: codes are whole numbers or have one decimal, "
+                             "as G38.2",
+                             word.letter, v));
+      const int group = word.letter == 'G' ? g_group(code) : m_group(code);
+      if (group < 0)
+        fail(at, fmt::format("{} is not a code Gantry knows; docs/gcode.md lists the codes it "
+                             "runs",
+                             code_name(word.letter, code)));
+      if (word.letter == 'M' && (code == 70 || code == 80)) {
+        (code == 70 ? w.m7 : w.m8) = true;
+        continue;
+      }
+      if (word.letter == 'G' && code == 530) {
+        w.g53 = true;
+        continue;
+      }
+      int& slot = word.letter == 'G' ? (group == 0 ? w.non_modal : w.g[group]) : w.m[group];
+      int& slot_col = word.letter == 'G' ? w.g_col[group] : w.m_col[group];
+      if (slot >= 0)
+        fail(at, fmt::format("{} and {} are in the same modal group: a block takes one of them",
+                             code_name(word.letter, slot), code_name(word.letter, code)));
+      slot = code;
+      slot_col = word.column;
+      continue;
+    }
+    const int i = word.letter - 'A';
+    if (w.has(word.letter))
+      fail(at, fmt::format("{} appears twice in this block; give each word once", word.letter));
+    w.present |= 1u << i;
+    w.value[i] = v;
+    w.column[i] = word.column;
+  }
+  // Parameters are set once every value of the block has been read.
+  std::vector<std::pair<const GcodeAssign*, double>> sets;
+  for (const GcodeAssign& a : b.assigns) sets.emplace_back(&a, value_of(a.number, a.expr));
+  for (const auto& [a, v] : sets) {
+    if (a->target[0] == '<')
+      named_[a->target.substr(1, a->target.size() - 2)] = v;
+    else
+      params_[std::stoi(a->target)] = v;
+  }
+}
+
+void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
+  const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
+  const int motion = w.g[1] >= 0 ? w.g[1] : modes_.motion;
+  auto code_at = [&](int group) {
+    SourceLoc l = loc;
+    l.column = w.g_col[group];
+    return l;
+  };
+  if (w.g[7] == 410 || w.g[7] == 420)
+    fail(code_at(7), fmt::format("{}: cutter radius compensation is not supported; post the "
+                                 "toolpath with the compensation applied (G40)",
+                                 code_name('G', w.g[7])));
+  const bool uses_axes = takes_axis_words(w.non_modal, wincnc);
+  if (uses_axes && w.g[1] >= 0 && w.any_axis())
+    fail(code_at(1), fmt::format("{} and {} both use the axis words; put them in separate "
+                                 "blocks",
+                                 code_name('G', w.non_modal), code_name('G', w.g[1])));
+  if (w.any_axis() && !uses_axes) {
+    if (w.g[1] == 800) fail(code_at(1), "G80 cancels the canned cycle and takes no axis words");
+    if (motion < 0) fail(loc, "axis words without a motion mode: give G0, G1, G2 or G3 first");
+  }
+  const bool arc = (motion == 20 || motion == 30) && (w.g[1] >= 0 || w.any_axis());
+  const bool moving = (w.any_axis() && !uses_axes) || (w.g[1] >= 0 && is_cycle(w.g[1]));
+  for (char c : {'I', 'J', 'K'})
+    if (w.has(c) && !arc)
+      fail(w.at(c, loc), fmt::format("{} is an arc's centre offset: it needs G2 or G3", c));
+  if (w.has('R') && !arc && !is_cycle(motion) && w.non_modal != 100)
+    fail(w.at('R', loc),
+         "R is an arc's radius or a canned cycle's retract plane: it needs G2, "
+         "G3 or G81-G83");
+  if (w.has('Q') && !(motion == 730 || motion == 830))
+    fail(w.at('Q', loc), "Q is the peck depth of G73 and G83");
+  if (w.has('H') && w.g[8] != 430)
+    fail(w.at('H', loc), "H names the tool whose length G43 applies");
+  if (w.has('D')) fail(w.at('D', loc), "D (cutter compensation) is not supported");
+  if (w.has('L') && w.non_modal != 100 && !is_cycle(motion))
+    fail(w.at('L', loc), "L goes with G10 or a canned cycle's repeats");
+  const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || arc ||
+                      w.g[13] == 640 || w.m[5] >= 0;
+  if (w.has('P') && !p_used)
+    fail(w.at('P', loc), "P goes with G4, G10, G82, G2/G3 (turns), G64 or M62-M65");
+  if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
+  if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
+    fail(loc, "G10 needs L (1 tool table, 2 or 20 coordinate system) and P");
+  if (w.g53 && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
+    fail(loc, "G53 goes with G0 or G1 only");
+  if (w.g53 && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
+    fail(loc, "G53 takes machine coordinates: it cannot be incremental (G91)");
+  if (w.m[5] >= 0 && !w.has('P'))
+    fail(loc, fmt::format("{} needs P, the output switch number", code_name('M', w.m[5])));
+  // A feed rate for every feeding move: G1 G2 G3, probes, canned cycles.
+  if (moving && motion > 0) {
+    const bool inverse = w.g[5] == 930 || (w.g[5] < 0 && modes_.inverse_time);
+    const double feed = w.has('F') ? w.get('F') : inverse ? 0 : modes_.feed;
+    if (!(feed > 0)) {
+      SourceLoc at = code_at(1);
+      if (w.g[1] < 0) at = loc;
+      fail(at,
+           fmt::format("{} needs a feed rate: give F (units per minute){}", code_name('G', motion),
+                       inverse ? "; in inverse time (G93) every feeding block needs F" : ""));
+    }
+  }
+  if (is_cycle(motion) && moving) {
+    if (!w.has('Z') && !modes_.cycle_z)
+      fail(loc, fmt::format("{} needs Z, the depth of the hole", code_name('G', motion)));
+    if (!w.has('R') && !modes_.cycle_r)
+      fail(loc, fmt::format("{} needs R, the retract plane", code_name('G', motion)));
+    if ((motion == 730 || motion == 830) && !w.has('Q') && !modes_.cycle_q)
+      fail(loc, fmt::format("{} needs Q, the peck depth", code_name('G', motion)));
+    const ArcPlane plane = w.g[2] == 180   ? ArcPlane::ZX
+                           : w.g[2] == 190 ? ArcPlane::YZ
+                           : w.g[2] == 170 ? ArcPlane::XY
+                                           : modes_.plane;
+    if (plane != ArcPlane::XY) fail(loc, "canned cycles drill along Z: select the XY plane (G17)");
+  }
+}
+
+// ---- units and coordinates --------------------------------------------------------------
+
+double GcodeExecutor::length_scale() const {
+  const Units machine = ctx_.settings().units;
+  switch (modes_.units) {
+    case ProgramUnits::Inches:
+      return units_factor(Units::Inches, machine);
+    case ProgramUnits::Millimetres:
+      return units_factor(Units::Millimetres, machine);
+    case ProgramUnits::Centimetres:
+      break;
+  }
+  return 10 * units_factor(Units::Millimetres, machine);
+}
+
+Vec6 GcodeExecutor::axis_scale() const {
+  const double lin = length_scale();
+  Vec6 k;
+  k << lin, lin, lin, 1, 1, 1;
+  for (int i = 0; i < 3; ++i)
+    if (ctx_.settings().display.rotary_units[i] != AxisUnit::Degrees) k[3 + i] = lin;
+  return k;
+}
+
+Vec6 GcodeExecutor::program_position() const {
+  Vec6 p = ctx_.position() - ctx_.state().gcode.axis_offset;
+  p[2] -= ctx_.state().gcode.tool_length;
+  return p;
+}
+
+Vec6 GcodeExecutor::to_file(const Vec6& program) const {
+  Vec6 f = program + ctx_.state().gcode.axis_offset;
+  f[2] += ctx_.state().gcode.tool_length;
+  return f;
+}
+
+Vec6 GcodeExecutor::axis_target(const Words& w, const Vec6& from, bool incremental) const {
+  const Vec6 k = axis_scale();
+  Vec6 t = from;
+  for (int a = 0; a < kAxisCount; ++a)
+    if (w.has(kAxes[static_cast<size_t>(a)]))
+      t[a] = (incremental ? from[a] : 0) + w.get(kAxes[static_cast<size_t>(a)]) * k[a];
+  return t;
+}
+
+// The tool stays where it is on the table; its working location follows the new zero.
+void GcodeExecutor::set_zero(const Vec6& zero) {
+  ModalState& st = ctx_.state();
+  st.position += st.zero - zero;
+  st.zero = zero;
+}
+
+void GcodeExecutor::select_system(int n) {
+  GcodeOffsets& o = ctx_.state().gcode;
+  if (n == o.system) return;
+  o.origin[static_cast<size_t>(o.system)] = ctx_.state().zero;
+  set_zero(o.origin[static_cast<size_t>(n)]);
+  o.system = n;
+}
+
+// The path speed of a feeding move, machine units per second.
+double GcodeExecutor::feed_for(const Words& w, double length, const SourceLoc& loc) const {
+  if (!modes_.inverse_time) return modes_.feed;
+  if (!(length > 0)) return modes_.feed > 0 ? modes_.feed : 1;
+  (void)loc;
+  return length * w.get('F') / 60;  // F: moves per minute
+}
+
+// A straight move at `speed` (feed, units/s) or at jog speed; G61 stops after it.
+void GcodeExecutor::line(const Vec6& target, SpeedClass cls, double speed, const SourceLoc& loc) {
+  ModalState& st = ctx_.state();
+  if (cls == SpeedClass::Jog) {
+    ctx_.line_to(to_file(target), cls, loc);
+  } else {
+    // F is the speed along the path: the groups' speeds are scaled so that the move's
+    // nominal path speed (the planner's) is exactly F.
+    const double per_unit = nominal_path_speed(target - program_position(), {1, 1, 1, 1, 1});
+    const double g = per_unit > 0 ? speed / per_unit : speed;
+    const SpeedSettings saved = st.speeds;
+    st.speeds.move = {g, g, g, g, g};
+    try {
+      ctx_.line_to(to_file(target), cls, loc);
+    } catch (...) {
+      st.speeds = saved;
+      throw;
+    }
+    st.speeds = saved;
+  }
+  if (modes_.exact_stop) ctx_.come_to_rest(loc);
+}
+
+// ---- running a block --------------------------------------------------------------------
+
+void GcodeExecutor::execute(const GcodeBlock& block, const SourceLoc& loc) {
+  Words w;
+  read_words(block, loc, w);
+  check_words(w, loc);
+  if (block.message) ctx_.print(*block.message + "\n");
+  run(w, loc);
+}
+
+void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
+  const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
+  ModalState& st = ctx_.state();
+  GcodeOffsets& o = st.gcode;
+  if (w.g[5] >= 0) modes_.inverse_time = w.g[5] == 930;
+  if (w.has('F') && !modes_.inverse_time) {
+    if (w.get('F') < 0) fail(w.at('F', loc), "F, the feed rate, cannot be negative");
+    modes_.feed = w.get('F') * length_scale() / 60;
+  }
+  if (w.has('S') && w.get('S') < 0)
+    fail(w.at('S', loc), "S, the spindle speed, cannot be negative");
+  if (w.has('T')) {
+    const double t = w.get('T');
+    if (t != std::round(t) || t < 0)
+      fail(w.at('T', loc), fmt::format("T{} is not a tool number (a whole number, 0 or more)", t));
+    selected_tool_ = static_cast<int>(t);
+  }
+  if (w.m[6] == 60 && selected_tool_ != o.tool) {  // M6
+    ctx_.come_to_rest(loc);
+    if (!io_.confirm(fmt::format("Change to tool {} (M6), then continue", selected_tool_), loc))
+      throw OperatorStop({loc, Severity::Error, "stopped by the operator at M6"});
+    o.tool = selected_tool_;
+  }
+  if (w.m[7] == 40)
+    fail(loc,
+         "M4 (spindle counter-clockwise) is not available: output switch 1 runs the "
+         "spindle one way only; use M3");
+  if (w.m[7] >= 0) {
+    const bool on = w.m[7] == 30;
+    if (((st.outputs >> (kSpindleOutput - 1)) & 1u) != static_cast<unsigned>(on))
+      ctx_.set_output(kSpindleOutput, on, loc);
+  }
+  auto output = [&](int n, bool on) {
+    if (((st.outputs >> (n - 1)) & 1u) != static_cast<unsigned>(on)) ctx_.set_output(n, on, loc);
+  };
+  if (w.m7) output(kMistOutput, true);
+  if (w.m8) output(kFloodOutput, true);
+  if (w.m[8] == 90) {
+    output(kMistOutput, false);
+    output(kFloodOutput, false);
+  }
+  if (w.m[5] >= 0) {  // M62-M65: output switch P on or off
+    const double p = w.get('P');
+    if (p != std::round(p) || p < 1 || p > 12)
+      fail(w.at('P', loc), fmt::format("output switch {} does not exist; switches are 1 to 12", p));
+    ctx_.set_output(static_cast<int>(p), w.m[5] == 620 || w.m[5] == 640, loc);  // as SO: always
+  }
+  if (w.non_modal == 40) {  // G4
+    if (wincnc) {
+      if (!w.has('X')) {
+        ctx_.come_to_rest(loc);
+        if (!io_.confirm("G4: press Enter to continue", loc))
+          throw OperatorStop({loc, Severity::Error, "stopped by the operator at G4"});
+      } else {
+        ctx_.dwell(w.get('X'), loc);
+      }
+    } else {
+      const double p = w.get('P');
+      if (p < 0) fail(w.at('P', loc), "G4's time P cannot be negative");
+      if (p == 0)
+        ctx_.come_to_rest(loc);
+      else
+        ctx_.dwell(p, loc);
+    }
+  }
+  if (w.g[2] >= 0)
+    modes_.plane = w.g[2] == 170 ? ArcPlane::XY : w.g[2] == 180 ? ArcPlane::ZX : ArcPlane::YZ;
+  if (w.g[6] >= 0) {
+    const ProgramUnits was = modes_.units;
+    if (w.g[6] == 200) modes_.units = ProgramUnits::Inches;
+    if (w.g[6] == 210)
+      modes_.units = wincnc ? ProgramUnits::Centimetres : ProgramUnits::Millimetres;
+    if (w.g[6] == 220) {
+      if (!wincnc) fail(loc, "G22 is WinCNC's millimetres; in standard G-code G21 is millimetres");
+      modes_.units = ProgramUnits::Millimetres;
+    }
+    if (w.g[6] == 230) {
+      if (!wincnc) fail(loc, "G23 (WinCNC: the previous units) is not standard G-code");
+      modes_.units = modes_.previous_units;
+    }
+    if (modes_.units != was) modes_.previous_units = was;
+  }
+  if (w.g[8] == 430) {
+    const int h = w.has('H') ? static_cast<int>(std::lround(w.get('H'))) : o.tool;
+    if (w.has('H') && (w.get('H') != h || h < 0))
+      fail(w.at('H', loc), fmt::format("H{} is not a tool number", w.get('H')));
+    const auto it = o.tools.find(h);
+    if (h != 0 && it == o.tools.end())
+      fail(w.has('H') ? w.at('H', loc) : loc,
+           fmt::format("tool {} is not in the tool table; give its length first with G10 L1 P{} "
+                       "Z<length>",
+                       h, h));
+    o.tool_length = h == 0 ? 0 : it->second.length;
+  } else if (w.g[8] == 431) {
+    if (!w.has('Z')) fail(loc, "G43.1 needs Z, the tool length offset");
+    o.tool_length = w.get('Z') * length_scale();
+  } else if (w.g[8] == 490) {
+    o.tool_length = 0;
+  }
+  if (w.g[12] >= 0) {
+    const int code = w.g[12];
+    select_system(code <= 590 ? (code - 540) / 10 : 6 + (code - 591));
+  }
+  if (w.g[13] >= 0) modes_.exact_stop = w.g[13] != 640;
+  if (w.g[3] >= 0) modes_.incremental = w.g[3] == 910;
+  if (w.g[4] >= 0) modes_.arc_absolute = w.g[4] == 901;
+  if (w.g[10] >= 0) modes_.retract_to_r = w.g[10] == 990;
+  if (w.non_modal > 40) non_modal(w, w.non_modal, loc);
+  motion(w, loc);
+  if (w.m[4] == 0) {  // M0
+    ctx_.come_to_rest(loc);
+    if (!io_.confirm("Paused (M0): continue?", loc))
+      throw OperatorStop({loc, Severity::Error, "stopped by the operator at M0"});
+  }
+  if (w.m[4] == 20 || w.m[4] == 300) end_program(loc);
+}
+
+void GcodeExecutor::end_program(const SourceLoc& loc) {
+  ModalState& st = ctx_.state();
+  for (int n : {kSpindleOutput, kFloodOutput, kMistOutput})
+    if ((st.outputs >> (n - 1)) & 1u) ctx_.set_output(n, false, loc);
+  select_system(0);
+  const ProgramUnits units = modes_.units;
+  const double feed = modes_.feed;
+  modes_ = Modes{};
+  modes_.motion = 10;
+  modes_.units = modes_.previous_units = units;
+  modes_.feed = feed;
+  end_program_();
+}
+
+// G10, G28, G30, G92: coordinate data and stored positions.
+void GcodeExecutor::non_modal(const Words& w, int code, const SourceLoc& loc) {
+  const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
+  ModalState& st = ctx_.state();
+  GcodeOffsets& o = st.gcode;
+  const Vec6 k = axis_scale();
+  switch (code) {
+    case 100:
+      return coordinate_data(w, loc);
+    case 280:
+    case 300: {
+      if (wincnc && code == 280) {  // WinCNC: G28 homes the machine
+        if (w.any_axis())
+          fail(loc,
+               "G28 with axes is not supported: Gantry homes every axis of the profile's "
+               "homing order (G28 alone, or C3)");
+        return home_on_switches(ctx_, loc);
+      }
+      const Vec6 here = program_position();
+      if (w.any_axis()) line(axis_target(w, here, modes_.incremental), SpeedClass::Jog, 0, loc);
+      // The stored position (table base) in program coordinates, for the axes given or all.
+      const Vec6& stored = o.stored[code == 280 ? 0 : 1];
+      Vec6 working = st.position;
+      for (int a = 0; a < kAxisCount; ++a)
+        if (!w.any_axis() || w.has(kAxes[static_cast<size_t>(a)]))
+          working[a] = stored[a] - st.zero[a];
+      Vec6 file = ctx_.transform().to_file(working) - o.axis_offset;
+      file[2] -= o.tool_length;
+      line(file, SpeedClass::Jog, 0, loc);
+      return;
+    }
+    case 281:
+    case 301:
+      o.stored[code == 281 ? 0 : 1] = st.position + st.zero;
+      return;
+    case 920: {
+      if (wincnc && !w.any_axis()) {  // WinCNC: G92 alone restores machine coordinates
+        o.axis_offset.setZero();
+        return;
+      }
+      if (!w.any_axis()) fail(loc, "G92 needs the axes to set, as G92 X0 Y0");
+      const Vec6 file = ctx_.position();
+      for (int a = 0; a < kAxisCount; ++a)
+        if (w.has(kAxes[static_cast<size_t>(a)]))
+          o.axis_offset[a] =
+              file[a] - (a == 2 ? o.tool_length : 0) - w.get(kAxes[static_cast<size_t>(a)]) * k[a];
+      o.axis_offset_saved = o.axis_offset;
+      return;
+    }
+    case 921:
+      o.axis_offset.setZero();
+      o.axis_offset_saved.setZero();
+      return;
+    case 922:
+      if (wincnc) {  // WinCNC: add to the offsets (G92.2 Z-.01 cuts .01 deeper)
+        for (int a = 0; a < kAxisCount; ++a)
+          if (w.has(kAxes[static_cast<size_t>(a)]))
+            o.axis_offset[a] -= w.get(kAxes[static_cast<size_t>(a)]) * k[a];
+        o.axis_offset_saved = o.axis_offset;
+        return;
+      }
+      o.axis_offset.setZero();
+      return;
+    case 923:
+      o.axis_offset = o.axis_offset_saved;
+      return;
+    default:
+      return;
+  }
+}
+
+void GcodeExecutor::coordinate_data(const Words& w, const SourceLoc& loc) {
+  ModalState& st = ctx_.state();
+  GcodeOffsets& o = st.gcode;
+  const Vec6 k = axis_scale();
+  const double l = w.get('L'), p = w.get('P');
+  if (l == 1) {
+    if (p != std::round(p) || p < 1)
+      fail(w.at('P', loc), fmt::format("G10 L1: P{} is not a tool number (1 or more)", p));
+    GcodeTool& t = o.tools[static_cast<int>(p)];
+    if (w.has('Z')) t.length = w.get('Z') * length_scale();
+    if (w.has('R')) t.radius = w.get('R') * length_scale();
+    return;
+  }
+  if (l != 2 && l != 20)
+    fail(w.at('L', loc), fmt::format("G10 L{} is not supported; use L1 (tool table), L2 or L20 "
+                                     "(coordinate systems)",
+                                     l));
+  if (p != std::round(p) || p < 0 || p > 9)
+    fail(w.at('P', loc), fmt::format("G10: P{} is not a coordinate system: 1 (G54) to 9 (G59.3), "
+                                     "or 0 for the one in use",
+                                     p));
+  if (w.has('R')) fail(w.at('R', loc), "G10: rotated coordinate systems (R) are not supported");
+  const int n = p == 0 ? o.system : static_cast<int>(p) - 1;
+  Vec6 origin = n == o.system ? st.zero : o.origin[static_cast<size_t>(n)];
+  const Transform& tr = ctx_.transform();
+  for (int a = 0; a < kAxisCount; ++a) {
+    if (!w.has(kAxes[static_cast<size_t>(a)])) continue;
+    const double v = w.get(kAxes[static_cast<size_t>(a)]) * k[a];
+    if (l == 2) {
+      origin[a] = v;
+    } else {  // L20: the tool's location reads v in system n
+      const double file = v + o.axis_offset[a] + (a == 2 ? o.tool_length : 0);
+      origin[a] = st.position[a] + st.zero[a] - (tr.origin[a] + tr.scale[a] * file);
+    }
+  }
+  if (n == o.system)
+    set_zero(origin);
+  else
+    o.origin[static_cast<size_t>(n)] = origin;
+}
+
+void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
+  const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
+  const int was = modes_.motion;
+  if (w.g[1] >= 0) modes_.motion = w.g[1] == 800 ? -1 : w.g[1];
+  const int m = modes_.motion;
+  if (!is_cycle(m) || !is_cycle(was)) {  // a new series of cycles (or none)
+    modes_.cycle_z.reset();
+    modes_.cycle_r.reset();
+    modes_.cycle_q.reset();
+    modes_.cycle_p = 0;
+    modes_.cycle_start_z = program_position()[2];
+  }
+  if (takes_axis_words(w.non_modal, wincnc) || m < 0) return;
+  if (!w.any_axis() && !(w.g[1] >= 0 && is_cycle(m))) return;  // nothing to move
+  if (w.g53) {
+    const ModalState& st = ctx_.state();
+    const Vec6 k = axis_scale();
+    Vec6 working = st.position;
+    for (int a = 0; a < kAxisCount; ++a)
+      if (w.has(kAxes[static_cast<size_t>(a)]))
+        working[a] = w.get(kAxes[static_cast<size_t>(a)]) * k[a] - st.zero[a];
+    Vec6 program = ctx_.transform().to_file(working) - st.gcode.axis_offset;
+    program[2] -= st.gcode.tool_length;
+    const double len = (program - program_position()).norm();
+    line(program, m == 0 ? SpeedClass::Jog : SpeedClass::Move, feed_for(w, len, loc), loc);
+    return;
+  }
+  switch (m) {
+    case 0:
+    case 10: {
+      const Vec6 target = axis_target(w, program_position(), modes_.incremental);
+      const double len = (target - program_position()).norm();
+      line(target, m == 0 ? SpeedClass::Jog : SpeedClass::Move, feed_for(w, len, loc), loc);
+      return;
+    }
+    case 20:
+    case 30:
+      arc(w, m == 20, loc);
+      if (wincnc) modes_.motion = was == 20 || was == 30 ? 10 : was;  // arcs are not modal
+      return;
+    case 382:
+    case 383:
+    case 384:
+    case 385:
+      return probe(w, loc);
+    default:
+      return canned_cycle(w, loc);
+  }
+}
+
+void GcodeExecutor::arc(const Words& w, bool clockwise, const SourceLoc& loc) {
+  const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
+  const std::array<int, 3> ax = plane_axes(modes_.plane);
+  const int u = ax[0], v = ax[1];
+  const Vec6 start = program_position();
+  const Vec6 end = axis_target(w, start, modes_.incremental);
+  const double lin = length_scale();
+  const char normal_offset = "IJK"[ax[2]];
+  if (ax[2] < 3 && w.has(normal_offset))
+    fail(w.at(normal_offset, loc),
+         fmt::format("{} is not a centre offset in this plane; the plane's are {} and {}",
+                     normal_offset, "IJK"[u], "IJK"[v]));
+  const char iu = "IJK"[u], iv = "IJK"[v];
+  const bool offsets = w.has(iu) || w.has(iv);
+  const double du = end[u] - start[u], dv = end[v] - start[v];
+  const double chord = std::hypot(du, dv);
+  const bool full = chord < 1e-9 * std::max(1.0, lin);
+  double cu = 0, cv = 0;
+  if (w.has('R')) {
+    if (offsets) fail(w.at('R', loc), "an arc takes either a radius R or centre offsets, not both");
+    if (full) fail(w.at('R', loc), "a full circle cannot be given by its radius: use I, J or K");
+    const double r = w.get('R') * lin;
+    if (std::abs(r) * 2 < chord * (1 - 1e-9))
+      fail(w.at('R', loc), fmt::format("radius {} is too small: the end point is {} from the "
+                                       "start",
+                                       std::abs(w.get('R')), chord / lin));
+    const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
+    // The short arc (R > 0) has its centre on the right of the travel going clockwise.
+    const double side = (clockwise ? 1 : -1) * (r > 0 ? 1 : -1);
+    cu = start[u] + du / 2 + side * h * dv / chord;
+    cv = start[v] + dv / 2 - side * h * du / chord;
+  } else {
+    if (!offsets && !wincnc)
+      fail(loc, fmt::format("{} needs its centre: offsets {} and {}, or a radius R",
+                            clockwise ? "G2" : "G3", iu, iv));
+    std::array<double, 3>& last = modes_.last_ijk;
+    const double ou = w.has(iu) ? w.get(iu) * lin : wincnc ? last[static_cast<size_t>(u)] : 0;
+    const double ov = w.has(iv) ? w.get(iv) * lin : wincnc ? last[static_cast<size_t>(v)] : 0;
+    last[static_cast<size_t>(u)] = ou;
+    last[static_cast<size_t>(v)] = ov;
+    const bool absolute = modes_.arc_absolute && !wincnc;
+    cu = absolute ? ou : start[u] + ou;
+    cv = absolute ? ov : start[v] + ov;
+    const double r0 = std::hypot(start[u] - cu, start[v] - cv);
+    const double r1 = std::hypot(end[u] - cu, end[v] - cv);
+    if (!(r0 > 1e-9 * std::max(1.0, lin)))
+      fail(loc, "the arc's centre is its start point: check I, J and K");
+    const double tolerance =
+        std::max(0.0005 * units_factor(Units::Inches, ctx_.settings().units), 0.001 * r0);
+    if (std::abs(r1 - r0) > tolerance)
+      fail(loc, fmt::format("the arc's end is {:.4f} from its centre but its start is {:.4f}: "
+                            "the radii differ by more than {:.4f}; check the end point and I, J, "
+                            "K (and G90.1/G91.1)",
+                            r1 / lin, r0 / lin, tolerance / lin));
+  }
+  const double a0 = std::atan2(start[v] - cv, start[u] - cu);
+  const double a1 = std::atan2(end[v] - cv, end[u] - cu);
+  double sweep = a1 - a0;
+  if (clockwise) {
+    if (full || sweep >= 0) sweep -= 2 * M_PI;
+    if (full && sweep < -2 * M_PI) sweep += 2 * M_PI;
+  } else {
+    if (full || sweep <= 0) sweep += 2 * M_PI;
+    if (full && sweep > 2 * M_PI) sweep -= 2 * M_PI;
+  }
+  if (full) sweep = clockwise ? -2 * M_PI : 2 * M_PI;
+  if (w.has('P')) {
+    const double turns = w.get('P');
+    if (turns != std::round(turns) || turns < 1)
+      fail(w.at('P', loc), fmt::format("P{} is not a number of turns (1 or more)", turns));
+    sweep += (clockwise ? -2 : 2) * M_PI * (turns - 1);
+  }
+  const double r = std::hypot(start[u] - cu, start[v] - cv);
+  Vec6 rest = end - start;
+  rest[u] = rest[v] = 0;
+  const double length = std::hypot(r * sweep, rest.norm());
+  const double speed = feed_for(w, length, loc);
+  Vec6 centre = Vec6::Zero();
+  centre[u] = cu;
+  centre[v] = cv;
+  const Vec6 centre_file = to_file(centre);
+  ModalState& st = ctx_.state();
+  const SpeedSettings saved = st.speeds;
+  st.speeds.move = {speed, speed, speed, speed, speed};
+  try {
+    ctx_.arc_to(to_file(end), centre_file[u], centre_file[v], sweep, SpeedClass::Move, loc,
+                modes_.plane);
+  } catch (...) {
+    st.speeds = saved;
+    throw;
+  }
+  st.speeds = saved;
+  if (modes_.exact_stop) ctx_.come_to_rest(loc);
+}
+
+void GcodeExecutor::probe(const Words& w, const SourceLoc& loc) {
+  const int code = modes_.motion;
+  const Vec6 start = program_position();
+  const Vec6 target = axis_target(w, start, modes_.incremental);
+  if (target == start) fail(loc, "the probe's target is where the tool is: nothing to probe");
+  const bool closing = code == 382 || code == 383;
+  const double speed = feed_for(w, (target - start).norm(), loc);
+  probe_hit_ =
+      ctx_.probe(to_file(target), speed, kProbeInput, loc, MotionSink::Watching::Probe, closing);
+  probed_ = program_position();
+  if (!probe_hit_ && (code == 382 || code == 384) && ctx_.input_switches())
+    fail(loc,
+         fmt::format("{}: the probe reached its target without the switch {}; nothing was "
+                     "measured (G38.{} goes on without an error)",
+                     code_name('G', code), closing ? "closing" : "opening", code == 382 ? 3 : 5));
+}
+
+// G73, G81, G82, G83 in the XY plane (docs/gcode.md, "Canned cycles").
+void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
+  const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
+  const int code = modes_.motion;
+  const double lin = length_scale();
+  if (w.has('Z')) modes_.cycle_z = w.get('Z') * lin;
+  if (w.has('R')) modes_.cycle_r = w.get('R') * lin;
+  if (w.has('Q')) {
+    if (!(w.get('Q') > 0)) fail(w.at('Q', loc), "Q, the peck depth, must be above 0");
+    modes_.cycle_q = w.get('Q') * lin;
+  }
+  if (w.has('P')) modes_.cycle_p = wincnc ? w.get('P') / 1000 : w.get('P');
+  int repeats = 1;
+  if (w.has('L')) {
+    const double l = w.get('L');
+    if (l != std::round(l) || l < 0) fail(w.at('L', loc), "L, the repeats, is a whole number");
+    repeats = static_cast<int>(l);
+  }
+  const double feed = feed_for(w, 1, loc);
+  const double retract_gap = 0.010 * units_factor(Units::Inches, ctx_.settings().units);
+  Vec6 p = program_position();
+  const double r_level = modes_.incremental ? p[2] + *modes_.cycle_r : *modes_.cycle_r;
+  const double bottom = modes_.incremental ? r_level + *modes_.cycle_z : *modes_.cycle_z;
+  if (bottom > r_level)
+    fail(loc, "the hole's bottom Z is above the retract plane R; check Z and R (and G90/G91)");
+  const double clear_z = modes_.retract_to_r ? r_level : std::max(modes_.cycle_start_z, r_level);
+  auto z_move = [&](double z, SpeedClass cls) {
+    Vec6 t = program_position();
+    t[2] = z;
+    line(t, cls, feed, loc);
+  };
+  if (p[2] < r_level) z_move(r_level, SpeedClass::Jog);
+  const Vec6 k = axis_scale();
+  for (int hole = 0; hole < repeats; ++hole) {
+    Vec6 at = program_position();
+    for (int a : {0, 1})
+      if (w.has(kAxes[static_cast<size_t>(a)]))
+        at[a] = (modes_.incremental ? at[a] : 0) + w.get(kAxes[static_cast<size_t>(a)]) * k[a];
+    line(at, SpeedClass::Jog, 0, loc);
+    z_move(r_level, SpeedClass::Jog);
+    if (code == 810 || code == 820) {
+      z_move(bottom, SpeedClass::Move);
+      if (code == 820 && modes_.cycle_p > 0) ctx_.dwell(modes_.cycle_p, loc);
+    } else {
+      double depth = r_level;
+      while (depth > bottom) {
+        const double next = std::max(depth - *modes_.cycle_q, bottom);
+        if (code == 830 && depth < r_level) z_move(depth + retract_gap, SpeedClass::Jog);
+        z_move(next, SpeedClass::Move);
+        depth = next;
+        if (depth > bottom) z_move(code == 830 ? r_level : depth + retract_gap, SpeedClass::Jog);
+      }
+    }
+    z_move(clear_z, SpeedClass::Jog);
+  }
+}
+
+}  // namespace gantry

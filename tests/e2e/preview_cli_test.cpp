@@ -1,0 +1,190 @@
+// End to end: `gantry preview` on parts/ files agrees with `gantry moves` and `gantry
+// estimate`, writes pictures of the size asked for, and refuses bad files and options with
+// located errors and exit status 1.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>  // getpid
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs gantry in the source folder with a fresh config folder, capturing its output.
+Result gantry(const std::string& args) {
+  static int calls = 0;
+  const fs::path tmp = fs::temp_directory_path();
+  const fs::path err = tmp / fmt::format("gantry_preview_e2e_{}.err", getpid());
+  const fs::path config = tmp / fmt::format("gantry_preview_e2e_config_{}_{}", getpid(), ++calls);
+  const std::string cmd =
+      fmt::format("cd '{}' && XDG_CONFIG_HOME='{}' '{}' {} 2>'{}'", GANTRY_SOURCE_DIR,
+                  config.string(), GANTRY_BIN, args, err.string());
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  for (size_t n; (n = fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::stringstream text;
+  text << std::ifstream(err).rdbuf();
+  r.err = text.str();
+  fs::remove_all(config);
+  fs::remove(err);
+  return r;
+}
+
+std::string read(const fs::path& p) {
+  std::stringstream text;
+  text << std::ifstream(p, std::ios::binary).rdbuf();
+  return text.str();
+}
+
+// A PNG's width and height from its IHDR chunk (big-endian, bytes 16 to 23).
+std::pair<int, int> png_size(const std::string& bytes) {
+  auto be = [&](size_t at) {
+    int v = 0;
+    for (size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(bytes.at(at + i));
+    return v;
+  };
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  return {be(16), be(20)};
+}
+
+// A scratch folder per test.
+class PreviewCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / fmt::format("gantry_preview_cli_{}", getpid());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
+    return path(name);
+  }
+  fs::path dir_;
+};
+
+TEST_F(PreviewCli, DemoSummaryAgreesWithMovesAndEstimate) {
+  const Result r = gantry("preview parts/demo.sbp --json -o " + path("demo.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(png_size(read(path("demo.png"))), std::make_pair(800, 600));
+  EXPECT_TRUE(j["violations"].empty());
+
+  // The moves `gantry moves` lists, and the box of their end points.
+  const Result moves = gantry("moves parts/demo.sbp --format jsonl");
+  ASSERT_EQ(moves.exit_code, 0) << moves.err;
+  std::istringstream lines(moves.out);
+  std::array<double, 3> lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
+  int count = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const json m = json::parse(line);
+    ++count;
+    if (m["kind"] != "line") continue;  // demo has no arcs
+    for (const char* end : {"from", "to"})
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], m[end][a].get<double>());
+        hi[a] = std::max(hi[a], m[end][a].get<double>());
+      }
+  }
+  EXPECT_EQ(j["moves"], count);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(j["bounds"]["min"][a].get<double>(), lo[a], 1e-6) << a;
+    EXPECT_NEAR(j["bounds"]["max"][a].get<double>(), hi[a], 1e-6) << a;
+  }
+  const Result estimate = gantry("estimate parts/demo.sbp --json");
+  ASSERT_EQ(estimate.exit_code, 0) << estimate.err;
+  EXPECT_DOUBLE_EQ(j["estimated_time_s"].get<double>(),
+                   json::parse(estimate.out)["estimated_time_s"].get<double>());
+
+  // The text summary says the same.
+  const Result text = gantry("preview parts/demo.sbp -o " + path("demo2.png"));
+  EXPECT_NE(text.out.find(fmt::format("{} moves", count)), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("X 0.0000 to 12.0000, Y 0.0000 to 9.0000, Z -0.1250 to 1.0000"),
+            std::string::npos)
+      << text.out;
+}
+
+TEST_F(PreviewCli, EveryViewAndTheMaterialMapWriteTheSizeAsked) {
+  for (const char* view : {"top", "iso", "front", "side"}) {
+    const Result r = gantry(fmt::format(
+        "preview parts/relative_steps.sbp --view {} --size 320x200 -o {}", view, path("v.png")));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(png_size(read(path("v.png"))), std::make_pair(320, 200)) << view;
+  }
+  const Result m =
+      gantry("preview parts/demo.sbp --material --cutter ball --view iso --size 300x300 -o " +
+             path("m.png"));
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_EQ(png_size(read(path("m.png"))), std::make_pair(300, 300));
+  const Result svg =
+      gantry("preview parts/speeds.sbp --view front --size 500x300 -o " + path("s.svg"));
+  ASSERT_EQ(svg.exit_code, 0) << svg.err;
+  const std::string text = read(path("s.svg"));
+  EXPECT_EQ(text.rfind("<svg", 0), 0u);
+  EXPECT_NE(text.find("width=\"500\" height=\"300\""), std::string::npos);
+  EXPECT_NE(text.find("<path "), std::string::npos);
+}
+
+TEST_F(PreviewCli, SoftLimitViolationNamesItsLineAndFails) {
+  const std::string file = write("limits.sbp", "J2, 1, 1\nM2, 2, 2\nMX, 30\n");
+  const Result r = gantry(fmt::format("preview {} -o {}", file, path("l.png")));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("limits.sbp:3:1: error: move to X=30.0000 is outside the soft limits"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(path("l.png")));  // what the file would do up to there is drawn
+}
+
+TEST_F(PreviewCli, MissingAndBadFilesGiveLocatedErrors) {
+  const Result missing = gantry("preview parts/nosuch.sbp -o " + path("n.png"));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("parts/nosuch.sbp: error:"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(path("n.png")));
+
+  const std::string bad = write("bad.sbp", "J2, 1, 1\nM2, 2, (3\n");
+  const Result r = gantry(fmt::format("preview {} -o {}", bad, path("b.png")));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.sbp:2:8: error:"), std::string::npos) << r.err;
+}
+
+TEST_F(PreviewCli, BadOptionsAreRefusedBeforeAnythingIsWritten) {
+  for (const char* opts : {"--size 10x10 -o {}/a.png", "--size 800 -o {}/a.png", "-o {}/a.jpg",
+                           "--material -o {}/a.svg", "--cutter v200 --material -o {}/a.png",
+                           "--view left -o {}/a.png"}) {
+    const Result r =
+        gantry("preview parts/demo.sbp " + fmt::format(fmt::runtime(opts), dir_.string()));
+    EXPECT_EQ(r.exit_code, 1) << opts;
+    EXPECT_FALSE(r.err.empty()) << opts;
+    EXPECT_TRUE(fs::is_empty(dir_)) << opts;
+  }
+}
+
+TEST_F(PreviewCli, MovesSvgDrawsTheFigureWithThePreview) {
+  const Result r = gantry("moves docs/figures/tabs.sbp --svg " + path("tabs.svg"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string svg = read(path("tabs.svg"));
+  EXPECT_NE(svg.find("width=\"440\""), std::string::npos);
+  EXPECT_NE(svg.find("stroke=\"#e08020\""), std::string::npos);  // the tabs stand out
+  EXPECT_EQ(svg.find("<polygon"), std::string::npos);            // no table in a figure
+}
+
+}  // namespace

@@ -1,0 +1,314 @@
+// `gantry gui` end to end: the window under Xvfb (Mesa's software OpenGL), driven by
+// scripted actions (type, key, click, wait), on the simulated card. Each test reads the
+// window's state dumps and its screenshots.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <signal.h>
+#include <stb_image.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// One Xvfb server for the test program, on a display it chooses itself (-displayfd).
+class Xvfb : public ::testing::Environment {
+ public:
+  static std::string display;
+
+  void SetUp() override {
+    int fds[2];
+    if (pipe(fds) != 0) return;
+    pid_ = fork();
+    if (pid_ == 0) {
+      close(fds[0]);
+      const std::string fd = std::to_string(fds[1]);
+      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x800x24", "-nolisten",
+             "tcp", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(fds[1]);
+    std::string number;
+    pollfd p{fds[0], POLLIN, 0};
+    char c = 0;
+    while (poll(&p, 1, 10000) > 0 && read(fds[0], &c, 1) == 1 && c != '\n') number += c;
+    close(fds[0]);
+    if (!number.empty()) display = ":" + number;
+  }
+  void TearDown() override {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+std::string Xvfb::display;
+const auto* const kXvfb = ::testing::AddGlobalTestEnvironment(new Xvfb);
+
+class GuiWindow : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (Xvfb::display.empty()) GTEST_SKIP() << "Xvfb is not installed (scripts/setup.sh)";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / fmt::format("gantry_gui_{}_{}", getpid(), info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "config");
+  }
+  void TearDown() override {
+    if (!HasFailure() && !dir_.empty()) fs::remove_all(dir_);
+  }
+
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+  }
+
+  // Runs the window on `script` with `args`; returns its exit status (output in out_).
+  int gui(const std::string& script, const std::string& args = "") {
+    write("script.txt", script);
+    const std::string cmd = fmt::format(
+        "cd '{}' && DISPLAY={} XDG_CONFIG_HOME='{}/config' HOME='{}' '{}' gui {} --card sim "
+        "--persistent p.json --script script.txt 2>&1",
+        dir_.string(), Xvfb::display, dir_.string(), dir_.string(), GANTRY_BIN, args);
+    FILE* p = popen(cmd.c_str(), "r");
+    out_.clear();
+    char buf[4096];
+    for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out_.append(buf, n);
+    const int status = pclose(p);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  json state(const std::string& name) {
+    std::ifstream in(dir_ / name);
+    EXPECT_TRUE(in) << name << " was not written; output:\n" << out_;
+    json j;
+    if (in) in >> j;
+    return j;
+  }
+
+  struct Image {
+    int w = 0, h = 0;
+    std::vector<unsigned char> rgb;
+    // Pixels in the rectangle for which `match(r, g, b)` holds.
+    int count(int x0, int y0, int x1, int y1,
+              const std::function<bool(int, int, int)>& match) const {
+      int n = 0;
+      for (int y = std::max(y0, 0); y < std::min(y1, h); ++y)
+        for (int x = std::max(x0, 0); x < std::min(x1, w); ++x) {
+          const unsigned char* p = &rgb[static_cast<std::size_t>((y * w + x) * 3)];
+          n += match(p[0], p[1], p[2]) ? 1 : 0;
+        }
+      return n;
+    }
+  };
+  Image image(const std::string& name) {
+    Image im;
+    int n = 0;
+    unsigned char* data = stbi_load((dir_ / name).c_str(), &im.w, &im.h, &n, 3);
+    EXPECT_NE(data, nullptr) << name;
+    if (data) im.rgb.assign(data, data + im.w * im.h * 3);
+    stbi_image_free(data);
+    return im;
+  }
+
+  static bool has_line(const json& log, const std::string& text) {
+    for (const json& l : log)
+      if (l.get<std::string>().find(text) != std::string::npos) return true;
+    return false;
+  }
+
+  fs::path dir_;
+  std::string out_;
+};
+
+// The preview's rectangle in a 1280 x 800 window (right of the 370-pixel column, above the
+// 250-pixel console, below the menu bar and the preview's tool bar).
+constexpr int kPx0 = 380, kPy0 = 70, kPx1 = 1270, kPy1 = 540;
+bool orange(int r, int g, int b) {
+  return r > 200 && g > 110 && g < 190 && b < 80;
+}  // cuts
+bool blue(int r, int g, int b) {
+  return r < 140 && g > 140 && b > 200;
+}  // jogs
+
+TEST_F(GuiWindow, ATypedLineMovesAndTheReadoutShowsIt) {
+  ASSERT_EQ(gui("wait idle\ntype MX, 5\nkey Enter\nwait idle\ntype j2, 1.5, 2.25\nkey Enter\n"
+                "wait idle\nkey Up\nwait frames 2\ndump s.json\nscreenshot s.png\n"),
+            0)
+      << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["state"], "idle");
+  EXPECT_EQ(s["position"], json({1.5, 2.25, 0, 0, 0, 0}));
+  EXPECT_EQ(s["units"], "in");
+  EXPECT_TRUE(has_line(s["log"], "> MX, 5"));
+  EXPECT_EQ(s["history"], json({"MX, 5", "j2, 1.5, 2.25"}));
+  EXPECT_EQ(s["command_line"], "j2, 1.5, 2.25");  // Up: the last line again
+  const Image im = image("s.png");
+  EXPECT_EQ(im.w, 1280);
+  EXPECT_EQ(im.h, 800);
+  // The tool's red cross is drawn in the preview, over the table.
+  EXPECT_GT(im.count(kPx0, kPy0, kPx1, kPy1,
+                     [](int r, int g, int b) { return r > 220 && g < 80 && b < 80; }),
+            10);
+}
+
+TEST_F(GuiWindow, ABareCodeOpensItsFillInSheet) {
+  ASSERT_EQ(gui("type MX\nkey Enter\nwait frames 3\ndump open.json\n"
+                "type #\nwait frames 2\nkey Enter\nwait frames 2\ndump bad.json\n"
+                "key Backspace\ntype 7\nkey Enter\nwait idle\ndump ran.json\n"
+                "type MY\nkey Enter\nwait frames 3\ntype 4\nkey Escape\nwait idle\n"
+                "dump closed.json\n"
+                "type J2\nkey Enter\nwait frames 3\ntype 1\nkey Tab\ntype 40\nkey Enter\n"
+                "wait frames 3\ndump refused.json\nscreenshot sheet.png\n"),
+            0)
+      << out_;
+  const json open = state("open.json");
+  ASSERT_TRUE(open.contains("sheet")) << open.dump(2);
+  EXPECT_EQ(open["sheet"]["code"], "MX");
+  EXPECT_EQ(open["sheet"]["fields"][0]["type"], "distance");
+  EXPECT_EQ(open["sheet"]["fields"][0]["unit"], "in");
+  const json bad = state("bad.json");  // Enter with a bad field: the sheet stays, says why
+  ASSERT_TRUE(bad.contains("sheet"));
+  EXPECT_EQ(bad["sheet"]["fields"][0]["error"], "must be a number");
+  EXPECT_EQ(bad["position"][0], 0);
+  const json ran = state("ran.json");
+  EXPECT_FALSE(ran.contains("sheet"));
+  EXPECT_EQ(ran["position"][0], 7);
+  EXPECT_TRUE(has_line(ran["log"], "> MX, 7"));
+  const json closed = state("closed.json");  // Esc: nothing ran
+  EXPECT_FALSE(closed.contains("sheet"));
+  EXPECT_EQ(closed["position"][1], 0);
+  // The controller's check refuses Y 40 (the table is 18 in deep): the sheet stays open
+  // with the error, and nothing moved.
+  const json refused = state("refused.json");
+  ASSERT_TRUE(refused.contains("sheet")) << refused.dump(2);
+  EXPECT_EQ(refused["sheet"]["line"], "J2, 1, 40");
+  std::string errors = refused["sheet"]["errors"].dump();
+  for (const json& f : refused["sheet"]["fields"]) errors += f["error"].get<std::string>();
+  EXPECT_NE(errors.find("40"), std::string::npos) << errors;
+  EXPECT_EQ(refused["position"], json({7, 0, 0, 0, 0, 0}));
+}
+
+TEST_F(GuiWindow, RunsAFileOnTheSimCardWithItsPreview) {
+  ASSERT_EQ(gui("wait idle\nscreenshot before.png\ndump loaded.json\nclick Start\nwait idle\n"
+                "dump after.json\n",
+                fmt::format("'{}/parts/demo.sbp'", GANTRY_SOURCE_DIR)),
+            0)
+      << out_;
+  const json loaded = state("loaded.json");
+  EXPECT_GT(loaded["preview"]["segments"].get<int>(), 30);
+  EXPECT_EQ(loaded["preview"]["violations"], 0);
+  const json after = state("after.json");
+  EXPECT_EQ(after["state"], "idle");
+  EXPECT_GT(after["progress"]["lines"].get<int>(), 30);
+  EXPECT_EQ(after["progress"]["line"], after["progress"]["lines"]);
+  EXPECT_TRUE(has_line(after["log"], "> start"));
+  EXPECT_FALSE(has_line(after["log"], "stopped"));
+  EXPECT_EQ(after["position"], json({12, 9, 1, 0, 0, 0}));  // where the file parks
+  // The preview is not blank: cuts in orange, jogs in blue.
+  const Image im = image("before.png");
+  EXPECT_GT(im.count(kPx0, kPy0, kPx1, kPy1, orange), 300);
+  EXPECT_GT(im.count(kPx0, kPy0, kPx1, kPy1, blue), 50);
+}
+
+TEST_F(GuiWindow, KeypadButtonsAndKeysJogInFixedSteps) {
+  ASSERT_EQ(gui("click X+\nwait idle\nclick X+\nwait idle\nclick Y+\nwait idle\n"
+                "type K\nkey Enter\nwait frames 2\nkey Right\nwait idle\nkey PageUp\nwait idle\n"
+                "dump keys.json\nkey Escape\nwait frames 2\ndump s.json\n"),
+            0)
+      << out_;
+  const json keys = state("keys.json");
+  EXPECT_TRUE(keys["keypad"]["keys"]);
+  const json s = state("s.json");
+  EXPECT_FALSE(s["keypad"]["keys"]);  // Esc gives the keys back to the command line
+  EXPECT_NEAR(s["position"][0].get<double>(), 0.3, 1e-12);
+  EXPECT_NEAR(s["position"][1].get<double>(), 0.1, 1e-12);
+  EXPECT_NEAR(s["position"][2].get<double>(), 0.1, 1e-12);
+}
+
+TEST_F(GuiWindow, PauseInputAndMsgboxAreDialogs) {
+  write("ask.sbp",
+        "INPUT \"How far\" &D\nMX, &D\nPAUSE\nMSGBOX(Go on?, YesNo, Check)\n"
+        "IF &MSGANSWER = \"Yes\" THEN MY, 1\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait dialog\ndump input.json\nscreenshot input.png\n"
+                "type 2\nkey Enter\nwait dialog\ndump pause.json\nclick Continue\nwait dialog\n"
+                "dump box.json\nclick Yes\nwait idle\ndump end.json\n",
+                "ask.sbp"),
+            0)
+      << out_;
+  const json input = state("input.json");
+  EXPECT_EQ(input["dialog"]["kind"], "INPUT");
+  EXPECT_EQ(input["dialog"]["text"], "How far");
+  EXPECT_EQ(state("pause.json")["dialog"]["kind"], "PAUSE");
+  const json box = state("box.json");
+  EXPECT_EQ(box["dialog"]["kind"], "MSGBOX");
+  EXPECT_EQ(box["dialog"]["buttons"], json({"Yes", "No"}));
+  const json end = state("end.json");
+  EXPECT_EQ(end["state"], "idle");
+  EXPECT_EQ(end["position"], json({2, 1, 0, 0, 0, 0}));
+}
+
+TEST_F(GuiWindow, SpacePausesAndResumesAndF12IsTheEStop) {
+  ASSERT_EQ(gui("type MX, 3\nkey Enter\nwait frames 3\nkey Space\nwait frames 40\n"
+                "dump paused.json\nkey Space\nwait idle\ndump resumed.json\n"
+                "type MX, 0\nkey Enter\nwait frames 3\nkey F12\nwait frames 3\ndump estop.json\n"
+                "type ack\nkey Enter\nwait idle\ndump ack.json\n",
+                "--realtime"),
+            0)
+      << out_;
+  const json paused = state("paused.json");
+  EXPECT_EQ(paused["state"], "paused");
+  EXPECT_GT(paused["position"][0].get<double>(), 0);
+  EXPECT_LT(paused["position"][0].get<double>(), 3);
+  EXPECT_NEAR(state("resumed.json")["position"][0].get<double>(), 3, 1e-9);
+  const json estop = state("estop.json");
+  EXPECT_EQ(estop["state"], "estop");
+  EXPECT_GT(estop["position"][0].get<double>(), 0);  // stopped on the way back
+  const json ack = state("ack.json");
+  EXPECT_EQ(ack["state"], "idle");
+  EXPECT_TRUE(has_line(ack["log"], "E-stop acknowledged"));
+}
+
+TEST_F(GuiWindow, ThePointerShowsTheLineUnderIt) {
+  // A raster over the table, 0.1 in apart: in the top view some line is always within the
+  // pick's few pixels. Line 2k+1 runs along Y = 0.1 k.
+  std::string part = "M2, 24, 0\n";
+  for (int k = 1; k <= 180; ++k)
+    part += fmt::format("M2, {0}, {1:.1f}\nM2, {2}, {1:.1f}\n", k % 2 ? 24 : 0, 0.1 * k,
+                        k % 2 ? 0 : 24);
+  write("raster.sbp", part);
+  ASSERT_EQ(gui("click Top\nwait idle\nhover 0.5 0.5\nwait frames 3\ndump h.json\n"
+                "screenshot h.png\n",
+                "raster.sbp"),
+            0)
+      << out_;
+  const json h = state("h.json");
+  const int line = h["preview"]["hover_line"].get<int>();
+  ASSERT_GT(line, 0) << h["preview"].dump();
+  // The middle of the view is the middle of the table, Y 9: a line near it.
+  const double y = 0.1 * std::floor((line - 1) / 2.0);
+  EXPECT_NEAR(y, 9.0, 0.5) << "line " << line;
+}
+
+TEST_F(GuiWindow, AScriptErrorNamesItsLine) {
+  EXPECT_EQ(gui("wait idle\nclick Nothing Such\n"), 2);
+  EXPECT_NE(out_.find("script line 2: no button named 'Nothing Such'"), std::string::npos) << out_;
+  EXPECT_EQ(gui("fly\n"), 2);
+  EXPECT_NE(out_.find("script.txt:1: unknown action 'fly'"), std::string::npos) << out_;
+}
+
+}  // namespace

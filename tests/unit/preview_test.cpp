@@ -1,0 +1,383 @@
+// The preview: the toolpath model, the line pictures (PNG and SVG) and the material map,
+// checked on the shipped parts/ files and on small files written here.
+#include <gtest/gtest.h>
+#include <unistd.h>  // getpid
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "gantry/lang/script.hpp"  // Script
+#include "gantry/machine/job.hpp"  // check_program, interpret
+#include "gantry/preview/material.hpp"
+#include "gantry/preview/render.hpp"
+#include "gantry/preview/toolpath.hpp"
+
+namespace gantry {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kParts = fs::path(GANTRY_SOURCE_DIR) / "parts";
+
+// A part file written for one test, removed after it.
+class TempPart {
+ public:
+  TempPart(const std::string& name, const std::string& text)
+      : path_(fs::temp_directory_path() / (std::to_string(getpid()) + "_" + name)) {
+    std::ofstream(path_) << text;
+  }
+  ~TempPart() { fs::remove(path_); }
+  std::string path() const { return path_.string(); }
+
+ private:
+  fs::path path_;
+};
+
+// The moves `gantry moves` lists: a check, then the file interpreted into a sink.
+class KeepingSink : public MotionSink {
+ public:
+  void move(const CanonMove& m) override { moves.push_back(m); }
+  void flush() override {}
+  std::vector<CanonMove> moves;
+};
+
+std::vector<CanonMove> listed_moves(const std::string& file, const Settings& settings) {
+  auto script = Script::load(file);
+  PersistentStore store;
+  EXPECT_TRUE(check_program(script, settings, store).empty());
+  KeepingSink sink;
+  ScriptedIO io(true, {});
+  JobOptions opt;
+  opt.interpreter.dry_run = true;
+  interpret(script, settings, sink, io, store, opt);
+  return sink.moves;
+}
+
+TEST(Toolpath, DemoHasTheBoundsMovesAndEstimateOfTheCheck) {
+  const Settings s = default_settings();
+  ToolpathOptions opts;
+  opts.estimate = true;
+  const Toolpath path = load_toolpath((kParts / "demo.sbp").string(), s, opts);
+  EXPECT_TRUE(path.violations.empty());
+  EXPECT_FALSE(path.cancelled);
+  // Worked out from the file: it starts at 0,0,0, cuts 0.125 deep and parks at 12, 9, 1.
+  EXPECT_EQ(path.bounds.min(), Eigen::Vector3f(0, 0, -0.125f));
+  EXPECT_EQ(path.bounds.max(), Eigen::Vector3f(12, 9, 1));
+  EXPECT_EQ(path.start, Eigen::Vector3f::Zero());
+  const ToolpathSegment& last = path.segments.back();
+  EXPECT_EQ(Eigen::Vector3f(last.x, last.y, last.z), Eigen::Vector3f(12, 9, 1));
+  EXPECT_EQ(last.line, 57u);
+  EXPECT_EQ(last.kind, PathKind::Jog);
+
+  // The same moves `gantry moves` lists, one segment per line move (demo has no arcs).
+  const std::vector<CanonMove> moves = listed_moves((kParts / "demo.sbp").string(), s);
+  EXPECT_EQ(path.moves, moves.size());
+  std::size_t lines = 0;
+  for (const CanonMove& m : moves) lines += m.kind == MoveKind::Line;
+  EXPECT_EQ(path.segments.size(), lines);
+
+  double estimate = 0;
+  check_program(Script::load((kParts / "demo.sbp").string()), s, PersistentStore(), {}, true,
+                &estimate);
+  EXPECT_GT(estimate, 0);
+  EXPECT_DOUBLE_EQ(path.estimated_time_s, estimate);
+  EXPECT_EQ(load_toolpath((kParts / "demo.sbp").string(), s).estimated_time_s, 0);  // not asked
+}
+
+TEST(Toolpath, KindsAndLinesFollowTheMoves) {
+  TempPart f("kinds.sbp", "JZ, 0.5\nJ2, 1, 1\nMZ, -0.1\nM2, 2, 1\n");
+  const Toolpath path = load_toolpath(f.path(), default_settings());
+  ASSERT_EQ(path.segments.size(), 4u);
+  const PathKind kinds[] = {PathKind::Jog, PathKind::Jog, PathKind::Cut, PathKind::Cut};
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(path.segments[i].kind, kinds[i]) << i;
+    EXPECT_EQ(path.segments[i].line, i + 1);
+  }
+}
+
+TEST(Toolpath, AGapBetweenMovesIsJoinedByAJog) {
+  // A move that does not start where the last ended (the tool was moved outside the file,
+  // as a keypad jog on the live machine does): each segment still starts at the last's end.
+  Toolpath path;
+  CanonMove a;
+  a.to << 1, 0, 0, 0, 0, 0;
+  CanonMove b = a;
+  b.from << 2, 2, 0, 0, 0, 0;
+  b.to << 3, 2, 0, 0, 0, 0;
+  b.loc.line = 7;
+  path.add(a, 0.001);
+  path.add(b, 0.001);
+  ASSERT_EQ(path.segments.size(), 3u);
+  EXPECT_EQ(path.segments[1].kind, PathKind::Jog);
+  EXPECT_EQ(Eigen::Vector3f(path.segments[1].x, path.segments[1].y, path.segments[1].z),
+            Eigen::Vector3f(2, 2, 0));
+  EXPECT_EQ(path.segments[1].line, 7u);
+  EXPECT_EQ(path.segments[2].kind, PathKind::Cut);
+  EXPECT_EQ(path.moves, 2u);
+}
+
+TEST(Toolpath, ArcsAreChordsWithinTheChordTolerance) {
+  Settings s = default_settings();
+  s.planner.chord_tolerance = 0.001;
+  // A full clockwise circle of radius 2 about 7, 5 from 5, 5 (CG: end = start).
+  TempPart f("circle.sbp", "J2, 5, 5\nCG, , 5, 5, 2, 0, T, 1\n");
+  const Toolpath path = load_toolpath(f.path(), s);
+  ASSERT_TRUE(path.violations.empty()) << format(path.violations.front());
+  std::size_t on_arc = 0;
+  Eigen::Vector2f from = path.start.head<2>();
+  for (const ToolpathSegment& seg : path.segments) {
+    const Eigen::Vector2f to(seg.x, seg.y), centre(7, 5);
+    if (seg.kind == PathKind::Cut && seg.line == 2) {
+      ++on_arc;
+      EXPECT_NEAR((to - centre).norm(), 2, 1e-5);
+      // The chord's middle strays from the arc by at most the tolerance.
+      EXPECT_GE(((from + to) / 2 - centre).norm(), 2 - 0.001 - 1e-5);
+    }
+    from = to;
+  }
+  // 2 acos(1 - 0.001 / 2) = 0.0633 rad per chord at most: 100 chords or more a turn.
+  EXPECT_GE(on_arc, 100u);
+}
+
+TEST(Toolpath, SoftLimitViolationNamesItsLineAndIsNotDrawn) {
+  TempPart f("limits.sbp", "J2, 1, 1\nM2, 2, 2\nMX, 30\nM2, 3, 3\n");
+  const Toolpath path = load_toolpath(f.path(), default_settings());
+  ASSERT_EQ(path.violations.size(), 1u);
+  const Diagnostic& d = path.violations[0];
+  EXPECT_EQ(d.severity, Severity::Error);
+  EXPECT_EQ(d.loc.line, 3);
+  EXPECT_NE(d.message.find("soft limits"), std::string::npos) << d.message;
+  EXPECT_TRUE(path.has_errors());
+  // Line 3 moved nothing: the tool went on to 3, 3 from 2, 2.
+  EXPECT_LE(path.bounds.max().x(), 3.0f);
+  EXPECT_EQ(path.segments.size(), 3u);
+}
+
+TEST(Toolpath, MissingAndBadFilesGiveLocatedErrors) {
+  const Toolpath missing = load_toolpath("/nonexistent/nosuch.sbp", default_settings());
+  ASSERT_EQ(missing.violations.size(), 1u);
+  EXPECT_NE(format(missing.violations[0]).find("nosuch.sbp"), std::string::npos);
+  EXPECT_TRUE(missing.segments.empty());
+
+  TempPart f("bad.sbp", "J2, 1, 1\nM2, 2, (3\nM2, 3, 3\n");
+  const Toolpath bad = load_toolpath(f.path(), default_settings());
+  ASSERT_FALSE(bad.violations.empty());
+  EXPECT_EQ(bad.violations[0].loc.line, 2);
+  EXPECT_GT(bad.violations[0].loc.column, 0);
+  EXPECT_EQ(bad.segments.size(), 2u);  // the check went past the error
+}
+
+// A file of `n` cutting moves in a zigzag.
+std::string zigzag(int n) {
+  std::string text = "MZ, -0.1\n";
+  for (int i = 0; i < n; ++i)
+    text += "M2, " + std::to_string(1 + (i % 2) * 10) + ", " + std::to_string(1 + i * 1e-4) + "\n";
+  return text;
+}
+
+TEST(Toolpath, ProgressReportsTheGrowingPathAndCancelStopsTheLoad) {
+  TempPart f("long.sbp", zigzag(150'000));
+  std::atomic<bool> cancel = false;
+  std::vector<std::size_t> seen;
+  ToolpathOptions opts;
+  opts.progress = [&](const Toolpath& so_far) { seen.push_back(so_far.segments.size()); };
+  const Toolpath whole = load_toolpath(f.path(), default_settings(), opts);
+  EXPECT_EQ(whole.segments.size(), 150'001u);
+  ASSERT_EQ(seen.size(), 2u);  // every 65536 segments
+  EXPECT_EQ(seen[0], 65536u);
+  EXPECT_EQ(seen[1], 2 * 65536u);
+
+  opts.cancel = &cancel;
+  opts.progress = [&](const Toolpath&) { cancel = true; };
+  const Toolpath part = load_toolpath(f.path(), default_settings(), opts);
+  EXPECT_TRUE(part.cancelled);
+  EXPECT_EQ(part.segments.size(), 65536u);
+}
+
+// Pictures -------------------------------------------------------------------------------
+
+bool is(Rgb a, Rgb b) {
+  return a == b;
+}
+
+TEST(Render, LinePicturesHaveTheirSizeAndDrawOnlyInsideTheToolpathsBox) {
+  const Settings s = default_settings();
+  for (const char* part : {"demo.sbp", "relative_steps.sbp", "speeds.sbp"}) {
+    const Toolpath path = load_toolpath((kParts / part).string(), s);
+    for (View view : {View::Top, View::Iso, View::Front, View::Side}) {
+      SCOPED_TRACE(std::string(part) + " " + view_name(view));
+      PreviewOptions opts;
+      opts.view = view;
+      opts.width = 640;
+      opts.height = 400;
+      const Image image = render_lines(path, s, opts);
+      ASSERT_EQ(image.width, 640);
+      ASSERT_EQ(image.height, 400);
+      ASSERT_EQ(image.rgb.size(), 640u * 400 * 3);
+      // The toolpath's box as the picture projects it, widened by the start dot's radius.
+      const Projection proj(view, preview_box(path, s, opts), 640, 400);
+      Eigen::AlignedBox2f box;
+      for (int c = 0; c < 8; ++c)
+        box.extend(
+            proj(path.bounds.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c))).head<2>());
+      const float slack = 3 * 640 / 400.0f + 2;
+      int drawn = 0;
+      for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+          const Rgb c = image.at(x, y);
+          if (is(c, palette::background) || is(c, palette::table)) continue;
+          ++drawn;
+          const Eigen::Vector2f p(x + 0.5f, y + 0.5f);
+          EXPECT_LE(box.exteriorDistance(p), slack) << x << "," << y;
+        }
+      // The side view of demo sees its lines edge on; every view still draws lines.
+      EXPECT_GT(drawn, 200);
+    }
+  }
+}
+
+TEST(Render, CutsJogsAndTheTableHaveTheirOwnColours) {
+  const Settings s = default_settings();
+  const Toolpath path = load_toolpath((kParts / "demo.sbp").string(), s);
+  const Image image = render_lines(path, s, PreviewOptions{});
+  std::map<Rgb, int> count;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) ++count[image.at(x, y)];
+  EXPECT_GT(count[palette::cut_deep], 1000);
+  EXPECT_GT(count[palette::cut_upper], 20);  // the chamfers' slopes
+  EXPECT_GT(count[palette::jog], 200);
+  EXPECT_GT(count[palette::table], 800);  // 24 x 18 in at 30 px/in: its outline
+  EXPECT_EQ(count[palette::keypad], 0);
+  // The table's corner 0, 0 and a border cut at 5, 1 (top view: Y up).
+  const Projection proj(View::Top, preview_box(path, s, PreviewOptions{}), 800, 600);
+  const Eigen::Vector3f corner = proj({24, 18, 0}), border = proj({5, 1, -0.125f});
+  EXPECT_EQ(image.at(static_cast<int>(corner.x()) - 1, static_cast<int>(corner.y())),
+            palette::table);
+  EXPECT_EQ(image.at(static_cast<int>(border.x()), static_cast<int>(border.y())),
+            palette::cut_deep);
+}
+
+int count_paths(const std::string& svg) {
+  const std::regex path("<path ");
+  return static_cast<int>(
+      std::distance(std::sregex_iterator(svg.begin(), svg.end(), path), std::sregex_iterator()));
+}
+
+TEST(Render, SvgHasOnePathPerRunOfOneStyle) {
+  // Runs: jogs (1-2), plunge (3, above its own bottom), cuts (4-5), jogs (6-7), plunge (8),
+  // cut (9).
+  TempPart f("runs.sbp",
+             "JZ, 0.5\nJ2, 1, 1\nMZ, -0.1\nM2, 2, 1\nM2, 2, 2\nJZ, 0.5\nJ2, 3, 3\nMZ, -0.1\n"
+             "M2, 4, 3\n");
+  const Settings s = default_settings();
+  const Toolpath path = load_toolpath(f.path(), s);
+  PreviewOptions opts;
+  const std::string svg = render_svg(path, s, opts);
+  EXPECT_EQ(count_paths(svg), 6);
+  EXPECT_NE(svg.find("width=\"800\" height=\"600\""), std::string::npos);
+  EXPECT_NE(svg.find("<polygon"), std::string::npos);  // the table
+  opts.leading_jogs = false;  // as `gantry moves --svg` draws: the first run is left out
+  opts.table = false;
+  const std::string figure = render_svg(path, s, opts);
+  EXPECT_EQ(count_paths(figure), 5);
+  EXPECT_EQ(figure.find("<polygon"), std::string::npos);
+}
+
+TEST(Render, ViewsAndCuttersParse) {
+  EXPECT_EQ(parse_view("iso"), View::Iso);
+  EXPECT_EQ(parse_view("ISO"), std::nullopt);
+  ASSERT_TRUE(parse_cutter("v60", 0.5));
+  EXPECT_EQ(parse_cutter("v60", 0.5)->v_angle, 60);
+  EXPECT_EQ(parse_cutter("ball", 0.5)->shape, CutterShape::Ball);
+  EXPECT_EQ(parse_cutter("v", 0.5)->v_angle, 90);
+  for (const char* bad : {"", "v0", "v180", "vx", "round", "v60x"})
+    EXPECT_FALSE(parse_cutter(bad, 0.5)) << bad;
+}
+
+// Material ------------------------------------------------------------------------------
+
+// Two grooves along X: 0.1 deep at Y 1 and 0.3 deep at Y 3, from X 1 to 5.
+const char* kGrooves =
+    "JZ, 0.5\nJ2, 1, 1\nMZ, -0.1\nMX, 5\nJZ, 0.5\nJ2, 1, 3\nMZ, -0.3\nMX, 5\nJZ, 0.5\n";
+
+TEST(Material, CuttersLeaveTheirProfile) {
+  TempPart f("grooves.sbp", kGrooves);
+  const Toolpath path = load_toolpath(f.path(), default_settings());
+  const float cell_slack = 0.01f;
+  for (const char* shape : {"flat", "ball", "v90"}) {
+    SCOPED_TRACE(shape);
+    const Cutter cutter = *parse_cutter(shape, 0.25);
+    const HeightMap map = carve(path, cutter, 0, 1000);
+    ASSERT_LE(map.cell, cell_slack);
+    // On the groove's axis (to the nearest cell, half a cell off at most).
+    EXPECT_NEAR(*map.height(3, 1), -0.1f, map.cell);
+    EXPECT_NEAR(*map.height(3, 3), -0.3f, map.cell);
+    EXPECT_EQ(*map.height(3, 2), 0.0f);     // between the grooves: uncut
+    EXPECT_EQ(*map.height(3, 1.2f), 0.0f);  // beyond the cutter's radius
+    // 0.1 off the axis: flat at full depth; ball r - sqrt(r^2 - 0.1^2) = 0.05 higher; a
+    // 90-degree V as high as it is far out.
+    const float rise = cutter.shape == CutterShape::Flat   ? 0
+                       : cutter.shape == CutterShape::Ball ? 0.05f
+                                                           : 0.1f;
+    EXPECT_NEAR(*map.height(3, 3.1f), -0.3f + rise, cell_slack);
+  }
+}
+
+TEST(Material, SlopedCutsAreDeepAtTheirLowEndOnly) {
+  // Down 0.1 per unit along X: a flat cutter of radius 0.125 leaves at X the depth its tip
+  // reached 0.125 further on, down to the end's -0.4 (within a cell).
+  TempPart f("ramp.sbp", "JZ, 0\nJ2, 1, 1\nM3, 5, 1, -0.4\n");
+  const HeightMap map = carve(load_toolpath(f.path(), default_settings()),
+                              Cutter{CutterShape::Flat, 0.25, 90}, 0, 1000);
+  EXPECT_NEAR(*map.height(1.5f, 1), -0.0625f, map.cell);
+  EXPECT_NEAR(*map.height(3, 1), -0.2125f, map.cell);
+  EXPECT_NEAR(*map.height(5, 1), -0.4f, map.cell);
+  EXPECT_NEAR(*map.height(5.1f, 1), -0.4f, map.cell);
+  EXPECT_EQ(*map.height(0.8f, 1), 0.0f);  // behind the start: uncut
+}
+
+float luminance(Rgb c) {
+  return 0.299f * c[0] + 0.587f * c[1] + 0.114f * c[2];
+}
+
+TEST(Material, DeeperCutsAreDarkerInThePicture) {
+  // A 1 in cutter: grooves wide enough for the iso view to see their floors past the near
+  // wall.
+  TempPart f("grooves.sbp", kGrooves);
+  const HeightMap map = carve(load_toolpath(f.path(), default_settings()),
+                              Cutter{CutterShape::Flat, 1.0, 90}, 0, 800);
+  for (View view : {View::Top, View::Iso}) {
+    SCOPED_TRACE(view_name(view));
+    PreviewOptions opts;
+    opts.view = view;
+    const Image image = render_material(map, opts);
+    ASSERT_EQ(image.width, 800);
+    ASSERT_EQ(image.height, 600);
+    const Projection proj = material_projection(map, opts);
+    auto sample = [&](float x, float y) {
+      const Eigen::Vector3f p = proj({x, y, *map.height(x, y)});
+      return luminance(image.at(static_cast<int>(p.x()), static_cast<int>(p.y())));
+    };
+    const float stock = sample(3, 2), shallow = sample(3, 1), deep = sample(3, 3);
+    EXPECT_LT(shallow, stock);
+    EXPECT_LT(deep, shallow);
+    EXPECT_EQ(image.at(2, 2), palette::background);  // the corner is outside the stock
+  }
+}
+
+TEST(Material, DemoCutIsDarkerThanItsStock) {
+  const Toolpath path = load_toolpath((kParts / "demo.sbp").string(), default_settings());
+  const HeightMap map = carve(path, Cutter{}, 0, 800);
+  EXPECT_NEAR(*map.height(5, 1), -0.125f, 1e-6);  // the border's second pass
+  EXPECT_EQ(*map.height(5.2f, 4), 0.0f);          // between the H and the I
+  const Image image = render_material(map, PreviewOptions{});
+  const Projection proj = material_projection(map, PreviewOptions{});
+  const Eigen::Vector3f cut = proj({5, 1, -0.125f}), stock = proj({5.2f, 4, 0});
+  EXPECT_LT(luminance(image.at(static_cast<int>(cut.x()), static_cast<int>(cut.y()))),
+            luminance(image.at(static_cast<int>(stock.x()), static_cast<int>(stock.y()))));
+}
+
+}  // namespace
+}  // namespace gantry

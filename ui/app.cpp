@@ -1,0 +1,1087 @@
+// The console window's windows (docs/console.md, "Console window").
+#include "app.hpp"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>  // key codes
+#include <fmt/format.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>  // InputText on std::string
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+
+#include "gantry/commands/command_docs.hpp"  // command_help
+#include "gantry/lang/script.hpp"            // Script
+
+namespace gantry::ui {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The one-line scripts typed in the window are named like the terminal console's.
+const char* const kConsoleName = "console";
+const char* const kAxes = "XYZABC";
+
+const ImVec4 kRed(1.0f, 0.35f, 0.35f, 1), kGreen(0.4f, 0.9f, 0.4f, 1), kYellow(1, 0.85f, 0.3f, 1),
+    kGrey(0.6f, 0.6f, 0.6f, 1), kCyan(0.5f, 0.85f, 1, 1);
+
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string trim(const std::string& s) {
+  const std::size_t b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+double shown(double v) {
+  return std::abs(v) < 5e-5 ? 0.0 : v;
+}  // no "-0.0000"
+
+std::string clock_text(double s) {
+  const auto t = static_cast<long>(std::lround(std::max(s, 0.0)));
+  return fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60);
+}
+
+bool rest_state(MachineState s) {
+  return s == MachineState::Idle || s == MachineState::Stopped || s == MachineState::EStop;
+}
+
+// The window's fixed layout: the readout, keypad and job down the left; the preview on the
+// right; the console (log and command line) along the bottom.
+struct Layout {
+  ImVec2 pos, size;
+};
+constexpr float kLeft = 370, kConsole = 250;
+
+void place(const Layout& l) {
+  ImGui::SetNextWindowPos(l.pos, ImGuiCond_Always);
+  ImGui::SetNextWindowSize(l.size, ImGuiCond_Always);
+}
+
+constexpr ImGuiWindowFlags kFixed =
+    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
+
+const char* const kKeysHelp =
+    "Command line\n"
+    "  two letters        a command; the parameter line below shows what it takes\n"
+    "  Tab                completes the code (or lists the matches)\n"
+    "  Up / Down          the lines entered before\n"
+    "  Enter              runs the line; a code alone opens its fill-in sheet\n"
+    "  Alt + letter       the menu of that group (M Move, J Jog, Z Zero, V Values ...)\n"
+    "  help [CODE], status, ack, K (keypad), quit\n"
+    "While a file or line runs\n"
+    "  Space              pause, and resume\n"
+    "  Esc                stop (the tool slows to rest on the path)\n"
+    "  F12                E-stop (the pulses stop at once; ack to go on)\n"
+    "Keypad (K, or click the keypad window)\n"
+    "  Left / Right       X - / +          Up / Down   Y + / -\n"
+    "  PageUp / PageDown  Z + / -\n"
+    "  S                  fixed steps or continuous    F  fast or slow\n"
+    "  Space              stops the jog                Esc leaves the keypad\n"
+    "Fill-in sheets and dialogs: Enter runs (or answers), Esc closes (cancels).\n"
+    "Preview: left drag rotates, right drag pans, the wheel zooms; the pointer shows the line.\n";
+
+}  // namespace
+
+App::App(const GuiOptions& options, Machine& machine)
+    : opt_(options),
+      m_(machine),
+      c_(machine.controller),
+      table_(CommandTable::standard()),
+      menus_(menus(table_)),
+      gl_(std::make_unique<PreviewGL>()) {
+  snapshot();
+  camera_.set_view(View::Iso);
+  log(LogLine::Info, fmt::format("gantry {}: profile \"{}\" on the {} card. F1 lists the keys.",
+                                 GANTRY_VERSION, settings_.name, opt_.card));
+  if (!opt_.file.empty()) load(opt_.file);
+}
+
+App::~App() {
+  cancel_ = true;
+  if (loader_.joinable()) loader_.join();
+}
+
+// ---- state -----------------------------------------------------------------------------------
+
+void App::snapshot() {
+  modal_ = c_.modal();
+  settings_ = m_.settings();
+  offset_ = modal_.machine_origin + modal_.zero + modal_.applied_offset;
+}
+
+bool App::at_rest() const {
+  return rest_state(status_.state);
+}
+
+bool App::can_jog() const {
+  return at_rest() || status_.state == MachineState::Keypad;
+}
+
+void App::stop_jog() {
+  if (status_.state != MachineState::Jogging) return;
+  // In a file's SK a stop would end the file: the jog is released instead.
+  report(kp_file_ ? c_.jog_release() : c_.stop(), "stop");
+}
+
+bool App::idle() const {
+  return at_rest() && !m_.io.question() && !loading_ && dialog_shown_ == 0;
+}
+
+Vec6 App::position(const ControllerStatus& st) const {
+  // At rest the interpreter's position is exact (a step ends on its commanded point); under
+  // way the pulses played say where the tool is.
+  if (rest_state(st.state)) return modal_.position;
+  Vec6 p;
+  for (int i = 0; i < kAxisCount; ++i)
+    p[i] = static_cast<double>(st.steps[i]) / settings_.axes[i].steps_per_unit - offset_[i];
+  return p;
+}
+
+void App::log(LogLine::Kind kind, std::string text) {
+  std::size_t start = 0;
+  while (start <= text.size()) {  // one entry per line
+    const std::size_t nl = text.find('\n', start);
+    std::string piece = text.substr(start, nl == std::string::npos ? nl : nl - start);
+    if (!piece.empty() || nl == std::string::npos) log_.push_back({kind, std::move(piece)});
+    if (nl == std::string::npos) break;
+    start = nl + 1;
+  }
+  if (log_.size() > 5000) log_.erase(log_.begin(), log_.begin() + 1000);
+  scroll_log_ = true;
+}
+
+void App::poll() {
+  if (std::string out = m_.io.take_output(); !out.empty()) {
+    if (out.back() == '\n') out.pop_back();
+    log(LogLine::Print, out);
+  }
+  status_ = c_.status();
+  if (at_rest() && !was_at_rest_) {
+    c_.wait();
+    status_ = c_.status();
+    snapshot();
+    kp_continuous_ = false;
+    kp_key_ = -1;
+    if (status_.state == MachineState::EStop)
+      log(LogLine::Error, "E-STOP: the pulses stopped at once. Nothing moves until Ack (or ack).");
+    else if (status_.state == MachineState::Stopped)
+      log(LogLine::Error,
+          fmt::format(
+              "stopped: {}{}", status_.message.empty() ? "the run did not end" : status_.message,
+              status_.stopped_at.file && *status_.stopped_at.file != kConsoleName
+                  ? fmt::format(" (at {}:{})", *status_.stopped_at.file, status_.stopped_at.line)
+                  : ""));
+  }
+  was_at_rest_ = at_rest();
+  // SK in a file: the keypad takes the keys until the operator goes on (Esc) or stops.
+  const bool file_keypad =
+      status_.state == MachineState::Keypad || (kp_file_ && status_.state == MachineState::Jogging);
+  if (file_keypad && !kp_file_) {
+    kp_focus_ = true;
+    log(LogLine::Info,
+        m_.io.take_keypad_message() +
+            "\nkeypad: jog, then Esc (or Resume) goes on with the file; Stop ends it");
+  }
+  if (!file_keypad && kp_file_) kp_focus_ = false, focus_line_ = true;
+  kp_file_ = file_keypad;
+  std::shared_ptr<const Toolpath> done;
+  {
+    std::lock_guard lock(loaded_m_);
+    done = std::move(loaded_);
+  }
+  if (done) {
+    if (loader_.joinable()) loader_.join();
+    path_ = std::move(done);
+    gl_->set_path(*path_);
+    loading_ = false;
+    fit_ = true;
+    load_seconds_ = std::chrono::duration<double>(Clock::now() - load_started_).count();
+    log(LogLine::Info,
+        fmt::format("preview: {} segments, {} moves in {:.2f} s{}", path_->segments.size(),
+                    path_->moves, load_seconds_,
+                    path_->estimated_time_s > 0
+                        ? fmt::format("; cycle time about {}", clock_text(path_->estimated_time_s))
+                        : ""));
+    int shown_errors = 0;
+    for (const Diagnostic& d : path_->violations)
+      if (shown_errors++ < 20)
+        log(d.severity == Severity::Error ? LogLine::Error : LogLine::Info, format(d));
+    if (path_->violations.size() > 20)
+      log(LogLine::Error, fmt::format("... and {} more", path_->violations.size() - 20));
+  }
+}
+
+// ---- actions ---------------------------------------------------------------------------------
+
+bool App::clicked(const char* name) {
+  if (pending_click_.empty() || pending_click_ != name) return false;
+  pending_click_.clear();
+  return true;
+}
+
+bool App::button(const char* label, bool enabled) {
+  if (!enabled) ImGui::BeginDisabled();
+  bool pressed = ImGui::Button(label);
+  if (!enabled) ImGui::EndDisabled();
+  // A script names the button by its label (without any ##id).
+  const std::string name = std::string(label).substr(0, std::string(label).find("##"));
+  if (enabled && clicked(name.c_str())) pressed = true;
+  return pressed;
+}
+
+std::optional<std::string> App::missed_click() {
+  if (pending_click_.empty()) return std::nullopt;
+  return std::exchange(pending_click_, {});
+}
+
+void App::report(const Outcome& o, const std::string& what) {
+  if (o) return;
+  if (o.errors.empty()) return log(LogLine::Error, fmt::format("{}: {}", what, o.reason));
+  for (const Diagnostic& d : o.errors) {
+    const bool here = d.loc.file && *d.loc.file == kConsoleName && d.loc.line == 1 && d.via.empty();
+    log(LogLine::Error,
+        here ? fmt::format("error: column {}: {}", d.loc.column, d.message) : format(d));
+  }
+}
+
+void App::run_line(const std::string& typed) {
+  const std::string line = trim(typed);
+  if (line.empty()) return;
+  log(LogLine::Typed, "> " + line);
+  const std::size_t space = line.find_first_of(" \t");
+  const std::string word = upper(line.substr(0, space));
+  const std::string rest = space == std::string::npos ? "" : trim(line.substr(space));
+  if ((word == "QUIT" || word == "EXIT") && rest.empty()) {
+    quit_ = true;
+    return;
+  }
+  if (word == "HELP") {
+    if (rest.empty()) return log(LogLine::Info, kKeysHelp);
+    if (const CommandSpec* s = table_.find(upper(rest)))
+      return log(LogLine::Info, command_help(*s));
+    return log(LogLine::Error, fmt::format("unknown command '{}'", rest));
+  }
+  if (word == "STATUS" && rest.empty()) {
+    const Vec6 p = position(status_);
+    return log(LogLine::Info,
+               fmt::format("{}  X {:.4f}  Y {:.4f}  Z {:.4f}  {}{}", state_name(status_.state),
+                           shown(p[0]), shown(p[1]), shown(p[2]), units_name(settings_.units),
+                           status_.message.empty() ? "" : "; last stop: " + status_.message));
+  }
+  if (word == "ACK" && rest.empty()) {
+    const Outcome o = c_.acknowledge();
+    report(o, "ack");
+    if (o) {
+      snapshot();
+      log(LogLine::Info, "E-stop acknowledged: the machine is ready");
+    }
+    return;
+  }
+  const std::string code = upper(line.substr(0, std::min<std::size_t>(2, line.size())));
+  if ((word == "K" && rest.empty()) ||
+      (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' '))) {
+    kp_focus_ = true;
+    ImGui::SetWindowFocus("Keypad");
+    return log(LogLine::Info, "keypad: arrows X and Y, PageUp/PageDown Z; Esc leaves");
+  }
+  const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
+  report(o, "refused");
+  if (o) was_at_rest_ = false;  // poll() sees the end, even of a move that ended at once
+}
+
+void App::open_sheet(const CommandSpec& spec, const std::string& typed) {
+  sheet_.emplace(spec, settings_.dialect, units_name(settings_.units));
+  sheet_->fill_from(typed);
+  sheet_errors_.clear();
+  sheet_open_ = true;
+  sheet_fresh_ = true;
+  sheet_focus_ = 0;
+}
+
+void App::choose(const CommandSpec& spec) {
+  if (spec.immediate) return run_line(std::string(spec.code));
+  open_sheet(spec, "");
+}
+
+void App::start_file(int from_line) {
+  if (file_.empty()) return log(LogLine::Error, "no part file: type its name above and Load it");
+  if (from_line > 1) {
+    // FG runs a file from a line: its sheet's last parameter.
+    const CommandSpec* fg = table_.find("FG");
+    std::string l = fmt::format("FG, \"{}\"", std::filesystem::absolute(file_).string());
+    for (std::size_t i = 1; fg && i + 1 < fg->params.size(); ++i) l += ", ";
+    return run_line(fmt::format("{}, {}", l, from_line));
+  }
+  try {
+    log(LogLine::Typed, "> start " + file_);
+    const Outcome o = c_.run(Script::load(file_));
+    report(o, "refused");
+    if (o) was_at_rest_ = false;
+  } catch (const GantryError& e) {
+    log(LogLine::Error, e.what());
+  }
+}
+
+void App::load(const std::string& path) {
+  file_ = path;
+  cancel_ = true;
+  if (loader_.joinable()) loader_.join();
+  cancel_ = false;
+  loading_ = true;
+  loaded_so_far_ = 0;
+  load_started_ = Clock::now();
+  // On its own thread: a million segments take a while, and the command line must not wait.
+  loader_ = std::thread([this, path, settings = settings_] {
+    ToolpathOptions o;
+    o.job.yes = true;  // a preview answers PAUSE and MSGBOX as --yes does
+    o.cancel = &cancel_;
+    o.progress = [this](const Toolpath& so_far) { loaded_so_far_ = so_far.segments.size(); };
+    auto tp = std::make_shared<Toolpath>(load_toolpath(path, settings, o));
+    std::lock_guard lock(loaded_m_);
+    if (!cancel_) loaded_ = std::move(tp);
+  });
+}
+
+void App::jog(const std::array<int, kAxisCount>& dir) {
+  JogRequest j;
+  j.direction = dir;
+  j.fast = kp_fast_;
+  j.step = kp_step_;
+  if (!j.step && !opt_.realtime) {
+    log(LogLine::Error, "continuous jogs need --realtime on the simulated card; S: fixed steps");
+    return;
+  }
+  const Outcome o = c_.jog(j);
+  report(o, "jog");
+  if (o) {
+    was_at_rest_ = false;
+    kp_continuous_ = !j.step;
+  }
+}
+
+// The keyboard's jogs, while the keypad has the keys.
+void App::jog_keys() {
+  struct K {
+    int key, axis, sign;
+  };
+  static constexpr K keys[] = {{GLFW_KEY_LEFT, 0, -1},   {GLFW_KEY_RIGHT, 0, 1},
+                               {GLFW_KEY_UP, 1, 1},      {GLFW_KEY_DOWN, 1, -1},
+                               {GLFW_KEY_PAGE_UP, 2, 1}, {GLFW_KEY_PAGE_DOWN, 2, -1}};
+  for (const K& k : keys) {
+    std::array<int, kAxisCount> dir{};
+    dir[static_cast<std::size_t>(k.axis)] = k.sign;
+    if (kp_step_) {
+      // A held key repeats: one step per repeat, a press while a step moves is dropped.
+      if (ImGui::IsKeyPressed(k.key, true) && can_jog()) jog(dir);
+    } else if (ImGui::IsKeyPressed(k.key, false) && can_jog()) {
+      jog(dir);
+      if (kp_continuous_) kp_key_ = k.key;
+    } else if (ImGui::IsKeyReleased(k.key) && kp_key_ == k.key) {
+      report(c_.jog_release(), "release");
+      kp_key_ = -1;
+    }
+  }
+  if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) kp_step_ = !kp_step_;
+  if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) kp_fast_ = !kp_fast_;
+  if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) stop_jog();
+  if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) {
+    stop_jog();
+    if (status_.state == MachineState::Keypad) return report(c_.resume(), "go on");
+    kp_focus_ = false;
+    focus_line_ = true;
+  }
+}
+
+void App::global_keys() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) {
+    m_.io.cancel();
+    report(c_.estop(), "E-stop");
+  }
+  if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) show_keys_ = !show_keys_;
+  if (io.KeyAlt)
+    for (std::size_t i = 0; i < menus_.size(); ++i)
+      if (menus_[i].key >= 'A' && menus_[i].key <= 'Z' &&
+          ImGui::IsKeyPressed(GLFW_KEY_A + (menus_[i].key - 'A'), false))
+        group_popup_ = static_cast<int>(i);
+  if (sheet_open_ || dialog_shown_ || m_.io.question()) return;
+  if (kp_focus_) return jog_keys();
+  // A running file: the command line is read-only, so Space and Esc are free for it.
+  if (!at_rest() && status_.state != MachineState::Jogging) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false))
+      report(status_.state == MachineState::Paused ? c_.resume() : c_.pause(), "space");
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) report(c_.stop(), "stop");
+  }
+}
+
+// ---- the frame -------------------------------------------------------------------------------
+
+void App::frame() {
+  poll();
+  global_keys();
+  menu_bar();
+  readout_window();
+  keypad_window();
+  job_window();
+  preview_window();
+  console_window();
+  if (show_values_) values_window();
+  if (show_keys_) keys_window();
+  group_popup();
+  sheet_popup();
+  question_popup();
+}
+
+void App::menu_bar() {
+  if (!ImGui::BeginMainMenuBar()) return;
+  for (const Menu& menu : menus_) {
+    if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
+    ImGui::TextDisabled("Alt+%c", menu.key);
+    for (const CommandSpec* s : menu.commands)
+      if (ImGui::MenuItem(fmt::format("{}##m{}", s->name, s->code).c_str(),
+                          std::string(s->code).c_str()))
+        choose(*s);
+    if (menu.title == "Values") {
+      ImGui::Separator();
+      ImGui::MenuItem("Values window", nullptr, &show_values_);
+    }
+    if (menu.title == "Help") {
+      ImGui::Separator();
+      ImGui::MenuItem("Keys", "F1", &show_keys_);
+    }
+    if (menu.title == "File") {
+      ImGui::Separator();
+      if (ImGui::MenuItem("Quit")) quit_ = true;
+    }
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    const std::pair<const char*, View> views[] = {
+        {"Top", View::Top}, {"Front", View::Front}, {"Side", View::Side}, {"Iso", View::Iso}};
+    for (const auto& [name, v] : views)
+      if (ImGui::MenuItem(name)) camera_.set_view(v), fit_ = true;
+    ImGui::MenuItem("Perspective", nullptr, &camera_.perspective);
+    ImGui::MenuItem("Show jogs", nullptr, &show_jogs_);
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+}
+
+void App::group_popup() {
+  if (group_popup_ >= 0) {
+    ImGui::OpenPopup("##group");
+    ImGui::SetNextWindowPos(ImVec2(kLeft + 10, ImGui::GetIO().DisplaySize.y - kConsole - 10),
+                            ImGuiCond_Always, ImVec2(0, 1));
+    group_menu_ = group_popup_;
+    group_popup_ = -1;
+  }
+  if (!ImGui::BeginPopup("##group")) return;
+  const Menu& menu = menus_[static_cast<std::size_t>(group_menu_)];
+  ImGui::TextColored(kCyan, "%s", menu.title.c_str());
+  ImGui::Separator();
+  for (const CommandSpec* s : menu.commands)
+    if (ImGui::Selectable(fmt::format("{}  {}", s->code, s->name).c_str())) {
+      ImGui::CloseCurrentPopup();
+      choose(*s);
+    }
+  ImGui::EndPopup();
+}
+
+void App::readout_window() {
+  const float top = ImGui::GetFrameHeight();
+  place({{0, top}, {kLeft, 300}});
+  ImGui::Begin("Position", nullptr, kFixed);
+  const ControllerStatus& st = status_;
+  const bool pausing = st.state == MachineState::Paused && st.phase != FeedPhase::Held;
+  const ImVec4 colour = st.state == MachineState::EStop     ? kRed
+                        : st.state == MachineState::Stopped ? kYellow
+                        : at_rest()                         ? kGreen
+                                                            : kCyan;
+  ImGui::TextColored(colour, "%s", pausing ? "pausing" : state_name(st.state));
+  ImGui::SameLine(120);
+  ImGui::TextDisabled("card: %s", opt_.card.c_str());
+  const Vec6 p = position(st);
+  ImGui::SetWindowFontScale(1.7f);
+  const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  for (int i = 0; i < axes; ++i) {
+    ImGui::TextColored(kGrey, "%c", kAxes[i]);
+    ImGui::SameLine(40);
+    ImGui::Text("%11.4f", shown(p[i]));
+  }
+  ImGui::SetWindowFontScale(1.0f);
+  ImGui::Text("%s   %s   %s", units_name(settings_.units),
+              modal_.absolute ? "absolute (SA)" : "relative (SR)",
+              modal_.preview ? "preview mode (SP)" : "move mode");
+  ImGui::Text("move %.3g, %.3g   jog %.3g, %.3g  (XY, Z %s/s)", modal_.speeds.move.xy,
+              modal_.speeds.move.z, modal_.speeds.jog.xy, modal_.speeds.jog.z,
+              units_name(settings_.units));
+  auto leds = [](const char* label, auto on) {
+    ImGui::TextDisabled("%s", label);
+    for (int i = 0; i < 12; ++i) {
+      ImGui::SameLine(i == 0 ? 70.0f : 0.0f, 3);
+      ImGui::TextColored(on(i) ? kGreen : ImVec4(0.3f, 0.3f, 0.3f, 1), "%d", i + 1);
+    }
+  };
+  leds("inputs", [&](int i) { return st.inputs[static_cast<std::size_t>(i)]; });
+  leds("outputs", [&](int i) { return ((modal_.outputs >> i) & 1u) != 0; });
+  if (!st.message.empty() && at_rest()) ImGui::TextWrapped("last stop: %s", st.message.c_str());
+  ImGui::End();
+}
+
+void App::keypad_window() {
+  const float top = ImGui::GetFrameHeight() + 300;
+  place({{0, top}, {kLeft, 215}});
+  ImGui::Begin("Keypad", nullptr, kFixed);
+  if (ImGui::IsWindowFocused() && ImGui::IsMouseClicked(0)) kp_focus_ = true;
+  ImGui::TextColored(kp_focus_ ? kGreen : kGrey, "%s",
+                     kp_focus_ ? "keys jog (Esc leaves)" : "click here or type K for the keys");
+  // The pad: the buttons make the same requests as the keys.
+  struct B {
+    const char* label;
+    int axis, sign;
+    float x, y;
+  };
+  static constexpr B pad[] = {{"Y+", 1, 1, 60, 0},  {"X-", 0, -1, 0, 1},  {"X+", 0, 1, 120, 1},
+                              {"Y-", 1, -1, 60, 2}, {"Z+", 2, 1, 200, 0}, {"Z-", 2, -1, 200, 2}};
+  const ImVec2 origin = ImGui::GetCursorPos();
+  const float row = 34;
+  for (const B& b : pad) {
+    ImGui::SetCursorPos(ImVec2(origin.x + b.x, origin.y + b.y * row));
+    std::array<int, kAxisCount> dir{};
+    dir[static_cast<std::size_t>(b.axis)] = b.sign;
+    const bool press = ImGui::Button(b.label, ImVec2(52, 30));
+    if (kp_step_ ? (press || clicked(b.label)) && can_jog()
+                 : ImGui::IsItemActivated() && can_jog()) {
+      jog(dir);
+      if (!kp_step_ && kp_continuous_) kp_key_ = 1000 + b.axis * 2 + (b.sign > 0);
+    }
+    if (!kp_step_ && ImGui::IsItemDeactivated() && kp_key_ == 1000 + b.axis * 2 + (b.sign > 0)) {
+      report(c_.jog_release(), "release");
+      kp_key_ = -1;
+    }
+  }
+  ImGui::SetCursorPos(ImVec2(origin.x, origin.y + 3 * row + 4));
+  if (button(kp_step_ ? "Fixed step##mode" : "Continuous##mode")) kp_step_ = !kp_step_;
+  ImGui::SameLine();
+  if (button(kp_fast_ ? "Fast##speed" : "Slow##speed")) kp_fast_ = !kp_fast_;
+  ImGui::SameLine();
+  if (button("Stop jog", status_.state == MachineState::Jogging)) stop_jog();
+  ImGui::TextDisabled("step %.4f %s (VD); %s speed", settings_.display.keypad_step,
+                      units_name(settings_.units), kp_fast_ ? "jog" : "move");
+  ImGui::End();
+}
+
+void App::job_window() {
+  const float top = ImGui::GetFrameHeight() + 515;
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  place({{0, top}, {kLeft, std::max(size.y - top, 100.0f)}});
+  ImGui::Begin("Job", nullptr, kFixed);
+  ImGui::SetNextItemWidth(kLeft - 80);
+  ImGui::InputTextWithHint("##file", "part file (.sbp)", &file_);
+  ImGui::SameLine();
+  if (button("Load")) load(file_);
+  const bool rest = at_rest(), paused = status_.state == MachineState::Paused ||
+                                        status_.state == MachineState::Keypad;
+  if (button("Start", rest && !file_.empty())) start_file(1);
+  ImGui::SameLine();
+  if (paused ? button("Resume") : button("Pause", !rest && status_.state != MachineState::Jogging))
+    report(paused ? c_.resume() : c_.pause(), paused ? "resume" : "pause");
+  ImGui::SameLine();
+  if (button("Stop", !rest)) report(c_.stop(), "stop");
+  ImGui::SameLine();
+  ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.1f, 0.1f, 1));
+  if (button("E-STOP")) {
+    m_.io.cancel();
+    report(c_.estop(), "E-stop");
+  }
+  ImGui::PopStyleColor();
+  if (status_.state == MachineState::EStop) {
+    ImGui::SameLine();
+    if (button("Ack")) run_line("ack");
+  }
+  ImGui::SetNextItemWidth(110);
+  ImGui::InputInt("##from", &start_line_);
+  start_line_ = std::max(start_line_, 1);
+  ImGui::SameLine();
+  if (button("Start at line", rest && !file_.empty())) start_file(start_line_);
+  ImGui::SameLine();
+  if (button("Single step")) {
+    single_step_ = !single_step_;
+    c_.set_single_step(single_step_);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "On: each statement's motion plays, then the file holds; Resume runs the "
+        "next statement, Stop ends the file there");
+  ImGui::SameLine();
+  ImGui::TextUnformatted(single_step_ ? "on" : "off");
+  // Progress of the file running, or of the last one. The interpreter runs ahead of the
+  // motion: the line shown is the one the card plays, the fraction the time played of the
+  // check's estimate (the lines when there is none).
+  const std::size_t line = status_.playing_line > 0 && !at_rest()
+                               ? static_cast<std::size_t>(status_.playing_line)
+                               : status_.line;
+  const double total = status_.elapsed_s + status_.remaining_s;
+  const double fraction = !at_rest() && status_.remaining_s > 0 ? status_.elapsed_s / total
+                          : status_.lines > 0
+                              ? static_cast<double>(line) / static_cast<double>(status_.lines)
+                              : 0;
+  ImGui::ProgressBar(
+      static_cast<float>(fraction), ImVec2(-1, 0),
+      fmt::format("line {} of {}  ({:.0f} %)", line, status_.lines, 100 * fraction).c_str());
+  ImGui::Text("elapsed %s   remaining %s", clock_text(status_.elapsed_s).c_str(),
+              status_.remaining_s > 0 ? clock_text(status_.remaining_s).c_str() : "-");
+  ImGui::End();
+}
+
+void App::preview_window() {
+  const float top = ImGui::GetFrameHeight();
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  place({{kLeft, top}, {size.x - kLeft, size.y - top - kConsole}});
+  ImGui::Begin("Preview", nullptr, kFixed);
+  const std::pair<const char*, View> views[] = {
+      {"Top", View::Top}, {"Front", View::Front}, {"Side", View::Side}, {"Iso", View::Iso}};
+  for (const auto& [name, v] : views) {
+    if (button(name)) camera_.set_view(v), fit_ = true;
+    ImGui::SameLine();
+  }
+  if (button(camera_.perspective ? "Perspective" : "Orthographic"))
+    camera_.perspective = !camera_.perspective, fit_ = true;
+  ImGui::SameLine();
+  if (button("Fit")) fit_ = true;
+  ImGui::SameLine();
+  ImGui::Checkbox("jogs", &show_jogs_);
+  ImGui::SameLine();
+  if (!loading_ && !path_)
+    ImGui::TextDisabled("no part file loaded");
+  else if (loading_)
+    ImGui::TextColored(kYellow, "loading %s: %zu segments ...", file_.c_str(),
+                       loaded_so_far_.load());
+  else if (path_)
+    ImGui::TextDisabled("%zu segments, %zu moves%s", path_->segments.size(), path_->moves,
+                        path_->violations.empty()
+                            ? ""
+                            : fmt::format(", {} problems (log)", path_->violations.size()).c_str());
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const int w = std::max(static_cast<int>(avail.x), 16),
+            h = std::max(static_cast<int>(avail.y), 16);
+  const float aspect = static_cast<float>(w) / static_cast<float>(h);
+  if (fit_) {
+    Eigen::AlignedBox3f box(Eigen::Vector3f::Zero(),
+                            Eigen::Vector3f(static_cast<float>(settings_.preview.table_x),
+                                            static_cast<float>(settings_.preview.table_y), 0));
+    if (path_ && !path_->bounds.isEmpty()) box.extend(path_->bounds);
+    camera_.fit(box, aspect);
+    fit_ = false;
+  }
+  Overlay o;
+  o.table = {static_cast<float>(settings_.preview.table_x),
+             static_cast<float>(settings_.preview.table_y)};
+  o.grid = static_cast<float>(settings_.preview.grid);
+  o.show_jogs = show_jogs_;
+  const Vec6 p = position(status_);
+  if (settings_.preview.draw_tool)
+    o.tool = Eigen::Vector3f(static_cast<float>(p[0]), static_cast<float>(p[1]),
+                             static_cast<float>(p[2]));
+  o.tool_size = 0.02f * std::max(o.table.x(), o.table.y());
+  if (!at_rest() && status_.playing_line > 0)
+    o.current_line = static_cast<std::uint32_t>(status_.playing_line);
+  o.hover_line = hover_line_;
+  // Drawing a million segments takes a software renderer a tenth of a second: the picture
+  // is drawn again only when the view changed, and at 5 Hz for the tool while it moves.
+  const ViewKey view{camera_.yaw,
+                     camera_.pitch,
+                     camera_.distance,
+                     camera_.target.x(),
+                     camera_.target.y(),
+                     camera_.target.z(),
+                     camera_.perspective,
+                     w,
+                     h,
+                     path_.get(),
+                     show_jogs_,
+                     hover_line_,
+                     o.table.x(),
+                     o.table.y(),
+                     o.grid};
+  const LiveKey live{o.tool.value_or(Eigen::Vector3f::Zero()), o.current_line};
+  const bool stale = !(view == view_) || (!(live == live_) && Clock::now() - drawn_at_ >
+                                                                  std::chrono::milliseconds(200));
+  if (stale || always_redraw_) {
+    tex_ = gl_->render(w, h, camera_, o);
+    view_ = view;
+    live_ = live;
+    drawn_at_ = Clock::now();
+  }
+  const unsigned tex = tex_;
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(tex)),
+               ImVec2(static_cast<float>(w), static_cast<float>(h)), ImVec2(0, 1), ImVec2(1, 0));
+  const ImGuiIO& io = ImGui::GetIO();
+  std::optional<Eigen::Vector2f> pointer;
+  if (scripted_hover_) {
+    pointer = Eigen::Vector2f(scripted_hover_->x() * static_cast<float>(w),
+                              scripted_hover_->y() * static_cast<float>(h));
+  } else if (ImGui::IsItemHovered()) {
+    pointer = Eigen::Vector2f(io.MousePos.x - corner.x, io.MousePos.y - corner.y);
+    if (ImGui::IsMouseDragging(0)) camera_.orbit(io.MouseDelta.x, io.MouseDelta.y);
+    if (ImGui::IsMouseDragging(1) || ImGui::IsMouseDragging(2))
+      camera_.pan(io.MouseDelta.x, io.MouseDelta.y, static_cast<float>(h));
+    if (io.MouseWheel != 0) camera_.zoom(std::pow(0.85f, io.MouseWheel));
+  }
+  if (pointer) {
+    if (*pointer != last_mouse_) {
+      hover_line_ =
+          gl_->pick(static_cast<int>(pointer->x()), static_cast<int>(pointer->y()), camera_);
+      last_mouse_ = *pointer;
+    }
+    if (hover_line_ > 0 && !ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId))
+      ImGui::SetTooltip("line %u", hover_line_);
+  } else {
+    hover_line_ = 0;
+    last_mouse_ = {-1, -1};
+  }
+  ImGui::End();
+}
+
+void App::console_window() {
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  place({{kLeft, size.y - kConsole}, {size.x - kLeft, kConsole}});
+  ImGui::Begin("Console", nullptr, kFixed);
+  const float below =
+      ImGui::GetFrameHeightWithSpacing() + 2 * ImGui::GetTextLineHeightWithSpacing();
+  ImGui::BeginChild("log", ImVec2(0, -below), true);
+  for (const LogLine& l : log_) {
+    const ImVec4 c = l.kind == LogLine::Error   ? kRed
+                     : l.kind == LogLine::Typed ? kCyan
+                     : l.kind == LogLine::Print ? ImVec4(1, 1, 1, 1)
+                                                : kGrey;
+    ImGui::TextColored(c, "%s", l.text.c_str());
+  }
+  if (scroll_log_) ImGui::SetScrollHereY(1.0f);
+  scroll_log_ = false;
+  ImGui::EndChild();
+  // The parameter line: what the code typed takes, or the codes that match so far.
+  if (const CommandSpec* spec = command_of(table_, line_)) {
+    const ParamLine pl =
+        param_line(*spec, settings_.dialect, line_, static_cast<std::size_t>(cursor_));
+    ImGui::TextColored(kYellow, "%s", pl.text.c_str());
+    ImGui::TextDisabled("%s", pl.help.c_str());
+  } else if (const auto m = completions(table_, line_); !m.empty()) {
+    std::string list;
+    for (const CommandSpec* s : m) list += fmt::format("{} {}   ", s->code, s->name);
+    ImGui::TextColored(kYellow, "%s", list.c_str());
+    ImGui::TextDisabled("Tab completes; Enter on a code opens its fill-in sheet");
+  } else {
+    ImGui::TextDisabled("Type a two-letter command (Tab completes), K for the keypad, help");
+    ImGui::TextDisabled("%s", at_rest() ? "" : "Space pauses and resumes, Esc stops, F12 E-stop");
+  }
+  ImGui::TextColored(kCyan, "%s", status_.state == MachineState::EStop ? "ack>" : "gantry>");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  if (focus_line_ && !kp_focus_ && !sheet_open_ && !dialog_shown_) {
+    ImGui::SetKeyboardFocusHere();
+    focus_line_ = false;
+  }
+  auto callback = [](ImGuiInputTextCallbackData* d) -> int {
+    App& app = *static_cast<App*>(d->UserData);
+    if (d->EventFlag == ImGuiInputTextFlags_CallbackCompletion) {
+      const std::string done =
+          complete(app.table_, std::string(d->Buf, static_cast<std::size_t>(d->BufTextLen)));
+      d->DeleteChars(0, d->BufTextLen);
+      d->InsertChars(0, done.c_str());
+    } else if (d->EventFlag == ImGuiInputTextFlags_CallbackHistory) {
+      const std::string now(d->Buf, static_cast<std::size_t>(d->BufTextLen));
+      const std::optional<std::string> h =
+          d->EventKey == ImGuiKey_UpArrow ? app.history_.up(now) : app.history_.down();
+      if (h) {
+        d->DeleteChars(0, d->BufTextLen);
+        d->InsertChars(0, h->c_str());
+      }
+    }
+    app.cursor_ = d->CursorPos;
+    return 0;
+  };
+  const ImGuiInputTextFlags flags =
+      ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CallbackCompletion |
+      ImGuiInputTextFlags_CallbackHistory | ImGuiInputTextFlags_CallbackAlways |
+      (at_rest() ? 0 : ImGuiInputTextFlags_ReadOnly);
+  if (ImGui::InputText("##line", &line_, flags, callback, this)) {
+    const std::string typed = std::exchange(line_, {});
+    history_.add(trim(typed));
+    if (enter_action(table_, typed) == EnterAction::OpenSheet)
+      open_sheet(*command_of(table_, typed), typed);
+    else
+      run_line(typed);
+    focus_line_ = true;
+  }
+  if (!ImGui::IsItemActive() && !kp_focus_ && !ImGui::IsAnyItemActive() &&
+      !ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId))
+    focus_line_ = true;
+  ImGui::End();
+}
+
+void App::values_window() {
+  ImGui::SetNextWindowSize(ImVec2(460, 420), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(kLeft + 40, 60), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Values", &show_values_)) return ImGui::End();
+  const char* u = units_name(settings_.units);
+  ImGui::Text("units %s; keypad step %.4f; cutter %.4f; safe Z %.4f", u,
+              settings_.display.keypad_step, settings_.cutter.diameter, settings_.cutter.safe_z);
+  ImGui::Text("move speeds XY %.3f  Z %.3f; jog XY %.3f  Z %.3f %s/s", modal_.speeds.move.xy,
+              modal_.speeds.move.z, modal_.speeds.jog.xy, modal_.speeds.jog.z, u);
+  ImGui::Text("table limits X %.2f to %.2f, Y %.2f to %.2f, Z %.2f to %.2f", settings_.axes[0].min,
+              settings_.axes[0].max, settings_.axes[1].min, settings_.axes[1].max,
+              settings_.axes[2].min, settings_.axes[2].max);
+  ImGui::Separator();
+  ImGui::TextWrapped(
+      "Each editor is the command's fill-in sheet: a blank keeps the value, the ranges are the "
+      "command table's, and Run runs the V command, which saves the values.");
+  for (const CommandSpec& s : table_.all()) {
+    if (s.group != CommandGroup::Values || s.immediate || !s.coverage.empty()) continue;
+    if (button(fmt::format("{}##edit", s.code).c_str())) open_sheet(s, "");
+    ImGui::SameLine();
+    ImGui::Text("%s", std::string(s.name).c_str());
+  }
+  ImGui::End();
+}
+
+void App::keys_window() {
+  ImGui::SetNextWindowPos(ImVec2(kLeft + 60, 80), ImGuiCond_FirstUseEver);
+  if (ImGui::Begin("Keys", &show_keys_, ImGuiWindowFlags_AlwaysAutoResize))
+    ImGui::TextUnformatted(kKeysHelp);
+  ImGui::End();
+}
+
+void App::sheet_popup() {
+  if (sheet_open_ && !ImGui::IsPopupOpen("Fill-in sheet")) ImGui::OpenPopup("Fill-in sheet");
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(size.x / 2, size.y / 2), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(560, 0), ImVec2(size.x - 40, size.y - 40));
+  if (!ImGui::BeginPopupModal("Fill-in sheet", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  if (!sheet_open_ || !sheet_) {
+    ImGui::CloseCurrentPopup();
+    return ImGui::EndPopup();
+  }
+  const CommandSpec& spec = sheet_->spec();
+  ImGui::TextColored(kYellow, "%s  %s", std::string(spec.code).c_str(),
+                     std::string(spec.name).c_str());
+  ImGui::PushTextWrapPos(540);
+  ImGui::TextDisabled("%s", std::string(spec.help).c_str());
+  ImGui::PopTextWrapPos();
+  if (ImGui::BeginTable("fields", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+    int n = 0;
+    for (SheetField& f : sheet_->fields()) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("%d %s", n + 1, f.label.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(f.spec->help).c_str());
+      ImGui::TableNextColumn();
+      ImGui::SetNextItemWidth(160);
+      if (sheet_focus_ == n) {
+        ImGui::SetKeyboardFocusHere();
+        sheet_focus_ = -1;
+      }
+      if (ImGui::InputTextWithHint(fmt::format("##f{}", n).c_str(), f.hint.c_str(), &f.value))
+        f.error = field_error(*f.spec, f.value);
+      ImGui::TableNextColumn();
+      ImGui::TextDisabled("%s", f.unit.empty() ? f.type.c_str() : f.unit.c_str());
+      ImGui::TableNextColumn();
+      if (!f.error.empty())
+        ImGui::TextColored(kRed, "%s", f.error.c_str());
+      else
+        ImGui::TextDisabled("%s", f.range.c_str());
+      ++n;
+    }
+    ImGui::EndTable();
+  }
+  for (const std::string& e : sheet_errors_) ImGui::TextColored(kRed, "%s", e.c_str());
+  ImGui::TextDisabled("%s", sheet_->line().c_str());
+  bool run = button("Run");
+  ImGui::SameLine();
+  bool cancel = button("Cancel");
+  // Not the Enter that opened the sheet (it is still down in the frame it opens in).
+  const bool keys = !sheet_fresh_;
+  sheet_fresh_ = false;
+  run = run || (keys && (ImGui::IsKeyPressed(GLFW_KEY_ENTER, false) ||
+                         ImGui::IsKeyPressed(GLFW_KEY_KP_ENTER, false)));
+  cancel = cancel || (keys && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false));
+  // After Enter the field has lost the keys: give them to the first one in error.
+  auto focus_error = [&] {
+    sheet_focus_ = 0;
+    const std::vector<SheetField>& f = sheet_->fields();
+    for (std::size_t i = f.size(); i-- > 0;)
+      if (!f[i].error.empty()) sheet_focus_ = static_cast<int>(i);
+  };
+  if (cancel) {
+    sheet_open_ = false;
+  } else if (run && !sheet_->validate()) {
+    focus_error();
+  } else if (run) {
+    const std::string line = sheet_->line();
+    const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
+    log(LogLine::Typed, "> " + line);
+    if (o) {
+      history_.add(line);
+      was_at_rest_ = false;
+      sheet_open_ = false;
+    } else {
+      report(o, "refused");
+      sheet_errors_ =
+          o.errors.empty() ? std::vector<std::string>{o.reason} : sheet_->place_errors(o.errors);
+      focus_error();
+    }
+  }
+  if (!sheet_open_) {
+    ImGui::CloseCurrentPopup();
+    focus_line_ = true;
+  }
+  ImGui::EndPopup();
+}
+
+void App::question_popup() {
+  const std::optional<Question> q = m_.io.question();
+  if (!q) {
+    dialog_shown_ = 0;
+    return;
+  }
+  const char* title = q->kind == Question::Kind::Pause   ? "PAUSE###question"
+                      : q->kind == Question::Kind::Input ? "INPUT###question"
+                                                         : "MSGBOX###question";
+  if (dialog_shown_ != q->id) {
+    ImGui::OpenPopup("###question");
+    answer_ = q->default_value;
+  }
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(size.x / 2, size.y / 2), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  const bool fresh = dialog_shown_ != q->id;
+  dialog_shown_ = q->id;
+  ImGui::TextDisabled("[%s]", q->where.c_str());
+  if (!q->title.empty()) ImGui::TextColored(kYellow, "%s", q->title.c_str());
+  ImGui::PushTextWrapPos(480);
+  ImGui::TextUnformatted(q->text.c_str());
+  ImGui::PopTextWrapPos();
+  const bool enter = !fresh && ImGui::IsKeyPressed(GLFW_KEY_ENTER, false);
+  const bool esc = !fresh && ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false);
+  std::optional<std::string> answer;
+  bool cancel = esc;
+  switch (q->kind) {
+    case Question::Kind::Pause:
+      if (button("Continue") || enter) answer = "";
+      ImGui::SameLine();
+      cancel = button("Cancel##pause") || cancel;
+      break;
+    case Question::Kind::Input:
+      if (fresh) ImGui::SetKeyboardFocusHere();
+      ImGui::SetNextItemWidth(220);
+      ImGui::InputText(q->variable.c_str(), &answer_);
+      if (button("OK") || enter) answer = answer_;
+      ImGui::SameLine();
+      cancel = button("Cancel##input") || cancel;
+      break;
+    case Question::Kind::MsgBox:
+      for (std::size_t i = 0; i < q->buttons.size(); ++i) {
+        if (i > 0) ImGui::SameLine();
+        if (button(q->buttons[i].c_str())) answer = q->buttons[i];
+      }
+      if (enter && q->default_button < q->buttons.size()) answer = q->buttons[q->default_button];
+      break;
+  }
+  if (answer || cancel) {
+    log(LogLine::Info,
+        fmt::format("{}: {}", title,
+                    answer ? (answer->empty() ? "continue" : *answer) : "cancelled"));
+    if (answer)
+      m_.io.answer(*answer);
+    else
+      m_.io.cancel();
+    dialog_shown_ = 0;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
+// ---- the state, for scripts ----------------------------------------------------------------
+
+nlohmann::json App::state() const {
+  using nlohmann::json;
+  const Vec6 p = position(status_);
+  json s;
+  s["state"] = state_name(status_.state);
+  s["position"] = json::array();
+  for (int i = 0; i < kAxisCount; ++i) s["position"].push_back(shown(p[i]));
+  s["units"] = units_name(settings_.units);
+  s["absolute"] = modal_.absolute;
+  s["preview_mode"] = modal_.preview.has_value();
+  s["speeds"] = {{"move_xy", modal_.speeds.move.xy},
+                 {"move_z", modal_.speeds.move.z},
+                 {"jog_xy", modal_.speeds.jog.xy},
+                 {"jog_z", modal_.speeds.jog.z}};
+  s["card"] = opt_.card;
+  s["inputs"] = status_.inputs;
+  s["outputs"] = modal_.outputs;
+  s["message"] = status_.message;
+  s["command_line"] = line_;
+  s["history"] = history_.lines();
+  s["keypad"] = {{"keys", kp_focus_},
+                 {"step", kp_step_},
+                 {"fast", kp_fast_},
+                 {"step_size", settings_.display.keypad_step}};
+  s["progress"] = {{"line", status_.line},
+                   {"lines", status_.lines},
+                   {"elapsed_s", status_.elapsed_s},
+                   {"remaining_s", status_.remaining_s}};
+  if (sheet_open_ && sheet_) {
+    json fields = json::array();
+    for (const SheetField& f : sheet_->fields())
+      fields.push_back({{"label", f.label},
+                        {"type", f.type},
+                        {"unit", f.unit},
+                        {"range", f.range},
+                        {"hint", f.hint},
+                        {"value", f.value},
+                        {"error", f.error}});
+    s["sheet"] = {{"code", sheet_->spec().code},
+                  {"fields", fields},
+                  {"line", sheet_->line()},
+                  {"errors", sheet_errors_}};
+  }
+  if (const std::optional<Question> q = m_.io.question())
+    s["dialog"] = {{"kind", q->kind == Question::Kind::Pause   ? "PAUSE"
+                            : q->kind == Question::Kind::Input ? "INPUT"
+                                                               : "MSGBOX"},
+                   {"text", q->text},
+                   {"buttons", q->buttons},
+                   {"shown", dialog_shown_ == q->id}};
+  json preview = {
+      {"file", file_},
+      {"loading", loading_.load()},
+      {"hover_line", hover_line_},
+      {"view",
+       {{"yaw", camera_.yaw}, {"pitch", camera_.pitch}, {"perspective", camera_.perspective}}}};
+  if (path_) {
+    preview["segments"] = path_->segments.size();
+    preview["moves"] = path_->moves;
+    preview["violations"] = path_->violations.size();
+    preview["estimated_time_s"] = path_->estimated_time_s;
+    if (!path_->bounds.isEmpty())
+      preview["bounds"] = {path_->bounds.min().x(), path_->bounds.min().y(),
+                           path_->bounds.min().z(), path_->bounds.max().x(),
+                           path_->bounds.max().y(), path_->bounds.max().z()};
+  }
+  s["preview"] = preview;
+  json log = json::array();
+  for (const LogLine& l : log_)
+    log.push_back(fmt::format("{}{}", l.kind == LogLine::Error ? "E " : "  ", l.text));
+  s["log"] = log;
+  return s;
+}
+
+}  // namespace gantry::ui

@@ -1,0 +1,179 @@
+// The console window's windows: menus, command line, fill-in sheets, position readout,
+// keypad, preview, run controls, dialogs, message log and values. One frame at a time, on the
+// window's thread; the controller does the work.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "camera.hpp"
+#include "command_line.hpp"
+#include "fill_sheet.hpp"
+#include "gui.hpp"
+#include "preview_gl.hpp"
+
+namespace gantry::ui {
+
+class App {
+ public:
+  App(const GuiOptions& options, Machine& machine);
+  ~App();
+  App(const App&) = delete;
+  App& operator=(const App&) = delete;
+
+  // Builds one frame's windows (between ImGui::NewFrame and ImGui::Render).
+  void frame();
+  bool quit_requested() const { return quit_; }
+
+  // ---- for scripted runs and the benchmark ----
+  void click(const std::string& name) { pending_click_ = name; }
+  // The click asked for was not made in the last frame (no button of that name was drawn).
+  std::optional<std::string> missed_click();
+  void hover(float fx, float fy) { scripted_hover_ = Eigen::Vector2f(fx, fy); }
+  bool idle() const;  // at rest, no dialog, no load under way
+  bool dialog_showing() const { return dialog_shown_ != 0; }
+  bool preview_loaded() const { return path_ != nullptr && !loading_; }
+  std::size_t preview_segments() const { return path_ ? path_->segments.size() : 0; }
+  nlohmann::json state() const;
+  void load(const std::string& path);
+  Camera& camera() { return camera_; }
+  // Frames are the benchmark's: the preview redraws every frame even when nothing changed.
+  void set_always_redraw(bool on) { always_redraw_ = on; }
+
+ private:
+  struct LogLine {
+    enum Kind { Info, Typed, Error, Print } kind;
+    std::string text;
+  };
+
+  // Each window.
+  void menu_bar();
+  void readout_window();
+  void keypad_window();
+  void job_window();
+  void preview_window();
+  void console_window();
+  void values_window();
+  void sheet_popup();
+  void question_popup();
+  void group_popup();
+  void keys_window();
+
+  // Actions.
+  bool button(const char* label, bool enabled = true);
+  bool clicked(const char* name);  // the script's click for a widget drawn another way
+  void run_line(const std::string& line);
+  void open_sheet(const CommandSpec& spec, const std::string& typed);
+  void choose(const CommandSpec& spec);  // a menu item: run it, or ask for its parameters
+  void start_file(int from_line);
+  void report(const Outcome& o, const std::string& what);
+  void jog(const std::array<int, kAxisCount>& dir);
+  void jog_keys();
+  void global_keys();
+  void log(LogLine::Kind kind, std::string text);
+  void snapshot();  // at rest: the exact position, the frame and the units
+  void poll();      // once a frame: output, questions, the end of an activity, a finished load
+  Vec6 position(const ControllerStatus& st) const;
+  bool at_rest() const;
+  bool can_jog() const;  // at rest, or a file waits at SK
+  void stop_jog();
+
+  const GuiOptions& opt_;
+  Machine& m_;
+  Controller& c_;
+  const CommandTable& table_;
+  std::vector<Menu> menus_;
+  Settings settings_;  // in force at the last snapshot
+  ControllerStatus status_;
+  ModalState modal_;
+  Vec6 offset_ = Vec6::Zero();  // where working 0 is in the machine frame
+  bool was_at_rest_ = true;
+
+  // Command line.
+  std::string line_;
+  History history_;
+  bool focus_line_ = true;
+  int cursor_ = 0;
+
+  // Fill-in sheet.
+  std::optional<FillSheet> sheet_;
+  std::vector<std::string> sheet_errors_;
+  bool sheet_open_ = false;
+  bool sheet_fresh_ = false;  // opened this frame
+  int sheet_focus_ = -1;
+
+  // Questions: the id of the one whose dialog is showing (0: none).
+  std::uint64_t dialog_shown_ = 0;
+  std::string answer_;
+
+  // Menus opened from the keyboard (Alt + the group's letter).
+  int group_popup_ = -1;  // asked for this frame
+  int group_menu_ = 0;    // the one showing
+
+  // Keypad.
+  bool single_step_ = false;  // the controller holds after each statement
+  bool kp_step_ = true, kp_fast_ = false;
+  bool kp_focus_ = false;       // the keyboard jogs (the keypad window has the focus)
+  bool kp_continuous_ = false;  // a continuous jog we started runs until its key is released
+  int kp_key_ = -1;             // the key (or on-screen button id) holding it
+  bool kp_file_ = false;        // a file waits at SK: the keypad is its
+
+  // Job.
+  std::string file_;
+  int start_line_ = 1;
+
+  // Preview.
+  std::unique_ptr<PreviewGL> gl_;
+  std::shared_ptr<const Toolpath> path_;
+  std::thread loader_;
+  std::atomic<bool> cancel_{false}, loading_{false};
+  std::atomic<std::size_t> loaded_so_far_{0};
+  std::mutex loaded_m_;
+  std::shared_ptr<const Toolpath> loaded_;  // handed over by the loader
+  Camera camera_;
+  bool fit_ = true;
+  std::uint32_t hover_line_ = 0;
+  Eigen::Vector2f last_mouse_{-1, -1};
+  std::optional<Eigen::Vector2f> scripted_hover_;
+  bool always_redraw_ = false;
+  // What the last picture of the preview showed.
+  struct ViewKey {
+    float yaw, pitch, distance, tx, ty, tz;
+    bool perspective;
+    int w, h;
+    const Toolpath* path;
+    bool jogs;
+    std::uint32_t hover;
+    float table_x, table_y, grid;
+    bool operator==(const ViewKey&) const = default;
+  } view_{};
+  struct LiveKey {
+    Eigen::Vector3f tool;
+    std::uint32_t current_line;
+    bool operator==(const LiveKey&) const = default;
+  } live_{Eigen::Vector3f::Zero(), 0};
+  unsigned tex_ = 0;
+  std::chrono::steady_clock::time_point drawn_at_;
+  bool show_jogs_ = true;
+  std::chrono::steady_clock::time_point load_started_;
+  double load_seconds_ = 0;
+
+  // Log.
+  std::vector<LogLine> log_;
+  bool scroll_log_ = false;
+
+  bool show_values_ = false, show_keys_ = false;
+  bool quit_ = false;
+  std::string pending_click_;
+};
+
+}  // namespace gantry::ui

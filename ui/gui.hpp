@@ -1,0 +1,35 @@
+// The console window (`gantry gui`): GLFW + Dear ImGui + OpenGL 3 over the machine
+// controller. It draws state and sends requests; it never computes motion.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "gantry/machine/controller.hpp"  // Controller
+#include "gantry/settings/settings.hpp"   // Settings
+#include "window_io.hpp"                  // WindowIO
+
+namespace gantry::ui {
+
+struct GuiOptions {
+  std::string file;      // previewed (and run by Start) from the start; may be empty
+  std::string script;    // scripted actions (test_script.hpp); the window exits at their end
+  bool bench = false;    // load `file`, time the first frames, print the figures and exit
+  std::string card;      // what the readout says the card is: "sim (virtual time)", "pci7200"
+  bool realtime = true;  // the card plays in wall-clock time (continuous jogs need it)
+  int width = 1280, height = 800;
+};
+
+// What the window drives. `settings` returns the values in force now (units, calibration,
+// the keypad step): they change when a line runs a V command.
+struct Machine {
+  Controller& controller;
+  WindowIO& io;
+  std::function<Settings()> settings;
+};
+
+// Opens the window and runs it until it is closed (or the script ends). Returns the exit
+// status: 0, 1 when the window cannot open, 2 when a script action fails.
+int run_gui(const GuiOptions& options, Machine& machine);
+
+}  // namespace gantry::ui

@@ -1,0 +1,93 @@
+// `gantry gui`: the profile, the card and the controller, as `gantry console` makes them,
+// handed to the window.
+#include "gui_command.hpp"
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "gantry/interp/persistent_store.hpp"  // PersistentStore
+#include "gantry/machine/controller.hpp"       // Controller
+#include "gui.hpp"                             // run_gui
+#include "machine_profile.hpp"                 // load_machine_profile (src/cli)
+#include "open_card.hpp"                       // open_card (src/cli)
+#include "values_keeper.hpp"                   // ValuesKeeper (src/cli)
+#include "window_io.hpp"                       // WindowIO
+
+namespace gantry {
+
+CLI::App* add_gui_command(CLI::App& app, GuiArgs& a) {
+  CLI::App* cmd = app.add_subcommand(
+      "gui", "The console window: command line, readout, keypad, 3D preview (docs/console.md)");
+  cmd->add_option("file", a.file, "Part file to preview and run");
+  cmd->add_option("--card", a.card, "Card to run on (default: the profile's card.type)")
+      ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
+  cmd->add_flag("--realtime", a.realtime,
+                "Play the simulated card in real time (continuous jogs and pausing a move "
+                "need it)");
+  cmd->add_option("--profile,--settings", a.profile, "Machine profile (TOML); default: built-in");
+  cmd->add_option("--values", a.values,
+                  "File of the V commands' values (TOML); default: the profile's in "
+                  "~/.config/gantry/values");
+  cmd->add_option("--persistent", a.persistent, "File of persistent $variables (JSON)");
+  cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
+  cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
+  cmd->add_option("--script", a.script,
+                  "Play scripted actions (type, key, click, wait, screenshot, dump) and exit");
+  cmd->add_flag("--bench", a.bench,
+                "Load FILE, print the time to the first frames and the steady frame time, exit");
+  cmd->add_option("--size", a.width, "Window width in pixels (the height follows, 16:10)")
+      ->check(CLI::Range(800, 4096));
+  return cmd;
+}
+
+int run_gui_command(const GuiArgs& a) {
+  if (a.bench && a.file.empty()) {
+    std::fprintf(stderr, "error: --bench needs a part file to load\n");
+    return 1;
+  }
+  if (!a.file.empty() && !std::filesystem::exists(a.file)) {
+    std::fprintf(stderr, "error: %s: no such file\n", a.file.c_str());
+    return 1;
+  }
+  MachineProfile profile;
+  if (!load_machine_profile(a.profile, a.values, profile)) return 1;
+  const Settings& settings = profile.settings;
+  PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
+  ui::WindowIO io(false, {});
+  ValuesKeeper values(profile, io);
+  InterpreterOptions opt;
+  opt.allow_shell = a.allow_shell;
+  opt.macro_dir = a.macros;
+  opt.trig_in_degrees = settings.dialect == Dialect::FabMo;
+  opt.profile = &profile.bare;
+  opt.profile_path = profile.path;
+  opt.values_path = profile.values_path;
+  opt.save_values = [&values](const Settings& s) { values.ran(s); };
+
+  CardChoice choice;
+  choice.type = a.card.empty() ? settings.card.type : a.card;
+  choice.realtime = a.realtime;
+  std::string why;
+  const std::unique_ptr<Card> card = open_card(choice, settings, &why);
+  if (!card) {
+    std::fprintf(stderr, "error: cannot open the %s card: %s\n", choice.type.c_str(), why.c_str());
+    return 1;
+  }
+  const bool sim = choice.type == "sim";
+  Controller controller(settings, *card, io, store, opt);
+  ui::GuiOptions o;
+  o.file = a.file;
+  o.script = a.script;
+  o.bench = a.bench;
+  o.realtime = a.realtime || !sim;
+  o.card = sim ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : choice.type;
+  o.width = a.width;
+  o.height = a.width * 10 / 16;
+  ui::Machine m{controller, io, [&values] { return values.settings(); }};
+  return ui::run_gui(o, m);
+}
+
+}  // namespace gantry

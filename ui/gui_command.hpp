@@ -1,0 +1,28 @@
+// `gantry gui [FILE]`: the console window on the live machine (docs/console.md, "Console
+// window"). Compiled into gantry when the window is built (GANTRY_GUI).
+#pragma once
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace gantry {
+
+struct GuiArgs {
+  std::string file;
+  std::string card;     // empty: the profile's card.type
+  std::string profile;  // empty: the built-in default
+  std::string values, persistent, macros;
+  bool realtime = false;
+  bool allow_shell = false;
+  std::string script;  // scripted actions; the window exits at their end
+  bool bench = false;
+  int width = 1280, height = 800;
+};
+
+CLI::App* add_gui_command(CLI::App& app, GuiArgs& args);
+int run_gui_command(const GuiArgs& args);
+
+}  // namespace gantry
