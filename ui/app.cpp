@@ -439,6 +439,7 @@ void App::frame() {
 }
 
 void App::menu_bar() {
+  if (clicked("Values window")) show_values_ = true;  // a script names the menu item
   if (!ImGui::BeginMainMenuBar()) return;
   for (const Menu& menu : menus_) {
     if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
@@ -481,12 +482,14 @@ void App::group_popup() {
     group_menu_ = group_popup_;
     group_popup_ = -1;
   }
-  if (!ImGui::BeginPopup("##group")) return;
+  group_showing_ = ImGui::BeginPopup("##group");
+  if (!group_showing_) return;
   const Menu& menu = menus_[static_cast<std::size_t>(group_menu_)];
   ImGui::TextColored(kCyan, "%s", menu.title.c_str());
   ImGui::Separator();
   for (const CommandSpec* s : menu.commands)
-    if (ImGui::Selectable(fmt::format("{}  {}", s->code, s->name).c_str())) {
+    if (ImGui::Selectable(fmt::format("{}  {}", s->code, s->name).c_str()) ||
+        clicked(std::string(s->code).c_str())) {
       ImGui::CloseCurrentPopup();
       choose(*s);
     }
@@ -1024,6 +1027,8 @@ nlohmann::json App::state() const {
                  {"move_z", modal_.speeds.move.z},
                  {"jog_xy", modal_.speeds.jog.xy},
                  {"jog_z", modal_.speeds.jog.z}};
+  s["values_window"] = show_values_;
+  s["group_menu"] = group_showing_ ? menus_[static_cast<std::size_t>(group_menu_)].title : "";
   s["card"] = opt_.card;
   s["inputs"] = status_.inputs;
   s["outputs"] = modal_.outputs;

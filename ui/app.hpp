@@ -116,8 +116,9 @@ class App {
   std::string answer_;
 
   // Menus opened from the keyboard (Alt + the group's letter).
-  int group_popup_ = -1;  // asked for this frame
-  int group_menu_ = 0;    // the one showing
+  int group_popup_ = -1;        // asked for this frame
+  int group_menu_ = 0;          // the one showing
+  bool group_showing_ = false;  // the Alt+letter menu is open
 
   // Keypad.
   bool single_step_ = false;  // the controller holds after each statement

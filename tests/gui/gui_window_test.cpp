@@ -203,6 +203,40 @@ TEST_F(GuiWindow, ABareCodeOpensItsFillInSheet) {
   EXPECT_EQ(refused["position"], json({7, 0, 0, 0, 0, 0}));
 }
 
+TEST_F(GuiWindow, TheValuesWindowEditsThroughTheCommandsSheets) {
+  ASSERT_EQ(gui("wait idle\nclick Values window\nwait frames 3\ndump open.json\n"
+                "click VS\nwait frames 3\ndump sheet.json\ntype -1\nkey Enter\nwait frames 3\n"
+                "dump bad.json\nkey Backspace\nkey Backspace\ntype 2.5\nkey Enter\nwait idle\n"
+                "dump ran.json\n"),
+            0)
+      << out_;
+  EXPECT_TRUE(state("open.json")["values_window"]);
+  const json sheet = state("sheet.json");
+  ASSERT_TRUE(sheet.contains("sheet")) << sheet.dump(2);
+  EXPECT_EQ(sheet["sheet"]["code"], "VS");
+  const json bad = state("bad.json");  // a negative speed: the sheet says why, nothing changes
+  ASSERT_TRUE(bad.contains("sheet")) << bad.dump(2);
+  EXPECT_FALSE(bad["sheet"]["fields"][0]["error"].get<std::string>().empty()) << bad.dump(2);
+  EXPECT_EQ(bad["speeds"]["move_xy"], state("open.json")["speeds"]["move_xy"]);
+  const json ran = state("ran.json");
+  EXPECT_FALSE(ran.contains("sheet"));
+  EXPECT_EQ(ran["speeds"]["move_xy"], 2.5);
+  EXPECT_TRUE(has_line(ran["log"], "> VS, 2.5"));
+}
+
+TEST_F(GuiWindow, AltAndAGroupsLetterOpensItsMenu) {
+  ASSERT_EQ(gui("wait idle\ntype MX, 3\nkey Enter\nwait idle\nkey alt+z\nwait frames 3\n"
+                "dump zero.json\nclick ZX\nwait idle\nwait frames 2\ndump zeroed.json\n"
+                "key alt+m\nwait frames 3\ndump move.json\n"),
+            0)
+      << out_;
+  EXPECT_EQ(state("zero.json")["group_menu"], "Zero");
+  const json zeroed = state("zeroed.json");  // ZX from the menu: X 3 is working 0 now
+  EXPECT_EQ(zeroed["group_menu"], "");
+  EXPECT_EQ(zeroed["position"][0], 0);
+  EXPECT_EQ(state("move.json")["group_menu"], "Move");
+}
+
 TEST_F(GuiWindow, RunsAFileOnTheSimCardWithItsPreview) {
   ASSERT_EQ(gui("wait idle\nscreenshot before.png\ndump loaded.json\nclick Start\nwait idle\n"
                 "dump after.json\n",
