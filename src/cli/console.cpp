@@ -1096,14 +1096,7 @@ int run_console(const ConsoleArgs& a) {
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   ConsoleIO io(interactive, a.yes, inputs);
   ValuesKeeper values(profile, io);
-  InterpreterOptions opt;
-  opt.allow_shell = a.allow_shell;
-  opt.macro_dir = a.macros;
-  opt.trig_in_degrees = settings.dialect == Dialect::FabMo;
-  opt.profile = &profile.bare;
-  opt.profile_path = profile.path;
-  opt.values_path = profile.values_path;
-  opt.save_values = [&values](const Settings& s) { values.ran(s); };
+  const InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
 
   CardChoice choice;
   choice.type = a.card.empty() ? settings.card.type : a.card;

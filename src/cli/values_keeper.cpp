@@ -23,4 +23,17 @@ Settings ValuesKeeper::settings() const {
   return now_;
 }
 
+InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeeper& values,
+                                            bool allow_shell, const std::string& macros) {
+  InterpreterOptions opt;
+  opt.allow_shell = allow_shell;
+  opt.macro_dir = macros;
+  opt.trig_in_degrees = p.settings.dialect == Dialect::FabMo;
+  opt.profile = &p.bare;
+  opt.profile_path = p.path;
+  opt.values_path = p.values_path;
+  opt.save_values = [&values](const Settings& s) { values.ran(s); };
+  return opt;
+}
+
 }  // namespace gantry

@@ -5,6 +5,9 @@
 
 #include <mutex>
 
+#include <string>
+
+#include "gantry/interp/interpreter.hpp"  // InterpreterOptions
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
 #include "machine_profile.hpp"            // MachineProfile
 
@@ -23,5 +26,10 @@ class ValuesKeeper {
   mutable std::mutex m_;
   Settings now_;
 };
+
+// The interpreter's options on the live machine: the profile and its values file (`values`
+// keeps what each run leaves), the macros' folder and whether SHELL may start programs.
+InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeeper& values,
+                                            bool allow_shell, const std::string& macros);
 
 }  // namespace gantry
