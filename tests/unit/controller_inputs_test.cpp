@@ -91,6 +91,37 @@ TEST(Probe, TcDigitizesAShapedPartIntoAFileThatFollowsIt) {
   EXPECT_NE(text.str().find("M3, 3, 1, -1"), std::string::npos) << text.str();
 }
 
+TEST(Probe, GcodeG38ProbesOnTheSameInputAndLatches) {
+  SimWorld w;
+  w.probe_z = -0.3;
+  {
+    Machine m(w);
+    m.run_to_end("G20\nG38.2 Z-1 F30\nG0 Z[#5063 + 0.5]\n");
+    EXPECT_EQ(m.c.state(), MachineState::Idle) << m.c.status().message;
+    // #5063, where the probe touched, is the step where the plate closed.
+    const double touch = static_cast<double>(m.first_step_below(-0.3, kZ)) / m.spu(kZ);
+    EXPECT_EQ(m.c.status().steps[kZ], std::llround((touch + 0.5) * m.spu(kZ)));
+  }
+  {
+    Machine m(w);  // G38.2 short of the plate: an error on the live machine
+    ASSERT_TRUE(m.c.run(Script::from_text("G20\nG38.2 Z-0.2 F30\nG0 X1\n", "part.sbp")));
+    m.c.wait();
+    EXPECT_EQ(m.c.state(), MachineState::Stopped);
+    const Controller::Summary s = m.c.summary();
+    ASSERT_TRUE(s.error);
+    EXPECT_EQ(s.error->loc.line, 2);
+    EXPECT_NE(s.error->message.find("without the switch closing"), std::string::npos)
+        << s.error->message;
+    EXPECT_EQ(m.c.status().steps[0], 0);  // G0 X1 never ran
+  }
+  {
+    Machine m(w);  // G38.3 goes on
+    m.run_to_end("G20\nG38.3 Z-0.2 F30\nG0 X1\n");
+    EXPECT_EQ(m.c.state(), MachineState::Idle) << m.c.status().message;
+    EXPECT_EQ(m.c.status().steps[0], std::llround(m.spu(0)));
+  }
+}
+
 TEST(Probe, WithoutContactItEndsAtItsTarget) {
   SimWorld w;
   w.probe_z = -2;
