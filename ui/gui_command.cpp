@@ -11,9 +11,9 @@
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
 #include "gantry/machine/controller.hpp"       // Controller
 #include "gui.hpp"                             // run_gui
+#include "live_machine.hpp"                    // ValuesKeeper, LiveMachineArgs (src/cli)
 #include "machine_profile.hpp"                 // load_machine_profile (src/cli)
 #include "open_card.hpp"                       // open_card (src/cli)
-#include "values_keeper.hpp"                   // ValuesKeeper (src/cli)
 #include "window_io.hpp"                       // WindowIO
 
 namespace gantry {
@@ -22,18 +22,8 @@ CLI::App* add_gui_command(CLI::App& app, GuiArgs& a) {
   CLI::App* cmd = app.add_subcommand(
       "gui", "The console window: command line, readout, keypad, 3D preview (docs/console.md)");
   cmd->add_option("file", a.file, "Part file to preview and run");
-  cmd->add_option("--card", a.card, "Card to run on (default: the profile's card.type)")
-      ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
-  cmd->add_flag("--realtime", a.realtime,
-                "Play the simulated card in real time (continuous jogs and pausing a move "
-                "need it)");
-  cmd->add_option("--profile,--settings", a.profile, "Machine profile (TOML); default: built-in");
-  cmd->add_option("--values", a.values,
-                  "File of the V commands' values (TOML); default: the profile's in "
-                  "~/.config/gantry/values");
-  cmd->add_option("--persistent", a.persistent, "File of persistent $variables (JSON)");
-  cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
-  cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
+  add_live_machine_options(
+      cmd, a, "Play the simulated card in real time (continuous jogs and pausing a move need it)");
   cmd->add_option("--script", a.script,
                   "Play scripted actions (type, key, click, wait, screenshot, dump) and exit");
   cmd->add_flag("--bench", a.bench,

@@ -4,19 +4,12 @@
 
 #include <string>
 
-namespace CLI {
-class App;
-}
+#include "live_machine.hpp"  // LiveMachineArgs (src/cli)
 
 namespace gantry {
 
-struct GuiArgs {
+struct GuiArgs : LiveMachineArgs {
   std::string file;
-  std::string card;     // empty: the profile's card.type
-  std::string profile;  // empty: the built-in default
-  std::string values, persistent, macros;
-  bool realtime = false;
-  bool allow_shell = false;
   std::string script;  // scripted actions; the window exits at their end
   bool bench = false;
   int width = 1280, height = 800;

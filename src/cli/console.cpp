@@ -30,9 +30,9 @@
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/controller.hpp"     // Controller
 #include "line_editor.hpp"                   // KeyDecoder, LineEditor
+#include "live_machine.hpp"                  // ValuesKeeper, LiveMachineArgs
 #include "machine_profile.hpp"               // load_machine_profile
 #include "open_card.hpp"                     // open_card
-#include "values_keeper.hpp"                 // ValuesKeeper
 
 namespace gantry {
 namespace {
@@ -1052,18 +1052,9 @@ int Console::piped() {
 CLI::App* add_console_command(CLI::App& app, ConsoleArgs& a) {
   CLI::App* cmd = app.add_subcommand(
       "console", "The live machine at a terminal: type lines, pause, stop, jog (docs/console.md)");
-  cmd->add_option("--card", a.card, "Card to run on (default: the profile's card.type)")
-      ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
-  cmd->add_flag("--realtime", a.realtime,
-                "Play the simulated card in real time (continuous keypad jogs and pausing a "
-                "move need it)");
-  cmd->add_option("--profile,--settings", a.profile, "Machine profile (TOML); default: built-in");
-  cmd->add_option("--values", a.values,
-                  "File of the V commands' values (TOML); default: the profile's in "
-                  "~/.config/gantry/values");
-  cmd->add_option("--persistent", a.persistent, "File of persistent $variables (JSON)");
-  cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
-  cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
+  add_live_machine_options(cmd, a,
+                           "Play the simulated card in real time (continuous keypad jogs and "
+                           "pausing a move need it)");
   cmd->add_flag("--yes", a.yes, "Continue every PAUSE and press each MSGBOX's default button");
   cmd->add_option("--input", a.inputs, "Answer INPUT for a variable: --input '&DEPTH=0.5'");
   cmd->add_option("--key-release-ms", a.release_ms,

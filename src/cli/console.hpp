@@ -5,19 +5,12 @@
 #include <string>
 #include <vector>
 
-namespace CLI {
-class App;
-}
+#include "live_machine.hpp"  // LiveMachineArgs
 
 namespace gantry {
 
-struct ConsoleArgs {
-  std::string card;     // empty: the profile's card.type
-  std::string profile;  // empty: the built-in default
-  std::string values, persistent, macros;
-  bool realtime = false;
+struct ConsoleArgs : LiveMachineArgs {
   bool yes = false;
-  bool allow_shell = false;
   std::vector<std::string> inputs;  // NAME=VALUE
   // Keypad: a held key is released when no key repeat arrives within `release_ms`, or before
   // the first repeat within `repeat_delay_ms` (the terminal's delay before it repeats).

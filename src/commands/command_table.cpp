@@ -45,7 +45,6 @@ const CommandTable& CommandTable::standard() {
     add_cut_commands(specs);
     add_record_commands(specs);
     add_nudge_commands(specs);
-    add_catalogue_commands(specs, specs);  // last: it fills in every code not yet there
     return CommandTable(std::move(specs));
   }();
   return table;

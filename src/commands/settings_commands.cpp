@@ -1,5 +1,5 @@
 // Settings commands that set modes of a run: SF, SV, SW, SL, SM, SP, SK and FabMo's SU; and
-// FabMo's CN (call a macro).
+// FabMo's CN (call a macro) and C3 (its homing macro).
 #include <fmt/format.h>  // messages
 
 #include "gantry/commands/command_table.hpp"
@@ -57,6 +57,12 @@ void set_units(CommandContext& ctx, const CommandCall& call) {
 // CN (FabMo, in its stock macros): runs macro n, as C<n> does.
 void call_macro(CommandContext& ctx, const CommandCall& call) {
   ctx.call_macro(static_cast<int>(*call.number(0)), call.loc);
+}
+
+// C3 (FabMo's homing macro). A part file's C3 line is read as custom cut 3, which does the
+// same; this entry gives it its name and help.
+void homing_macro(CommandContext& ctx, const CommandCall& call) {
+  ctx.call_macro(3, call.loc);
 }
 
 // SC (FabMo): 0 reads and moves in table base coordinates, the user system's offsets (the
@@ -155,6 +161,13 @@ void add_settings_commands(std::vector<CommandSpec>& out) {
        "FabMo: runs macro number n (C<n>.sbp or macro_<n>.sbp), as C<n> does.",
        {ParamSpec{"macro", "", true, std::nullopt, "The macro's number."}.integer(0, 1e6)},
        call_macro});
+  out.push_back({"C3",
+                 "Homing macro (FabMo)",
+                 CommandGroup::Cuts,
+                 "FabMo's shortcut for macro 3, the homing macro: runs C3.sbp or macro_3.sbp, "
+                 "or without them the built-in homing on the proximity switches.",
+                 {},
+                 homing_macro});
   out.push_back({"SK",
                  "Set to keypad mode",
                  S,

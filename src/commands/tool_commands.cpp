@@ -3,8 +3,8 @@
 // values as parameters and write a part file, which the operator checks and runs with FP;
 // the header writer (TH) adds a comment header to a part file; setup (TS) prints the machine
 // profile; the typesetter (TT) writes a part file that engraves text in Gantry's own
-// single-stroke font. The copy machine (TC) and indexer (TI) are not implemented, and say
-// why by name.
+// single-stroke font; the copy machine (TC) probes a grid and writes what it found; the
+// indexer (TI) writes a part file that runs another at each turn of a rotary axis.
 #include <fmt/format.h>  // the part files' text, messages
 
 #include <algorithm>  // clamp

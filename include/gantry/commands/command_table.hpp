@@ -150,9 +150,5 @@ void add_utility_commands(std::vector<CommandSpec>& out);
 void add_cut_commands(std::vector<CommandSpec>& out);
 void add_record_commands(std::vector<CommandSpec>& out);  // and SI
 void add_nudge_commands(std::vector<CommandSpec>& out);   // MN, MI
-// Every other code of the SB3 and FabMo references, not in `implemented` (which may be `out`):
-// each says by name that it is not implemented yet, and does nothing else.
-void add_catalogue_commands(std::vector<CommandSpec>& out,
-                            const std::vector<CommandSpec>& implemented);
 
 }  // namespace gantry

@@ -1,10 +1,9 @@
-// The values a live machine's runs leave in force (units, speeds, calibration), for the
-// front ends' readouts, saved to the operator's values file whenever they change (as
-// `gantry run` saves them). Shared by `gantry console` and `gantry gui`.
+// What `gantry console` and `gantry gui` share to drive the live machine: their common
+// options, the interpreter's options, and the values the runs leave in force.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <mutex>
-
 #include <string>
 
 #include "gantry/interp/interpreter.hpp"  // InterpreterOptions
@@ -13,6 +12,21 @@
 
 namespace gantry {
 
+// The options both live front ends take.
+struct LiveMachineArgs {
+  std::string card;     // empty: the profile's card.type
+  std::string profile;  // empty: the built-in default
+  std::string values, persistent, macros;
+  bool realtime = false;
+  bool allow_shell = false;
+};
+
+// Adds them to `cmd` (`realtime_help`: what real time is needed for there).
+void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::string& realtime_help);
+
+// The values a live machine's runs leave in force (units, speeds, calibration), for the
+// front ends' readouts, saved to the operator's values file whenever they change (as
+// `gantry run` saves them).
 class ValuesKeeper {
  public:
   ValuesKeeper(const MachineProfile& p, OperatorIO& io) : profile_(p), io_(io), now_(p.settings) {}

@@ -1,10 +1,23 @@
-// Keeping and saving the values the runs leave in force.
-#include "values_keeper.hpp"
+// The live front ends' shared options, and keeping the values the runs leave in force.
+#include "live_machine.hpp"
 
 #include "gantry/core/text_file.hpp"        // read_text_file, write_file_atomically
 #include "gantry/settings/values_file.hpp"  // values_text
 
 namespace gantry {
+
+void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::string& realtime_help) {
+  cmd->add_option("--card", a.card, "Card to run on (default: the profile's card.type)")
+      ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
+  cmd->add_flag("--realtime", a.realtime, realtime_help);
+  cmd->add_option("--profile,--settings", a.profile, "Machine profile (TOML); default: built-in");
+  cmd->add_option("--values", a.values,
+                  "File of the V commands' values (TOML); default: the profile's in "
+                  "~/.config/gantry/values");
+  cmd->add_option("--persistent", a.persistent, "File of persistent $variables (JSON)");
+  cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
+  cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
+}
 
 void ValuesKeeper::ran(const Settings& s) {
   {
