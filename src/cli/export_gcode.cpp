@@ -97,6 +97,12 @@ void GcodeWriter::move(const CanonMove& m) {
     case MoveKind::Output:
       out_ += fmt::format("{} P{}\n", m.output_on ? "M64" : "M65", m.output);
       return;
+    case MoveKind::Independent:  // G-code has no axis moving on its own: say so, in place
+      out_ += m.independent.running()
+                  ? fmt::format("(MI: {} moves on its own here; G-code cannot say so)\n",
+                                static_cast<char>(std::toupper(kAxisLetters[m.independent.axis])))
+                  : "(MI: it stops here)\n";
+      return;
   }
 }
 

@@ -43,7 +43,7 @@ namespace {
 // How the plain list marks a command that is not complete.
 std::string coverage_note(const CommandSpec& s) {
   if (s.coverage.empty()) return "";
-  if (s.coverage == "not implemented") return " (not implemented)";
+  if (s.coverage.starts_with("refused by name: ")) return " (cannot run here)";
   return fmt::format(" (partial; missing: {})", s.coverage);
 }
 
@@ -68,8 +68,8 @@ std::string commands_markdown(const CommandTable& table) {
   size_t complete = 0;
   for (const CommandSpec& s : table.all()) complete += s.coverage.empty();
   out += fmt::format(
-      "\n{} of {} codes complete. A code that is not implemented yet stops the file with an "
-      "error naming it; nothing else happens.\n\n| Code | Name | Group | Coverage |\n"
+      "\n{} of {} codes complete. A code refused by name stops the file with an error "
+      "saying why; nothing else happens.\n\n| Code | Name | Group | Coverage |\n"
       "|---|---|---|---|\n",
       complete, table.all().size());
   for (CommandGroup g : kGroupOrder)

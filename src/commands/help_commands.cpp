@@ -20,8 +20,8 @@ const CommandGroup kGroups[] = {
     CommandGroup::Move,  CommandGroup::Probe,     CommandGroup::Record, CommandGroup::Settings,
     CommandGroup::Tools, CommandGroup::Utilities, CommandGroup::Values, CommandGroup::Zero};
 
-bool implemented(const CommandSpec& s) {
-  return s.coverage != "not implemented";
+bool runs_here(const CommandSpec& s) {
+  return !s.coverage.starts_with("refused by name: ");
 }
 
 // HA: what is running, and on which machine profile.
@@ -30,17 +30,17 @@ void help_about(CommandContext& ctx, const CommandCall&) {
   size_t complete = 0, working = 0;
   for (const CommandSpec& s : table.all()) {
     complete += s.coverage.empty();
-    working += implemented(s);
+    working += runs_here(s);
   }
   const Settings& st = ctx.settings();
-  ctx.print(fmt::format(
-      "Gantry {}\n"
-      "An open-source controller for OpenSBP part files in the style of ShopBot's SB3 "
-      "software; ShopBot Tools neither makes nor supports it.\n"
-      "Machine profile: {} (units: {}, card: {})\n"
-      "Commands: {} of {} codes implemented, {} of them completely (docs/commands.md).\n",
-      GANTRY_VERSION, st.name.empty() ? "(unnamed)" : st.name, units_name(st.units), st.card.type,
-      working, table.all().size(), complete));
+  ctx.print(
+      fmt::format("Gantry {}\n"
+                  "An open-source controller for OpenSBP part files in the style of ShopBot's SB3 "
+                  "software; ShopBot Tools neither makes nor supports it.\n"
+                  "Machine profile: {} (units: {}, card: {})\n"
+                  "Commands: {} of {} codes run here, {} of them completely (docs/commands.md).\n",
+                  GANTRY_VERSION, st.name.empty() ? "(unnamed)" : st.name, units_name(st.units),
+                  st.card.type, working, table.all().size(), complete));
 }
 
 // HB: the bulletins are ShopBot's, on ShopBot's site.
@@ -82,7 +82,7 @@ void help_parameters(CommandContext& ctx, const CommandCall&) {
       for (const ParamSpec& p : s.params)
         params += fmt::format("{}{}", params.empty() ? "" : ", ", p.name);
       std::string line = fmt::format("  {}  {:<{}}  {}", s.code, s.name, width, params);
-      if (!implemented(s)) line += "  [not implemented]";
+      if (!runs_here(s)) line += "  [cannot run here]";
       while (!line.empty() && line.back() == ' ') line.pop_back();
       out += line + "\n";
     }
@@ -211,7 +211,7 @@ void add_help_commands(std::vector<CommandSpec>& out) {
                  "Help: quick reference",
                  H,
                  "Prints every command code with its name, group by group, marking those "
-                 "that are partial or not implemented.",
+                 "that are partial or cannot run here.",
                  {},
                  help_quick_reference});
   out.push_back({"HT",

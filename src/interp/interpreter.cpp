@@ -5,8 +5,10 @@
 #include <fmt/format.h>  // messages
 
 #include <algorithm>   // all_of
+#include <cctype>      // toupper
 #include <cmath>       // isfinite, round
 #include <filesystem>  // path joining for FP and C#
+#include <utility>     // exchange
 
 #include "../lang/scan.hpp"                  // looks_like_expression
 #include "gantry/core/text_file.hpp"         // write_file_atomically
@@ -65,7 +67,7 @@ void CommandContext::send_line(const Vec6& target, SpeedClass cls, const SourceL
   if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15: 1/n of every speed
     for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c}) *v /= n;
   m.loc = loc;
-  if (!state_.preview) sink_.move(m);  // SP: the location changes, no motor moves
+  if (!state_.preview) emit(m);  // SP: the location changes, no motor moves
   if (target[0] != state_.position[0] || target[1] != state_.position[1])  // for MD's R and L
     state_.last_xy_move = {target[0] - state_.position[0], target[1] - state_.position[1]};
   state_.position = target;
@@ -130,7 +132,7 @@ void CommandContext::send_arc(const Vec6& target, double cx, double cy, double s
   if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15, as line_to
     for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c}) *v /= n;
   m.loc = loc;
-  if (!state_.preview) sink_.move(m);
+  if (!state_.preview) emit(m);
   // MD's R and L turn from the direction of travel at the end: the tangent there.
   const double ex = m.to[0] - m.center_x, ey = m.to[1] - m.center_y;
   if (plane == ArcPlane::XY)
@@ -226,8 +228,56 @@ void CommandContext::dwell(double seconds, const SourceLoc& loc) {
   if (!(seconds > 0) || state_.preview) return;
   CanonMove m = here(MoveKind::Dwell, loc);
   m.dwell_s = seconds;
-  sink_.move(m);
+  emit(m);
   ++moves_;
+}
+
+void CommandContext::emit(const CanonMove& m) {
+  if (const std::optional<IndependentMotion>& mi = state_.independent) {
+    const int i = mi->axis;
+    if (m.from[i] != m.to[i] || (m.kind == MoveKind::Arc && plane_axes(m.plane)[2] != i))
+      fail(m.loc, fmt::format("this move would move {0}, which MI moves on its own (line {1}); "
+                              "nothing was moved. Stop it first with MI, {0}",
+                              static_cast<char>(std::toupper(kAxisLetters[i])),
+                              state_.independent_loc.line));
+    if (std::exchange(independent_resting_, false)) {
+      CanonMove start = here(MoveKind::Independent, state_.independent_loc);
+      start.independent = *mi;
+      sink_.move(start);
+    }
+  }
+  sink_.move(m);
+}
+
+void CommandContext::start_independent(const IndependentMotion& m, const SourceLoc& loc) {
+  if (state_.preview) return;  // SP: no motor moves
+  CanonMove start = here(MoveKind::Independent, loc);
+  start.independent = m;
+  sink_.move(start);
+  state_.independent = m;
+  state_.independent_loc = loc;
+  independent_resting_ = false;
+}
+
+void CommandContext::end_independent(const SourceLoc& loc) {
+  if (!state_.independent) return;
+  sink_.move(here(MoveKind::Independent, loc));  // not running: it comes to rest
+  sync();
+  state_.independent.reset();
+  independent_resting_ = false;
+}
+
+std::optional<MotionReport> CommandContext::sync() {
+  std::optional<MotionReport> r = sink_.sync();
+  if (state_.independent) {
+    independent_resting_ = true;
+    if (r) {  // it moved on its own: it is where the pulses left it
+      const int i = state_.independent->axis;
+      state_.position[i] =
+          r->machine[i] - state_.machine_origin[i] - state_.zero[i] - state_.applied_offset[i];
+    }
+  }
+  return r;
 }
 
 void CommandContext::zero_axes(unsigned axes) {
@@ -272,6 +322,7 @@ Settings& CommandContext::change_values(ValueScope scope) {
 void CommandContext::values_reach_motion(const SourceLoc& loc) {
   come_to_rest(loc);
   sink_.settings_changed(settings_);
+  independent_resting_ = state_.independent.has_value();  // the stream came to rest
 }
 
 void CommandContext::make_values_permanent() {
@@ -360,7 +411,7 @@ void CommandContext::homing_line(const Vec6& file_target, double speed, const So
 }
 
 std::optional<std::array<bool, 12>> CommandContext::input_switches() {
-  sink_.sync();
+  sync();
   return sink_.input_switches();
 }
 
@@ -380,7 +431,7 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
     send_line(target, SpeedClass::Move, loc);
     return false;
   }
-  sink_.sync();
+  sync();
   if (const std::optional<std::array<bool, 12>> in = sink_.input_switches();
       in && (*in)[input - 1] == closing)
     fail(loc, fmt::format("input switch {} is {} already ({}): nothing moved", input,
@@ -394,7 +445,7 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
   state_.speeds.move = {speed, speed, speed, speed, speed};
   send_line(target, SpeedClass::Move, loc);
   state_.speeds = speeds;
-  const std::optional<MotionReport> r = sink_.sync();
+  const std::optional<MotionReport> r = sync();
   const bool hit = r && r->fired;
   if (hit) {
     // It came to rest a little past the point where the switch closed: back there. The
@@ -408,7 +459,7 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
     const Vec6 back = working(r->latched);
     working(r->machine);
     homing_line(transform_.to_file(back), speed, loc);
-    sink_.sync();
+    sync();
   }
   interp_->arm_inputs();  // the file's ON INPUT handlers again
   return hit;
@@ -416,6 +467,7 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
 
 void CommandContext::keypad(std::string_view message, const SourceLoc& loc) {
   if (interp_->io_.keypad(message, loc) == KeypadAnswer::GoOn) return;
+  independent_resting_ = state_.independent.has_value();  // it rests while the keypad is open
   if (const std::optional<MotionReport> r = sink_.keypad(loc))
     interp_->set_machine_position(r->machine);
 }
@@ -873,6 +925,11 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     }
     end_quiet();  // a start line never reached: the machine was never told otherwise
     start_.reset();
+    try {  // MI stops with the run: its axis is where the pulses leave it
+      ctx_.end_independent(SourceLoc{});
+    } catch (const GantryError&) {  // stopped: the controller takes the pulses played
+      state_.independent.reset();
+    }
     sink_.flush();
     settings_.speeds = state_.speeds;  // MS and JS changes stay; VS ones were undone above
     if (!options_.dry_run && options_.save_values) options_.save_values(settings_);
@@ -922,6 +979,7 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
   }
   end_quiet();
   start_.reset();
+  state_.independent.reset();
   sink_.flush();
   return out;
 }
@@ -1073,7 +1131,7 @@ void Interpreter::arm_inputs() {
   std::vector<InputTrigger> triggers;
   for (const auto& [key, h] : on_input_)
     triggers.push_back({key.first, key.second == 1, h.instant});
-  sink_.sync();
+  ctx_.sync();
   sink_.watch_inputs(triggers, MotionSink::Watching::Handlers);
 }
 
@@ -1083,7 +1141,7 @@ void Interpreter::arm_inputs() {
 // handler is armed (docs/language.md).
 void Interpreter::service_inputs(std::size_t moves_before) {
   if (on_input_.empty() || ctx_.moves() == moves_before) return;
-  const std::optional<MotionReport> r = sink_.sync();
+  const std::optional<MotionReport> r = ctx_.sync();
   if (!r || !r->fired) return;
   set_machine_position(r->machine);  // where it came to rest
   auto it = on_input_.find({r->fired->input, r->fired->closing ? 1 : 0});
@@ -1109,7 +1167,7 @@ const nlohmann::json* Interpreter::persistent_variable(std::string_view name) co
 
 Value Interpreter::system_variable(int n, const SourceLoc& loc) {
   // An input is read where the motion is: the moves before this line play out first.
-  if ((n >= 51 && n <= 58) || (n >= 126 && n <= 129)) sink_.sync();
+  if ((n >= 51 && n <= 58) || (n >= 126 && n <= 129)) ctx_.sync();
   if (std::optional<Value> v = read_system_variable(n, snapshot())) return *v;
   fail(loc, fmt::format("unknown system variable %({}); docs/system_variables.md lists them", n));
 }

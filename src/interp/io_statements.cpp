@@ -90,14 +90,14 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
       fail(loc, fmt::format("input switch {} does not exist; inputs are 1 to 12", in));
     // Level-triggered: an input already in the state does not wait.
     const int n = static_cast<int>(in) - 1;
-    sink_.sync();
+    ctx_.sync();
     if (snapshot().inputs[n] == (state != 0)) return;
     if (sink_.input_switches()) {
       // The live machine: it waits for the switch, in short dwells, so time passes on the
       // card (virtual time too) and a stop ends the wait.
       while ((*sink_.input_switches())[n] != (state != 0)) {
         ctx_.dwell(0.01, loc);
-        sink_.sync();
+        ctx_.sync();
       }
       return;
     }

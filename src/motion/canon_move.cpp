@@ -15,6 +15,8 @@ const char* kind_name(MoveKind k) {
       return "stop";
     case MoveKind::Output:
       return "output";
+    case MoveKind::Independent:
+      return "independent";
   }
   return "?";
 }

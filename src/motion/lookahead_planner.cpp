@@ -43,7 +43,8 @@ double LookAheadPlanner::reach(double v, const Block& b) const {
 void LookAheadPlanner::move(const CanonMove& m) {
   // During a hold, a dwell or an output cannot go out before the held moves ahead of it:
   // it and everything after it wait in arrival order until resume().
-  if (held_ && (!deferred_.empty() || m.kind == MoveKind::Dwell || m.kind == MoveKind::Output)) {
+  const bool at_rest = m.kind == MoveKind::Output || m.kind == MoveKind::Independent;
+  if (held_ && (!deferred_.empty() || m.kind == MoveKind::Dwell || at_rest)) {
     deferred_.push_back(m);
     return;
   }
@@ -51,17 +52,18 @@ void LookAheadPlanner::move(const CanonMove& m) {
     punctuated_ = true;
     return;
   }
-  if (m.kind == MoveKind::Dwell || m.kind == MoveKind::Output) {
+  if (m.kind == MoveKind::Dwell || at_rest) {
     // An output switches with the machine at rest, between the moves around it. Stopping
     // from the ramp speed is a speed jump, and so is starting again: with no time between
     // them (an output takes none) they add up, to twice the ramp speed on a reversal. So
-    // before an output the machine ramps all the way to 0 and only the start jumps.
-    stop(m.kind == MoveKind::Output || m.dwell_s <= 0);
+    // before an output (or MI) the machine ramps all the way to 0 and only the start jumps.
+    stop(at_rest || m.dwell_s <= 0);
     PlannedSegment seg;
     seg.from = seg.to = m.to;
     seg.dwell_s = m.dwell_s;
     seg.output = m.kind == MoveKind::Output ? m.output : 0;
     seg.output_on = m.output_on;
+    if (m.kind == MoveKind::Independent) seg.independent = m.independent;
     seg.loc = m.loc;
     planned_time_ += m.dwell_s;
     out_.segment(seg);

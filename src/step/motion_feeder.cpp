@@ -73,6 +73,10 @@ void MotionFeeder::segment(const PlannedSegment& s) {
 }
 
 void MotionFeeder::play(const PlannedSegment& s) {
+  if (parked_ && (s.independent || s.profile.length > 0 || s.dwell_s > 0)) {
+    if (!s.independent) steps_.start_independent(*parked_);  // a new one replaces it
+    parked_.reset();
+  }
   // While slowing, only a halt can cut.
   const bool playing = phase() == FeedPhase::Playing;
   const std::optional<double> cut =
@@ -133,6 +137,7 @@ void MotionFeeder::hold_here(const PlannedSegment& rest) {
 void MotionFeeder::settle() {
   carry_ = 0;
   hold_at_ = steps_.kNever;
+  if (std::optional<IndependentMotion> m = steps_.rest_independent()) parked_ = m;
   steps_.flush();  // every word up to here reaches the card: the tool is where it stopped
   set_phase(FeedPhase::Held);
 }
@@ -143,6 +148,7 @@ void MotionFeeder::halt_now() {
   kept_.clear();
   carry_ = 0;
   halt_at_ = hold_at_ = steps_.kNever;
+  parked_.reset();
   steps_.halt();
   set_phase(FeedPhase::Halted);
 }
@@ -159,6 +165,7 @@ void MotionFeeder::flush() {
       kept_.push_back({Kept::kFlush, {}, nullptr});
       return;
     case FeedPhase::Playing:
+      parked_.reset();  // the stream ends at rest
       steps_.flush();
       ++flushes_;
   }
@@ -214,6 +221,7 @@ void MotionFeeder::discard() {
   kept_.clear();
   carry_ = 0;
   hold_at_ = halt_at_ = steps_.kNever;
+  parked_.reset();
   if (was == FeedPhase::Halted) steps_.restart();
   set_phase(FeedPhase::Playing);
 }

@@ -148,6 +148,12 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
   if (faulted_) return std::nullopt;
   current_loc_ = seg.loc;
   const std::int64_t t0 = segment_end_;
+  if (seg.independent) {  // at rest, like an output
+    if (stops.now() <= t0) return 0.0;
+    emit_until(segment_end_);
+    start_independent(*seg.independent);
+    return std::nullopt;
+  }
   if (seg.output > 0) {  // at rest: the words so far keep the old level, one word the new
     if (stops.now() <= t0) return 0.0;
     emit_until(segment_end_);
@@ -163,6 +169,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
   const std::array<bool, kAxisCount> positive_before = positive_;
   for (int i = 0; i < kAxisCount; ++i) {
     next[i] = stop[i] = events_.size();
+    if (independent_ && independent_->axis() == i) continue;  // it moves on its own
     const std::int64_t target = std::llround(seg.to[i] * steps_per_unit_[i]);
     const std::int64_t delta = target - position_[i];
     if (delta == 0) continue;
@@ -230,6 +237,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
 
 void StepGenerator::flush() {
   if (faulted_) return;
+  rest_independent();
   std::int64_t end = segment_end_;
   for (std::int64_t pe : pulse_end_) end = std::max(end, pe);
   emit_until(end);
@@ -247,7 +255,52 @@ void StepGenerator::flush() {
   }
 }
 
+std::optional<IndependentMotion> StepGenerator::rest_independent() {
+  if (!independent_) return std::nullopt;
+  independent_->stop_from(segment_end_);
+  while (const std::optional<Event> e = independent_event()) {
+    emit_words(e->tick);
+    play_independent(*e);
+  }
+  segment_end_ = std::max(segment_end_, cursor_);
+  const IndependentMotion m = independent_->motion();
+  independent_.reset();
+  return m;
+}
+
+void StepGenerator::start_independent(const IndependentMotion& m) {
+  rest_independent();
+  if (m.running()) independent_.emplace(m, steps_per_unit_[m.axis], timing_.tick_s, segment_end_);
+}
+
+// Placed as segment_until places a path step: never before the words sent, min_period
+// after the axis's last step, and a direction change set up dir_setup before its step.
+std::optional<StepGenerator::Event> StepGenerator::independent_event() const {
+  const std::optional<IndependentAxis::Step> s = independent_ ? independent_->next() : std::nullopt;
+  if (!s) return std::nullopt;
+  const int i = independent_->axis();
+  const std::int64_t tick = std::max({static_cast<std::int64_t>(std::llround(s->tick)),
+                                      last_step_[i] + timing_.min_period_ticks, cursor_});
+  if (s->positive != positive_[i])
+    return Event{std::max({cursor_, pulse_end_[i], tick - timing_.dir_setup_ticks}), i, true,
+                 s->positive};
+  return Event{std::max(tick, independent_dir_tick_ + timing_.dir_setup_ticks), i, false,
+               s->positive};
+}
+
+void StepGenerator::play_independent(const Event& e) {
+  apply(e);
+  if (e.is_dir) {
+    positive_[e.axis] = e.positive;
+    independent_dir_tick_ = e.tick;
+  } else {
+    last_step_[e.axis] = e.tick;
+    independent_->taken();
+  }
+}
+
 void StepGenerator::halt() {
+  independent_.reset();  // E-stop: every axis stops at once
   if (!block_.empty()) card_.write(block_);
   block_.clear();
   card_.stop(pins_.idle_word());  // outputs off, as an E-stop must
@@ -303,6 +356,14 @@ std::uint32_t StepGenerator::word_at(std::int64_t tick) const {
 }
 
 void StepGenerator::emit_until(std::int64_t tick) {
+  for (std::optional<Event> e; (e = independent_event()) && e->tick < tick;) {
+    emit_words(e->tick);
+    play_independent(*e);
+  }
+  emit_words(tick);
+}
+
+void StepGenerator::emit_words(std::int64_t tick) {
   while (cursor_ < tick) {
     // The word only changes where a pulse ends; emit up to the next such tick in one run.
     std::int64_t next = tick;

@@ -406,5 +406,79 @@ TEST(Controller, AFeedOverrideReachesTheMovesOfTheFileRunning) {
   EXPECT_NEAR(live, time_of(kBefore), 1e-9);
 }
 
+// MI beside the path: Z oscillates out 0.1 in and back at 2.5 Hz while X and Y cut a square.
+const char* kOscillating =
+    "MS, 2, 1\n"
+    "MZ, 1\n"
+    "MI, Z, 1, , 2.5, 0.1\n"
+    "M2, 4, 0\n"
+    "M2, 4, 3\n"
+    "M2, 0, 3\n"
+    "MI, Z\n"
+    "MX, 0\n";
+
+TEST(Controller, AnOscillatingAxisRestsWithEveryPauseBackWhereItStarted) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> when(1.5, 6.5);  // after MZ, before the end
+  for (int trial = 0; trial < 6; ++trial) {
+    Machine m;
+    const double t = when(rng);
+    m.c.schedule(Request::Pause, t);
+    ASSERT_TRUE(m.run(kOscillating));
+    m.c.wait();
+    ControllerStatus s = m.c.status();
+    ASSERT_EQ(s.state, MachineState::Paused) << "pause at " << t;
+    // Held: the path at rest, and Z finished its cycle, back at the start exactly.
+    EXPECT_EQ(s.steps[2], m.steps(1.0, 2)) << "pause at " << t;
+    EXPECT_EQ(m.card.steps()[2], m.steps(1.0, 2)) << "pause at " << t;
+    ASSERT_TRUE(m.c.resume());
+    m.c.wait();
+    s = m.c.status();
+    EXPECT_EQ(s.state, MachineState::Idle) << "pause at " << t;
+    EXPECT_EQ(s.steps[0], 0) << "pause at " << t;
+    EXPECT_EQ(s.steps[1], m.steps(3.0, 1)) << "pause at " << t;
+    EXPECT_EQ(s.steps[2], m.steps(1.0, 2)) << "pause at " << t;
+    EXPECT_LE(m.card.kinematics().max_accel_ratio(), 1.0) << "pause at " << t;
+    EXPECT_LE(m.card.kinematics().max_velocity_ratio(), 1.0) << "pause at " << t;
+    EXPECT_EQ(m.card.timing_violations(), 0u);
+  }
+}
+
+TEST(Controller, ATurningAxisEndsWhereItsPulsesLeftItAndTheFileAfterKnowsIt) {
+  Machine m;
+  ASSERT_TRUE(m.run("MI, B, 1, 45\nMX, 2\nMI, B\n"));
+  m.c.wait();
+  ControllerStatus s = m.c.status();
+  ASSERT_EQ(s.state, MachineState::Idle);
+  EXPECT_GT(s.steps[4], m.steps(45, 4));  // over a second at 45 deg/s
+  const double b = static_cast<double>(s.steps[4]) / m.settings.axes[4].steps_per_unit;
+  EXPECT_DOUBLE_EQ(m.c.modal().position[4], b);
+  ASSERT_TRUE(m.run("MB, 0\n"));  // back from there, to the step
+  m.c.wait();
+  EXPECT_EQ(m.c.status().steps[4], 0);
+  EXPECT_EQ(m.card.steps()[4], 0);
+}
+
+TEST(Controller, StopAndEStopEndATurningAxisWithThePositionOfThePulsesPlayed) {
+  for (const Request r : {Request::Stop, Request::EStop}) {
+    Machine m;
+    m.c.schedule(r, 1.0);
+    ASSERT_TRUE(m.run("MI, B, 1, 45\nMX, 4\nMI, B\n"));
+    m.c.wait();
+    if (r == Request::EStop) {
+      ASSERT_TRUE(m.c.acknowledge());
+    }
+    const ControllerStatus s = m.c.status();
+    EXPECT_EQ(s.steps, m.card.steps()) << request_name(r);
+    EXPECT_GT(s.steps[4], m.steps(30, 4)) << request_name(r);
+    const double b = static_cast<double>(s.steps[4]) / m.settings.axes[4].steps_per_unit;
+    EXPECT_DOUBLE_EQ(m.c.modal().position[4], b) << request_name(r);
+    EXPECT_FALSE(m.c.modal().independent) << request_name(r);
+    ASSERT_TRUE(m.run("MB, 0\n"));  // nothing turns on its own any more
+    m.c.wait();
+    EXPECT_EQ(m.card.steps()[4], 0) << request_name(r);
+  }
+}
+
 }  // namespace
 }  // namespace gantry

@@ -143,7 +143,7 @@ TEST_F(HelpToolsTest, HeGivesEachCommandsParametersInPartFileOrder) {
       << printed;
   EXPECT_TRUE(std::regex_search(printed, std::regex("\n  M2  [^\n]+  X location, Y location\n")));
   EXPECT_TRUE(std::regex_search(printed, std::regex("\n  ZX  Zero X axis\n")));  // no parameters
-  EXPECT_TRUE(std::regex_search(printed, std::regex("\n  MI  [^\n]+\\[not implemented\\]\n")));
+  EXPECT_TRUE(std::regex_search(printed, std::regex("\n  UI  [^\n]+\\[cannot run here\\]\n")));
   // One line per command, under its group.
   size_t lines = 0;
   for (const CommandSpec& s : CommandTable::standard().all())

@@ -756,14 +756,14 @@ TEST_F(InterpreterTest, AParameterThatIsNotANumberIsLocated) {
   EXPECT_TRUE(moves().empty());
 }
 
-// ---- codes catalogued but not implemented yet (command_catalogue_test.cpp lists them)
+// ---- codes that cannot run here (command_catalogue_test.cpp lists them)
 
-TEST_F(InterpreterTest, ANotImplementedCodeIsNamedAtItsLineAndChangesNothing) {
+TEST_F(InterpreterTest, ACodeThatCannotRunHereIsNamedAtItsLineAndChangesNothing) {
   const ModalState before = interp().state();
-  const Diagnostic d = run_error("SA\n  MI, B, 1, 10\nMX, 1\n");
+  const Diagnostic d = run_error("SA\n  UI\nMX, 1\n");
   EXPECT_EQ(d.loc.line, 2);
   EXPECT_EQ(d.loc.column, 3);
-  EXPECT_TRUE(d.message.starts_with("MI (move indexer or oscillate) cannot run on this machine"))
+  EXPECT_TRUE(d.message.starts_with("UI (install control box firmware) cannot run on this machine"))
       << d.message;
   EXPECT_TRUE(moves().empty());  // the file stopped there: MX never ran
   EXPECT_EQ(interp().state().position, before.position);
@@ -792,10 +792,10 @@ TEST_F(InterpreterTest, MotorsOffTurnsEveryOutputOff) {
 }
 
 TEST_F(InterpreterTest, CheckCountsEachSuchLineAndEveryOtherError) {
-  const std::vector<Diagnostic> errors = check("MX, 1\nMI\nQQ\nUI\nMY, 2\n");
+  const std::vector<Diagnostic> errors = check("MX, 1\nVK\nQQ\nUI\nMY, 2\n");
   ASSERT_EQ(errors.size(), 3u);
   EXPECT_EQ(errors[0].loc.line, 2);
-  EXPECT_EQ(errors[0].message.rfind("MI (move indexer or oscillate) cannot run", 0), 0u);
+  EXPECT_EQ(errors[0].message.rfind("VK cannot run", 0), 0u) << errors[0].message;
   EXPECT_EQ(errors[1].loc.line, 3);
   EXPECT_EQ(errors[1].message.rfind("unknown command 'QQ'", 0), 0u);
   EXPECT_EQ(errors[2].loc.line, 4);

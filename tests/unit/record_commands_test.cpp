@@ -459,19 +459,101 @@ TEST_F(RecordTest, MnWithoutADistanceSaysSo) {
   EXPECT_TRUE(contains(printed, "MN: no distance given, nothing moved")) << printed;
 }
 
-TEST_F(RecordTest, MiSaysByNameWhyItCannotRun) {
-  for (const std::string line : {"MI", "MI, B, 1, 20", "MI, Z, , , 5, 0.1"}) {
-    const Diagnostic d = run_error("JX, 1\n  " + line + "\nJX, 2\n");
-    EXPECT_TRUE(
-        d.message.starts_with("MI (move indexer or oscillate) cannot run on this "
-                              "machine"))
-        << d.message;
-    EXPECT_EQ(d.loc.line, 2);
-    EXPECT_EQ(d.loc.column, 3);
-    EXPECT_EQ(interp->state().position[0], 1);  // the JX after it never ran
+// MI's kinds of moves, in order: I+ an independent start, I- its stop, L a line.
+std::string mi_stream(const std::vector<CanonMove>& moves) {
+  std::string out;
+  for (const CanonMove& m : moves)
+    if (m.kind == MoveKind::Independent)
+      out += m.independent.running() ? "I+ " : "I- ";
+    else if (m.kind == MoveKind::Line)
+      out += "L ";
+  return out;
+}
+
+TEST_F(RecordTest, MiTurnsAnAxisBesideTheMovesUntilItIsStopped) {
+  run("MI, B, 1, 45\nMX, 1\nMY, 1\nMI, B\nMX, 2\n");
+  EXPECT_EQ(mi_stream(sink.moves), "I+ L L I- L ");
+  const CanonMove& start = sink.moves[0];
+  EXPECT_EQ(start.independent.axis, 4);
+  EXPECT_EQ(start.independent.speed, 45);
+  EXPECT_EQ(start.independent.accel, settings.axes[4].max_accel);
+  EXPECT_EQ(start.loc.line, 1);
+  EXPECT_FALSE(interp->state().independent);
+}
+
+TEST_F(RecordTest, MiDirectionZeroOrMinusOneTurnsTheOtherWayAndOscillatesToThatSide) {
+  run("MZ, 1\nMI, A, 0, 30\nMX, 1\n");
+  EXPECT_EQ(sink.moves[1].independent.speed, -30);
+  sink.moves.clear();
+  run("MZ, 1\nMI, Z, -1, , 2, 0.1\nMX, 2\n");
+  ASSERT_EQ(mi_stream(sink.moves), "I+ L I- ");  // the file's end stops it
+  EXPECT_EQ(sink.moves[0].independent.frequency, 2);
+  EXPECT_EQ(sink.moves[0].independent.travel, -0.1);
+  EXPECT_EQ(sink.moves[0].independent.speed, 0);
+}
+
+TEST_F(RecordTest, MiRestsWhenTheMachineWaitsAndStartsAgainWithTheNextMove) {
+  // Reading an input plays the moves out (the machine comes to rest): the next move starts
+  // the axis again, once.
+  run("MI, B, 1, 45\nMX, 1\n&s = %(51)\nMY, 1\nMX, 0\n");
+  EXPECT_EQ(mi_stream(sink.moves), "I+ L I+ L L I- ");
+}
+
+TEST_F(RecordTest, AMoveOfTheAxisMiMovesIsRefusedAndNamesTheMiLine) {
+  const Diagnostic d = run_error("MI, B, 1, 45\nMX, 1\nMB, 90\n");
+  EXPECT_EQ(d.loc.line, 3);
+  EXPECT_TRUE(contains(d.message, "which MI moves on its own (line 1)")) << d.message;
+  EXPECT_TRUE(contains(d.message, "MI, B")) << d.message;
+  EXPECT_EQ(mi_stream(sink.moves), "I+ L I- ");  // no B move; the error's end stops B
+  // An arc about the oscillating axis moves it too.
+  sink.moves.clear();
+  const Diagnostic z = run_error("MZ, 1\nMI, Z, 1, , 2, 0.1\nJ3, 1, 1, 1.5\n");
+  EXPECT_EQ(z.loc.line, 3);
+}
+
+TEST_F(RecordTest, MiRefusesWhatItCannotDoAndNothingMoves) {
+  struct Case {
+    std::string file;
+    int column;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {"MI, X, 1, 2\n", 5, "X is a linear axis"},
+      {"MI, B, 1, 200\n", 11, "above B's limit of 90 per second"},
+      {"MI, B, 1, 10, 2, 1\n", 15, "not both"},
+      {"MI, Z, 1, , 5, 0.1\n", 13, "at most 2.85 Hz for that distance"},
+      {"MI, Z, 1, , 2\n", 1, "needs a distance of at least one step"},
+      {"MI, Z, 1, , 2, 0.00001\n", 16, "needs a distance of at least one step"},
+      {"MZ, 5.45\nMI, Z, 1, , 1, 0.1\n", 1, "outside the soft limits"},
+      {"MI, Q, 1, 10\n", 5, "Q"},
+      {"MI, B, 2, 10\n", 8, "-1"},
+      {"MI, B, 1, 10\nMI, A, 1, 10\n", 5, "B moves on its own already (line 1)"},
+  };
+  for (const Case& c : cases) {
+    sink.moves.clear();
+    const Diagnostic d = run_error(c.file);
+    EXPECT_TRUE(contains(d.message, c.says)) << c.file << d.message;
+    EXPECT_EQ(d.loc.column, c.column) << c.file << d.message;
+    for (const CanonMove& m : sink.moves)  // nothing started on the refused line
+      EXPECT_FALSE(m.kind == MoveKind::Independent && m.loc.line == d.loc.line) << c.file;
   }
-  EXPECT_EQ(sink.moves.size(), 1u);  // the first JX (the others found the tool there)
-  EXPECT_EQ(CommandTable::standard().find("MI")->coverage, "not implemented");
+}
+
+TEST_F(RecordTest, MiTypedAloneIsRefusedAndMiStopOfNothingSaysSo) {
+  const auto typed = [&](const std::string& line) -> Diagnostic {
+    try {
+      interp->run(Script::from_text(line + "\n", path("console")), /*typed=*/true);
+    } catch (const GantryError& e) {
+      return e.diagnostic();
+    }
+    return {};
+  };
+  EXPECT_TRUE(contains(typed("MI, B, 1, 45").message, "typed alone it would stop again"));
+  EXPECT_TRUE(sink.moves.empty());
+  EXPECT_EQ(typed("MI").message, "");
+  EXPECT_TRUE(contains(printed, "MI: B is not moving on its own; nothing to stop")) << printed;
+  EXPECT_EQ(CommandTable::standard().find("MI")->coverage.substr(0, 29),
+            "runs within a part file only ");
 }
 
 TEST_F(RecordTest, TheTableDescribesWhatIsImplemented) {

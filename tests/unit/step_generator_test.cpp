@@ -429,7 +429,8 @@ TEST_F(StepGeneratorTest, EveryAxisFollowsTheProfileOnADiagonalTrapezoid) {
     ASSERT_EQ(static_cast<std::int64_t>(pulses.size()), n) << "axis " << i;
     for (std::int64_t k = 1; k <= n; ++k) {
       // The k-th step is due when the exact position crosses k - 1/2 steps.
-      const double s = (static_cast<double>(k) - 0.5) / std::abs(to[i] * spu(i)) * seg.profile.length;
+      const double s =
+          (static_cast<double>(k) - 0.5) / std::abs(to[i] * spu(i)) * seg.profile.length;
       const double ideal = seg.profile.time_at(s) / tick;
       // Negative axes wait one tick for the direction setup only on their first step.
       const double slack = (k == 1 && to[i] < 0) ? 1.0 : 0.0;
@@ -686,6 +687,112 @@ TEST_F(StepGeneratorTest, RemappedPinsUseOnlyTheirBits) {
   for (std::uint32_t w : card_.words()) seen |= w;
   EXPECT_EQ(seen, (1u << 20) | (1u << 31));
   EXPECT_EQ(trace().axes[0].net, target_steps(-0.01, spu(0)));
+}
+
+// ---------------------------------------------------------------------------------------
+// An axis moving on its own (MI) beside the path.
+
+PlannedSegment independent(int axis, double speed, double accel, double frequency = 0,
+                           double travel = 0) {
+  PlannedSegment s;
+  s.independent = IndependentMotion{axis, speed, accel, frequency, travel};
+  return s;
+}
+
+PlannedSegment wait_for(double seconds) {
+  PlannedSegment s;
+  s.dwell_s = seconds;
+  return s;
+}
+
+TEST_F(StepGeneratorTest, AnOscillationFollowsItsCosineAndEndsBackWhereItStarted) {
+  // Z out 0.1 in and back at 2.5 Hz: a 1 s dwell is 2.5 cycles, and the flush finishes the
+  // third. Crossing k - 1/2 of D steps: out at (2 pi c + th_k) / w, back at
+  // (2 pi (c + 1) - th_k) / w, th_k = acos(1 - (2k - 1) / D).
+  StepGenerator gen(settings_, card_);
+  gen.segment(independent(2, 0, 0, 2.5, 0.1));
+  gen.segment(wait_for(1.0));
+  gen.flush();
+  const Trace tr = trace();
+  const AxisTrace& z = tr.axes[2];
+  const double d = 0.1 * spu(2);
+  const int n = 102;  // the half steps below D = 101.86
+  ASSERT_EQ(z.pulses.size(), 6u * n);
+  EXPECT_EQ(z.net, 0);
+  EXPECT_EQ(gen.position()[2], 0);
+  EXPECT_EQ(timing_problem(z, gen.timing()), "");
+  const double w = 2 * M_PI * 2.5 * gen.timing().tick_s;
+  for (int c = 0; c < 3; ++c)
+    for (int k = 1; k <= n; ++k) {
+      const double th = std::acos(1 - (2.0 * k - 1) / d);
+      const Pulse& out = z.pulses[static_cast<std::size_t>(c * 2 * n + k - 1)];
+      const Pulse& back = z.pulses[static_cast<std::size_t>(c * 2 * n + 2 * n - k)];
+      ASSERT_TRUE(out.positive && !back.positive) << "cycle " << c << " step " << k;
+      ASSERT_LE(std::abs(static_cast<double>(out.start) - (2 * M_PI * c + th) / w), 0.5 + 1e-6)
+          << "cycle " << c << " step " << k;
+      ASSERT_LE(std::abs(static_cast<double>(back.start) - (2 * M_PI * (c + 1) - th) / w),
+                0.5 + 1e-6)
+          << "cycle " << c << " step " << k;
+    }
+  // The words go on past the dwell (1 s) to the third cycle's last step (before 1.2 s).
+  EXPECT_EQ(static_cast<std::int64_t>(card_.words().size()), z.pulses.back().end + 1);
+}
+
+TEST_F(StepGeneratorTest, ATurningAxisRampsUpAndDownAtItsAccelerationAndStopsWhereThatLeavesIt) {
+  // B at 45 deg/s and 360 deg/s^2: up in 0.125 s; told to stop at 1 s, it slows for another
+  // 0.125 s, having turned 2.8125 + 39.375 + 2.8125 = 45 degrees.
+  StepGenerator gen(settings_, card_);
+  gen.segment(independent(4, 45, 360));
+  gen.segment(wait_for(1.0));
+  gen.flush();
+  const double tick = gen.timing().tick_s;
+  const double v = 45 * spu(4) * tick, a = 360 * spu(4) * tick * tick;  // steps, ticks
+  const double t1 = v / a, u1 = v * v / (2 * a), ts = 1.0 / tick, us = u1 + v * (ts - t1);
+  const double ue = us + u1;
+  const auto n = static_cast<std::int64_t>(std::floor(ue + 0.5));
+  EXPECT_EQ(n, std::llround(45 * spu(4)));
+  const Trace tr = trace();
+  const AxisTrace& b = tr.axes[4];
+  ASSERT_EQ(b.net, n);
+  EXPECT_EQ(gen.position()[4], n);
+  EXPECT_EQ(timing_problem(b, gen.timing()), "");
+  for (std::int64_t k = 1; k <= n; ++k) {
+    const double u = static_cast<double>(k) - 0.5;
+    const double ideal = u <= u1   ? std::sqrt(2 * u / a)
+                         : u <= us ? t1 + (u - u1) / v
+                                   : ts + (v - std::sqrt(v * v - 2 * a * (u - us))) / a;
+    ASSERT_LE(
+        std::abs(static_cast<double>(b.pulses[static_cast<std::size_t>(k - 1)].start) - ideal),
+        0.5 + 1e-6)
+        << "step " << k;
+  }
+}
+
+TEST_F(StepGeneratorTest, ThePathPlaysTheSameStepsWithAnAxisTurningBesideIt) {
+  // The second segment asks B for 7 degrees: while B turns on its own the path leaves it be.
+  const std::vector<PlannedSegment> path = {
+      rest_to_rest(Vec6::Zero(), vec(0.4, 0.3), 2.0),
+      rest_to_rest(vec(0.4, 0.3), vec(0.1, 0.3, -0.2, 0, 7), 1.5)};
+  StepGenerator alone_gen(settings_, card_);
+  for (const PlannedSegment& s : path) alone_gen.segment(s);
+  alone_gen.flush();
+  const Trace alone = trace();
+  RecordingCard card;
+  StepGenerator gen(settings_, card);
+  gen.segment(independent(4, -30, 360));
+  for (const PlannedSegment& s : path) gen.segment(s);
+  gen.flush();
+  const Trace beside = decode(card.words(), PinMap::from(settings_.pins));
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_EQ(beside.axes[i].pulses.size(), alone.axes[i].pulses.size()) << "axis " << i;
+    for (std::size_t j = 0; j < alone.axes[i].pulses.size(); ++j)
+      ASSERT_EQ(beside.axes[i].pulses[j].start, alone.axes[i].pulses[j].start) << "axis " << i;
+    EXPECT_EQ(timing_problem(beside.axes[i], gen.timing()), "") << "axis " << i;
+  }
+  EXPECT_EQ(alone.axes[4].net, target_steps(7, spu(4)));
+  EXPECT_LT(beside.axes[4].net, -target_steps(7, spu(4)));  // turning backwards all along
+  EXPECT_EQ(beside.axes[4].net, gen.position()[4]);
+  EXPECT_EQ(timing_problem(beside.axes[4], gen.timing()), "");
 }
 
 // ---------------------------------------------------------------------------------------

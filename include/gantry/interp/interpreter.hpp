@@ -59,6 +59,10 @@ struct ModalState {
   // SC 0 (table base system): the user system's offsets (`zero` when SC 1), set aside.
   std::optional<Vec6> user_zero;
   GcodeOffsets gcode;  // G54..G59.3, G92, G28/G30 positions, the tool table (docs/gcode.md)
+  // MI: the axis moving on its own (no move of the file may move it meanwhile; its location
+  // here is where it started, until it stops), and the line that started it.
+  std::optional<IndependentMotion> independent;
+  SourceLoc independent_loc;
 };
 
 // How long a value command's change lasts: for good, or (VS, VU, VI, VL, SF in a part
@@ -173,6 +177,14 @@ class CommandContext {
   void keypad(std::string_view message, const SourceLoc& loc);
   // A timed wait in the motion stream.
   void dwell(double seconds, const SourceLoc& loc);
+  // MI: at rest, `m`'s axis starts moving on its own (one axis at a time). It comes to rest
+  // whenever the machine does to wait (a probe, SK, an input read, new values) and starts
+  // again with the next move; the file's end, or end_independent, stops it for good.
+  void start_independent(const IndependentMotion& m, const SourceLoc& loc);
+  // It comes to rest; its axis's location is then where the pulses left it.
+  void end_independent(const SourceLoc& loc);
+  // The moves sent play out; the live machine reports where the tool is (nullopt: none).
+  std::optional<MotionReport> sync();
   // The machine ramps down to rest here before the next move (MS, JS).
   void come_to_rest(const SourceLoc& loc);
   // Output switch n (1-based) on or off, at rest between the moves around it (SO).
@@ -260,6 +272,9 @@ class CommandContext {
   bool tab_move(const Vec6& target, const std::array<double, 3>* arc, SpeedClass cls,
                 const SourceLoc& loc);
   void end_tab_path();
+  // Every line, arc and dwell goes to the sink through here: a move of the axis MI moves is
+  // refused, and an axis MI rested starts again first.
+  void emit(const CanonMove& m);
   friend class Interpreter;
   ModalState& state_;
   Settings& settings_;
@@ -269,6 +284,7 @@ class CommandContext {
   std::size_t moves_ = 0;
   bool file_tabs_ = false;
   bool own_tabs_ = false;
+  bool independent_resting_ = false;  // the machine came to rest under MI: restart it
 };
 
 struct InterpreterOptions {

@@ -15,8 +15,8 @@ namespace gantry {
 // another) about `center`, through `sweep` radians (positive: counter-clockwise), the other
 // axes moving in proportion (a helix). Dwell: a timed wait at rest. Stop: come to rest, then go on
 // (MS and JS punctuate the moves around them this way). Output: at rest, switch output `output` on
-// or off (SO).
-enum class MoveKind { Line, Arc, Dwell, Stop, Output };
+// or off (SO). Independent: at rest, start (or end) an axis moving on its own beside the path (MI).
+enum class MoveKind { Line, Arc, Dwell, Stop, Output, Independent };
 
 // Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
 enum class SpeedClass { Move, Jog };
@@ -24,6 +24,17 @@ enum class SpeedClass { Move, Jog };
 // The plane of an arc, named by its first and second axes; the sweep is counter-clockwise seen
 // from the positive third axis (XY: Z, ZX: Y, YZ: X), as G-code's G17, G18 and G19 define.
 enum class ArcPlane { XY, ZX, YZ };
+
+// MI: one axis turning at a steady speed (an indexer) or oscillating, on its own, while the
+// planned path moves the others. Neither: it comes to rest (off).
+struct IndependentMotion {
+  int axis = 4;          // 0 X .. 5 C (SB3's default: B)
+  double speed = 0;      // turning: units/s, signed by direction; 0: not turning
+  double accel = 0;      // turning: units/s^2, its ramps up and down
+  double frequency = 0;  // oscillating: cycles/s; 0: not oscillating
+  double travel = 0;     // oscillating: from the start point out and back, units, signed
+  bool running() const { return speed != 0 || frequency != 0; }
+};
 
 struct CanonMove {
   MoveKind kind = MoveKind::Line;
@@ -40,7 +51,8 @@ struct CanonMove {
   int output = 0;                 // Output: the switch, 1-based as SO numbers it
   bool keypad = false;            // a keypad jog: it ramps at VR's keypad ramp rate
   bool output_on = false;
-  SourceLoc loc;  // the statement that asked for it
+  IndependentMotion independent;  // Independent: what the axis does from here on
+  SourceLoc loc;                  // the statement that asked for it
 };
 
 const char* kind_name(MoveKind k);

@@ -1,6 +1,8 @@
 // Planned segments: a straight path with its speed profile, ready for step generation.
 #pragma once
 
+#include <optional>
+
 #include "gantry/motion/canon_move.hpp"  // SpeedClass, Vec6, SourceLoc
 #include "gantry/motion/trapezoid.hpp"   // Trapezoid
 
@@ -13,6 +15,9 @@ struct PlannedSegment {
   double dwell_s = 0;  // a wait with no motion (profile empty)
   int output = 0;      // > 0: switch this output (1-based) at this point, at rest
   bool output_on = false;
+  // Set: at rest, the axis moving on its own (MI) changes to this (comes to rest if it is
+  // not running); the planned path leaves that axis alone while it runs.
+  std::optional<IndependentMotion> independent;
   SpeedClass speed_class = SpeedClass::Move;
   SourceLoc loc;
 };

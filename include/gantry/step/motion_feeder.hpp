@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 
 #include "gantry/motion/planned_segment.hpp"  // PlannedSegment, SegmentSink
 #include "gantry/step/step_generator.hpp"     // StepGenerator
@@ -27,6 +28,9 @@ const char* feed_phase_name(FeedPhase p);
 // planned, and every axis stays within its limits. After resume() the kept path starts from
 // rest: each segment accelerates from the speed the one before it reached, up to its planned
 // cruise and exit speeds (a forward pass: slower than the plan until it catches up).
+//
+// An axis moving on its own (MI) comes to rest with a hold, after the path, and starts again
+// with the first motion after resume(); a discard, a halt or the stream's end forgets it.
 //
 // Threads: segment(), flush(), settings_changed(), resume() and discard() belong to the thread
 // that feeds the card; request_hold(), request_halt() and phase() may be called from any.
@@ -77,6 +81,7 @@ class MotionFeeder : public SegmentSink {
   std::deque<Kept> kept_;
   SourceLoc rest_loc_;
   std::uint64_t flushes_ = 0;
+  std::optional<IndependentMotion> parked_;  // rested by a hold, to start again on resume
 };
 
 }  // namespace gantry

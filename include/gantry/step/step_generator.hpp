@@ -12,6 +12,7 @@
 #include "gantry/hal/card.hpp"                // Card
 #include "gantry/hal/pin_map.hpp"             // PinMap
 #include "gantry/motion/planned_segment.hpp"  // PlannedSegment, SegmentSink
+#include "gantry/step/independent_axis.hpp"   // IndependentAxis
 
 namespace gantry {
 
@@ -38,6 +39,11 @@ struct StepTiming {
 // Constraints are then enforced by delaying, never by dropping: a step is no earlier than
 // min_period after the previous one on its axis, and when the direction changes the new
 // level is set after the previous pulse has ended and at least dir_setup before the step.
+//
+// An axis moving on its own (MI, a segment's `independent`) has its steps merged into the
+// words as they are emitted, under the same constraints, whatever plays: moves, dwells,
+// outputs. The path leaves that axis alone meanwhile. Whenever the stream comes to rest for
+// good (flush, new settings) it comes to rest first: the words never stop under a moving axis.
 class StepGenerator : public SegmentSink {
  public:
   StepGenerator(const Settings& settings, Card& card, std::size_t block_words = 4096);
@@ -61,6 +67,11 @@ class StepGenerator : public SegmentSink {
   // at that speed; the caller decides what follows).
   std::optional<double> segment_until(const PlannedSegment& s, StopTicks stop);
   void flush() override;  // plays out every pending pulse and hands the last block to the card
+  // The axis moving on its own comes to rest (see IndependentAxis::stop_from), its words
+  // emitted; returns what it was doing (nullopt: none), for a hold to start it again.
+  std::optional<IndependentMotion> rest_independent();
+  // Starts `m` from the words emitted so far (an axis already moving on its own rests first).
+  void start_independent(const IndependentMotion& m);
   void settings_changed(const Settings& s) override;
 
   const Steps6& position() const { return position_; }  // steps emitted so far
@@ -106,7 +117,11 @@ class StepGenerator : public SegmentSink {
     int delta;
   };
 
-  void emit_until(std::int64_t tick);  // words for [cursor_, tick)
+  void emit_until(std::int64_t tick);  // words for [cursor_, tick), independent steps merged
+  void emit_words(std::int64_t tick);  // words for [cursor_, tick)
+  // The independent axis's next event, its tick constrained as a path step's would be.
+  std::optional<Event> independent_event() const;
+  void play_independent(const Event& e);
   void apply(const Event& e);
   std::uint32_t word_at(std::int64_t tick) const;
   void write_run(std::uint32_t word, std::int64_t count);
@@ -140,6 +155,8 @@ class StepGenerator : public SegmentSink {
   std::function<void()> on_block_;
   bool faulted_ = false;
   SourceLoc current_loc_;  // the segment being generated, for the fault message
+  std::optional<IndependentAxis> independent_;
+  std::int64_t independent_dir_tick_ = 0;  // when its direction level last changed
 };
 
 }  // namespace gantry
