@@ -1179,6 +1179,7 @@ MachineSnapshot Interpreter::snapshot() const {
   m.table_base = m.location + state_.zero;
   m.relative = !state_.absolute;
   m.preview = state_.preview.has_value();
+  m.indexer_on = state_.independent.has_value();
   m.metric = s.units == Units::Millimetres;
   m.axis_count = s.display.axes;
   m.limit_check_axes = s.machine.limit_checking ? s.display.axes : 0;

@@ -117,6 +117,29 @@ TEST_P(PartRun, EndsOnTheLastCommandedPointToTheStep) {
   EXPECT_EQ(json::parse(e.out)["estimated_time_s"], j["estimated_time_s"]);
 }
 
+TEST(Run, MiMovesAnAxisBesideTheCutAndEachEndsWhereItsPulsesLeftIt) {
+  const Result r = gantry("run tests/data/mi_oscillate.sbp --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["status"], "done");
+  EXPECT_EQ(j["steps"]["x"], 0);
+  EXPECT_EQ(j["steps"]["y"], 0);
+  EXPECT_EQ(j["steps"]["z"], std::llround(1.0 * kStepsPerUnit[2]));  // back from each swing
+  // B turned 45 deg/s for the 1.5 s of MY, 0 and ramped down: the steps it played, which the
+  // generator counted too.
+  const std::int64_t b = j["steps"]["b"].get<std::int64_t>();
+  EXPECT_GT(b, std::llround(60 * kStepsPerUnit[4]));
+  EXPECT_EQ(j["commanded_steps"]["b"].get<std::int64_t>(), b);
+  EXPECT_EQ(j["timing_violations"], 0);
+  EXPECT_LE(j["max_velocity_ratio"].get<double>(), 1.0);
+  EXPECT_LE(j["max_accel_ratio"].get<double>(), 1.0);
+  // The card runs past the planned path by the rests: at most a cycle of Z (0.4 s) and B's
+  // ramp down (0.125 s).
+  const double extra = j["time_s"].get<double>() - j["planned_time_s"].get<double>();
+  EXPECT_GT(extra, 0.0);
+  EXPECT_LT(extra, 0.4 + 0.125 + 1e-3);
+}
+
 TEST(FeedOverride, FasterAndSlowerRunsStayWithinTheLimitsAndMatchTheirEstimates) {
   double previous = 1e9;
   for (int percent : {50, 100, 200}) {

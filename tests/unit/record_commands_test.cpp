@@ -471,8 +471,10 @@ std::string mi_stream(const std::vector<CanonMove>& moves) {
 }
 
 TEST_F(RecordTest, MiTurnsAnAxisBesideTheMovesUntilItIsStopped) {
-  run("MI, B, 1, 45\nMX, 1\nMY, 1\nMI, B\nMX, 2\n");
+  run("MI, B, 1, 45\nMX, 1\nPRINT \"on \"; %(123)\nMY, 1\nMI, B\nPRINT \"off \"; %(123)\nMX, 2\n");
   EXPECT_EQ(mi_stream(sink.moves), "I+ L L I- L ");
+  EXPECT_TRUE(contains(printed, "on 1")) << printed;  // %(123) IndexerON
+  EXPECT_TRUE(contains(printed, "off 0")) << printed;
   const CanonMove& start = sink.moves[0];
   EXPECT_EQ(start.independent.axis, 4);
   EXPECT_EQ(start.independent.speed, 45);
