@@ -51,7 +51,8 @@ class SimCard : public Card {
   void watch(const InputWatch& w) override;
   std::optional<InputEdge> watch_fired() override { return fired_; }
 
-  const Steps6& steps() const { return steps_; }  // decoded from the step and dir lines
+  const Steps6& steps() const { return steps_; }     // decoded from the step and dir lines
+  std::uint32_t last_word() const { return prev_; }  // the output lines now
   double time_s() const { return static_cast<double>(tick_) * tick_s_; }
   std::uint64_t timing_violations() const { return violation_count_; }
   const std::vector<TimingViolation>& first_violations() const { return violations_; }

@@ -401,8 +401,8 @@ const std::vector<Field>& vn_fields() {
     for (int k = 0; k < 12; ++k) {
       names.push_back(fmt::format("output {} mode", k + 1));
       v.push_back({num(names.back(), "",
-                       "0 off at file end, 1 stays on, 2 off on a stop, 3 on for a file, 4 on "
-                       "at file start, 5 on at start and off on a stop.")
+                       "0 off at file end, 1 stays on, 2 as 0 and off while paused, 3 on for a "
+                       "file, 4 on from file start, 5 as 3 and off while paused.")
                        .integer(0, 5),
                    [k](Settings& s, const Value& x) { s.switches.output_modes[k] = whole(x); }});
     }
@@ -741,8 +741,8 @@ void add_values_commands(std::vector<CommandSpec>& out) {
                  "mode of each input and output switch.",
                  params_of(vn_fields()),
                  values_switches,
-                 "input modes take effect with the machine controller (issue 8); output modes "
-                 "2 and 5 (a stop) likewise",
+                 "limit switches off, the stop switch wiring and the input modes are stored, "
+                 "not applied: the profile's [inputs] bits name the limit and E-stop inputs",
                  {},
                  false,
                  "%(91)-%(98), %(111)-%(122), %(131)-%(134)"});

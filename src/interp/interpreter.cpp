@@ -885,6 +885,23 @@ void Interpreter::reach_start(const SourceLoc& at) {
   state_.last_xy_move = last_move;
 }
 
+// VN output modes 3, 4 and 5: the switch comes on as a part file starts (one the profile does
+// not wire is left off, with a warning: SO would refuse it).
+void Interpreter::outputs_on_at_start(const Script& script) {
+  const SourceLoc at{script.name(), 1, 0};
+  for (int n = 1; n <= 12; ++n) {
+    if (settings_.switches.output_modes[n - 1] < 3 || (state_.outputs >> (n - 1) & 1u)) continue;
+    const std::vector<int>& wired = settings_.outputs.aux_bits;
+    if (n > static_cast<int>(wired.size()) || wired[n - 1] < 0) {
+      ctx_.warn(at, fmt::format("output switch {} should come on as the file starts (VN output "
+                                "mode {}), but this profile does not wire it (outputs.aux_bits)",
+                                n, settings_.switches.output_modes[n - 1]));
+      continue;
+    }
+    ctx_.set_output(n, true, at);
+  }
+}
+
 void Interpreter::start_missed() {
   const StartLine& s = *start_;
   const std::string file = frames_.size() > s.depth && frames_[s.depth].script->name()
@@ -919,8 +936,11 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     // Output switches go off when the job ends, however it ends (SB3's standard mode); VO
     // lasts until the part file is exited. Typed lines are no part file.
     if (!typed) {
-      for (int n = 1; state_.outputs != 0; ++n)
-        if (state_.outputs & (1u << (n - 1))) ctx_.set_output(n, false, SourceLoc{});
+      for (int n = 1; n <= 12; ++n) {  // VN output modes 1 and 4 stay on (docs/values.md)
+        const int mode = settings_.switches.output_modes[n - 1];
+        if ((state_.outputs >> (n - 1) & 1u) && mode != 1 && mode != 4)
+          ctx_.set_output(n, false, SourceLoc{});
+      }
       state_.tool_offset = Vec6::Zero();
     }
     end_quiet();  // a start line never reached: the machine was never told otherwise
@@ -940,6 +960,7 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     FileCall call = top_call(*script, options_.start_line);
     if (typed) call.lines = script;
     push_file(script, call, SourceLoc{});
+    if (!typed) outputs_on_at_start(*script);
     loop(nullptr);
     if (start_) start_missed();  // ENDALL before it
   } catch (...) {
@@ -962,6 +983,7 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
     // A check goes through a file with syntax errors too (they are reported already).
     push_file(script, top_call(*script, options_.start_line), SourceLoc{},
               /*refuse_broken=*/false);
+    outputs_on_at_start(*script);
     loop(&out);
     if (start_) start_missed();  // ENDALL before it
   } catch (const NeedsOperator& e) {

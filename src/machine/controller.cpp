@@ -8,6 +8,17 @@
 #include "gantry/machine/job.hpp"  // check_program
 
 namespace gantry {
+namespace {
+
+// VN output modes 2 and 5: the output switches an operator's pause turns off until resume.
+std::uint32_t outputs_off_on_pause(const Settings& s) {
+  std::uint32_t mask = 0;
+  for (int n = 0; n < 12; ++n)
+    if (s.switches.output_modes[n] == 2 || s.switches.output_modes[n] == 5) mask |= 1u << n;
+  return mask;
+}
+
+}  // namespace
 
 // Job thread -> feeder: pushes planned segments, waiting while the queue is full. Once the
 // activity is aborted (stop, E-stop, fault) the next push throws, which unwinds the
@@ -209,7 +220,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
 Outcome Controller::pause() {
   return refuse_or(Request::Pause, [&] {
     on_hold_ = OnHold::Wait;
-    feeder_.request_hold(0);
+    feeder_.request_hold(0, /*pause=*/true);
   });
 }
 
@@ -431,6 +442,7 @@ CanonMove Controller::keypad_move(const JogRequest& j) const {
 // it holds). Single step: the statement's motion plays out, then the file holds as Paused
 // until resume (the next statement) or stop.
 void Controller::after_statement() {
+  feeder_.pause_outputs(outputs_off_on_pause(interp_->settings()));  // VN may change them
   if (override_changed_.exchange(false)) {
     std::lock_guard lock(m_);
     planner_->feed_override(feed_override_);
@@ -507,7 +519,7 @@ void Controller::start_activity(std::function<void()> work) {
       case Request::Pause:
         on_hold_ = OnHold::Wait;
         effect_state_ = MachineState::Paused;
-        feeder_.request_hold(tick);
+        feeder_.request_hold(tick, /*pause=*/true);
         break;
       case Request::Stop:
         on_hold_ = OnHold::Discard;
@@ -538,6 +550,7 @@ void Controller::job_main() {
       work.swap(work_);
     }
     planner_ = std::make_unique<LookAheadPlanner>(interp_->settings(), *qsink_);
+    feeder_.pause_outputs(outputs_off_on_pause(interp_->settings()));
     planner_->feed_override(feed_override_);
     forward_->to = planner_.get();
     work();

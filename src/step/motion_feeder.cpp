@@ -42,7 +42,8 @@ const char* feed_phase_name(FeedPhase p) {
   return "?";
 }
 
-void MotionFeeder::request_hold(std::int64_t tick) {
+void MotionFeeder::request_hold(std::int64_t tick, bool pause) {
+  pausing_.store(pause, std::memory_order_relaxed);
   hold_at_.store(tick, std::memory_order_release);
 }
 
@@ -138,6 +139,15 @@ void MotionFeeder::settle() {
   carry_ = 0;
   hold_at_ = steps_.kNever;
   if (std::optional<IndependentMotion> m = steps_.rest_independent()) parked_ = m;
+  if (pausing_.exchange(false)) {
+    const std::uint32_t mask = pause_mask_.load(std::memory_order_relaxed);
+    for (int n = 1; n <= 12; ++n)
+      if ((mask >> (n - 1) & 1u) && steps_.output_on(n)) {
+        steps_.set_output(n, false);
+        paused_off_ |= 1u << (n - 1);
+      }
+    if (paused_off_) steps_.emit_levels();
+  }
   steps_.flush();  // every word up to here reaches the card: the tool is where it stopped
   set_phase(FeedPhase::Held);
 }
@@ -149,6 +159,7 @@ void MotionFeeder::halt_now() {
   carry_ = 0;
   halt_at_ = hold_at_ = steps_.kNever;
   parked_.reset();
+  paused_off_ = 0;
   steps_.halt();
   set_phase(FeedPhase::Halted);
 }
@@ -198,6 +209,12 @@ void MotionFeeder::resume() {
   hold_at_ = steps_.kNever;
   carry_ = 0;
   catching_up_ = true;
+  if (paused_off_) {  // on again before anything moves
+    for (int n = 1; n <= 12; ++n)
+      if (paused_off_ >> (n - 1) & 1u) steps_.set_output(n, true);
+    paused_off_ = 0;
+    steps_.emit_levels();
+  }
   set_phase(FeedPhase::Playing);
   // A new hold while replaying keeps the rest again, in order (segment() and the others
   // keep what arrives while held).
@@ -222,6 +239,7 @@ void MotionFeeder::discard() {
   carry_ = 0;
   hold_at_ = halt_at_ = steps_.kNever;
   parked_.reset();
+  paused_off_ = 0;  // the file ends: they stay off
   if (was == FeedPhase::Halted) steps_.restart();
   set_phase(FeedPhase::Playing);
 }

@@ -70,6 +70,16 @@ bool StepGenerator::set_output(int n, bool on) {
   return true;
 }
 
+void StepGenerator::emit_levels() {
+  emit_until(segment_end_);
+  emit_until(++segment_end_);
+}
+
+bool StepGenerator::output_on(int n) const {
+  if (n < 1 || n > static_cast<int>(aux_bits_.size()) || aux_bits_[n - 1] < 0) return false;
+  return (level_word_ >> aux_bits_[n - 1] & 1u) != 0;
+}
+
 Steps6 StepGenerator::played_position() const {
   return *position_at(card_.ticks_played());
 }
@@ -158,7 +168,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
     if (stops.now() <= t0) return 0.0;
     emit_until(segment_end_);
     set_output(seg.output, seg.output_on);  // checked by SO: it is wired
-    emit_until(++segment_end_);
+    emit_levels();
     return std::nullopt;
   }
   const Trapezoid& p = seg.profile;

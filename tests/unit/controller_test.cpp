@@ -480,5 +480,54 @@ TEST(Controller, StopAndEStopEndATurningAxisWithThePositionOfThePulsesPlayed) {
   }
 }
 
+TEST(Controller, APauseSwitchesOffTheOutputsOfVnModesTwoAndFiveUntilResume) {
+  // Output 1 in mode 2 (the file turns it on), output 2 in mode 5 (on as the file starts),
+  // output 3 in mode 0 (stays on through the pause). The trace gives every change of the word.
+  const std::string trace = testing::TempDir() + "gantry_pause_outputs.trace";
+  Settings settings = default_settings();
+  settings.switches.output_modes[0] = 2;
+  settings.switches.output_modes[1] = 5;
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  const int bit1 = settings.outputs.aux_bits[0], bit2 = settings.outputs.aux_bits[1],
+            bit3 = settings.outputs.aux_bits[2];
+  {
+    SimCard card{settings, false, {}, trace};
+    Controller c{settings, card, io, store};
+    c.schedule(Request::Pause, 1.5);
+    ASSERT_TRUE(c.run(Script::from_text("SO, 1, 1\nSO, 3, 1\nMX, 4\n", "part.sbp")));
+    c.wait();
+    ASSERT_EQ(c.state(), MachineState::Paused);
+    const std::uint32_t held = card.last_word();
+    EXPECT_EQ(held >> bit1 & 1u, 0u);
+    EXPECT_EQ(held >> bit2 & 1u, 0u);
+    EXPECT_EQ(held >> bit3 & 1u, 1u);
+    ASSERT_TRUE(c.resume());
+    c.wait();
+    EXPECT_EQ(c.status().steps[0], std::llround(4 * settings.axes[0].steps_per_unit));
+    EXPECT_EQ(card.last_word() & ((1u << bit1) | (1u << bit2) | (1u << bit3)), 0u);  // the end
+  }
+  {  // the card is gone: its trace is complete
+    // Output 1's level, change by change: on, off for the pause, on at resume, off at the end.
+    std::ifstream in(trace);
+    std::string levels, comment;
+    std::getline(in, comment);
+    std::uint64_t tick = 0, off_at = 0, on_again = 0;
+    std::string word;
+    while (in >> tick >> word) {
+      const bool on = (std::stoul(word, nullptr, 16) >> bit1 & 1u) != 0;
+      if (levels.empty() || levels.back() != (on ? '1' : '0')) {
+        levels += on ? '1' : '0';
+        if (levels.size() == 3) off_at = tick;
+        if (levels.size() == 4) on_again = tick;
+      }
+    }
+    EXPECT_EQ(levels, "01010");
+    EXPECT_GT(off_at, 1.5 * settings.card.pacer_hz());  // once at rest, after the pause
+    EXPECT_GT(on_again, off_at);
+  }
+  std::remove(trace.c_str());
+}
+
 }  // namespace
 }  // namespace gantry

@@ -368,5 +368,43 @@ TEST(ValuesFile, ARunSavesTheValuesItChanged) {
   EXPECT_EQ(text->find("xy = 3"), std::string::npos) << *text;
 }
 
+// ---- VN output modes: on at a file's start, off at its end (docs/values.md)
+
+std::vector<std::pair<int, bool>> switched(const std::vector<CanonMove>& moves) {
+  std::vector<std::pair<int, bool>> out;
+  for (const CanonMove& m : moves)
+    if (m.kind == MoveKind::Output) out.emplace_back(m.output, m.output_on);
+  return out;
+}
+
+TEST_F(ValuesTest, VnOutputModesSwitchOnAtTheStartAndOffAtTheEndOfAFile) {
+  // Outputs 1-6 in modes 0-5; the file turns 1 and 2 on itself.
+  settings.switches.output_modes = {0, 1, 2, 3, 4, 5, 0, 0, 0, 0, 0, 0};
+  run("SO, 1, 1\nSO, 2, 1\nMX, 1\n");
+  const std::vector<std::pair<int, bool>> expected = {
+      {4, true},  {5, true},  {6, true},  // modes 3, 4, 5: on as the file starts
+      {1, true},  {2, true},              // the file's SO lines
+      {1, false}, {4, false}, {6, false}  // at the end: all but modes 1 and 4
+  };
+  EXPECT_EQ(switched(sink.moves), expected);
+  EXPECT_EQ(sink.moves[0].loc.line, 1);
+  EXPECT_EQ(state().outputs, (1u << 1) | (1u << 4));  // 2 (mode 1) and 5 (mode 4) stay on
+}
+
+TEST_F(ValuesTest, VnOutputModesSetByTheFileApplyAtItsEndAndAnUnwiredOneIsNamed) {
+  settings.outputs.aux_bits[7] = -1;                                    // output 8 not wired
+  run("VN, , , , , , , , , , , , , , , 1, , , , , , , 3\nSO, 1, 1\n");  // 1: mode 1, 8: mode 3
+  EXPECT_TRUE(switched(sink.moves) == (std::vector<std::pair<int, bool>>{{1, true}}));
+  EXPECT_EQ(state().outputs, 1u);  // mode 1: stays on
+  sink.moves.clear();
+  run("MX, 1\n");  // output 8 in mode 3 cannot come on
+  ASSERT_EQ(io.warnings().size(), 1u);
+  EXPECT_EQ(io.warnings()[0].loc.line, 1);
+  EXPECT_NE(io.warnings()[0].message.find("output switch 8 should come on as the file starts"),
+            std::string::npos)
+      << io.warnings()[0].message;
+  EXPECT_TRUE(switched(sink.moves).empty());
+}
+
 }  // namespace
 }  // namespace gantry

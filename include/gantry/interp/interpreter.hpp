@@ -446,8 +446,9 @@ class Interpreter : private EvalEnv {
     std::size_t depth = 0;  // the file that armed it (a GOTO action continues there)
   };
   std::map<std::pair<int, int>, InputHandler> on_input_;
-  void arm_inputs();                              // the machine watches the handlers' edges
-  void service_inputs(std::size_t moves_before);  // after a statement: did an edge cut it?
+  void arm_inputs();                               // the machine watches the handlers' edges
+  void outputs_on_at_start(const Script& script);  // VN output modes 3-5
+  void service_inputs(std::size_t moves_before);   // after a statement: did an edge cut it?
   std::vector<std::unique_ptr<UserFile>> files_;
   std::optional<FileCall> pending_call_;
   SourceLoc pending_call_loc_;

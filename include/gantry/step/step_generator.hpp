@@ -91,6 +91,9 @@ class StepGenerator : public SegmentSink {
   // Output switch n (1-based, as SO numbers them), from the next word on; false when the
   // profile does not wire it.
   bool set_output(int n, bool on);
+  bool output_on(int n) const;  // output switch n's level in the words
+  // At rest: one word at the levels set since (outputs switched between segments).
+  void emit_levels();
   bool faulted() const { return faulted_; }
   // E-stop: the words so far go to the card, which stops at once; unplayed words are lost.
   void halt();
