@@ -8,7 +8,6 @@
 
 #include <fmt/format.h>  // output
 #include <poll.h>        // poll
-#include <pthread.h>     // pthread_sigmask
 #include <sys/ioctl.h>   // TIOCGWINSZ
 #include <termios.h>     // raw mode
 #include <unistd.h>      // read, isatty
@@ -19,8 +18,7 @@
 #include <cerrno>
 #include <chrono>
 #include <condition_variable>
-#include <csignal>  // sigtimedwait
-#include <cstdio>   // stdout
+#include <cstdio>  // stdout
 #include <map>
 #include <mutex>
 #include <optional>
@@ -33,6 +31,7 @@
 #include "live_machine.hpp"                  // ValuesKeeper, LiveMachineArgs
 #include "machine_profile.hpp"               // load_machine_profile
 #include "open_card.hpp"                     // open_card
+#include "signal_watch.hpp"                  // SignalWatch
 
 namespace gantry {
 namespace {
@@ -94,43 +93,6 @@ class RawTerminal {
   int fd_;
   termios saved_{};
   bool active_ = false;
-};
-
-// SIGINT, SIGTERM, SIGHUP and SIGQUIT are blocked from construction on, in this thread and in
-// every thread started after (the controller's: construct this first), and taken by one
-// watcher thread, which calls `on_signal` from an ordinary thread (a signal handler could not
-// E-stop: that takes a lock). stop() ends the watcher; the destructor restores the mask.
-class SignalWatch {
- public:
-  SignalWatch() {
-    sigemptyset(&set_);
-    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&set_, s);
-    pthread_sigmask(SIG_BLOCK, &set_, &old_);
-  }
-  ~SignalWatch() {
-    stop();
-    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
-  }
-  SignalWatch(const SignalWatch&) = delete;
-  SignalWatch& operator=(const SignalWatch&) = delete;
-  void start(std::function<void(int)> on_signal) {
-    thread_ = std::thread([this, f = std::move(on_signal)] {
-      const timespec period{0, 100'000'000};
-      while (!done_) {
-        const int sig = sigtimedwait(&set_, nullptr, &period);
-        if (sig > 0) f(sig);
-      }
-    });
-  }
-  void stop() {
-    done_ = true;
-    if (thread_.joinable()) thread_.join();
-  }
-
- private:
-  sigset_t set_{}, old_{};
-  std::atomic<bool> done_{false};
-  std::thread thread_;
 };
 
 std::string where(const SourceLoc& loc) {

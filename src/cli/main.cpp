@@ -26,6 +26,7 @@
 #include "preview_command.hpp"               // PreviewArgs, run_preview
 #include "progress.hpp"                      // ProgressBar
 #include "report.hpp"                        // RunReport, to_json, to_text
+#include "signal_watch.hpp"                  // SignalWatch
 #include "sim/sim_card.hpp"                  // SimCard
 #include "svg.hpp"                           // moves_svg
 #include "terminal_io.hpp"                   // TerminalIO
@@ -169,6 +170,21 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
     opt.profile = &profile.bare;
     opt.values_path = profile.values_path;
+    // Ctrl-C (or SIGTERM, a closed terminal) stops the run in order: the tool ramps down
+    // along the path, a question waiting at the terminal ends, and the report says where
+    // the tool is. A second one E-stops. Blocked before the controller's threads start.
+    RunControl control;
+    SignalWatch signals;
+    signals.start([&](int sig) {
+      fmt::print(stderr, "\ngantry: signal {}: stopping the run{}\n", sig,
+                 control.stop() ? " (again: E-stop)" : ": E-stop");
+      terminal.cancel();
+    });
+    struct StopFirst {  // the watcher ends before the controller it stops
+      SignalWatch& w;
+      ~StopFirst() { w.stop(); }
+    } stop_first{signals};
+    opt.control = &control;
     job = run_job(script, settings, *card, io, store, opt);
   }
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));

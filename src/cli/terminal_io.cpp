@@ -3,24 +3,35 @@
 
 #include <fmt/format.h>  // prompts
 
+#include <poll.h>    // poll
+#include <unistd.h>  // STDIN_FILENO
 #include <cctype>    // tolower
+
 #include <iostream>  // getline
 
 namespace gantry {
 namespace {
-
-std::optional<std::string> read_line() {
-  std::string line;
-  if (!std::getline(std::cin, line)) return std::nullopt;
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  return line;
-}
 
 std::string where(const SourceLoc& loc) {
   return loc.file ? fmt::format("{}:{}", *loc.file, loc.line) : std::string("console");
 }
 
 }  // namespace
+
+// Waits for a whole line in short polls, so a stop from another thread ends the wait.
+std::optional<std::string> TerminalIO::read_line(const SourceLoc& loc) {
+  pollfd in{STDIN_FILENO, POLLIN, 0};
+  while (!cancelled_ && poll(&in, 1, 100) == 0) {
+  }
+  if (cancelled_) {
+    fmt::print(stderr, "\n");
+    throw OperatorStop(Diagnostic{loc, Severity::Error, "stopped by the operator"});
+  }
+  std::string line;
+  if (!std::getline(std::cin, line)) return std::nullopt;
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
 
 void TerminalIO::print(std::string_view text) {
   fmt::print("{}", text);
@@ -29,7 +40,7 @@ void TerminalIO::print(std::string_view text) {
 bool TerminalIO::confirm(std::string_view message, const SourceLoc& loc) {
   fmt::print(stderr, "\n[{}] {}\n  Enter to continue, c then Enter to cancel: ", where(loc),
              message);
-  const std::optional<std::string> a = read_line();
+  const std::optional<std::string> a = read_line(loc);
   return a && (a->empty() || std::tolower(static_cast<unsigned char>((*a)[0])) != 'c');
 }
 
@@ -52,7 +63,7 @@ std::optional<std::string> TerminalIO::ask(std::string_view prompt, std::string_
     } else {
       fmt::print(stderr, "\n[{}] {} ({}){}: ", where(loc), prompt.empty() ? "Input" : prompt, name,
                  !several && !default_value.empty() ? fmt::format(" [{}]", default_value) : "");
-      value = read_line();
+      value = read_line(loc);
       if (!value) return std::nullopt;  // end of input: Cancel
       if (!several && value->empty() && !default_value.empty()) value = std::string(default_value);
     }
@@ -71,7 +82,7 @@ std::string TerminalIO::choose(std::string_view text, const std::vector<std::str
     for (size_t i = 0; i < buttons.size(); ++i)
       fmt::print(stderr, "  {}) {}{}\n", i + 1, buttons[i], i == default_button ? " (Enter)" : "");
     fmt::print(stderr, "  choice: ");
-    const std::optional<std::string> a = read_line();
+    const std::optional<std::string> a = read_line(loc);
     if (!a) return buttons.back();  // end of input: the last button (Cancel or No)
     if (a->empty()) return buttons[default_button];
     for (size_t i = 0; i < buttons.size(); ++i)

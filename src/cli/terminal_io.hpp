@@ -1,6 +1,7 @@
 // The operator at a terminal: PAUSE, INPUT and MSGBOX answered on stdin.
 #pragma once
 
+#include <atomic>
 #include <map>
 
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
@@ -18,9 +19,16 @@ class TerminalIO : public OperatorIO {
   std::string choose(std::string_view text, const std::vector<std::string>& buttons,
                      size_t default_button, std::string_view title, const SourceLoc& loc) override;
   void warn(const Diagnostic& d) override;
+  // From any thread: a question waiting for its answer, or the next one, ends the file
+  // (OperatorStop) instead: the operator stopped the run.
+  void cancel() { cancelled_ = true; }
 
  private:
+  // A line from stdin (nullopt at its end); throws OperatorStop once cancelled.
+  std::optional<std::string> read_line(const SourceLoc& loc);
+
   std::map<std::string, std::string> inputs_;
+  std::atomic<bool> cancelled_{false};
 };
 
 }  // namespace gantry

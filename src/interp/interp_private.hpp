@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -78,22 +79,29 @@ class Interpreter::GatedSink : public MotionSink {
 // The operator while the lines before a start line run: closed, nothing is shown and nobody
 // is asked to continue (PAUSE and DIALOG go on, MSGBOX takes its default button); INPUT still
 // asks, since the lines after it need the answer. Warnings pass.
+// Every question first calls `before_asking` (the moves before it play out: the machine
+// waits for the answer at rest, where the file has it, not somewhere before).
 class Interpreter::GatedIO : public OperatorIO {
  public:
   explicit GatedIO(OperatorIO& out) : out_(out) {}
+  std::function<void()> before_asking;
   void print(std::string_view text) override {
     if (!closed) out_.print(text);
   }
   bool confirm(std::string_view message, const SourceLoc& loc) override {
-    return closed || out_.confirm(message, loc);
+    if (closed) return true;
+    before_asking();
+    return out_.confirm(message, loc);
   }
   std::optional<std::string> ask(std::string_view prompt, std::string_view variable,
                                  std::string_view default_value, const SourceLoc& loc) override {
+    before_asking();
     return out_.ask(prompt, variable, default_value, loc);
   }
   std::string choose(std::string_view text, const std::vector<std::string>& buttons,
                      size_t default_button, std::string_view title, const SourceLoc& loc) override {
     if (closed) return buttons.at(default_button);
+    before_asking();
     return out_.choose(text, buttons, default_button, title, loc);
   }
   void warn(const Diagnostic& d) override { out_.warn(d); }

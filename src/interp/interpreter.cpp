@@ -645,6 +645,7 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
       options_(std::move(options)),
       ctx_(state_, settings_, sink_) {
   ctx_.interp_ = this;
+  gated_io_->before_asking = [this] { ctx_.sync(); };
   state_.speeds = settings.speeds;
   gcode_ = std::make_unique<GcodeExecutor>(ctx_, io_, [this] {  // M2, M30: the file ends
     Frame& f = frames_.back();
@@ -964,7 +965,10 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     loop(nullptr);
     if (start_) start_missed();  // ENDALL before it
   } catch (...) {
-    finish();
+    try {
+      finish();
+    } catch (const GantryError&) {  // stopped: what ended the run is the error to report
+    }
     throw;
   }
   finish();

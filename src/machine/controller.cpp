@@ -208,7 +208,9 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
       } catch (const GantryError& e) {
         std::lock_guard lock(m_);
         if (message_.empty() && !abort_) message_ = e.diagnostic().message;
-        if (!abort_) stopped_at_ = e.diagnostic().loc;
+        // A stop that cut no motion (the file waited for the operator) names the line the
+        // file had reached.
+        if (!abort_ || !stopped_at_.file) stopped_at_ = e.diagnostic().loc;
         if (!error_)
           error_ = abort_ ? Diagnostic{stopped_at_, Severity::Error, message_} : e.diagnostic();
         abort_ = true;

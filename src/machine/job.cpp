@@ -81,6 +81,26 @@ void interpret(std::shared_ptr<const Script> script, const Settings& settings, M
   interp.run(std::move(script));
 }
 
+bool RunControl::stop() {
+  std::lock_guard lock(m_);
+  const bool first = ++stops_ == 1;
+  if (machine_) first ? (void)machine_->stop() : (void)machine_->estop();
+  return first;
+}
+
+bool RunControl::start(Controller& machine, const std::function<void()>& start) {
+  std::lock_guard lock(m_);
+  if (stops_ > 0) return false;
+  machine_ = &machine;
+  start();
+  return true;
+}
+
+void RunControl::detach() {
+  std::lock_guard lock(m_);
+  machine_ = nullptr;
+}
+
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options) {
   JobResult result;
@@ -107,9 +127,23 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   machine.set_feed_override(options.feed_override);
   if (options.progress) machine.on_progress(options.progress);
   const std::string name = *script->name();
-  if (const Outcome o = machine.run(std::move(script), /*checked=*/true, result.estimated_time_s);
-      !o) {
-    result.errors.push_back({file_loc(name), Severity::Error, o.reason});
+  Outcome started;
+  auto start = [&] { started = machine.run(std::move(script), true, result.estimated_time_s); };
+  if (!options.control) {
+    start();
+  } else if (!options.control->start(machine, start)) {
+    result.errors.push_back({file_loc(name), Severity::Error,
+                             "stopped by the operator before the run started; nothing moved"});
+    return result;
+  }
+  struct Detach {  // the control forgets the machine before it goes
+    RunControl* c;
+    ~Detach() {
+      if (c) c->detach();
+    }
+  } detach{options.control};
+  if (!started) {
+    result.errors.push_back({file_loc(name), Severity::Error, started.reason});
     return result;
   }
   machine.wait();

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -332,16 +333,20 @@ std::string rtrim(std::string s) {
   return s;
 }
 
-// One console in a detached tmux session on a private server (its own socket, no config).
+// One console (or another subcommand) in a detached tmux session on a private server (its
+// own socket, no config). `files` are written to its working folder first.
 class TmuxConsole {
  public:
-  explicit TmuxConsole(const std::string& args) {
+  explicit TmuxConsole(const std::string& args, const std::string& subcommand = "console",
+                       const std::map<std::string, std::string>& files = {}) {
     static int n = 0;
     socket_ = fmt::format("gantry_console_test_{}_{}", getpid(), ++n);
-    // When the console ends, the pane says so and stays, so a failure shows why it ended.
-    const std::string cmd = fmt::format(
-        "cd {} && XDG_CONFIG_HOME={} {} console {}; echo \"[console exited: $?]\"; sleep 60",
-        quoted(dir_.path().string()), quoted(dir_.config().string()), quoted(GANTRY_BIN), args);
+    for (const auto& [name, text] : files) write(name, text);
+    // When it ends, the pane says so and stays, so a failure shows why it ended.
+    const std::string cmd =
+        fmt::format("cd {} && XDG_CONFIG_HOME={} {} {} {}; echo \"[{} exited: $?]\"; sleep 60",
+                    quoted(dir_.path().string()), quoted(dir_.config().string()),
+                    quoted(GANTRY_BIN), subcommand, args, subcommand);
     started_ = tmux("new-session -d -x 120 -y 50 -s main " + quoted(cmd)) == 0;
   }
   ~TmuxConsole() { tmux("kill-server"); }
@@ -595,6 +600,41 @@ TEST(ConsoleTerminal, AContinuousJogStopsOnceTheKeyNoLongerRepeats) {
   EXPECT_EQ(readout_x(l.substr(prefix.size())), 0.0);
   t.keys("Escape");
   ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+}
+
+// ---- gantry run at a terminal: Ctrl-C stops the run in order -------------------------------
+
+TEST(RunAtATerminal, CtrlCRampsTheMoveDownAndTheReportSaysWhereTheToolIs) {
+  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed";
+  TmuxConsole t("long.sbp --realtime", "run", {{"long.sbp", "MS, 2\nMX, 10\nMY, 5\n"}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("running long.sbp") != std::string::npos; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // X is moving at 2 in/s
+  t.keys("C-c");
+  ASSERT_TRUE(t.wait_for_line("[run exited: 1]")) << t.text();
+  const std::string text = t.text();
+  EXPECT_NE(text.find("stopping the run (again: E-stop)"), std::string::npos) << text;
+  EXPECT_NE(text.find("long.sbp:2:1: error: stopped by the operator"), std::string::npos) << text;
+  // Ramped down part-way along X: the report's position is the pulses played.
+  const std::size_t at = text.find("position   X=");
+  ASSERT_NE(at, std::string::npos) << text;
+  const double x = std::stod(text.substr(at + 13));
+  EXPECT_GT(x, 1.0) << text;
+  EXPECT_LT(x, 9.0) << text;
+  EXPECT_NE(text.find("Y=0.0000"), std::string::npos) << text;
+}
+
+TEST(RunAtATerminal, CtrlCAtAPauseEndsTheFileWithTheMovesBeforeItPlayed) {
+  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed";
+  TmuxConsole t("pause.sbp", "run", {{"pause.sbp", "MX, 1\nPAUSE\nMX, 2\n"}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("Enter to continue") != std::string::npos; }))
+      << t.text();
+  t.keys("C-c");
+  ASSERT_TRUE(t.wait_for_line("[run exited: 1]")) << t.text();
+  const std::string text = t.text();
+  EXPECT_NE(text.find("pause.sbp:2:1: error: stopped by the operator"), std::string::npos) << text;
+  EXPECT_NE(text.find("steps      X=917 "), std::string::npos) << text;  // MX, 1 played first
 }
 
 }  // namespace

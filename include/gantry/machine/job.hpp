@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -17,6 +18,25 @@
 #include "gantry/settings/settings.hpp"        // Settings
 
 namespace gantry {
+
+class Controller;
+
+// The operator's stop and E-stop for a run, from another thread (gantry run's Ctrl-C).
+class RunControl {
+ public:
+  // A stop: the running file ramps down and ends, the position known; asked before the run
+  // starts, the run never starts. Again: an E-stop. True for a stop, false for an E-stop.
+  bool stop();
+  // run_job: starts the run with `start` unless a stop came first (false), and keeps the
+  // machine until detach(). A stop waits while the run starts, so it always reaches it.
+  bool start(Controller& machine, const std::function<void()>& start);
+  void detach();
+
+ private:
+  std::mutex m_;
+  Controller* machine_ = nullptr;
+  int stops_ = 0;
+};
 
 struct JobOptions {
   std::function<void(std::size_t done, std::size_t total)> progress;  // lines of the top file
@@ -37,6 +57,7 @@ struct JobOptions {
   const CommandRecorder* record = nullptr;
   // The check's moves go here as well (a preview draws them); null: nowhere.
   MotionSink* check_moves = nullptr;
+  RunControl* control = nullptr;  // stops the run from another thread; null: none
 };
 
 struct JobResult {
