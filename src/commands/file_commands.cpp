@@ -48,10 +48,23 @@ void file_part(CommandContext& ctx, const CommandCall& call) {
 
 // FG: FP from a chosen line; the lines before it run without motion, then the tool comes
 // to where they leave it (docs/language.md, "Starting at a line").
+// FG: with no start line, the line where the last run of that file stopped (after a broken
+// bit, say), else its first.
 void file_goto(CommandContext& ctx, const CommandCall& call) {
   FileCall fc = file_call(call);
-  fc.start_line = static_cast<int>(*call.number(9));
   fc.start_loc = call.param_loc(9);
+  if (const std::optional<double> line = call.number(9)) {
+    fc.start_line = static_cast<int>(*line);
+  } else if (SourceLoc& stop = ctx.last_stop(); stop.file && stop.line > 0) {
+    std::error_code a, b;
+    const auto here = std::filesystem::weakly_canonical(ctx.file_path(fc.path, call.loc), a);
+    if (!a && here == std::filesystem::weakly_canonical(*stop.file, b) && !b) {
+      fc.start_line = stop.line;
+      ctx.print(
+          fmt::format("FG: from line {}, where the last run of {} stopped\n", stop.line, fc.path));
+      stop = {};  // once
+    }
+  }
   ctx.call_file(fc, call.loc);
 }
 
@@ -228,10 +241,11 @@ void add_file_commands(std::vector<CommandSpec>& out) {
                  "relative to the current position, and tabbed on its last repetition.",
                  part_params(), file_part});
   std::vector<ParamSpec> goto_params = part_params();
-  goto_params.push_back(ParamSpec{"start line", "", false, 1.0,
-                                  "Gantry's: the first line of the file to run. The lines "
-                                  "before it set variables, modes and the location without "
-                                  "moving; then the tool goes there by Safe-Z."}
+  goto_params.push_back(ParamSpec{"start line", "", false, std::nullopt,
+                                  "Gantry's: the first line of the file to run (blank: the "
+                                  "line where the last run of that file stopped, else 1). The "
+                                  "lines before it set variables, modes and the location "
+                                  "without moving; then the tool goes there by Safe-Z."}
                             .integer(1, 1e9));
   out.push_back(
       {"FG", "File: run a part file from a line", F,
@@ -239,8 +253,8 @@ void add_file_commands(std::vector<CommandSpec>& out) {
        "motion, output or questions, the tool then rises to Safe-Z, crosses to where those lines "
        "leave it and goes down there, and the file runs on from that line.",
        goto_params, file_goto,
-       "no single-stepping, and no record of where a stopped run ended: FG runs on from the "
-       "line given (parameter 10)"});
+       "FG runs on from the line: stepping line by line is the controller's single step "
+       "(the console's `step`, the window's Single step), which FG does not turn on"});
   out.push_back(
       {"FS",
        "File: set the parts folder",

@@ -487,6 +487,10 @@ void CommandContext::run_typed(std::shared_ptr<const Script> lines, int repetiti
   call_file(call, loc);
 }
 
+SourceLoc& CommandContext::last_stop() {
+  return interp_->last_stop_;
+}
+
 CommandRecorder& CommandContext::recorder() {
   return interp_->recorder_;
 }

@@ -202,6 +202,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
     line_ = 0;
     lines_ = script->line_count();
     running_file_ = true;
+    typed_ = typed;
     start_activity([this, script, typed] {
       try {
         interp_->run(script, typed);
@@ -567,6 +568,10 @@ void Controller::job_main() {
     effect_state_.reset();
     const bool cut = interrupted_ || abort_;
     const bool jogged = jog_target_.has_value();
+    if (cut && stopped_at_.file)  // FG resumes where a file stopped short
+      interp_->set_last_stop(stopped_at_);
+    else if (running_file_ && !typed_)  // a part file ran to its end
+      interp_->set_last_stop({});
     if (cut)
       interp_->set_machine_position(played_machine());  // where the pulses brought the tool
     else if (jog_target_)

@@ -529,5 +529,32 @@ TEST(Controller, APauseSwitchesOffTheOutputsOfVnModesTwoAndFiveUntilResume) {
   std::remove(trace.c_str());
 }
 
+TEST(Controller, FgWithoutAStartLineResumesOnceWhereTheLastRunStopped) {
+  const std::string path = testing::TempDir() + "gantry_fg_resume.sbp";
+  std::ofstream(path) << "MS, 2\nMX, 4\nMY, 3\nMX, 0\n";
+  Settings settings = default_settings();
+  SimCard card{settings};
+  std::string printed;
+  ScriptedIO io{true, {}, &printed};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  c.schedule(Request::Stop, 3.0);  // in MY, 3 (line 3)
+  ASSERT_TRUE(c.run_typed(Script::from_text("FP, " + path + "\n", "console")));
+  c.wait();
+  ASSERT_EQ(c.state(), MachineState::Stopped);
+  EXPECT_EQ(c.status().stopped_at.line, 3);
+  ASSERT_TRUE(c.run_typed(Script::from_text("FG, " + path + "\n", "console")));
+  c.wait();
+  EXPECT_NE(printed.find("FG: from line 3, where the last run of"), std::string::npos) << printed;
+  EXPECT_EQ(c.state(), MachineState::Idle);
+  EXPECT_EQ(c.status().steps[0], 0);
+  EXPECT_EQ(c.status().steps[1], std::llround(3 * settings.axes[1].steps_per_unit));
+  printed.clear();
+  ASSERT_TRUE(c.run_typed(Script::from_text("FG, " + path + "\n", "console")));  // from line 1
+  c.wait();
+  EXPECT_EQ(printed.find("FG: from line"), std::string::npos) << printed;
+  std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace gantry

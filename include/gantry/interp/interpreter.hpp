@@ -256,6 +256,9 @@ class CommandContext {
   const std::string& last_file() const;
   void set_last_file(std::string path);
   const InterpreterOptions& options() const;
+  // Where the last run stopped short (a stop, an E-stop, a fault; the controller tells), for
+  // FG to resume there once: FG clears it, and so does a part file run to its end.
+  SourceLoc& last_stop();
 
  private:
   // A motion-stream item at the current location, in table base coordinates.
@@ -341,6 +344,7 @@ class Interpreter : private EvalEnv {
   void restore_state(const ModalState& s) { state_ = s; }
   void restore_variables(const std::unordered_map<std::string, Value>& v) { vars_ = v; }
   const std::unordered_map<std::string, Value>& variables() const { return vars_; }
+  void set_last_stop(SourceLoc at) { last_stop_ = std::move(at); }
   void set_machine_position(const Vec6& machine);
   std::size_t statements_executed() const { return executed_; }
   std::size_t moves_emitted() const { return ctx_.moves(); }
@@ -428,8 +432,9 @@ class Interpreter : private EvalEnv {
   std::unique_ptr<GatedSink> gated_sink_;
   std::unique_ptr<GatedIO> gated_io_;
   const CommandTable& table_;
-  MotionSink& sink_;  // *gated_sink_
-  OperatorIO& io_;    // *gated_io_
+  MotionSink& sink_;     // *gated_sink_
+  SourceLoc last_stop_;  // see CommandContext::last_stop
+  OperatorIO& io_;       // *gated_io_
   PersistentStore& store_;
   InterpreterOptions options_;
   ModalState state_;

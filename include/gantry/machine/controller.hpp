@@ -202,6 +202,7 @@ class Controller {
   std::atomic<bool> override_changed_{false}, single_step_{false};
   bool step_waiting_ = false;  // single step: the file holds after a statement
   bool running_file_ = false;  // the activity is a file (not a jog)
+  bool typed_ = false;         // ... typed at the console (not a part file of its own)
   std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
   std::atomic<std::size_t> line_{0}, lines_{0};
   std::atomic<int> playing_line_{0};
