@@ -117,7 +117,8 @@ void add_settings_commands(std::vector<CommandSpec>& out) {
        "Seconds of warning before movement starts; 0 turns the warning off.",
        {ParamSpec{"duration", "s", false, 2.0, "Warning time, 0 to 3600."}.range(0, 3600)},
        set_warning,
-       "the value is kept; the warning itself is the console's (issue 8)",
+       "the value is kept, but no warning is given before motion and switch 4 does not come "
+       "on with it (SO's switch 4 automatic modes)",
        {},
        false,
        "%(21)"});
@@ -188,7 +189,8 @@ void add_settings_commands(std::vector<CommandSpec>& out) {
                  "Moves that follow change the location without moving the machine, until SM.",
                  {},
                  set_preview,
-                 "the graphical preview is issue 9",
+                 "the moves are not drawn as they are previewed: `gantry preview` and the "
+                 "window's 3D view draw a file before it runs",
                  {},
                  true,
                  "%(22)"});

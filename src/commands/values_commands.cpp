@@ -107,7 +107,7 @@ const std::vector<Field>& vc_sb3() {
       pocket_overlap(),
       safe_a(),
       {flag("triggered output", "1 turns the Z/A-triggered output switch on for this file."),
-       nullptr, "the Z/A-triggered output switch is not switched by Gantry yet (issue 8)"},
+       nullptr, "the Z/A-triggered output switch is stored, not switched by Gantry"},
       {num("trigger ON level", "units", "Z or A level at which the switch comes on."),
        [](Settings& s, const Value& v) { s.cutter.trigger_on = v.num(); }},
       {num("trigger OFF level", "units", "Z or A level at which the switch goes off."),
@@ -759,7 +759,9 @@ void add_values_commands(std::vector<CommandSpec>& out) {
                  "%(1)-%(10)"});
   out.push_back({"VP", "Values for the preview", V,
                  "Sets the preview's grid, table size and drawing options.", params_of(vp_fields()),
-                 values_preview, "the console preview that reads them is issue 9"});
+                 values_preview,
+                 "stored and shown by UV; `gantry preview` and the window's 3D view take "
+                 "their own options"});
   out.push_back({"VR", "Values for ramps", V,
                  "Sets the ramp speeds and rates of the SB3 ramp model (docs/planner.md); FabMo's "
                  "form sets jerk limits. The machine comes to rest first.",

@@ -938,8 +938,8 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     }
     pending_call_.reset();
     ctx_.end_preview();  // first: a preview switches no output
-    // Output switches go off when the job ends, however it ends (SB3's standard mode); VO
-    // lasts until the part file is exited. Typed lines are no part file.
+    // Output switches go off when the job ends, however it ends, unless their VN mode keeps
+    // them on; VO lasts until the part file is exited. Typed lines are no part file.
     if (!typed) {
       for (int n = 1; n <= 12; ++n) {  // VN output modes 1 and 4 stay on (docs/values.md)
         const int mode = settings_.switches.output_modes[n - 1];

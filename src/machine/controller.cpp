@@ -266,6 +266,9 @@ Outcome Controller::acknowledge() {
   std::unique_lock lock(m_);
   cv_.wait(lock, [&] { return feeder_.phase() == FeedPhase::Playing; });
   interp_->set_machine_position(played_machine());
+  ModalState st = interp_->state();  // the E-stop switched every output off (VN modes 1, 4 too)
+  st.outputs = 0;
+  interp_->restore_state(st);
   message_.clear();
   return o;
 }

@@ -2,6 +2,7 @@
 #include "gantry/step/motion_feeder.hpp"
 
 #include <algorithm>  // min, max
+#include <utility>    // exchange
 
 namespace gantry {
 namespace {
@@ -142,14 +143,18 @@ void MotionFeeder::settle() {
   if (pausing_.exchange(false)) {
     const std::uint32_t mask = pause_mask_.load(std::memory_order_relaxed);
     for (int n = 1; n <= 12; ++n)
-      if ((mask >> (n - 1) & 1u) && steps_.output_on(n)) {
-        steps_.set_output(n, false);
-        paused_off_ |= 1u << (n - 1);
-      }
-    if (paused_off_) steps_.emit_levels();
+      if ((mask >> (n - 1) & 1u) && steps_.output_on(n)) paused_off_ |= 1u << (n - 1);
+    switch_outputs(paused_off_, false);
   }
   steps_.flush();  // every word up to here reaches the card: the tool is where it stopped
   set_phase(FeedPhase::Held);
+}
+
+void MotionFeeder::switch_outputs(std::uint32_t mask, bool on) {
+  if (mask == 0) return;
+  for (int n = 1; n <= 12; ++n)
+    if (mask >> (n - 1) & 1u) steps_.set_output(n, on);
+  steps_.emit_levels();
 }
 
 void MotionFeeder::halt_now() {
@@ -209,12 +214,7 @@ void MotionFeeder::resume() {
   hold_at_ = steps_.kNever;
   carry_ = 0;
   catching_up_ = true;
-  if (paused_off_) {  // on again before anything moves
-    for (int n = 1; n <= 12; ++n)
-      if (paused_off_ >> (n - 1) & 1u) steps_.set_output(n, true);
-    paused_off_ = 0;
-    steps_.emit_levels();
-  }
+  switch_outputs(std::exchange(paused_off_, 0), true);  // on again before anything moves
   set_phase(FeedPhase::Playing);
   // A new hold while replaying keeps the rest again, in order (segment() and the others
   // keep what arrives while held).

@@ -74,7 +74,8 @@ class MotionFeeder : public SegmentSink {
   void play(const PlannedSegment& s);  // as given, until a hold or halt cuts it
   void slow(const PlannedSegment& s);  // slowing from carry_
   void hold_here(const PlannedSegment& rest);
-  void settle();  // at rest: held
+  void settle();                                     // at rest: held
+  void switch_outputs(std::uint32_t mask, bool on);  // bit n-1: output n, in one word at rest
   void set_phase(FeedPhase p) { phase_.store(p, std::memory_order_release); }
 
   StepGenerator& steps_;
