@@ -4,10 +4,11 @@
 
 #include <algorithm>  // equal
 #include <cmath>      // math functions of expressions
-#include <cstdint>    // uint64_t
 
 #include "gantry/lang/gcode.hpp"
 #include "gantry/lang/parser.hpp"  // LineParse, Statement
+#include "number_literal.hpp"      // is_digit, plain_value
+#include "scan.hpp"                // is_letter, upper
 
 namespace gantry {
 namespace {
@@ -15,45 +16,17 @@ namespace {
 bool is_space(char c) {
   return c == ' ' || c == '\t';
 }
-bool is_digit(char c) {
-  return c >= '0' && c <= '9';
-}
-bool is_letter(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
-}
-char upper(char c) {
-  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
-}
-
-// Ten to the k, exactly, for k <= 22.
-constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+using literal::is_digit;
+using scan::is_letter;
+using scan::upper;
 
 // Reads `digits[.digits]` or `.digits` at s[i]; returns the end, or i when there is none.
-// The value is exact-rounded (one IEEE division of two exact doubles) for up to 15 digits,
-// the same double from_chars gives; longer literals are rare and go through strtod.
 size_t read_unsigned(std::string_view s, size_t i, double* value) {
-  std::uint64_t m = 0;
-  int digits = 0, decimals = -1;
   size_t j = i;
-  for (; j < s.size(); ++j) {
-    const char c = s[j];
-    if (c == '.' && decimals < 0) {
-      decimals = 0;
-      continue;
-    }
-    if (!is_digit(c)) break;
-    m = m * 10 + static_cast<unsigned>(c - '0');
-    ++digits;
-    if (decimals >= 0) ++decimals;
-  }
-  if (digits == 0) return i;
-  if (digits <= 15 && decimals <= 22) {
-    *value = static_cast<double>(m) / kPow10[decimals < 0 ? 0 : decimals];
-  } else {
-    const std::string text(s.substr(i, j - i));
-    *value = std::strtod(text.c_str(), nullptr);
-  }
+  bool point = false;
+  for (; j < s.size() && (is_digit(s[j]) || (s[j] == '.' && !point)); ++j) point |= s[j] == '.';
+  if (j == i || (j == i + 1 && point)) return i;  // no digit
+  *value = literal::plain_value(s.substr(i, j - i));
   return j;
 }
 

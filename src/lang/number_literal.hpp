@@ -2,7 +2,9 @@
 #pragma once
 
 #include <charconv>  // from_chars: locale-independent, unlike strtod
+#include <cmath>     // HUGE_VAL
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string_view>
 #include <system_error>  // errc
@@ -36,6 +38,35 @@ inline size_t scan(std::string_view s, size_t i) {
     }
   }
   return j;
+}
+
+// Ten to the k, exactly, for k <= 22 (every such power is a double).
+inline constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                    1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                    1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+inline std::optional<double> value(std::string_view lit);
+
+// The value of `digits[.digits]` or `.digits` (no sign, no exponent; the caller scanned it).
+// When the digits form an integer m < 2^53 and there are k <= 22 decimals, m and 10^k are
+// both exact doubles and one IEEE division rounds m / 10^k correctly: the same double
+// from_chars gives (Clinger's fast path). Longer literals go through value(); one too large
+// for a double is infinite.
+inline double plain_value(std::string_view t) {
+  std::uint64_t m = 0;
+  int digits = 0, decimals = -1;
+  for (char c : t) {
+    if (c == '.') {
+      decimals = 0;
+      continue;
+    }
+    m = m * 10 + static_cast<unsigned>(c - '0');
+    ++digits;
+    if (decimals >= 0) ++decimals;
+  }
+  if (digits <= 15 && decimals <= 22)  // 15 digits: m < 10^15 < 2^53
+    return static_cast<double>(m) / kPow10[decimals < 0 ? 0 : decimals];
+  return value(t).value_or(HUGE_VAL);
 }
 
 // The value of a whole literal as scan() accepts it; nullopt when it is too large for a

@@ -6,8 +6,6 @@
 // differential fuzz target checks that.
 #include "gantry/lang/parser.hpp"
 
-#include <cstdint>  // uint64_t
-
 #include "number_literal.hpp"  // literal::scan, literal::value
 #include "scan.hpp"            // is_space, is_word
 
@@ -16,37 +14,8 @@ namespace {
 
 using scan::is_space;
 
-bool is_letter(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
-}
-char upper(char c) {
-  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
-}
-
-// Ten to the k, exactly, for k <= 22 (every such power is a double).
-constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-
-// The value of the literal `digits[.digits]` in t (no sign, no exponent). When the digits
-// form an integer m < 2^53 and there are k <= 22 decimals, m and 10^k are both exact doubles
-// and one IEEE division rounds m / 10^k correctly: the same double from_chars gives (Clinger's
-// fast path). Longer literals go through from_chars.
-double literal_value(std::string_view t) {
-  std::uint64_t m = 0;
-  int digits = 0, decimals = -1;
-  for (char c : t) {
-    if (c == '.') {
-      decimals = 0;
-      continue;
-    }
-    m = m * 10 + static_cast<unsigned>(c - '0');
-    ++digits;
-    if (decimals >= 0) ++decimals;
-  }
-  if (digits <= 15 && decimals <= 22)  // 15 digits: m < 10^15 < 2^53
-    return static_cast<double>(m) / kPow10[decimals < 0 ? 0 : decimals];
-  return *literal::value(t);  // at most 40 characters without exponent: always in range
-}
+using scan::is_letter;
+using scan::upper;
 
 // Walks the line; with `out` it also builds the statement, reusing the storage `out` holds.
 bool scan_line(std::string_view line, const std::shared_ptr<const std::string>* file, int line_no,
@@ -107,7 +76,8 @@ bool scan_line(std::string_view line, const std::shared_ptr<const std::string>* 
       a.expr.reset();
       a.expr_error.reset();
       a.number.reset();
-      if (!t.empty()) a.number = t[0] == '-' ? -literal_value(lit) : literal_value(lit);
+      if (!t.empty())
+        a.number = t[0] == '-' ? -literal::plain_value(lit) : literal::plain_value(lit);
     }
     ++n;
     if (!t.empty()) kept = n;
