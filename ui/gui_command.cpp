@@ -11,9 +11,8 @@
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
 #include "gantry/machine/controller.hpp"       // Controller
 #include "gui.hpp"                             // run_gui
-#include "live_machine.hpp"                    // ValuesKeeper, LiveMachineArgs (src/cli)
+#include "live_machine.hpp"                    // ValuesKeeper, open_live_card (src/cli)
 #include "machine_profile.hpp"                 // load_machine_profile (src/cli)
-#include "open_card.hpp"                       // open_card (src/cli)
 #include "window_io.hpp"                       // WindowIO
 
 namespace gantry {
@@ -50,23 +49,17 @@ int run_gui_command(const GuiArgs& a) {
   ValuesKeeper values(profile, io);
   const InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
 
-  CardChoice choice;
-  choice.type = a.card.empty() ? settings.card.type : a.card;
-  choice.realtime = a.realtime;
-  std::string why;
-  const std::unique_ptr<Card> card = open_card(choice, settings, &why);
-  if (!card) {
-    std::fprintf(stderr, "error: cannot open the %s card: %s\n", choice.type.c_str(), why.c_str());
-    return 1;
-  }
-  const bool sim = choice.type == "sim";
+  std::string type;
+  const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
+  if (!card) return 1;
+  const bool sim = type == "sim";
   Controller controller(settings, *card, io, store, opt);
   ui::GuiOptions o;
   o.file = a.file;
   o.script = a.script;
   o.bench = a.bench;
   o.realtime = a.realtime || !sim;
-  o.card = sim ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : choice.type;
+  o.card = sim ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : type;
   o.width = a.width;
   o.height = a.width * 10 / 16;
   ui::Machine m{controller, io, [&values] { return values.settings(); }};

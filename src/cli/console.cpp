@@ -30,7 +30,6 @@
 #include "line_editor.hpp"                   // KeyDecoder, LineEditor
 #include "live_machine.hpp"                  // ValuesKeeper, LiveMachineArgs
 #include "machine_profile.hpp"               // load_machine_profile
-#include "open_card.hpp"                     // open_card
 #include "signal_watch.hpp"                  // SignalWatch
 
 namespace gantry {
@@ -1051,16 +1050,10 @@ int run_console(const ConsoleArgs& a) {
   ValuesKeeper values(profile, io);
   const InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
 
-  CardChoice choice;
-  choice.type = a.card.empty() ? settings.card.type : a.card;
-  choice.realtime = a.realtime;
-  std::string why;
-  const std::unique_ptr<Card> card = open_card(choice, settings, &why);
-  if (!card) {
-    fmt::print(stderr, "error: cannot open the {} card: {}\n", choice.type, why);
-    return 1;
-  }
-  const bool sim = choice.type == "sim";
+  std::string type;
+  const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
+  if (!card) return 1;
+  const bool sim = type == "sim";
   Controller controller(settings, *card, io, store, opt);
   std::atomic<int> signal{0};
   signals.start([&](int sig) {
@@ -1077,7 +1070,7 @@ int run_console(const ConsoleArgs& a) {
   if (!interactive) return console.piped();
   const std::string banner = fmt::format(
       "gantry console: profile \"{}\" on the {}{}\nhelp lists the keys; quit leaves.\n",
-      settings.name, sim ? "simulated card" : choice.type + " card",
+      settings.name, sim ? "simulated card" : type + " card",
       !sim         ? ""
       : a.realtime ? " (real time)"
                    : " (virtual time: moves end at once; --realtime plays them in real time)");

@@ -1,8 +1,11 @@
 // The live front ends' shared options, and keeping the values the runs leave in force.
 #include "live_machine.hpp"
 
+#include <fmt/format.h>  // the error
+
 #include "gantry/core/text_file.hpp"        // read_text_file, write_file_atomically
 #include "gantry/settings/values_file.hpp"  // values_text
+#include "open_card.hpp"                    // open_card
 
 namespace gantry {
 
@@ -47,6 +50,18 @@ InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeepe
   opt.values_path = p.values_path;
   opt.save_values = [&values](const Settings& s) { values.ran(s); };
   return opt;
+}
+
+std::unique_ptr<Card> open_live_card(const LiveMachineArgs& a, const Settings& settings,
+                                     std::string* type) {
+  CardChoice choice;
+  choice.type = a.card.empty() ? settings.card.type : a.card;
+  choice.realtime = a.realtime;
+  *type = choice.type;
+  std::string why;
+  std::unique_ptr<Card> card = open_card(choice, settings, &why);
+  if (!card) fmt::print(stderr, "error: cannot open the {} card: {}\n", choice.type, why);
+  return card;
 }
 
 }  // namespace gantry

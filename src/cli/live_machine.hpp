@@ -3,9 +3,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <memory>
 #include <mutex>
 #include <string>
 
+#include "gantry/hal/card.hpp"            // Card
 #include "gantry/interp/interpreter.hpp"  // InterpreterOptions
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
 #include "machine_profile.hpp"            // MachineProfile
@@ -23,6 +25,11 @@ struct LiveMachineArgs {
 
 // Adds them to `cmd` (`realtime_help`: what real time is needed for there).
 void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::string& realtime_help);
+
+// The card the options choose (else the profile's card.type), in real time if asked; `type`
+// receives the type. Null, with the reason printed on stderr, when it cannot be opened.
+std::unique_ptr<Card> open_live_card(const LiveMachineArgs& a, const Settings& settings,
+                                     std::string* type);
 
 // The values a live machine's runs leave in force (units, speeds, calibration), for the
 // front ends' readouts, saved to the operator's values file whenever they change (as
