@@ -506,7 +506,11 @@ void App::readout_window() {
                         : st.state == MachineState::Stopped ? kYellow
                         : at_rest()                         ? kGreen
                                                             : kCyan;
-  ImGui::TextColored(colour, "%s", pausing ? "pausing" : state_name(st.state));
+  if (st.warning)  // SW's warning before a run moves the tool: flashing
+    ImGui::TextColored(std::fmod(ImGui::GetTime(), 0.5) < 0.25 ? kRed : kYellow,
+                       "WARNING: about to move");
+  else
+    ImGui::TextColored(colour, "%s", pausing ? "pausing" : state_name(st.state));
   ImGui::SameLine(120);
   ImGui::TextDisabled("card: %s", opt_.card.c_str());
   const Vec6 p = position(st);

@@ -47,12 +47,13 @@ int run_gui_command(const GuiArgs& a) {
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   ui::WindowIO io(false, {});
   ValuesKeeper values(profile, io);
-  const InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
+  InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
 
   std::string type;
   const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
   if (!card) return 1;
   const bool sim = type == "sim";
+  opt.warn_before_motion = !sim || a.realtime;
   Controller controller(settings, *card, io, store, opt);
   ui::GuiOptions o;
   o.file = a.file;

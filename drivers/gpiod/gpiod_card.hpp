@@ -44,6 +44,9 @@ class GpiodCard : public Card {
   std::uint64_t ticks_played() const override { return player_.ticks_played(); }
   std::uint32_t inputs() const override { return player_.inputs(); }
   CardFault fault() const override { return player_.fault(); }
+  void set_trips(const InputTrip& estop, const InputTrip& limits) override {
+    player_.set_trips(estop, limits);
+  }
 
   // Ticks played more than map.late_tolerance_ticks after their deadline, and the worst
   // lateness of any played tick, since start().

@@ -20,7 +20,20 @@ void for_each_bit(std::uint32_t bits, F f) {
   }
 }
 
+std::uint64_t pack(const InputTrip& t) {
+  return std::uint64_t{t.mask} << 32 | (t.active_high & t.mask);
+}
+
+InputTrip unpack(std::uint64_t w) {
+  return {static_cast<std::uint32_t>(w >> 32), static_cast<std::uint32_t>(w)};
+}
+
 }  // namespace
+
+void TickPlayer::set_trips(const InputTrip& estop, const InputTrip& limits) {
+  estop_trip_.store(pack(estop), std::memory_order_release);
+  limit_trip_.store(pack(limits), std::memory_order_release);
+}
 
 TickPlayer::TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring)
     : lines_(lines), ring_(ring), map_(map), current_word_(map.initial_word) {
@@ -30,6 +43,8 @@ TickPlayer::TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring)
   }
   for (std::size_t i = 0; i < map.inputs.size() && i < 64; ++i)
     bit_of_input_[i] = map.inputs[i].bit;
+  set_trips({map.estop_bits, map.estop_bits & ~map.active_low_bits},
+            {map.limit_bits, map.limit_bits & ~map.active_low_bits});
   reset(map.pacer_hz);
 }
 
@@ -69,12 +84,12 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
   if (tick == next_sample_tick_) {
     if (!read_inputs()) return Outcome::Faulted;
     next_sample_tick_ += sample_every_;
-    const std::uint32_t active = inputs_.load(std::memory_order_relaxed) ^ map_.active_low_bits;
-    if (active & map_.estop_bits) {
+    const std::uint32_t bits = inputs_.load(std::memory_order_relaxed);
+    if (unpack(estop_trip_.load(std::memory_order_acquire)).tripped(bits)) {
       fail(CardFault::EStop);
       return Outcome::Faulted;
     }
-    if (active & map_.limit_bits) {
+    if (unpack(limit_trip_.load(std::memory_order_acquire)).tripped(bits)) {
       fail(CardFault::Limit);
       return Outcome::Faulted;
     }

@@ -41,6 +41,9 @@ class TickPlayer {
   bool output(std::uint32_t word);
   // Faults the card from outside (a refused start).
   void fail(CardFault fault) { fault_.store(fault, std::memory_order_release); }
+  // The inputs that fault the card (the map's E-stop and limit bits until set), from any
+  // thread: each trip is one atomic word, so the player never sees a mask without its levels.
+  void set_trips(const InputTrip& estop, const InputTrip& limits);
 
   std::uint64_t ticks_played() const { return ticks_played_.load(std::memory_order_acquire); }
   std::uint32_t inputs() const { return inputs_.load(std::memory_order_acquire); }
@@ -72,6 +75,7 @@ class TickPlayer {
 
   std::atomic<std::uint64_t> ticks_played_{0};
   std::atomic<std::uint32_t> inputs_{0};
+  std::atomic<std::uint64_t> estop_trip_{0}, limit_trip_{0};  // mask << 32 | active_high
   std::atomic<CardFault> fault_{CardFault::None};
   std::atomic<std::uint64_t> late_ticks_{0};
   std::atomic<std::int64_t> worst_late_ns_{0};

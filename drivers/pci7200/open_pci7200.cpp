@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "gantry/hal/input_roles.hpp"  // input_roles
 #include "gantry/hal/pin_map.hpp"
 #include "pci7200/pacer_divisor.hpp"
 #include "pci7200/sysfs_pio_bus.hpp"
@@ -45,18 +46,10 @@ std::optional<pci7200::Pci7200Options> pci7200_options_for(const Settings& setti
   out.charge_pump_hz = options.charge_pump_hz;
   out.idle_word = pins.idle_word();
   out.realtime = options.realtime;
-  // The profile's E-stop and limit inputs stop the pacer in the feeder, tick-exact.
-  const InputSettings& in = settings.inputs;
-  auto trip = [](pci7200::InputTrip& t, int bit, bool active_low) {
-    if (bit < 0) return;
-    t.mask |= 1u << bit;
-    if (!active_low) t.active_high |= 1u << bit;
-  };
-  trip(out.estop, in.estop_bit, in.estop_active_low);
-  for (int i = 0; i < kAxisCount; ++i) {
-    trip(out.limits, in.min_bit[i], in.limits_active_low);
-    trip(out.limits, in.max_bit[i], in.limits_active_low);
-  }
+  // The E-stop and limit inputs stop the pacer in the feeder, tick-exact.
+  const InputRoles roles = input_roles(settings);
+  out.estop = roles.estop;
+  out.limits = roles.limits;
   return out;
 }
 

@@ -129,6 +129,12 @@ std::size_t Pci7200Card::take(std::span<std::uint32_t> out) {
   return n;
 }
 
+void Pci7200Card::set_trips(const InputTrip& estop, const InputTrip& limits) {
+  std::lock_guard lock(hardware_);  // the feeder reads them in its pass
+  options_.estop = estop;
+  options_.limits = limits;
+}
+
 void Pci7200Card::feeder_loop() {
   realtime_report_ = make_current_thread_realtime(options_.realtime);
   feeder_running_.store(true, std::memory_order_release);

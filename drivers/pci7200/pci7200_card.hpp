@@ -22,13 +22,6 @@
 
 namespace gantry::pci7200 {
 
-// Input bits that stop the card: it trips when any masked bit is at its active level.
-struct InputTrip {
-  std::uint32_t mask = 0;         // 0: never trips
-  std::uint32_t active_high = 0;  // per masked bit: 1 active when high, 0 active when low
-  bool tripped(std::uint32_t inputs) const { return (~(inputs ^ active_high) & mask) != 0; }
-};
-
 struct Pci7200Options {
   double clock_hz = i8254::kClockHz;
   std::size_t ring_words = std::size_t{1} << 18;  // write() to feeder: 1.3 s at 200 kHz
@@ -36,8 +29,8 @@ struct Pci7200Options {
   int charge_pump_bit = -1;     // -1: no charge pump
   double charge_pump_hz = 12'500;
   std::uint32_t idle_word = 0;  // the output word when the card is opened and closed
-  InputTrip estop;              // trips CardFault::EStop
-  InputTrip limits;             // trips CardFault::Limit
+  InputTrip estop;              // trips CardFault::EStop while any masked bit is active
+  InputTrip limits;             // trips CardFault::Limit likewise
   RealtimeRequest realtime;     // for the feeder thread
 };
 
@@ -64,6 +57,7 @@ class Pci7200Card : public Card, private WordSource {
   std::uint64_t ticks_played() const override { return ticks_.load(std::memory_order_acquire); }
   std::uint32_t inputs() const override { return inputs_.load(std::memory_order_acquire); }
   CardFault fault() const override { return fault_.load(std::memory_order_acquire); }
+  void set_trips(const InputTrip& estop, const InputTrip& limits) override;
 
   double pacer_hz() const { return pacer_hz_.load(std::memory_order_acquire); }
   bool uses_dma() const { return output_.uses_dma(); }

@@ -39,6 +39,9 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
     steps_per_unit_[i] = settings.axes[i].steps_per_unit;
     axis_bits_ |= pins_.axes[i].step_mask | pins_.axes[i].dir_mask;
   }
+  const InputRoles roles = input_roles(settings);
+  estop_trip_ = roles.estop;
+  limit_trip_ = roles.limits;
   // Every switch starts inactive: active-low inputs read 1.
   set_input(input_bits_.estop_bit, false, input_bits_.estop_active_low);
   set_input(input_bits_.probe_bit, false, false);
@@ -56,13 +59,14 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
 void SimCard::set_input(int bit, bool active, bool active_low) {
   if (bit < 0) return;
   const bool high = active != active_low;
-  inputs_ = high ? inputs_ | (1u << bit) : inputs_ & ~(1u << bit);
+  if (high)  // read-modify-write in one: set_switch may come from another thread
+    inputs_.fetch_or(1u << bit, std::memory_order_relaxed);
+  else
+    inputs_.fetch_and(~(1u << bit), std::memory_order_relaxed);
 }
 
 // Several switches may share one input (ShopBot wires the proximity switches of X, Y and Z
-// to input 3): a shared bit is active while any of its switches is. A limit switch trips
-// the card as it becomes active, as the driver of a real card latches it; moving back off
-// an active switch does not trip it again.
+// to input 3): a shared bit is active while any of its switches is.
 void SimCard::update_switches(int axis) {
   auto at_of = [&](int i) { return static_cast<double>(steps_[i]) / steps_per_unit_[i]; };
   const double at = at_of(axis);
@@ -82,13 +86,22 @@ void SimCard::update_switches(int axis) {
   if (axis == 2 && world_.probe_z) set_input(input_bits_.probe_bit, at <= *world_.probe_z, false);
   if (axis <= 2 && world_.probe_surface)
     set_input(input_bits_.probe_bit, at_of(2) <= world_.probe_surface(at_of(0), at_of(1)), false);
-  auto became_active = [&](int bit, bool active) {
-    return active && bit >= 0 && ((before ^ inputs_) >> bit & 1u);
-  };
-  if ((became_active(input_bits_.min_bit[axis], low) ||
-       became_active(input_bits_.max_bit[axis], high)) &&
-      fault_ == CardFault::None && tick_ > 0)
+  check_trips(before);
+}
+
+// A limit switch trips the card as it becomes active, as the driver of a real card latches
+// it; moving back off an active switch does not trip it again. An E-stop trips it while active.
+void SimCard::check_trips(std::uint32_t before) {
+  if (fault_ != CardFault::None || tick_ == 0) return;
+  if (estop_trip_.tripped(inputs_))
+    fault_ = CardFault::EStop;
+  else if (limit_trip_.active(inputs_) & ~limit_trip_.active(before))
     fault_ = CardFault::Limit;
+}
+
+void SimCard::set_trips(const InputTrip& estop, const InputTrip& limits) {
+  estop_trip_ = estop;
+  limit_trip_ = limits;
 }
 
 void SimCard::watch(const InputWatch& w) {
@@ -120,11 +133,17 @@ void SimCard::start(double pacer_hz) {
   auto tick_of = [&](const std::optional<double>& s) {
     return s ? static_cast<std::uint64_t>(std::llround(*s * pacer_hz)) : UINT64_MAX;
   };
+  // Started again after a fault: the E-stop is still pressed, but a stall has passed and so
+  // have the switch events before now.
   estop_tick_ = tick_of(world_.estop_at_s);
   stall_tick_ = tick_of(world_.stall_at_s);
+  if (tick_ > 0 && stall_tick_ <= tick_) stall_tick_ = UINT64_MAX;
   input_ticks_.clear();
-  for (const SimInputEvent& e : world_.input_events) input_ticks_.push_back(tick_of(e.at_s));
   next_input_ = 0;
+  for (const SimInputEvent& e : world_.input_events) {
+    input_ticks_.push_back(tick_of(e.at_s));
+    if (input_ticks_.back() < tick_) ++next_input_;
+  }
 }
 
 std::uint64_t SimCard::next_event_tick() const {
@@ -153,10 +172,12 @@ void SimCard::write(std::span<const std::uint32_t> words) {
   for (std::uint32_t w : words) {
     while (next_input_ < input_ticks_.size() && tick_ >= input_ticks_[next_input_]) {
       const SimInputEvent& e = world_.input_events[next_input_++];
+      const std::uint32_t before = inputs_;
       set_input(e.bit, e.high, false);
       event_tick = next_event_tick();
       sample_watch(tick_);
-      if (stopped_) return;  // the word at this tick is not played
+      check_trips(before);
+      if (stopped_ || fault_ != CardFault::None) return;  // the word at this tick is not played
     }
     if (tick_ >= event_tick) {
       if (tick_ >= estop_tick_) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <fstream>
@@ -29,9 +30,10 @@ struct TimingViolation {
 };
 
 // Inputs: the switches of `world` read through the profile's [inputs] bits and polarity.
-// An active limit switch or E-stop stops the card (as the driver of a real card stops its
-// pacer on them), after the word that tripped it; a producer stall while words are still due
-// is an underrun. Either way ticks_played() and steps() say exactly what was played.
+// A limit switch becoming active or an active E-stop (set_trips) stops the card, as the
+// driver of a real card stops its pacer on them, after the word that tripped it; a producer
+// stall while words are still due is an underrun. Either way ticks_played() and steps() say
+// exactly what was played.
 // With a trace path, every change of the output word is written as `tick hex-word`.
 class SimCard : public Card {
  public:
@@ -45,8 +47,12 @@ class SimCard : public Card {
   void stop(std::uint32_t idle_word) override;
   std::uint64_t ticks_played() const override { return tick_; }
   std::uint32_t inputs() const override { return inputs_; }
+  // A switch worked by hand at any time, the machine at rest or not (a stop button): input
+  // `bit` reads `high` from the next word on.
+  void set_switch(int bit, bool high) { set_input(bit, high, false); }
   CardFault fault() const override { return fault_; }
   void calibration_changed(const Settings& s) override;
+  void set_trips(const InputTrip& estop, const InputTrip& limits) override;
   // Exact: every word's inputs are compared, and a `stop` bit stops the card at its word.
   void watch(const InputWatch& w) override;
   std::optional<InputEdge> watch_fired() override { return fired_; }
@@ -69,6 +75,8 @@ class SimCard : public Card {
   std::size_t next_input_ = 0;
   std::uint32_t axis_bits_ = 0;  // every step and direction bit
   void set_input(int bit, bool active, bool active_low);
+  void check_trips(std::uint32_t before);  // the inputs were `before`: did a trip go off?
+  InputTrip estop_trip_, limit_trip_;
   void sample_watch(std::uint64_t played);  // the inputs may have changed; `played` words in
   EdgeDetector watcher_;
   std::optional<InputEdge> fired_;
@@ -85,7 +93,7 @@ class SimCard : public Card {
   double tick_s_ = 0;
   std::uint64_t tick_ = 0;
   std::uint32_t prev_ = 0;
-  std::uint32_t inputs_ = 0;
+  std::atomic<std::uint32_t> inputs_{0};  // read by other threads (the controller's checks)
   CardFault fault_ = CardFault::None;
   bool stopped_ = false;
   Steps6 steps_{};

@@ -357,6 +357,7 @@ class Console {
   bool single_step_ = false;
   Vec6 line_start_ = Vec6::Zero();
   bool status_drawn_ = false;
+  bool warned_ = false;  // the status line showed SW's warning (its bell rang)
   Clock::time_point last_draw_{};
   std::string flash_;
   Clock::time_point flash_until_{};
@@ -396,6 +397,7 @@ Vec6 Console::live_position(const ControllerStatus& st) const {
 
 std::string Console::state_text(const ControllerStatus& st) const {
   if (st.state == MachineState::Paused && st.step_hold) return "step";
+  if (st.warning) return "WARNING: about to move";
   if (st.state == MachineState::Paused && st.phase != FeedPhase::Held) return "pausing";
   return state_name(st.state);
 }
@@ -549,6 +551,9 @@ void Console::draw_status(bool force) {
   last_draw_ = now;
   const ControllerStatus st = c_.status();
   std::string text = mode_ == Mode::Keypad ? keypad_text() + readout(st) : readout(st);
+  // SW's warning: the terminal's bell once, and the status line says why nothing moves yet.
+  if (st.warning && !warned_) write_out("\a");
+  warned_ = st.warning;
   if (!flash_.empty() && now < flash_until_) text = flash_;
   const auto width = static_cast<size_t>(std::max(20, terminal_columns() - 1));
   if (text.size() > width) text.resize(width);
@@ -1048,12 +1053,13 @@ int run_console(const ConsoleArgs& a) {
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   ConsoleIO io(interactive, a.yes, inputs);
   ValuesKeeper values(profile, io);
-  const InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
+  InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
 
   std::string type;
   const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
   if (!card) return 1;
   const bool sim = type == "sim";
+  opt.warn_before_motion = !sim || a.realtime;
   Controller controller(settings, *card, io, store, opt);
   std::atomic<int> signal{0};
   signals.start([&](int sig) {

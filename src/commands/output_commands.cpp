@@ -18,12 +18,18 @@ void set_output_switch(CommandContext& ctx, const CommandCall& call) {
     fail(call.param_loc(0),
          fmt::format("output switch {} does not exist; switches are 1 to 12", n));
   const double state = call.number(1).value_or(0);  // blank: off, as SB3 says
-  if (state < 0 && n == 4)
-    fail(call.param_loc(1),
-         "switch 4's automatic modes (-1 to -4: on while the tool moves) are not supported; "
-         "use SO, 4, 1 and SO, 4, 0 around the moves");
+  if (n == 4 && (state == -1 || state == -2 || state == -3 || state == -4)) {
+    // Kept for good, like SW: it says what switch 4 is wired to.
+    ctx.change_values(ValueScope::Permanent).machine.switch4_mode = static_cast<int>(state);
+    return;
+  }
   if (state != 0 && state != 1)
-    fail(call.param_loc(1), fmt::format("SO state {} is not 0 (off) or 1 (on)", state));
+    fail(call.param_loc(1),
+         n == 4 ? fmt::format("SO state {} is not 0 (off), 1 (on) or an automatic mode -1 to -4",
+                              state)
+                : fmt::format("SO state {} is not 0 (off) or 1 (on); only switch 4 has "
+                              "automatic modes (-1 to -4)",
+                              state));
   const int k = static_cast<int>(n);
   if (k > static_cast<int>(wired.size()) || wired[k - 1] < 0)
     fail(call.param_loc(0),
@@ -49,11 +55,14 @@ void add_output_commands(std::vector<CommandSpec>& out) {
                  CommandGroup::Settings,
                  "Turns an output switch on or off. The machine comes to rest first, so the "
                  "switch changes between the moves around it; all switches go off when the "
-                 "job ends.",
+                 "job ends. Switch 4 also comes on by itself while a run moves the tool "
+                 "(from SW's warning to the run's end) unless SO, 4, -4 makes it an "
+                 "ordinary switch; SO, 4, -1 turns that back on.",
                  {{"switch", "", true, std::nullopt, "Output switch number, 1 to 12."},
-                  {"state", "", false, 0.0, "1 turns it on, 0 (or blank) off."}},
-                 set_output_switch,
-                 "switch 4's automatic modes (SO, 4, -1 to -4)"});
+                  {"state", "", false, 0.0,
+                   "1 turns it on, 0 (or blank) off. Switch 4 only: -1, -2 or -3 on while the "
+                   "tool moves (the default), -4 not."}},
+                 set_output_switch});
   for (std::string_view code : {"MO", "M0"})
     out.push_back({code,
                    "Motors off",

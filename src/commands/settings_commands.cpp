@@ -114,11 +114,11 @@ void add_settings_commands(std::vector<CommandSpec>& out) {
       {"SW",
        "Set warning duration",
        S,
-       "Seconds of warning before movement starts; 0 turns the warning off.",
+       "Seconds of warning before a run moves the tool: the machine waits, the console "
+       "beeps and output switch 4 comes on (SO). 0 turns the wait off.",
        {ParamSpec{"duration", "s", false, 2.0, "Warning time, 0 to 3600."}.range(0, 3600)},
        set_warning,
-       "the value is kept, but no warning is given before motion and switch 4 does not come "
-       "on with it (SO's switch 4 automatic modes)",
+       "",
        {},
        false,
        "%(21)"});

@@ -411,8 +411,23 @@ const std::vector<Field>& vn_fields() {
   return f;
 }
 
+// The limit and stop switches change on the card and in the controller with the machine at
+// rest, from this point of the motion stream on.
 void values_switches(CommandContext& ctx, const CommandCall& call) {
+  const SwitchSettings before = ctx.settings().switches;
   apply(ctx, call, vn_fields(), ValueScope::Permanent);
+  const Settings& s = ctx.settings();
+  const SwitchSettings& now = s.switches;
+  if (now.stop_normally_open != before.stop_normally_open && s.inputs.switch_bits[3] >= 0 &&
+      s.inputs.switch_bits[3] == s.inputs.estop_bit)
+    ctx.warn(call.param_loc(1),
+             fmt::format("input 4 is the E-stop chain here (inputs.estop_bit {}), wired as the "
+                         "profile says (estop_active_low); the stop switch wiring does not "
+                         "change it",
+                         s.inputs.estop_bit));
+  if (now.limits != before.limits || now.stop_normally_open != before.stop_normally_open ||
+      now.input_modes != before.input_modes)
+    ctx.values_reach_motion(call.loc);
 }
 
 // ---- VO: temporary tool offset --------------------------------------------------------
@@ -741,8 +756,7 @@ void add_values_commands(std::vector<CommandSpec>& out) {
                  "mode of each input and output switch.",
                  params_of(vn_fields()),
                  values_switches,
-                 "limit switches off, the stop switch wiring and the input modes are stored, "
-                 "not applied: the profile's [inputs] bits name the limit and E-stop inputs",
+                 "the accessory is stored only (VH drives no torch, laser or heater)",
                  {},
                  false,
                  "%(91)-%(98), %(111)-%(122), %(131)-%(134)"});

@@ -233,6 +233,7 @@ void CommandContext::dwell(double seconds, const SourceLoc& loc) {
 }
 
 void CommandContext::emit(const CanonMove& m) {
+  if (!warned_ && m.kind != MoveKind::Dwell) warn_before_motion(m.loc);
   if (const std::optional<IndependentMotion>& mi = state_.independent) {
     const int i = mi->axis;
     if (m.from[i] != m.to[i] || (m.kind == MoveKind::Arc && plane_axes(m.plane)[2] != i))
@@ -251,6 +252,7 @@ void CommandContext::emit(const CanonMove& m) {
 
 void CommandContext::start_independent(const IndependentMotion& m, const SourceLoc& loc) {
   if (state_.preview) return;  // SP: no motor moves
+  if (!warned_) warn_before_motion(loc);
   CanonMove start = here(MoveKind::Independent, loc);
   start.independent = m;
   sink_.move(start);
@@ -265,6 +267,32 @@ void CommandContext::end_independent(const SourceLoc& loc) {
   sync();
   state_.independent.reset();
   independent_resting_ = false;
+}
+
+// SB3 warns before the tool moves: a flashing light, a beep and switch 4, which drives a
+// "machine moving" light on many machines. The tool stays "in motion" until the run ends, so
+// only the run's first motion is warned of (a part file once, a typed line each time).
+void CommandContext::warn_before_motion(const SourceLoc& loc) {
+  warned_ = true;
+  if (!options().warn_before_motion) return;
+  const int mode = settings_.machine.switch4_mode;
+  const std::vector<int>& wired = settings_.outputs.aux_bits;
+  if (mode != -4 && !(state_.outputs & 8u) && wired.size() >= 4 && wired[3] >= 0) {
+    set_output(4, true, loc);
+    switch4_auto_ = true;
+  }
+  if (settings_.machine.warning_s > 0) {
+    CanonMove wait = here(MoveKind::Dwell, loc);
+    wait.dwell_s = settings_.machine.warning_s;
+    wait.warning = true;
+    sink_.move(wait);
+  }
+}
+
+void CommandContext::end_motion_warning() {
+  if (std::exchange(switch4_auto_, false) && (state_.outputs & 8u))
+    set_output(4, false, SourceLoc{});
+  warned_ = false;
 }
 
 std::optional<MotionReport> CommandContext::sync() {
@@ -943,6 +971,7 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     if (!typed) {
       for (int n = 1; n <= 12; ++n) {  // VN output modes 1 and 4 stay on (docs/values.md)
         const int mode = settings_.switches.output_modes[n - 1];
+        if (n == 4 && ctx_.switch4_auto_) continue;  // off once the motion has ended, below
         if ((state_.outputs >> (n - 1) & 1u) && mode != 1 && mode != 4)
           ctx_.set_output(n, false, SourceLoc{});
       }
@@ -955,6 +984,7 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     } catch (const GantryError&) {  // stopped: the controller takes the pulses played
       state_.independent.reset();
     }
+    ctx_.end_motion_warning();
     sink_.flush();
     settings_.speeds = state_.speeds;  // MS and JS changes stay; VS ones were undone above
     if (!options_.dry_run && options_.save_values) options_.save_values(settings_);

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>  // messages
 
+#include <bit>    // countr_zero
 #include <cmath>  // llround
 
 #include "gantry/machine/job.hpp"  // check_program
@@ -16,6 +17,13 @@ std::uint32_t outputs_off_on_pause(const Settings& s) {
   for (int n = 0; n < 12; ++n)
     if (s.switches.output_modes[n] == 2 || s.switches.output_modes[n] == 5) mask |= 1u << n;
   return mask;
+}
+
+// An input's name for the operator: its switch number, else its bit.
+std::string input_name(const InputSettings& in, int bit) {
+  for (int n = 1; n <= 12; ++n)
+    if (in.switch_bits[n - 1] == bit) return fmt::format("input {}", n);
+  return fmt::format("input bit {}", bit);
 }
 
 }  // namespace
@@ -44,6 +52,17 @@ class Controller::QueueSink : public SegmentSink {
   void fence() {
     dead_ = false;
     push({FeedItem::kFlush, {}, nullptr, nullptr}, /*abortable=*/false);
+  }
+  // After a stop: output switches 1-12 as `mask` says (bit n-1: switch n), then a fence.
+  void outputs(std::uint32_t mask) {
+    dead_ = false;
+    for (int n = 1; n <= 12; ++n) {
+      PlannedSegment seg;
+      seg.output = n;  // one the profile does not wire switches nothing
+      seg.output_on = (mask >> (n - 1) & 1u) != 0;
+      push({FeedItem::kSegment, seg, nullptr, nullptr}, /*abortable=*/false);
+    }
+    fence();
   }
 
  private:
@@ -128,7 +147,12 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
     if (progress_) progress_(done, total);  // set while idle only
     after_statement();
   });
-  steps_.on_block([this] { publish(); });  // the readout moves during long segments
+  roles_ = input_roles(settings);
+  stop_trip_ = roles_.stops;
+  steps_.on_block([this] {
+    publish();  // the readout moves during long segments
+    watch_stop_switches();
+  });
   feeder_thread_ = std::thread([this] { feeder_main(); });
   job_thread_ = std::thread([this] { job_main(); });
 }
@@ -179,7 +203,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
     const Verdict v = decide(state_, Request::Run);
     if (!v.next || busy_) return {false, fmt::format("run: refused, {}", v.refusal), {}};
   }
-  if (std::optional<std::string> why = limit_refusal(Vec6::Zero()))
+  if (std::optional<std::string> why = input_refusal(Vec6::Zero()))
     return {false, fmt::format("run: refused, {}", *why), {}};
   // The check runs from the live state: soft limits are checked for the whole file before
   // anything moves, with the offending line named.
@@ -228,6 +252,12 @@ Outcome Controller::pause() {
 }
 
 Outcome Controller::resume() {
+  {
+    std::lock_guard lock(m_);
+    const std::string stops = active_stops(card_.inputs());
+    if (!stops.empty() && decide(state_, Request::Resume).next)
+      return {false, fmt::format("resume: refused, {} is active: release it first", stops), {}};
+  }
   return refuse_or(Request::Resume, [&] {
     if (step_waiting_)
       step_waiting_ = false;  // single step: the next statement
@@ -285,7 +315,7 @@ Outcome Controller::jog(const JogRequest& j) {
   }
   const CanonMove m = keypad_move(j);
   if (m.from == m.to) return {false, "jog: refused, the tool is at the soft limit that way", {}};
-  if (std::optional<std::string> why = limit_refusal(m.to - m.from))
+  if (std::optional<std::string> why = input_refusal(m.to - m.from))
     return {false, fmt::format("jog: refused, {}", *why), {}};
   return refuse_or(Request::Jog, [&] {
     message_.clear();
@@ -368,6 +398,7 @@ ControllerStatus Controller::status() const {
     s.message = message_;
     s.stopped_at = stopped_at_;
     s.step_hold = step_waiting_;
+    s.warning = busy_ && warning_.load(std::memory_order_relaxed);
   }
   s.phase = feeder_.phase();
   s.line = line_.load(std::memory_order_relaxed);
@@ -562,6 +593,14 @@ void Controller::job_main() {
     work();
     qsink_->fence();
     wait_for_motion();
+    if (running_file_ && (interrupted_ || abort_)) {
+      // The stop dropped the file's last switchings with the rest of its motion stream: the
+      // card's outputs become what the file's end left (after an E-stop the card plays
+      // nothing until acknowledged, which switches everything off).
+      dropping_ = false;  // the queue is empty: what was cut is gone
+      qsink_->outputs(interp_->state().outputs);
+      wait_for_motion();
+    }
     std::lock_guard lock(m_);
     // The queue is empty and the feeder idle: the activity's requests are spent.
     feeder_.request_hold(StepGenerator::kNever);
@@ -668,9 +707,14 @@ void Controller::feed(FeedItem& item) {
     case FeedItem::kSegment:
       feeder_.segment(item.seg);
       break;
-    case FeedItem::kSettings:
+    case FeedItem::kSettings: {
       feeder_.settings_changed(*item.settings);
+      const InputRoles roles = input_roles(*item.settings);  // VN: at rest, not real-time
+      stop_trip_ = roles.stops;
+      std::lock_guard lock(m_);
+      roles_ = roles;
       break;
+    }
     case FeedItem::kFlush:
       feeder_.flush();
       if (feeder_.phase() == FeedPhase::Playing) {  // a real card still plays its queue
@@ -746,28 +790,41 @@ std::array<bool, 12> Controller::input_switches(std::uint32_t bits) const {
   return out;
 }
 
-bool Controller::limit_active(int bit, std::uint32_t bits) const {
-  return bit >= 0 && ((bits >> bit & 1u) != 0) != settings_.inputs.limits_active_low;
-}
-
 std::string Controller::active_limits(std::uint32_t bits) const {
   const InputSettings& in = settings_.inputs;
-  auto active = [&](int bit) { return limit_active(bit, bits); };
+  std::uint32_t active = roles_.limits.active(bits);
   std::string out;
+  auto add = [&](const std::string& what) { out += (out.empty() ? "" : ", ") + what; };
   for (int i = 0; i < kAxisCount; ++i)
     for (const auto& [bit, side] : {std::pair{in.min_bit[i], "low"}, {in.max_bit[i], "high"}})
-      if (active(bit))
-        out += fmt::format("{}{} {} limit switch (input bit {})", out.empty() ? "" : ", ",
-                           static_cast<char>(kAxisLetters[i] - 'a' + 'A'), side, bit);
+      if (bit >= 0 && (active >> bit & 1u)) {
+        add(fmt::format("{} {} limit switch (input bit {})",
+                        static_cast<char>(kAxisLetters[i] - 'a' + 'A'), side, bit));
+        active &= ~(1u << bit);
+      }
+  for (; active; active &= active - 1)  // VN's limit inputs: no axis of their own
+    add(fmt::format("the limit switch on {}", input_name(in, std::countr_zero(active))));
   return out.empty() ? "a limit switch" : out;
 }
 
-// With a direction (a jog): refused only towards an active limit switch. Without (a run):
-// refused while any is active.
-std::optional<std::string> Controller::limit_refusal(const Vec6& direction) const {
+std::string Controller::active_stops(std::uint32_t bits) const {
+  std::string out;
+  for (std::uint32_t active = roles_.stops.active(bits); active; active &= active - 1)
+    out += fmt::format("{}the stop switch on {}", out.empty() ? "" : ", ",
+                       input_name(settings_.inputs, std::countr_zero(active)));
+  return out;
+}
+
+// With a direction (a jog): refused only towards an active limit switch of an axis; a limit
+// input of no axis lets the keypad jog (SB3's override: press the key again). Without (a
+// run): refused while any is active. An active stop switch refuses everything.
+std::optional<std::string> Controller::input_refusal(const Vec6& direction) const {
   const InputSettings& in = settings_.inputs;
-  const std::uint32_t bits = inputs_.load(std::memory_order_acquire);
-  auto active = [&](int bit) { return limit_active(bit, bits); };
+  const std::uint32_t bits = card_.inputs();  // now: a switch may change at rest
+  std::lock_guard lock(m_);
+  if (const std::string stops = active_stops(bits); !stops.empty())
+    return fmt::format("{} is active: release it first", stops);
+  auto active = [&](int bit) { return bit >= 0 && (roles_.limits.active(bits) >> bit & 1u); };
   const bool any_way = direction.isZero();
   for (int i = 0; i < kAxisCount; ++i) {
     const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');
@@ -780,7 +837,36 @@ std::optional<std::string> Controller::limit_refusal(const Vec6& direction) cons
           "the {} high limit switch is closed: {}", L,
           any_way ? "jog off it with the keypad first" : fmt::format("jog away from it (-{})", L));
   }
+  if (any_way && roles_.limits.tripped(bits))
+    return fmt::format("{} is active: jog off it with the keypad first", active_limits(bits));
   return std::nullopt;
+}
+
+// SB3's remote stop: like the space bar, a ramped stop along the path that can be resumed,
+// and the spindle stops (every output switch goes off at rest, on again at resume). Nothing
+// moves again while the switch is active. Seen after the block in which the card read it.
+void Controller::watch_stop_switches() {
+  const bool active = stop_trip_.tripped(card_.inputs());
+  if (!active || std::exchange(stop_active_, active)) {
+    stop_active_ = active;
+    return;
+  }
+  {
+    std::lock_guard lock(m_);
+    const std::string stops = active_stops(card_.inputs());
+    if (state_ == MachineState::Jogging) {  // as if the key were let go
+      on_hold_ = OnHold::Discard;
+      feeder_.request_hold(0);
+      if (keypad_open_) state_ = MachineState::Keypad;
+      message_ = stops + " stopped the jog";
+    } else if (decide(state_, Request::Pause).next) {
+      state_ = MachineState::Paused;
+      on_hold_ = OnHold::Wait;
+      feeder_.request_hold(0, /*pause=*/true, /*every_output=*/true);
+      message_ = fmt::format("{} paused the file: release it, then resume", stops);
+    }
+  }
+  cv_.notify_all();
 }
 
 void Controller::publish() {
@@ -789,6 +875,8 @@ void Controller::publish() {
   tick_.store(steps_.tick(), std::memory_order_release);
   inputs_.store(card_.inputs(), std::memory_order_release);
   playing_line_.store(steps_.loc().line, std::memory_order_relaxed);
+  warning_.store(steps_.warning() && feeder_.phase() == FeedPhase::Playing,
+                 std::memory_order_relaxed);
   flushes_done_.store(feeder_.flushes_completed() + flushes_dropped_, std::memory_order_release);
   flushes_done_.notify_all();
 }

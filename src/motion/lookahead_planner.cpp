@@ -61,6 +61,7 @@ void LookAheadPlanner::move(const CanonMove& m) {
     PlannedSegment seg;
     seg.from = seg.to = m.to;
     seg.dwell_s = m.dwell_s;
+    seg.warning = m.warning;
     seg.output = m.kind == MoveKind::Output ? m.output : 0;
     seg.output_on = m.output_on;
     if (m.kind == MoveKind::Independent) seg.independent = m.independent;

@@ -367,6 +367,7 @@ void read_values(TableReader& root, Settings& s) {
   TableReader machine = root.table("machine");
   s.machine.limit_checking = machine.boolean("limit_checking", true);
   s.machine.warning_s = machine.number("warning_s", {0, 3600}, 2);
+  s.machine.switch4_mode = machine.integer("switch4_mode", -4, -1, -1);
   s.machine.editor = machine.optional_text("editor", "");
   machine.finish();
 }

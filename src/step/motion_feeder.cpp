@@ -43,7 +43,8 @@ const char* feed_phase_name(FeedPhase p) {
   return "?";
 }
 
-void MotionFeeder::request_hold(std::int64_t tick, bool pause) {
+void MotionFeeder::request_hold(std::int64_t tick, bool pause, bool every_output) {
+  every_output_.store(every_output, std::memory_order_relaxed);
   pausing_.store(pause, std::memory_order_relaxed);
   hold_at_.store(tick, std::memory_order_release);
 }
@@ -141,7 +142,9 @@ void MotionFeeder::settle() {
   hold_at_ = steps_.kNever;
   if (std::optional<IndependentMotion> m = steps_.rest_independent()) parked_ = m;
   if (pausing_.exchange(false)) {
-    const std::uint32_t mask = pause_mask_.load(std::memory_order_relaxed);
+    const std::uint32_t mask = every_output_.load(std::memory_order_relaxed)
+                                   ? 0xFFFu
+                                   : pause_mask_.load(std::memory_order_relaxed);
     for (int n = 1; n <= 12; ++n)
       if ((mask >> (n - 1) & 1u) && steps_.output_on(n)) paused_off_ |= 1u << (n - 1);
     switch_outputs(paused_off_, false);

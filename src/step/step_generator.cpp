@@ -25,7 +25,8 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
     : pins_(PinMap::from(settings.pins, settings.drivers.channel_axis)),
       timing_(StepTiming::from(settings.card)),
       card_(card),
-      block_words_(block_words) {
+      block_words_(block_words),
+      roles_(input_roles(settings)) {  // the card has them from the same profile
   for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = settings.axes[i].steps_per_unit;
   positive_.fill(true);
   last_step_.fill(std::numeric_limits<std::int64_t>::min() / 2);
@@ -52,11 +53,17 @@ void StepGenerator::settings_changed(const Settings& s) {
   for (const AxisPins& a : pins_.axes) old_lines |= a.step_mask | a.dir_mask;
   pins_ = PinMap::from(s.pins, s.drivers.channel_axis);
   card_.calibration_changed(s);
+  roles_ = input_roles(s);
+  set_card_trips();
   level_word_ &= ~old_lines;
   for (int i = 0; i < kAxisCount; ++i) {
     if (pins_.axes[i].step_active_low) level_word_ |= pins_.axes[i].step_mask;
     level_word_ |= pins_.dir_bits(i, positive_[i]);
   }
+}
+
+void StepGenerator::set_card_trips() {
+  card_.set_trips(roles_.estop, roles_.limits.without(watch_mask_));
 }
 
 void StepGenerator::set_spindle(bool on) {
@@ -106,6 +113,8 @@ std::optional<Steps6> StepGenerator::position_at(std::uint64_t tick) const {
 }
 
 void StepGenerator::watch_inputs(const InputWatch& w, std::function<void(const InputEdge&)> fired) {
+  watch_mask_ = w.mask;
+  set_card_trips();
   card_.watch(w);
   on_edge_ = w.mask ? std::move(fired) : nullptr;
 }
@@ -157,6 +166,7 @@ void StepGenerator::segment(const PlannedSegment& seg) {
 std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, StopTicks stops) {
   if (faulted_) return std::nullopt;
   current_loc_ = seg.loc;
+  warning_ = seg.warning;
   const std::int64_t t0 = segment_end_;
   if (seg.independent) {  // at rest, like an output
     if (stops.now() <= t0) return 0.0;
@@ -234,8 +244,11 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
     else
       last_step_[e.axis] = e.tick;
   }
-  if ((stop_tick = stops.now()) >= end) {
-    emit_until(end);
+  // What is left has no event (a dwell, the last pulse): it goes out a block at a time, so
+  // a stop that comes meanwhile still cuts it (a dwell may last seconds).
+  while ((stop_tick = stops.now()) >= end && cursor_ < end)
+    emit_until(std::min(end, cursor_ + static_cast<std::int64_t>(block_words_)));
+  if (stop_tick >= end) {
     segment_end_ = end;
     return std::nullopt;
   }

@@ -533,7 +533,13 @@ TEST(ConsoleTerminal, SpacePausesALongMoveAndSpaceResumesItToTheEnd) {
   ASSERT_TRUE(t.started());
   ASSERT_TRUE(t.wait_for_prompt()) << t.text();
   t.line("MX, 16");  // 8 s at the default move speed
-  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("running "); })) << t.text();
+  // A live machine (real time): SW's 2 s warning first, on the status line.
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("WARNING: about to move"); }))
+      << t.text();
+  ASSERT_TRUE(t.wait_for([&] {
+    const std::optional<double> x = readout_x(t.last_line());
+    return t.last_line().starts_with("running ") && x && *x > 0;
+  })) << t.text();
   t.keys("Space");
   ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("paused "); })) << t.text();
   const std::string held = t.last_line();
@@ -609,7 +615,8 @@ TEST(RunAtATerminal, CtrlCRampsTheMoveDownAndTheReportSaysWhereTheToolIs) {
   TmuxConsole t("long.sbp --realtime", "run", {{"long.sbp", "MS, 2\nMX, 10\nMY, 5\n"}});
   ASSERT_TRUE(t.started());
   ASSERT_TRUE(t.wait_for([&] { return t.text().find("running long.sbp") != std::string::npos; }));
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // X is moving at 2 in/s
+  // After SW's 2 s warning (a live machine: real time), X is moving at 2 in/s.
+  std::this_thread::sleep_for(std::chrono::milliseconds(3500));
   t.keys("C-c");
   ASSERT_TRUE(t.wait_for_line("[run exited: 1]")) << t.text();
   const std::string text = t.text();
@@ -622,6 +629,22 @@ TEST(RunAtATerminal, CtrlCRampsTheMoveDownAndTheReportSaysWhereTheToolIs) {
   EXPECT_GT(x, 1.0) << text;
   EXPECT_LT(x, 9.0) << text;
   EXPECT_NE(text.find("Y=0.0000"), std::string::npos) << text;
+}
+
+TEST(RunAtATerminal, CtrlCDuringTheWarningEndsTheRunBeforeAnythingMoves) {
+  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed";
+  TmuxConsole t("long.sbp --realtime", "run", {{"long.sbp", "MX, 10\n"}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("running long.sbp") != std::string::npos; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // 0.5 s into the 2 s warning
+  t.keys("C-c");
+  ASSERT_TRUE(t.wait_for_line("[run exited: 1]")) << t.text();
+  const std::string text = t.text();
+  EXPECT_NE(text.find("position   X=0.0000 Y=0.0000"), std::string::npos) << text;
+  // The wait is cut where the stop came, not played to its end.
+  const std::size_t at = text.find("time       ");
+  ASSERT_NE(at, std::string::npos) << text;
+  EXPECT_LT(std::stod(text.substr(at + 11)), 1.9) << text;
 }
 
 TEST(RunAtATerminal, CtrlCAtAPauseEndsTheFileWithTheMovesBeforeItPlayed) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/script.hpp"
@@ -19,6 +20,7 @@ namespace {
 
 struct Machine {
   explicit Machine(SimWorld world = {}) : card(settings, false, world) {}
+  Machine(SimWorld world, Settings s) : settings(std::move(s)), card(settings, false, world) {}
   Settings settings = default_settings();
   SimCard card;
   ScriptedIO io{true, {}};
@@ -317,6 +319,109 @@ TEST(LimitSwitch, StopsTheToolNamesTheSwitchAndOnlyAJogAwayIsAllowed) {
   EXPECT_EQ(s.steps[0], m.first_step_above(5, 0) - std::llround(0.1 * m.spu(0)));
   m.run_to_end("MY, 1\n");  // off the switch: files run again
   EXPECT_DOUBLE_EQ(m.c.modal().position[1], 1);
+}
+
+// ---- VN: limit switches off, inputs in limit and stop modes (docs/controller.md)
+
+TEST(LimitSwitch, AnInputInALimitModeStopsTheToolAndIsNamed) {
+  Settings s = default_settings();
+  s.inputs.switch_bits[4] = 10;  // input 5 on bit 10, a normally-open limit switch
+  s.switches.input_modes[4] = 1;
+  SimWorld w;
+  w.input_events.push_back({1.0, 10, true});
+  Machine m(w, s);
+  m.run_to_end("MX, 10\nMY, 1\n");
+  ControllerStatus st = m.c.status();
+  EXPECT_EQ(st.state, MachineState::Stopped);
+  EXPECT_NE(st.message.find("the limit switch on input 5"), std::string::npos) << st.message;
+  // The card stopped at the word where it closed, 1 s in: the tool is where those steps left it.
+  EXPECT_GT(st.steps[0], 0);
+  EXPECT_LT(st.steps[0], std::llround(2 * m.spu(0)));
+  EXPECT_DOUBLE_EQ(m.c.modal().position[0], static_cast<double>(st.steps[0]) / m.spu(0));
+  const Outcome again = m.c.run(Script::from_text("MY, 1\n", "part.sbp"));
+  EXPECT_FALSE(again);
+  EXPECT_NE(again.reason.find("the limit switch on input 5 is active: jog off it"),
+            std::string::npos)
+      << again.reason;
+  JogRequest off;  // it has no axis: the keypad may go either way (SB3's override)
+  off.direction[0] = -1;
+  off.step = true;
+  ASSERT_TRUE(m.c.jog(off));
+  m.c.wait();
+  EXPECT_EQ(m.c.status().state, MachineState::Idle);
+}
+
+TEST(LimitSwitch, VnTurnsThemOffForTheAxisSwitchesAndTheInputsAlike) {
+  Settings s = default_settings();
+  s.inputs.switch_bits[4] = 10;
+  s.switches.input_modes[4] = 1;
+  SimWorld w;
+  w.max_switch[0] = 5;                        // X's own high limit switch at 5
+  w.input_events.push_back({1.0, 10, true});  // and input 5 closing
+  Machine m(w, s);
+  m.run_to_end("VN, 0\nMX, 10\n");
+  const ControllerStatus st = m.c.status();
+  EXPECT_EQ(st.state, MachineState::Idle) << st.message;
+  EXPECT_EQ(st.steps[0], std::llround(10 * m.spu(0)));  // past both
+  EXPECT_FALSE(m.c.modal().position[0] < 10);
+}
+
+TEST(StopSwitch, PausesTheFileStopsTheSpindleAndHoldsItWhileActive) {
+  Settings s = default_settings();
+  s.inputs.switch_bits[5] = 9;  // input 6 on bit 9, a normally-open stop switch
+  s.switches.input_modes[5] = 3;
+  SimWorld w;
+  w.input_events.push_back({1.0, 9, true});  // pressed 1 s into the run
+  Machine m(w, s);
+  const int out1 = s.outputs.aux_bits[0];
+  ASSERT_TRUE(m.c.run(Script::from_text("SO, 1, 1\nMX, 10\n", "part.sbp")));
+  m.c.wait();
+  ControllerStatus st = m.c.status();
+  ASSERT_EQ(st.state, MachineState::Paused) << st.message;
+  EXPECT_EQ(st.phase, FeedPhase::Held);
+  EXPECT_NE(st.message.find("the stop switch on input 6 paused the file"), std::string::npos)
+      << st.message;
+  const std::int64_t held = st.steps[0];
+  EXPECT_GT(held, std::llround(1.5 * m.spu(0)));  // 1 s at up to 2 in/s, then a ramp down
+  EXPECT_LT(held, std::llround(4 * m.spu(0)));
+  EXPECT_EQ(m.card.last_word() >> out1 & 1u, 0u);  // output 1 (the spindle) off at rest
+  const Outcome early = m.c.resume();
+  EXPECT_FALSE(early);
+  EXPECT_NE(early.reason.find("the stop switch on input 6 is active: release it first"),
+            std::string::npos)
+      << early.reason;
+  EXPECT_EQ(m.c.status().steps[0], held);  // nothing moved
+
+  m.card.set_switch(9, false);  // released
+  ASSERT_TRUE(m.c.resume());
+  m.c.wait();
+  st = m.c.status();
+  EXPECT_EQ(st.state, MachineState::Idle) << st.message;
+  EXPECT_EQ(st.steps[0], std::llround(10 * m.spu(0)));  // resumed exactly
+
+  m.card.set_switch(9, true);  // pressed at rest: nothing starts
+  const Outcome run = m.c.run(Script::from_text("MY, 1\n", "part.sbp"));
+  EXPECT_FALSE(run);
+  EXPECT_NE(run.reason.find("the stop switch on input 6 is active"), std::string::npos);
+  JogRequest j;
+  j.direction[1] = 1;
+  j.step = true;
+  EXPECT_FALSE(m.c.jog(j));
+}
+
+TEST(StopSwitch, InputFourIsTheStopSwitchWhenItIsNotTheEStop) {
+  Settings s = default_settings();
+  s.inputs.switch_bits[3] = 11;  // a standard tool: input 4 a remote stop, wired NC
+  SimWorld w;
+  Machine m(w, s);
+  // Normally closed and not wired in the simulation: it reads open, so it is active.
+  const Outcome refused = m.c.run(Script::from_text("MX, 1\n", "part.sbp"));
+  EXPECT_FALSE(refused);
+  EXPECT_NE(refused.reason.find("the stop switch on input 4 is active"), std::string::npos)
+      << refused.reason;
+  m.card.set_switch(11, true);  // closed: released
+  m.run_to_end("MX, 1\n");
+  EXPECT_EQ(m.c.status().state, MachineState::Idle);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/script.hpp"
@@ -478,6 +480,74 @@ TEST(Controller, StopAndEStopEndATurningAxisWithThePositionOfThePulsesPlayed) {
     m.c.wait();
     EXPECT_EQ(m.card.steps()[4], 0) << request_name(r);
   }
+}
+
+// A pin trace: every change of the output word, with its tick.
+std::vector<std::pair<std::uint64_t, std::uint32_t>> read_trace(const std::string& path) {
+  std::ifstream in(path);
+  std::string comment, word;
+  std::getline(in, comment);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> out;
+  std::uint64_t tick = 0;
+  while (in >> tick >> word)
+    out.emplace_back(tick, static_cast<std::uint32_t>(std::stoul(word, nullptr, 16)));
+  return out;
+}
+
+TEST(Controller, SwitchFourComesOnWithTheWarningAndGoesOffWhenTheMotionEnds) {
+  const std::string trace = testing::TempDir() + "gantry_warning.trace";
+  const Settings settings = default_settings();  // SW 2 s, SO 4,-1
+  InterpreterOptions options;
+  options.warn_before_motion = true;  // as on a real card
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  std::uint64_t end_tick = 0;
+  {
+    SimCard card{settings, false, {}, trace};
+    Controller c{settings, card, io, store, options};
+    ASSERT_TRUE(c.run(Script::from_text("MX, 1\n", "part.sbp")));
+    c.wait();
+    EXPECT_EQ(c.status().steps[0], std::llround(settings.axes[0].steps_per_unit));
+    EXPECT_FALSE(c.status().warning);
+    end_tick = card.ticks_played();
+  }
+  const std::uint32_t out4 = 1u << settings.outputs.aux_bits[3];
+  const std::uint32_t step_x = 1u << settings.pins[0].step_bit;
+  constexpr std::uint64_t kNone = UINT64_MAX;
+  std::uint64_t on = kNone, first_step = kNone, last_step = 0, off = kNone;
+  for (const auto& [tick, word] : read_trace(trace)) {
+    if ((word & out4) && on == kNone) on = tick;
+    if ((word & step_x) && first_step == kNone) first_step = tick;
+    if (word & step_x) last_step = tick;
+    if (on != kNone && !(word & out4) && off == kNone) off = tick;
+  }
+  // The machine waits the 2 s with switch 4 on, then moves; the switch goes off after the
+  // last step, as the run ends.
+  const auto wait = static_cast<std::uint64_t>(std::llround(2 * settings.card.pacer_hz()));
+  ASSERT_NE(on, kNone);
+  EXPECT_GE(first_step, on + wait);
+  EXPECT_LE(first_step, on + wait + wait / 400);  // the first step of the ramp: within 5 ms
+  EXPECT_GT(off, last_step);
+  EXPECT_LE(off, end_tick);
+  std::remove(trace.c_str());
+}
+
+TEST(Controller, AStopLeavesTheCardsOutputsAsTheFileEndLeavesThem) {
+  // Output 1 (mode 0) goes off as the stopped file ends, output 2 (mode 1) stays on: on the
+  // card as in the interpreter, although the stop dropped the rest of the motion stream.
+  Settings settings = default_settings();
+  settings.switches.output_modes[1] = 1;
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  SimCard card{settings};
+  Controller c{settings, card, io, store};
+  c.schedule(Request::Stop, 1.0);
+  ASSERT_TRUE(c.run(Script::from_text("SO, 1, 1\nSO, 2, 1\nMX, 10\n", "part.sbp")));
+  c.wait();
+  ASSERT_EQ(c.state(), MachineState::Stopped);
+  EXPECT_EQ(card.last_word() >> settings.outputs.aux_bits[0] & 1u, 0u);
+  EXPECT_EQ(card.last_word() >> settings.outputs.aux_bits[1] & 1u, 1u);
+  EXPECT_EQ(c.modal().outputs, 2u);
 }
 
 TEST(Controller, APauseSwitchesOffTheOutputsOfVnModesTwoAndFiveUntilResume) {

@@ -69,19 +69,18 @@ class InterpreterTest : public ::testing::Test {
   }
 
   Interpreter& interp() {
-    if (!interp_) interp_.emplace(settings, sink, io, store);
+    if (!interp_) interp_.emplace(settings, sink, io, store, options);
     return *interp_;
   }
   const ModalState& state() { return interp().state(); }
   const std::vector<CanonMove>& moves() const { return sink.moves; }
 
   Settings settings = default_settings();
+  InterpreterOptions options;
   RecordingSink sink;
   std::string printed;
   ScriptedIO io{true, {}, &printed};
   PersistentStore store;
-
- private:
   std::shared_ptr<const Script> script_;
   std::optional<Interpreter> interp_;
 };
@@ -316,14 +315,73 @@ TEST_F(InterpreterTest, SoSwitchesAnOutputBetweenMovesAndTheJobsEndTurnsItOff) {
   EXPECT_EQ(where(moves()[2].loc), "part.sbp:3:1");
 }
 
+// ---- SW and switch 4: the warning before a run's first motion (docs/controller.md)
+
+// The motion stream as kinds: "4+" switch 4 on, "w2" the warning's 2 s wait, "L" a line.
+std::string stream(const std::vector<CanonMove>& moves) {
+  std::string out;
+  for (const CanonMove& m : moves) {
+    if (!out.empty()) out += ' ';
+    if (m.kind == MoveKind::Output)
+      out += std::to_string(m.output) + (m.output_on ? "+" : "-");
+    else if (m.kind == MoveKind::Dwell)
+      out += (m.warning ? "w" : "d") + std::to_string(static_cast<int>(m.dwell_s));
+    else
+      out += m.kind == MoveKind::Line ? "L" : kind_name(m.kind);
+  }
+  return out;
+}
+
+TEST_F(InterpreterTest, TheFirstMotionOfARunIsWarnedOfWithSwitchFourAndTheWait) {
+  options.warn_before_motion = true;
+  run("SO, 1, 1\nPAUSE 1\nMX, 1\nMY, 1\n");
+  // Outputs and a dwell are no motion: the warning comes just before the first move, and
+  // switch 4 goes off after the last, with the file's other switches.
+  EXPECT_EQ(stream(moves()), "1+ d1 4+ w2 L L 1- 4-");
+  EXPECT_EQ(where(moves()[3].loc), "part.sbp:3:1");
+  EXPECT_EQ(state().outputs, 0u);
+}
+
+TEST_F(InterpreterTest, SwAndSoFourChooseTheWarning) {
+  options.warn_before_motion = true;
+  run("SW, 0\nMX, 1\n");
+  EXPECT_EQ(stream(moves()), "4+ L 4-");  // no wait: switch 4 comes on as the motion starts
+  EXPECT_EQ(interp().settings().machine.warning_s, 0);
+  sink.moves.clear();
+  run("SW, 3\nSO, 4, -4\nMX, 2\n");
+  EXPECT_EQ(stream(moves()), "w3 L");  // -4: switch 4 is an ordinary switch
+  sink.moves.clear();
+  run("SO, 4, -2\nSO, 4, 1\nMX, 3\nSO, 4, 0\nMX, 4\n");
+  EXPECT_EQ(stream(moves()), "4+ w3 L 4- L");  // on already: the file's own switching stands
+  sink.moves.clear();
+  run("SP\nMX, 5\nSM\n");              // a preview moves nothing: nothing to warn of
+  EXPECT_EQ(stream(moves()), "stop");  // SP's: the machine at rest before the preview
+}
+
+TEST_F(InterpreterTest, EachTypedLineIsWarnedOfAndVirtualTimeIsNot) {
+  options.warn_before_motion = true;
+  for (const char* line : {"MX, 1", "SO, 2, 1", "MX, 2"})
+    interp().run(Script::from_text(line, "console"), /*typed=*/true);
+  EXPECT_EQ(stream(moves()), "4+ w2 L 4- 2+ 4+ w2 L 4-");  // typed: switch 2 stays on
+  sink.moves.clear();
+  options.warn_before_motion = false;
+  interp_.reset();
+  run("MX, 1\n");
+  EXPECT_EQ(stream(moves()), "L");
+}
+
 TEST_F(InterpreterTest, SoRefusesSwitchesThatDoNotExistOrAreNotWired) {
   Diagnostic d = run_error("SO, 13, 1\n");
   EXPECT_EQ(d.message, "output switch 13 does not exist; switches are 1 to 12");
   EXPECT_EQ(where(d.loc), "part.sbp:1:5");
-  EXPECT_EQ(run_error("SO, 2, 5\n").message, "SO state 5 is not 0 (off) or 1 (on)");
+  EXPECT_EQ(run_error("SO, 2, 5\n").message,
+            "SO state 5 is not 0 (off) or 1 (on); only switch 4 has automatic modes (-1 to -4)");
+  EXPECT_EQ(run_error("SO, 2, -1\n").message,
+            "SO state -1 is not 0 (off) or 1 (on); only switch 4 has automatic modes (-1 to -4)");
+  EXPECT_EQ(run_error("SO, 4, -5\n").message,
+            "SO state -5 is not 0 (off), 1 (on) or an automatic mode -1 to -4");
   EXPECT_EQ(run_error("SO, 1.5, 1\n").message,
             "output switch 1.5 does not exist; switches are 1 to 12");
-  EXPECT_NE(run_error("SO, 4, -1\n").message.find("automatic modes"), std::string::npos);
   EXPECT_EQ(run_error("SO\n").message, "SO needs its parameter 1 (switch)");
   EXPECT_TRUE(moves().empty());
 }

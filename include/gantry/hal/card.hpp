@@ -7,6 +7,8 @@
 #include <optional>
 #include <span>
 
+#include "gantry/hal/input_roles.hpp"  // InputTrip
+
 namespace gantry {
 
 struct Settings;
@@ -95,6 +97,11 @@ class Card {
   // The calibration changed (VU, VD's units) for the words written from now on. A real card
   // plays words and cares not; the simulator, which checks the machine's limits, follows.
   virtual void calibration_changed(const Settings&) {}
+  // The inputs on which the card stops by itself, as a real card's driver latches them: the
+  // E-stop (CardFault::EStop) and limit switches (CardFault::Limit). Set from the profile
+  // and VN (input_roles) at rest, and without the bits a homing or probing move runs onto.
+  // A card without inputs ignores them.
+  virtual void set_trips(const InputTrip& /*estop*/, const InputTrip& /*limits*/) {}
   // Arms (replaces) the input watch; an empty mask disarms it.
   virtual void watch(const InputWatch& w) {
     watcher_.arm(w, inputs());

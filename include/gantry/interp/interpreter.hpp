@@ -276,8 +276,12 @@ class CommandContext {
                 const SourceLoc& loc);
   void end_tab_path();
   // Every line, arc and dwell goes to the sink through here: a move of the axis MI moves is
-  // refused, and an axis MI rested starts again first.
+  // refused, and an axis MI rested starts again first; the run's first motion is warned of.
   void emit(const CanonMove& m);
+  // SW and SO 4,-1..-3: before the run's first motion, switch 4 comes on and the machine
+  // waits the warning time. end_motion_warning, at the run's end, switches it off again.
+  void warn_before_motion(const SourceLoc& loc);
+  void end_motion_warning();
   friend class Interpreter;
   ModalState& state_;
   Settings& settings_;
@@ -288,15 +292,21 @@ class CommandContext {
   bool file_tabs_ = false;
   bool own_tabs_ = false;
   bool independent_resting_ = false;  // the machine came to rest under MI: restart it
+  bool warned_ = false;               // this run's first motion was warned of
+  bool switch4_auto_ = false;         // ... and switch 4 came on with the warning
 };
 
 struct InterpreterOptions {
-  bool trig_in_degrees = false;      // dialect "fabmo"
-  bool allow_shell = false;          // SHELL runs programs only when allowed
-  bool dry_run = false;              // check: no programs started; files (unless `files`
-                                     // is given) in a sandbox, so nothing is written
-  FileSystem* files = nullptr;       // where files are read and written; null: the disk
-  bool operator_present = true;      // check: someone will answer PAUSE/INPUT in the run
+  bool trig_in_degrees = false;  // dialect "fabmo"
+  bool allow_shell = false;      // SHELL runs programs only when allowed
+  bool dry_run = false;          // check: no programs started; files (unless `files`
+                                 // is given) in a sandbox, so nothing is written
+  FileSystem* files = nullptr;   // where files are read and written; null: the disk
+  bool operator_present = true;  // check: someone will answer PAUSE/INPUT in the run
+  // SW's warning before a run's first motion (the wait, and switch 4 in its automatic modes):
+  // where someone may stand at the machine (a real card, the simulated one in real time).
+  // Virtual time has nobody to warn, and its cycle times leave the wait out.
+  bool warn_before_motion = false;
   std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
   std::string macro_dir;             // where C<n> finds its files ("" = beside the file)
   int max_file_depth = 8;            // FP nesting, the top-level file included

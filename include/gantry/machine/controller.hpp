@@ -13,6 +13,7 @@
 
 #include "gantry/core/spsc_queue.hpp"           // SpscQueue
 #include "gantry/hal/card.hpp"                  // Card
+#include "gantry/hal/input_roles.hpp"           // InputRoles
 #include "gantry/interp/interpreter.hpp"        // Interpreter, ModalState
 #include "gantry/machine/machine_state.hpp"     // MachineState, Request
 #include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
@@ -29,6 +30,7 @@ struct ControllerStatus {
   SourceLoc stopped_at;           // the line the motion came to rest in (Stopped, Paused)
   std::array<bool, 12> inputs{};  // input switches 1-12: closed
   bool step_hold = false;         // paused by single step, after a statement (at rest)
+  bool warning = false;           // SW's warning: the machine is about to move
   // Progress of the file running (or the last one run).
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
@@ -135,9 +137,14 @@ class Controller {
   void on_input_edge(const InputEdge& e);      // feeder thread, from the card
   void finish_input_cut(bool consumed_flush);  // feeder thread: at rest
   std::array<bool, 12> input_switches(std::uint32_t bits) const;
-  bool limit_active(int bit, std::uint32_t bits) const;  // a limit switch's bit, by polarity
-  std::string active_limits(std::uint32_t bits) const;   // "X high limit switch", ...
-  std::optional<std::string> limit_refusal(const Vec6& direction) const;
+  // Under m_: the limit and stop switches active in `bits`, named ("X high limit switch
+  // (input bit 3)", "the stop switch (input 4)").
+  std::string active_limits(std::uint32_t bits) const;
+  std::string active_stops(std::uint32_t bits) const;
+  // Why nothing may move now: a limit switch towards `direction` (a jog; zero: a run,
+  // refused while any is active), a stop switch for anything.
+  std::optional<std::string> input_refusal(const Vec6& direction) const;
+  void watch_stop_switches();  // feeder thread, after every block: a stop switch pauses
   CanonMove keypad_move(const JogRequest& j) const;
   Vec6 played_machine(const Steps6& steps) const;
   Vec6 played_machine() const;    // the played counts now, in units
@@ -162,6 +169,8 @@ class Controller {
   std::array<std::atomic<std::int64_t>, kAxisCount> played_{};
   std::atomic<std::int64_t> tick_{0};
   std::atomic<std::uint32_t> inputs_{0};  // the card's input bits, as last published
+  InputTrip stop_trip_;       // the stop switches, as the feeder knows them (VN may change them)
+  bool stop_active_ = false;  // one was active at the last block
   FeedPhase last_phase_ = FeedPhase::Playing;
   // The watched edges and what fired (feeder thread; read by the job once the motion has
   // played out, after flushes_done_ says so).
@@ -194,6 +203,7 @@ class Controller {
   std::vector<std::pair<Request, double>> scheduled_;
   std::optional<MachineState> effect_state_;  // entered when a scheduled hold takes effect
   std::string message_;
+  InputRoles roles_;  // what each input does, with the values in force (VN)
   SourceLoc stopped_at_;
   std::optional<Diagnostic> error_;
   CardFault fault_ = CardFault::None;
@@ -206,6 +216,7 @@ class Controller {
   std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
   std::atomic<std::size_t> line_{0}, lines_{0};
   std::atomic<int> playing_line_{0};
+  std::atomic<bool> warning_{false};
   std::int64_t start_tick_ = 0;  // the activity's first tick
   double estimate_s_ = 0;
 

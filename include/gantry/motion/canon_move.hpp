@@ -50,6 +50,7 @@ struct CanonMove {
   double dwell_s = 0;             // Dwell: how long the machine waits, s
   int output = 0;                 // Output: the switch, 1-based as SO numbers it
   bool keypad = false;            // a keypad jog: it ramps at VR's keypad ramp rate
+  bool warning = false;           // Dwell: SW's warning before the run's first motion
   bool output_on = false;
   IndependentMotion independent;  // Independent: what the axis does from here on
   SourceLoc loc;                  // the statement that asked for it

@@ -13,6 +13,7 @@ struct PlannedSegment {
   Vec6 to = Vec6::Zero();
   Trapezoid profile;   // along |to - from|
   double dwell_s = 0;  // a wait with no motion (profile empty)
+  bool warning = false;  // the dwell is SW's warning that the machine is about to move
   int output = 0;      // > 0: switch this output (1-based) at this point, at rest
   bool output_on = false;
   // Set: at rest, the axis moving on its own (MI) changes to this (comes to rest if it is

@@ -188,6 +188,9 @@ struct CalibrationSettings {                                   // VU beyond step
 struct MachineSettings {
   bool limit_checking = true;  // SF, VL 9: moves checked against the soft limits
   double warning_s = 2;        // SW: warning before movement starts, s; 0 none
+  // SO 4,-1..-4: -1 to -3 switch 4 comes on with the warning and goes off when the run's
+  // motion ends (it drives a "machine moving" light); -4 it is an ordinary switch.
+  int switch4_mode = -1;
   std::string editor;          // UN: the program FE opens files in ("": $VISUAL, $EDITOR)
 };
 

@@ -44,9 +44,10 @@ class MotionFeeder : public SegmentSink {
 
   // Slows to rest from the card's tick `tick` on (0: as soon as possible; a tick already
   // generated means the next word). `pause`: the operator's pause, which also switches off
-  // the outputs of pause_outputs() while held (VN output modes 2 and 5); resume() switches
-  // them on again.
-  void request_hold(std::int64_t tick = 0, bool pause = false);
+  // the outputs of pause_outputs() while held (VN output modes 2 and 5), or with
+  // `every_output` every output switch on (a stop switch: the spindle stops); resume()
+  // switches them on again.
+  void request_hold(std::int64_t tick = 0, bool pause = false, bool every_output = false);
   // Output switches (bit n-1: switch n) that a pause turns off.
   void pause_outputs(std::uint32_t mask) { pause_mask_.store(mask, std::memory_order_relaxed); }
   // Stops the pulses at `tick` (0: at once): the card is stopped, unplayed words dropped.
@@ -87,7 +88,7 @@ class MotionFeeder : public SegmentSink {
   SourceLoc rest_loc_;
   std::uint64_t flushes_ = 0;
   std::optional<IndependentMotion> parked_;  // rested by a hold, to start again on resume
-  std::atomic<bool> pausing_{false};
+  std::atomic<bool> pausing_{false}, every_output_{false};
   std::atomic<std::uint32_t> pause_mask_{0};
   std::uint32_t paused_off_ = 0;  // switched off by the pause, to switch on at resume
 };

@@ -82,7 +82,9 @@ class StepGenerator : public SegmentSink {
   // yet played and for about the last second played; nullopt when older.
   std::optional<Steps6> position_at(std::uint64_t tick) const;
   // Arms the card's input watch; `fired` is called once, on this thread, right after the
-  // block in which the card reports the edge. An empty mask disarms it.
+  // block in which the card reports the edge. An empty mask disarms it. While it is armed
+  // its bits do not trip the card as limit switches (homing runs onto a switch that may be
+  // one).
   void watch_inputs(const InputWatch& w, std::function<void(const InputEdge&)> fired);
   // Called after every block handed to the card (the controller publishes the position).
   void on_block(std::function<void()> f) { on_block_ = std::move(f); }
@@ -105,6 +107,7 @@ class StepGenerator : public SegmentSink {
   void check_card();
   std::int64_t tick() const { return cursor_; }          // words emitted so far
   const SourceLoc& loc() const { return current_loc_; }  // the segment being generated
+  bool warning() const { return warning_; }              // ... is SW's warning
   const StepTiming& timing() const { return timing_; }
 
  private:
@@ -155,9 +158,13 @@ class StepGenerator : public SegmentSink {
   std::int64_t history_ticks_ = 0;
   std::int64_t history_from_ = 0;  // steps before this tick are no longer kept
   std::function<void(const InputEdge&)> on_edge_;
+  InputRoles roles_;              // the profile's and VN's, for the card's trips
+  std::uint32_t watch_mask_ = 0;  // the bits watched now
+  void set_card_trips();
   std::function<void()> on_block_;
   bool faulted_ = false;
   SourceLoc current_loc_;  // the segment being generated, for the fault message
+  bool warning_ = false;
   std::optional<IndependentAxis> independent_;
   std::int64_t independent_dir_tick_ = 0;  // when its direction level last changed
 };
