@@ -506,13 +506,14 @@ void App::readout_window() {
                         : st.state == MachineState::Stopped ? kYellow
                         : at_rest()                         ? kGreen
                                                             : kCyan;
-  if (st.warning)  // SW's warning before a run moves the tool: flashing
+  if (st.warning) {  // SW's warning before a run moves the tool: flashing, the whole line
     ImGui::TextColored(std::fmod(ImGui::GetTime(), 0.5) < 0.25 ? kRed : kYellow,
                        "WARNING: about to move");
-  else
+  } else {
     ImGui::TextColored(colour, "%s", pausing ? "pausing" : state_name(st.state));
-  ImGui::SameLine(120);
-  ImGui::TextDisabled("card: %s", opt_.card.c_str());
+    ImGui::SameLine(120);
+    ImGui::TextDisabled("card: %s", opt_.card.c_str());
+  }
   const Vec6 p = position(st);
   ImGui::SetWindowFontScale(1.7f);
   const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
@@ -1022,6 +1023,7 @@ nlohmann::json App::state() const {
   const Vec6 p = position(status_);
   json s;
   s["state"] = state_name(status_.state);
+  s["warning"] = status_.warning;
   s["position"] = json::array();
   for (int i = 0; i < kAxisCount; ++i) s["position"].push_back(shown(p[i]));
   s["units"] = units_name(settings_.units);

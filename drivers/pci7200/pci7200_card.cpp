@@ -135,6 +135,17 @@ void Pci7200Card::set_trips(const InputTrip& estop, const InputTrip& limits) {
   options_.limits = limits;
 }
 
+void Pci7200Card::watch(const InputWatch& w) {
+  std::lock_guard lock(hardware_);
+  watcher_.arm(w, inputs_.load(std::memory_order_acquire));
+  fired_.reset();
+}
+
+std::optional<InputEdge> Pci7200Card::watch_fired() {
+  std::lock_guard lock(hardware_);
+  return fired_;
+}
+
 void Pci7200Card::feeder_loop() {
   realtime_report_ = make_current_thread_realtime(options_.realtime);
   feeder_running_.store(true, std::memory_order_release);
@@ -156,6 +167,16 @@ void Pci7200Card::pass() {
   const bool drain_pending = drain_request > drains_done_.load(std::memory_order_acquire);
   const std::uint32_t inputs = bus_->read32(Bar::Card, card::kDiPort);
   inputs_.store(inputs, std::memory_order_release);
+  if (!fired_)
+    if (const std::optional<int> bit = watcher_.sample(inputs)) {
+      fired_ = InputEdge{ticks_.load(std::memory_order_acquire), *bit, inputs};
+      if ((watcher_.watch().stop >> *bit & 1u) && active()) {  // an instant stop, no fault
+        halt_output(true);
+        ring_.discard_readable();
+        phase_.store(Phase::Idle, std::memory_order_release);
+        return;
+      }
+    }
   const Phase phase = phase_.load(std::memory_order_acquire);
   switch (phase) {
     case Phase::Idle:

@@ -58,6 +58,10 @@ class Pci7200Card : public Card, private WordSource {
   std::uint32_t inputs() const override { return inputs_.load(std::memory_order_acquire); }
   CardFault fault() const override { return fault_.load(std::memory_order_acquire); }
   void set_trips(const InputTrip& estop, const InputTrip& limits) override;
+  // The feeder compares every sample of the inputs (each pass, well under a millisecond):
+  // the edge's tick is the sample's, and a `stop` bit halts the pacer in that pass.
+  void watch(const InputWatch& w) override;
+  std::optional<InputEdge> watch_fired() override;
 
   double pacer_hz() const { return pacer_hz_.load(std::memory_order_acquire); }
   bool uses_dma() const { return output_.uses_dma(); }
@@ -92,6 +96,8 @@ class Pci7200Card : public Card, private WordSource {
   // Under hardware_:
   ChargePump pump_;
   std::uint64_t stream_position_ = 0;  // words taken from the ring since start()
+  EdgeDetector watcher_;
+  std::optional<InputEdge> fired_;
   std::size_t prime_words_ = 0;
   double tick_seconds_ = 0;
 

@@ -208,6 +208,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
   // The check runs from the live state: soft limits are checked for the whole file before
   // anything moves, with the offending line named.
   JobOptions check;
+  check.interpreter = interp_->options();  // the run's dialect, macros, warning (a dry run)
   const ModalState start = interp_->state();
   check.start_state = &start;
   const auto variables = interp_->variables();  // &X = 5 typed before: MX, &X checks
@@ -265,6 +266,7 @@ Outcome Controller::resume() {
       keypad_open_ = false;  // the file goes on once the last jog is at rest
     else
       cmd_resume_ = true;
+    message_.clear();  // a stop switch's pause is over
   });
 }
 
@@ -847,10 +849,9 @@ std::optional<std::string> Controller::input_refusal(const Vec6& direction) cons
 // moves again while the switch is active. Seen after the block in which the card read it.
 void Controller::watch_stop_switches() {
   const bool active = stop_trip_.tripped(card_.inputs());
-  if (!active || std::exchange(stop_active_, active)) {
-    stop_active_ = active;
-    return;
-  }
+  const bool pressed = active && !stop_active_;
+  stop_active_ = active;
+  if (!pressed) return;
   {
     std::lock_guard lock(m_);
     const std::string stops = active_stops(card_.inputs());

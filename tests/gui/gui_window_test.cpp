@@ -296,8 +296,24 @@ TEST_F(GuiWindow, PauseInputAndMsgboxAreDialogs) {
   EXPECT_EQ(end["position"], json({2, 1, 0, 0, 0, 0}));
 }
 
+TEST_F(GuiWindow, ALiveRunWarnsBeforeTheToolMoves) {
+  ASSERT_EQ(gui("type MX, 1\nkey Enter\nwait frames 3\ndump warning.json\nwait idle\n"
+                "dump done.json\n",
+                "--realtime"),
+            0)
+      << out_;
+  const json warning = state("warning.json");  // SW's 2 s: flashing, nothing moves yet
+  EXPECT_EQ(warning["warning"], true);
+  EXPECT_EQ(warning["position"][0], 0);
+  const json done = state("done.json");
+  EXPECT_EQ(done["warning"], false);
+  EXPECT_NEAR(done["position"][0].get<double>(), 1, 1e-9);
+}
+
 TEST_F(GuiWindow, SpacePausesAndResumesAndF12IsTheEStop) {
-  ASSERT_EQ(gui("type MX, 3\nkey Enter\nwait frames 3\nkey Space\nwait frames 40\n"
+  // SW, 0: no warning before the moves, so the pause comes while X moves.
+  ASSERT_EQ(gui("type SW, 0\nkey Enter\nwait idle\n"
+                "type MX, 3\nkey Enter\nwait frames 3\nkey Space\nwait frames 40\n"
                 "dump paused.json\nkey Space\nwait idle\ndump resumed.json\n"
                 "type MX, 0\nkey Enter\nwait frames 3\nkey F12\nwait frames 3\ndump estop.json\n"
                 "type ack\nkey Enter\nwait idle\ndump ack.json\n",

@@ -398,6 +398,7 @@ TEST(StopSwitch, PausesTheFileStopsTheSpindleAndHoldsItWhileActive) {
   st = m.c.status();
   EXPECT_EQ(st.state, MachineState::Idle) << st.message;
   EXPECT_EQ(st.steps[0], std::llround(10 * m.spu(0)));  // resumed exactly
+  EXPECT_FALSE(m.c.summary().error);                    // the file ran to its end
 
   m.card.set_switch(9, true);  // pressed at rest: nothing starts
   const Outcome run = m.c.run(Script::from_text("MY, 1\n", "part.sbp"));

@@ -334,6 +334,49 @@ TEST(Pci7200Card, AnActiveEStopInputTripsTheCard) {
   EXPECT_FALSE(rig.emu->pacer_running());
 }
 
+TEST(Pci7200Card, SetTripsReplacesTheInputsThatStopIt) {
+  Pci7200Options options;
+  options.limits = {1u << 5, 1u << 5};  // active high
+  Rig rig = make_rig(stepped(), options);
+  rig.card->set_trips({}, {});  // VN: limit switches off
+  rig.card->start(200e3);
+  rig.card->write(words(3000, 15));
+  rig.emu->advance(100);
+  rig.emu->set_inputs(1u << 5);
+  rig.emu->advance(50);
+  EXPECT_EQ(rig.card->fault(), CardFault::None);
+  rig.card->set_trips({}, {1u << 5, 1u << 5});  // on again
+  rig.emu->advance(4);
+  EXPECT_EQ(rig.card->fault(), CardFault::Limit);
+  EXPECT_EQ(rig.emu->played_count(), 150u + 8u);
+}
+
+TEST(Pci7200Card, TheWatchSeesAnEdgeAtItsSampleAndAStopBitHaltsThePacer) {
+  Rig rig = make_rig(stepped());
+  rig.card->start(200e3);
+  rig.card->watch({1u << 6, 1u << 6, 1u << 6});  // closing, an instant stop
+  rig.card->write(words(3000, 16));
+  rig.emu->advance(100);
+  EXPECT_FALSE(rig.card->watch_fired());
+  rig.emu->set_inputs(1u << 6);
+  rig.emu->advance(4);
+  const std::optional<InputEdge> e = rig.card->watch_fired();
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->bit, 6);
+  EXPECT_EQ(e->bits, 1u << 6);
+  // The sample's tick: the words played when the feeder read the inputs, at most the FIFO's
+  // eight behind the edge.
+  EXPECT_GE(e->tick, 100u - 8u);
+  EXPECT_LE(e->tick, 100u);
+  EXPECT_EQ(rig.card->fault(), CardFault::None);  // a stop, not a fault
+  EXPECT_FALSE(rig.emu->pacer_running());
+  EXPECT_EQ(rig.card->ticks_played(), rig.emu->played_count());
+  EXPECT_EQ(rig.emu->played_count(), 100u + 8u);
+  rig.card->write(words(10, 17));  // dropped until started again
+  rig.emu->advance(20);
+  EXPECT_EQ(rig.emu->played_count(), 108u);
+}
+
 TEST(Pci7200Card, ABridgeAbortIsAHardwareFault) {
   Rig rig = make_rig(stepped());
   rig.card->start(200e3);

@@ -348,6 +348,7 @@ class Interpreter : private EvalEnv {
 
   const ModalState& state() const { return state_; }
   const Settings& settings() const { return settings_; }
+  const InterpreterOptions& options() const { return options_; }
   // The machine controller's: the state a check starts from (the live one), and where the
   // tool really is after a stop or a jog (machine frame, units: the step counts over
   // steps per unit); working and table base locations follow, the zero stays.
