@@ -2,7 +2,7 @@
 #include <fmt/format.h>  // output
 #include <CLI/CLI.hpp>   // command-line parsing
 
-#include <algorithm>   // any_of, none_of
+#include <algorithm>   // any_of
 #include <cctype>      // toupper
 #include <charconv>    // from_chars
 #include <cstdio>      // stdout, stderr
@@ -130,6 +130,35 @@ struct LanguageArgs {
   }
 };
 
+bool has_error(const std::vector<Diagnostic>& found) {
+  return std::any_of(found.begin(), found.end(),
+                     [](const Diagnostic& d) { return d.severity == Severity::Error; });
+}
+
+// What the commands that read a part file share: the profile, the job's options and the
+// file, checked (every statement run dry). Filled in place: `opt` points into `profile`.
+struct CheckedFile {
+  MachineProfile profile;
+  JobOptions opt;
+  std::shared_ptr<const Script> script;
+  std::vector<Diagnostic> found;  // errors and warnings
+  double estimate_s = 0;
+};
+
+// False (after saying why) when the profile or an --input is malformed. `estimate`: the
+// check also plans the motion and gives the cycle time, answering no question itself.
+bool load_and_check(const std::string& file, const std::string& settings_path,
+                    const LanguageArgs& lang, CheckedFile& out, bool estimate = false) {
+  if (!load_machine_profile(settings_path, lang.values, out.profile)) return false;
+  if (!lang.job_options(out.profile.settings, out.opt)) return false;
+  describe(out.profile, out.opt.interpreter);
+  if (estimate) out.opt.operator_present = false;  // --yes and --input answer
+  out.script = Script::load(file);
+  out.found = check_program(out.script, out.profile.settings, lang.store(), out.opt, true,
+                            estimate ? &out.estimate_s : nullptr);
+  return true;
+}
+
 int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   MachineProfile profile;
   RunReport report;
@@ -225,40 +254,23 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
 }
 
 int cmd_check(const std::string& file, const std::string& settings_path, const LanguageArgs& lang) {
-  MachineProfile profile;
-  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
-  const Settings& settings = profile.settings;
-  JobOptions opt;
-  if (!lang.job_options(settings, opt)) return 1;
-  describe(profile, opt.interpreter);
-  std::shared_ptr<const Script> script = Script::load(file);
-  const std::vector<Diagnostic> found = check_program(script, settings, lang.store(), opt);
-  print_errors(found);
-  const bool ok = std::none_of(found.begin(), found.end(),
-                               [](const Diagnostic& d) { return d.severity == Severity::Error; });
-  if (ok) fmt::print("{}: ok, {} lines\n", file, script->line_count());
-  return ok ? 0 : 1;
+  CheckedFile c;
+  if (!load_and_check(file, settings_path, lang, c)) return 1;
+  print_errors(c.found);
+  if (has_error(c.found)) return 1;
+  fmt::print("{}: ok, {} lines\n", file, c.script->line_count());
+  return 0;
 }
 
 // The cycle time of a file, from the same check and planner a run uses.
 int cmd_estimate(const std::string& file, const std::string& settings_path, bool json,
                  const LanguageArgs& lang) {
-  MachineProfile profile;
-  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
-  const Settings& settings = profile.settings;
-  JobOptions opt;
-  if (!lang.job_options(settings, opt)) return 1;
-  describe(profile, opt.interpreter);
-  opt.operator_present = false;  // an estimate answers nothing: --yes and --input do
-  std::shared_ptr<const Script> script = Script::load(file);
-  double seconds = 0;
-  const std::vector<Diagnostic> found =
-      check_program(script, settings, lang.store(), opt, true, &seconds);
-  print_errors(found);
-  if (std::any_of(found.begin(), found.end(),
-                  [](const Diagnostic& d) { return d.severity == Severity::Error; }))
-    return 1;
-  const char* mode = planner_mode_name(settings.planner.mode);
+  CheckedFile c;
+  if (!load_and_check(file, settings_path, lang, c, /*estimate=*/true)) return 1;
+  print_errors(c.found);
+  if (has_error(c.found)) return 1;
+  const double seconds = c.estimate_s;
+  const char* mode = planner_mode_name(c.profile.settings.planner.mode);
   if (json) {
     nlohmann::ordered_json j;
     j["file"] = file;
@@ -298,27 +310,21 @@ class KeepingSink : public MotionSink {
 
 int cmd_moves(const std::string& file, const std::string& settings_path, const std::string& format,
               const std::string& svg, const LanguageArgs& lang) {
-  MachineProfile profile;
-  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
-  const Settings& settings = profile.settings;
-  JobOptions opt;
-  if (!lang.job_options(settings, opt)) return 1;
-  describe(profile, opt.interpreter);
-  std::shared_ptr<const Script> script = Script::load(file);
-  const PersistentStore scratch = lang.store().scratch_copy();
-  const std::vector<Diagnostic> found = check_program(script, settings, scratch, opt);
-  const bool ok = std::none_of(found.begin(), found.end(),
-                               [](const Diagnostic& d) { return d.severity == Severity::Error; });
-  if (!ok) {
-    print_errors(found);
+  CheckedFile c;
+  if (!load_and_check(file, settings_path, lang, c)) return 1;
+  if (has_error(c.found)) {
+    print_errors(c.found);
     return 1;
   }
+  const Settings& settings = c.profile.settings;
+  const std::shared_ptr<const Script>& script = c.script;
+  JobOptions& opt = c.opt;
   // Moves are a preview: PRINT output and operator questions are answered as in a check.
   PrintingSink sink(format == "jsonl");
   std::string printed;
   ScriptedIO io(true, opt.inputs, &printed);
   opt.interpreter.dry_run = true;
-  PersistentStore preview = scratch.scratch_copy();  // a preview saves nothing
+  PersistentStore preview = lang.store().scratch_copy();  // a preview saves nothing
   // --svg: a picture instead of the list.
   if (!svg.empty()) {
     KeepingSink kept;
@@ -337,25 +343,16 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
 // `moves` does; the file is written only when the whole program ran.
 int cmd_export_gcode(const std::string& file, const std::string& out_path,
                      const std::string& settings_path, const LanguageArgs& lang) {
-  MachineProfile profile;
-  if (!load_machine_profile(settings_path, lang.values, profile)) return 1;
-  const Settings& settings = profile.settings;
-  JobOptions opt;
-  if (!lang.job_options(settings, opt)) return 1;
-  describe(profile, opt.interpreter);
-  std::shared_ptr<const Script> script = Script::load(file);
-  const PersistentStore scratch = lang.store().scratch_copy();
-  const std::vector<Diagnostic> found = check_program(script, settings, scratch, opt);
-  print_errors(found);
-  if (std::any_of(found.begin(), found.end(),
-                  [](const Diagnostic& d) { return d.severity == Severity::Error; }))
-    return 1;
-  GcodeWriter writer(settings, std::filesystem::path(file).filename().string());
+  CheckedFile c;
+  if (!load_and_check(file, settings_path, lang, c)) return 1;
+  print_errors(c.found);
+  if (has_error(c.found)) return 1;
+  GcodeWriter writer(c.profile.settings, std::filesystem::path(file).filename().string());
   std::string printed;
-  ScriptedIO io(true, opt.inputs, &printed);
-  opt.interpreter.dry_run = true;
-  PersistentStore preview = scratch.scratch_copy();
-  interpret(script, settings, writer, io, preview, opt);
+  ScriptedIO io(true, c.opt.inputs, &printed);
+  c.opt.interpreter.dry_run = true;
+  PersistentStore preview = lang.store().scratch_copy();  // an export saves nothing
+  interpret(c.script, c.profile.settings, writer, io, preview, c.opt);
   const std::string text = writer.finish();
   if (out_path.empty()) {
     std::cout << text;
