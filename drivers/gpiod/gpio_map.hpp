@@ -40,8 +40,9 @@ struct GpioMap {
   // the card makes no step edge on an active-low step line.
   std::uint32_t initial_word = 0;
 
-  // Input-word bits that stop the card by themselves (CardFault::EStop / Limit) when active;
-  // of those, the bits in active_low_bits are active when their line reads low.
+  // Input-word bits that stop the card by themselves: an E-stop bit while active
+  // (CardFault::EStop), a limit bit as it becomes active (CardFault::Limit); of those, the
+  // bits in active_low_bits are active when their line reads low.
   std::uint32_t estop_bits = 0;
   std::uint32_t limit_bits = 0;
   std::uint32_t active_low_bits = 0;

@@ -62,6 +62,7 @@ void TickPlayer::reset(double pacer_hz) {
 
 void TickPlayer::begin_stream() {
   next_sample_tick_ = ticks_played_.load(std::memory_order_relaxed);
+  last_sample_ = inputs_.load(std::memory_order_relaxed);
 }
 
 std::uint64_t TickPlayer::next_event_tick() const {
@@ -89,7 +90,11 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
       fail(CardFault::EStop);
       return Outcome::Faulted;
     }
-    if (unpack(limit_trip_.load(std::memory_order_acquire)).tripped(bits)) {
+    // A limit switch trips as it becomes active: the tool that stopped on one can move off.
+    const InputTrip limits = unpack(limit_trip_.load(std::memory_order_acquire));
+    const bool closed = (limits.active(bits) & ~limits.active(last_sample_)) != 0;
+    last_sample_ = bits;
+    if (closed) {
       fail(CardFault::Limit);
       return Outcome::Faulted;
     }

@@ -72,6 +72,7 @@ class TickPlayer {
   std::int64_t late_tolerance_ns_ = 0;
   std::uint32_t current_word_ = 0;  // the word the lines show
   std::uint64_t next_sample_tick_ = 0;
+  std::uint32_t last_sample_ = 0;  // the inputs at the sample before
 
   std::atomic<std::uint64_t> ticks_played_{0};
   std::atomic<std::uint32_t> inputs_{0};

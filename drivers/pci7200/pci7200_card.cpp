@@ -28,7 +28,8 @@ Pci7200Card::Pci7200Card(std::shared_ptr<Pci7200Bus> bus, Pci7200Options options
     bus_->write32(Bar::Card, card::kDioCsr, card::kDioDoClearFifo | card::kDioDoUnderrun);
     bus_->write32(Bar::Card, card::kDioCsr, 0);
     bus_->write32(Bar::Card, card::kDoPort, options_.idle_word);
-    inputs_.store(bus_->read32(Bar::Card, card::kDiPort), std::memory_order_release);
+    last_inputs_ = bus_->read32(Bar::Card, card::kDiPort);
+    inputs_.store(last_inputs_, std::memory_order_release);
   }
   bus_->attach_feeder();
   feeder_thread_ = std::thread(&Pci7200Card::feeder_loop, this);
@@ -167,6 +168,11 @@ void Pci7200Card::pass() {
   const bool drain_pending = drain_request > drains_done_.load(std::memory_order_acquire);
   const std::uint32_t inputs = bus_->read32(Bar::Card, card::kDiPort);
   inputs_.store(inputs, std::memory_order_release);
+  // A limit switch trips as it becomes active (the E-stop while it is): the tool that stopped
+  // on one must be able to move off it.
+  const bool limit_closed =
+      (options_.limits.active(inputs) & ~options_.limits.active(last_inputs_)) != 0;
+  last_inputs_ = inputs;
   if (!fired_)
     if (const std::optional<int> bit = watcher_.sample(inputs)) {
       fired_ = InputEdge{ticks_.load(std::memory_order_acquire), *bit, inputs};
@@ -186,7 +192,7 @@ void Pci7200Card::pass() {
     case Phase::Armed: {
       if (bus_->failed()) return trip(CardFault::Hardware, false);
       if (options_.estop.tripped(inputs)) return trip(CardFault::EStop, false);
-      if (options_.limits.tripped(inputs)) return trip(CardFault::Limit, false);
+      if (limit_closed) return trip(CardFault::Limit, false);
       const std::size_t queued = ring_.readable();
       if (queued == 0) {
         if (drain_pending) acknowledge_drain(drain_request);
@@ -198,17 +204,17 @@ void Pci7200Card::pass() {
     case Phase::Running:
     case Phase::Starved:
     case Phase::Drained:
-      return run_output(phase, inputs, drain_request, drain_pending);
+      return run_output(phase, inputs, limit_closed, drain_request, drain_pending);
   }
 }
 
-void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, std::uint64_t drain_request,
-                             bool drain_pending) {
+void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, bool limit_closed,
+                             std::uint64_t drain_request, bool drain_pending) {
   const FeederSnapshot s = output_.poll();
   const std::uint64_t into_card = output_.words_into_card();
   if (s.device_lost || s.dma_error) return trip(CardFault::Hardware, false);
   if (options_.estop.tripped(inputs)) return trip(CardFault::EStop, true);
-  if (options_.limits.tripped(inputs)) return trip(CardFault::Limit, true);
+  if (limit_closed) return trip(CardFault::Limit, true);
 
   // The card flags a pacer tick that found its FIFO empty.
   const bool underran = (bus_->read32(Bar::Card, card::kDioCsr) & card::kDioDoUnderrun) != 0;

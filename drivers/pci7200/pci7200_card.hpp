@@ -30,7 +30,7 @@ struct Pci7200Options {
   double charge_pump_hz = 12'500;
   std::uint32_t idle_word = 0;  // the output word when the card is opened and closed
   InputTrip estop;              // trips CardFault::EStop while any masked bit is active
-  InputTrip limits;             // trips CardFault::Limit likewise
+  InputTrip limits;             // trips CardFault::Limit as any becomes active
   RealtimeRequest realtime;     // for the feeder thread
 };
 
@@ -79,7 +79,7 @@ class Pci7200Card : public Card, private WordSource {
   std::size_t take(std::span<std::uint32_t> out) override;  // WordSource, for the feeder
   void feeder_loop();
   void pass();
-  void run_output(Phase phase, std::uint32_t inputs, std::uint64_t drain_request,
+  void run_output(Phase phase, std::uint32_t inputs, bool limit_closed, std::uint64_t drain_request,
                   bool drain_pending);
   void begin_output();
   void halt_output(bool play_out);
@@ -96,6 +96,7 @@ class Pci7200Card : public Card, private WordSource {
   // Under hardware_:
   ChargePump pump_;
   std::uint64_t stream_position_ = 0;  // words taken from the ring since start()
+  std::uint32_t last_inputs_ = 0;      // the sample before: limit switches trip on closing
   EdgeDetector watcher_;
   std::optional<InputEdge> fired_;
   std::size_t prime_words_ = 0;

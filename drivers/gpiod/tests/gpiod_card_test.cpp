@@ -262,6 +262,21 @@ TEST(GpiodCard, ActiveLimitInputFaultsTheCard) {
   EXPECT_EQ(rig.card->ticks_played(), 10u);
 }
 
+TEST(GpiodCard, ALimitSwitchTripsAsItClosesSoTheToolCanMoveOffIt) {
+  GpioMap map = test_map();
+  map.limit_bits = kLimitBit;  // active high
+  Rig rig(map, VirtualClock::Mode::FreeRunning, [](FakeGpioLines& lines) {
+    lines.set_input(kLimitLine, 1);      // the tool stopped on it
+    lines.set_input(kLimitLine, 0, 12);  // moved off it
+    lines.set_input(kLimitLine, 1, 25);  // and onto it again
+  });
+  rig.card->start(kPacerHz);
+  rig.card->write(std::vector<std::uint32_t>(40, kXDir));
+  rig.card->drain();
+  EXPECT_EQ(rig.card->fault(), CardFault::Limit);
+  EXPECT_EQ(rig.card->ticks_played(), 30u);  // seen by the tick-30 sample
+}
+
 // --- Underrun, drain, stop ------------------------------------------------------------------
 
 TEST(GpiodCard, RunningDryBeforeDrainIsAnUnderrunWithExactTicks) {

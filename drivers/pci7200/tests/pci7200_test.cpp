@@ -345,10 +345,30 @@ TEST(Pci7200Card, SetTripsReplacesTheInputsThatStopIt) {
   rig.emu->set_inputs(1u << 5);
   rig.emu->advance(50);
   EXPECT_EQ(rig.card->fault(), CardFault::None);
+  rig.emu->set_inputs(0);
   rig.card->set_trips({}, {1u << 5, 1u << 5});  // on again
+  rig.emu->advance(50);
+  rig.emu->set_inputs(1u << 5);
   rig.emu->advance(4);
   EXPECT_EQ(rig.card->fault(), CardFault::Limit);
-  EXPECT_EQ(rig.emu->played_count(), 150u + 8u);
+  EXPECT_EQ(rig.emu->played_count(), 200u + 8u);
+}
+
+TEST(Pci7200Card, ALimitSwitchTripsAsItClosesSoTheToolCanMoveOffIt) {
+  Pci7200Options options;
+  options.limits = {1u << 5, 1u << 5};
+  Rig rig = make_rig(stepped(), options);
+  rig.emu->set_inputs(1u << 5);  // the tool stopped on the switch
+  rig.emu->advance(4);
+  rig.card->start(200e3);
+  rig.card->write(words(300, 18));  // the jog off it
+  rig.emu->advance(100);
+  EXPECT_EQ(rig.card->fault(), CardFault::None);
+  rig.emu->set_inputs(0);  // off it
+  rig.emu->advance(50);
+  rig.emu->set_inputs(1u << 5);  // and onto it again
+  rig.emu->advance(4);
+  EXPECT_EQ(rig.card->fault(), CardFault::Limit);
 }
 
 TEST(Pci7200Card, TheWatchSeesAnEdgeAtItsSampleAndAStopBitHaltsThePacer) {
