@@ -38,14 +38,21 @@ namespace {
 
 using namespace gantry;
 
-// `lines` M3 moves wandering inside the default table.
-std::string generated_file(int lines) {
+// `head`, then `lines` moves wandering inside the default table, each `line` formatted.
+std::string wandering(int lines, std::string head,
+                      fmt::format_string<double, double, double> line) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> x(1, 23), y(1, 17), z(-0.5, 0.5);
-  std::string text = "SA\nMS, 4, 2\n";
-  for (int i = 0; i < lines; ++i)
-    text += fmt::format("M3, {:.4f}, {:.4f}, {:.4f}\n", x(rng), y(rng), z(rng));
-  return text;
+  for (int i = 0; i < lines; ++i) head += fmt::format(line, x(rng), y(rng), z(rng));
+  return head;
+}
+
+std::string generated_file(int lines) {  // M3 moves
+  return wandering(lines, "SA\nMS, 4, 2\n", "M3, {:.4f}, {:.4f}, {:.4f}\n");
+}
+
+std::string generated_gcode(int lines) {  // G1 blocks
+  return wandering(lines, "G20 G90 F240\n", "G1 X{:.4f} Y{:.4f} Z{:.4f}\n");
 }
 
 class NullSink : public MotionSink {
@@ -54,8 +61,10 @@ class NullSink : public MotionSink {
   void flush() override {}
 };
 
-// Loads `text` (with its syntax pass) and runs it into a null sink; reports lines per second.
-void interpret_text(benchmark::State& state, const std::string& text, double lines) {
+// Loads `text` as `name` (.nc: G-code) with its syntax pass and runs it into a null sink;
+// reports lines per second.
+void interpret_text(benchmark::State& state, const std::string& text, double lines,
+                    const char* name = "bench.sbp") {
   const Settings settings = default_settings();
   for (auto _ : state) {
     NullSink sink;
@@ -63,9 +72,16 @@ void interpret_text(benchmark::State& state, const std::string& text, double lin
     ScriptedIO io(true, {}, &printed);
     PersistentStore store;
     Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "bench.sbp"));
+    interp.run(Script::from_text(text, name));
     benchmark::DoNotOptimize(interp.statements_executed());
   }
+  state.counters["lines/s"] = benchmark::Counter(lines * static_cast<double>(state.iterations()),
+                                                 benchmark::Counter::kIsRate);
+}
+
+// The load pass alone (label index and syntax check of every line).
+void load_text(benchmark::State& state, const std::string& text, double lines, const char* name) {
+  for (auto _ : state) benchmark::DoNotOptimize(Script::from_text(text, name)->ok());
   state.counters["lines/s"] = benchmark::Counter(lines * static_cast<double>(state.iterations()),
                                                  benchmark::Counter::kIsRate);
 }
@@ -77,25 +93,11 @@ void BM_InterpretSimpleLines(benchmark::State& state) {
 }
 BENCHMARK(BM_InterpretSimpleLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
-// The load pass alone (label index and syntax check of every line) on the simple file.
 void BM_LoadSimpleLines(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const std::string text = generated_file(n);
-  for (auto _ : state) benchmark::DoNotOptimize(Script::from_text(text, "bench.sbp")->ok());
-  state.counters["lines/s"] =
-      benchmark::Counter(static_cast<double>(n) * state.iterations(), benchmark::Counter::kIsRate);
+  load_text(state, generated_file(n), n, "bench.sbp");
 }
 BENCHMARK(BM_LoadSimpleLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
-
-// `lines` G-code blocks `G1 X.. Y.. Z..` wandering inside the default table.
-std::string generated_gcode(int lines) {
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> x(1, 23), y(1, 17), z(-0.5, 0.5);
-  std::string text = "G20 G90 F240\n";
-  for (int i = 0; i < lines; ++i)
-    text += fmt::format("G1 X{:.4f} Y{:.4f} Z{:.4f}\n", x(rng), y(rng), z(rng));
-  return text;
-}
 
 // G-code's block parser alone, one reused block (what the interpreter's fast path reads).
 void BM_ParseGcodeLines(benchmark::State& state) {
@@ -114,32 +116,16 @@ void BM_ParseGcodeLines(benchmark::State& state) {
 }
 BENCHMARK(BM_ParseGcodeLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
-// The load pass (syntax check of every block) on the G-code file.
 void BM_LoadGcodeLines(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const std::string text = generated_gcode(n);
-  for (auto _ : state) benchmark::DoNotOptimize(Script::from_text(text, "bench.nc")->ok());
-  state.counters["lines/s"] =
-      benchmark::Counter(static_cast<double>(n) * state.iterations(), benchmark::Counter::kIsRate);
+  load_text(state, generated_gcode(n), n, "bench.nc");
 }
 BENCHMARK(BM_LoadGcodeLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
 // G-code blocks interpreted into a null sink (modes, units, soft limits, canonical moves).
 void BM_InterpretGcodeLines(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const Settings settings = default_settings();
-  const std::string text = generated_gcode(n);
-  for (auto _ : state) {
-    NullSink sink;
-    std::string printed;
-    ScriptedIO io(true, {}, &printed);
-    PersistentStore store;
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "bench.nc"));
-    benchmark::DoNotOptimize(interp.statements_executed());
-  }
-  state.counters["lines/s"] =
-      benchmark::Counter(static_cast<double>(n) * state.iterations(), benchmark::Counter::kIsRate);
+  interpret_text(state, generated_gcode(n), n, "bench.nc");
 }
 BENCHMARK(BM_InterpretGcodeLines)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
