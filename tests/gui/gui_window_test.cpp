@@ -297,7 +297,7 @@ TEST_F(GuiWindow, PauseInputAndMsgboxAreDialogs) {
 }
 
 TEST_F(GuiWindow, ALiveRunWarnsBeforeTheToolMoves) {
-  ASSERT_EQ(gui("type MX, 1\nkey Enter\nwait frames 3\ndump warning.json\nwait idle\n"
+  ASSERT_EQ(gui("type MX, 1\nkey Enter\nwait frames 10\ndump warning.json\nwait idle\n"
                 "dump done.json\n",
                 "--realtime"),
             0)
