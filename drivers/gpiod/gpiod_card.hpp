@@ -47,6 +47,9 @@ class GpiodCard : public Card {
   void set_trips(const InputTrip& estop, const InputTrip& limits) override {
     player_.set_trips(estop, limits);
   }
+  // Compared at every input sample: an edge's tick is its sample's (not the next block's).
+  void watch(const InputWatch& w) override { player_.arm_watch(w, player_.inputs()); }
+  std::optional<InputEdge> watch_fired() override { return player_.watch_fired(); }
 
   // Ticks played more than map.late_tolerance_ticks after their deadline, and the worst
   // lateness of any played tick, since start().

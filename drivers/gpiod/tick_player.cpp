@@ -35,6 +35,36 @@ void TickPlayer::set_trips(const InputTrip& estop, const InputTrip& limits) {
   limit_trip_.store(pack(limits), std::memory_order_release);
 }
 
+void TickPlayer::arm_watch(const InputWatch& w, std::uint32_t bits_now) {
+  watch_levels_.store(std::uint64_t{w.mask} << 32 | (w.levels & w.mask), std::memory_order_relaxed);
+  watch_bits_now_.store(bits_now, std::memory_order_relaxed);
+  watch_gen_.fetch_add(1, std::memory_order_release);
+}
+
+std::optional<InputEdge> TickPlayer::watch_fired() const {
+  if (fired_gen_.load(std::memory_order_acquire) != watch_gen_.load(std::memory_order_acquire))
+    return std::nullopt;
+  return InputEdge{edge_tick_.load(std::memory_order_relaxed),
+                   edge_bit_.load(std::memory_order_relaxed),
+                   edge_bits_.load(std::memory_order_relaxed)};
+}
+
+void TickPlayer::sample_watch(std::uint64_t tick, std::uint32_t bits) {
+  const unsigned gen = watch_gen_.load(std::memory_order_acquire);
+  if (gen != armed_gen_) {
+    armed_gen_ = gen;
+    const std::uint64_t w = watch_levels_.load(std::memory_order_relaxed);
+    detector_.arm({static_cast<std::uint32_t>(w >> 32), static_cast<std::uint32_t>(w), 0},
+                  watch_bits_now_.load(std::memory_order_relaxed));
+  }
+  if (const std::optional<int> bit = detector_.sample(bits)) {
+    edge_tick_.store(tick, std::memory_order_relaxed);
+    edge_bit_.store(*bit, std::memory_order_relaxed);
+    edge_bits_.store(bits, std::memory_order_relaxed);
+    fired_gen_.store(gen, std::memory_order_release);
+  }
+}
+
 TickPlayer::TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring)
     : lines_(lines), ring_(ring), map_(map), current_word_(map.initial_word) {
   for (std::size_t i = 0; i < map.outputs.size() && i < 64; ++i) {
@@ -86,6 +116,7 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
     if (!read_inputs()) return Outcome::Faulted;
     next_sample_tick_ += sample_every_;
     const std::uint32_t bits = inputs_.load(std::memory_order_relaxed);
+    sample_watch(tick, bits);
     if (unpack(estop_trip_.load(std::memory_order_acquire)).tripped(bits)) {
       fail(CardFault::EStop);
       return Outcome::Faulted;

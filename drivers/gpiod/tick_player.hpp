@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <optional>
 
 #include "gantry/hal/card.hpp"
 #include "gpiod/gpio_lines.hpp"
@@ -44,6 +45,11 @@ class TickPlayer {
   // The inputs that fault the card (the map's E-stop and limit bits until set), from any
   // thread: each trip is one atomic word, so the player never sees a mask without its levels.
   void set_trips(const InputTrip& estop, const InputTrip& limits);
+  // The input watch (Card::watch), armed from any thread with the inputs as they are and
+  // compared at every sample: an edge's tick is its sample's. Its `stop` bits are not acted
+  // on here (the controller halts the motion as for any card).
+  void arm_watch(const InputWatch& w, std::uint32_t bits_now);
+  std::optional<InputEdge> watch_fired() const;
 
   std::uint64_t ticks_played() const { return ticks_played_.load(std::memory_order_acquire); }
   std::uint32_t inputs() const { return inputs_.load(std::memory_order_acquire); }
@@ -77,6 +83,17 @@ class TickPlayer {
   std::atomic<std::uint64_t> ticks_played_{0};
   std::atomic<std::uint32_t> inputs_{0};
   std::atomic<std::uint64_t> estop_trip_{0}, limit_trip_{0};  // mask << 32 | active_high
+  void sample_watch(std::uint64_t tick, std::uint32_t bits);  // the player, at a sample
+  // The watch: written by arm_watch, then watch_gen_ bumped; the player re-arms its
+  // detector when it sees a new generation, and publishes an edge with that generation.
+  std::atomic<std::uint64_t> watch_levels_{0};  // mask << 32 | levels
+  std::atomic<std::uint32_t> watch_bits_now_{0};
+  std::atomic<unsigned> watch_gen_{0}, fired_gen_{~0u};  // none fired yet
+  std::atomic<std::uint64_t> edge_tick_{0};
+  std::atomic<std::uint32_t> edge_bits_{0};
+  std::atomic<int> edge_bit_{0};
+  unsigned armed_gen_ = 0;  // the player's
+  EdgeDetector detector_;   // the player's
   std::atomic<CardFault> fault_{CardFault::None};
   std::atomic<std::uint64_t> late_ticks_{0};
   std::atomic<std::int64_t> worst_late_ns_{0};

@@ -277,6 +277,23 @@ TEST(GpiodCard, ALimitSwitchTripsAsItClosesSoTheToolCanMoveOffIt) {
   EXPECT_EQ(rig.card->ticks_played(), 30u);  // seen by the tick-30 sample
 }
 
+TEST(GpiodCard, TheWatchReportsAnEdgeAtTheTickOfItsSample) {
+  Rig rig(test_map(), VirtualClock::Mode::FreeRunning,
+          [](FakeGpioLines& lines) { lines.set_input(kProbeLine, 1, 23); });  // closes at 23
+  rig.card->start(kPacerHz);
+  EXPECT_FALSE(rig.card->watch_fired());
+  rig.card->watch({kProbeBit, kProbeBit, 0});
+  rig.card->write(std::vector<std::uint32_t>(40, kXDir));
+  rig.card->drain();
+  const std::optional<InputEdge> e = rig.card->watch_fired();
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->tick, 30u);  // the sample after it, not the end of the words
+  EXPECT_EQ(e->bit, 5);
+  EXPECT_EQ(e->bits & kProbeBit, kProbeBit);
+  rig.card->watch({});  // disarmed: nothing fired
+  EXPECT_FALSE(rig.card->watch_fired());
+}
+
 // --- Underrun, drain, stop ------------------------------------------------------------------
 
 TEST(GpiodCard, RunningDryBeforeDrainIsAnUnderrunWithExactTicks) {
