@@ -13,6 +13,7 @@
 #include "gui.hpp"                             // run_gui
 #include "live_machine.hpp"                    // ValuesKeeper, open_live_card (src/cli)
 #include "machine_profile.hpp"                 // load_machine_profile (src/cli)
+#include "open_card.hpp"                       // plays_in_real_time (src/cli)
 #include "window_io.hpp"                       // WindowIO
 
 namespace gantry {
@@ -47,19 +48,19 @@ int run_gui_command(const GuiArgs& a) {
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   ui::WindowIO io(false, {});
   ValuesKeeper values(profile, io);
-  InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
 
   std::string type;
   const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
   if (!card) return 1;
   const bool sim = type == "sim";
-  opt.warn_before_motion = !sim || a.realtime;
-  Controller controller(settings, *card, io, store, opt);
+  const bool real_time = plays_in_real_time(type, a.realtime);
+  Controller controller(settings, *card, io, store,
+                        live_interpreter_options(profile, values, a, real_time));
   ui::GuiOptions o;
   o.file = a.file;
   o.script = a.script;
   o.bench = a.bench;
-  o.realtime = a.realtime || !sim;
+  o.realtime = real_time;
   o.card = sim ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : type;
   o.width = a.width;
   o.height = a.width * 10 / 16;

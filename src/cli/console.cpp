@@ -30,6 +30,7 @@
 #include "line_editor.hpp"                   // KeyDecoder, LineEditor
 #include "live_machine.hpp"                  // ValuesKeeper, LiveMachineArgs
 #include "machine_profile.hpp"               // load_machine_profile
+#include "open_card.hpp"                     // plays_in_real_time
 #include "signal_watch.hpp"                  // SignalWatch
 
 namespace gantry {
@@ -1053,14 +1054,14 @@ int run_console(const ConsoleArgs& a) {
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   ConsoleIO io(interactive, a.yes, inputs);
   ValuesKeeper values(profile, io);
-  InterpreterOptions opt = live_interpreter_options(profile, values, a.allow_shell, a.macros);
 
   std::string type;
   const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
   if (!card) return 1;
   const bool sim = type == "sim";
-  opt.warn_before_motion = !sim || a.realtime;
-  Controller controller(settings, *card, io, store, opt);
+  const bool real_time = plays_in_real_time(type, a.realtime);
+  Controller controller(settings, *card, io, store,
+                        live_interpreter_options(profile, values, a, real_time));
   std::atomic<int> signal{0};
   signals.start([&](int sig) {
     signal = sig;
@@ -1072,7 +1073,7 @@ int run_console(const ConsoleArgs& a) {
     ~StopFirst() { w.stop(); }
   } stop_first{signals};
 
-  Console console(controller, io, values, a, a.realtime || !sim, signal);
+  Console console(controller, io, values, a, real_time, signal);
   if (!interactive) return console.piped();
   const std::string banner = fmt::format(
       "gantry console: profile \"{}\" on the {}{}\nhelp lists the keys; quit leaves.\n",

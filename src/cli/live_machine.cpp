@@ -40,10 +40,11 @@ Settings ValuesKeeper::settings() const {
 }
 
 InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeeper& values,
-                                            bool allow_shell, const std::string& macros) {
+                                            const LiveMachineArgs& a, bool real_time) {
   InterpreterOptions opt;
-  opt.allow_shell = allow_shell;
-  opt.macro_dir = macros;
+  opt.allow_shell = a.allow_shell;
+  opt.macro_dir = a.macros;
+  opt.warn_before_motion = real_time;
   opt.trig_in_degrees = p.settings.dialect == Dialect::FabMo;
   opt.profile = &p.bare;
   opt.profile_path = p.path;

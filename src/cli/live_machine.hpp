@@ -49,8 +49,9 @@ class ValuesKeeper {
 };
 
 // The interpreter's options on the live machine: the profile and its values file (`values`
-// keeps what each run leaves), the macros' folder and whether SHELL may start programs.
+// keeps what each run leaves), the macros' folder, whether SHELL may start programs, and
+// SW's warning when the card plays in real time.
 InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeeper& values,
-                                            bool allow_shell, const std::string& macros);
+                                            const LiveMachineArgs& a, bool real_time);
 
 }  // namespace gantry

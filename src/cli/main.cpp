@@ -181,7 +181,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   choice.type = a.card.empty() ? settings.card.type : a.card;
   choice.realtime = a.realtime;
   choice.trace = a.trace;
-  opt.interpreter.warn_before_motion = choice.type != "sim" || choice.realtime;
+  opt.interpreter.warn_before_motion = plays_in_real_time(choice.type, choice.realtime);
   if (!a.world(choice.world)) return 1;
   std::string why;
   const std::unique_ptr<Card> card = open_card(choice, settings, &why);

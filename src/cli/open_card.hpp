@@ -17,6 +17,12 @@ struct CardChoice {
   std::string trace;      // sim: pin trace file
 };
 
+// Whether a card of `type` plays in wall-clock time: real hardware, or the simulated card
+// with --realtime. Someone may stand at the machine then (SW's warning is for them).
+inline bool plays_in_real_time(const std::string& type, bool realtime) {
+  return type != "sim" || realtime;
+}
+
 // nullptr with the reason (naming the fix) when the card cannot be opened.
 std::unique_ptr<Card> open_card(const CardChoice& choice, const Settings& settings,
                                 std::string* error);

@@ -246,9 +246,13 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
 }
 
 Outcome Controller::pause() {
+  return pause(/*every_output=*/false);
+}
+
+Outcome Controller::pause(bool every_output) {
   return refuse_or(Request::Pause, [&] {
     on_hold_ = OnHold::Wait;
-    feeder_.request_hold(0, /*pause=*/true);
+    feeder_.request_hold(0, /*pause=*/true, every_output);
   });
 }
 
@@ -848,26 +852,18 @@ std::optional<std::string> Controller::input_refusal(const Vec6& direction) cons
 // and the spindle stops (every output switch goes off at rest, on again at resume). Nothing
 // moves again while the switch is active. Seen after the block in which the card read it.
 void Controller::watch_stop_switches() {
-  const bool active = stop_trip_.tripped(card_.inputs());
+  const std::uint32_t bits = card_.inputs();
+  const bool active = stop_trip_.tripped(bits);
   const bool pressed = active && !stop_active_;
   stop_active_ = active;
   if (!pressed) return;
-  {
-    std::lock_guard lock(m_);
-    const std::string stops = active_stops(card_.inputs());
-    if (state_ == MachineState::Jogging) {  // as if the key were let go
-      on_hold_ = OnHold::Discard;
-      feeder_.request_hold(0);
-      if (keypad_open_) state_ = MachineState::Keypad;
-      message_ = stops + " stopped the jog";
-    } else if (decide(state_, Request::Pause).next) {
-      state_ = MachineState::Paused;
-      on_hold_ = OnHold::Wait;
-      feeder_.request_hold(0, /*pause=*/true, /*every_output=*/true);
-      message_ = fmt::format("{} paused the file: release it, then resume", stops);
-    }
-  }
-  cv_.notify_all();
+  const bool jogging = state() == MachineState::Jogging;
+  // A jog ends as if the key were let go; anything else at rest refuses the pause.
+  if (!(jogging ? jog_release() : pause(/*every_output=*/true))) return;
+  std::lock_guard lock(m_);
+  const std::string stops = active_stops(bits);
+  message_ = jogging ? stops + " stopped the jog"
+                     : fmt::format("{} paused the file: release it, then resume", stops);
 }
 
 void Controller::publish() {

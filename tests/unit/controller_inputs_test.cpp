@@ -44,6 +44,14 @@ struct Machine {
 
 constexpr int kZ = 2;
 
+// One keypad step (VD's keypad step) along `axis`, `direction` +1 or -1.
+JogRequest step_jog(int axis, int direction) {
+  JogRequest j;
+  j.direction[axis] = direction;
+  j.step = true;
+  return j;
+}
+
 TEST(Probe, StopsExactlyWhereTheSwitchClosed) {
   SimWorld w;
   w.probe_z = -0.3;  // the Z zero plate's surface: input 1 closes at or below it
@@ -305,14 +313,8 @@ TEST(LimitSwitch, StopsTheToolNamesTheSwitchAndOnlyAJogAwayIsAllowed) {
   const Outcome again = m.c.run(Script::from_text("MY, 1\n", "part.sbp"));
   EXPECT_FALSE(again);
   EXPECT_NE(again.reason.find("X high limit switch is closed"), std::string::npos);
-  JogRequest toward;
-  toward.direction[0] = 1;
-  toward.step = true;
-  EXPECT_FALSE(m.c.jog(toward));
-  JogRequest away;
-  away.direction[0] = -1;
-  away.step = true;
-  ASSERT_TRUE(m.c.jog(away));
+  EXPECT_FALSE(m.c.jog(step_jog(0, +1)));  // towards the switch
+  ASSERT_TRUE(m.c.jog(step_jog(0, -1)));
   m.c.wait();
   s = m.c.status();
   EXPECT_EQ(s.state, MachineState::Idle);
@@ -343,10 +345,8 @@ TEST(LimitSwitch, AnInputInALimitModeStopsTheToolAndIsNamed) {
   EXPECT_NE(again.reason.find("the limit switch on input 5 is active: jog off it"),
             std::string::npos)
       << again.reason;
-  JogRequest off;  // it has no axis: the keypad may go either way (SB3's override)
-  off.direction[0] = -1;
-  off.step = true;
-  ASSERT_TRUE(m.c.jog(off));
+  // It has no axis: the keypad may go either way (SB3's override).
+  ASSERT_TRUE(m.c.jog(step_jog(0, -1)));
   m.c.wait();
   EXPECT_EQ(m.c.status().state, MachineState::Idle);
 }
@@ -404,10 +404,7 @@ TEST(StopSwitch, PausesTheFileStopsTheSpindleAndHoldsItWhileActive) {
   const Outcome run = m.c.run(Script::from_text("MY, 1\n", "part.sbp"));
   EXPECT_FALSE(run);
   EXPECT_NE(run.reason.find("the stop switch on input 6 is active"), std::string::npos);
-  JogRequest j;
-  j.direction[1] = 1;
-  j.step = true;
-  EXPECT_FALSE(m.c.jog(j));
+  EXPECT_FALSE(m.c.jog(step_jog(1, +1)));
 }
 
 TEST(StopSwitch, InputFourIsTheStopSwitchWhenItIsNotTheEStop) {

@@ -124,6 +124,7 @@ class Controller {
   enum class OnHold { Wait, Discard };
 
   Outcome refuse_or(Request r, const std::function<void()>& accept);
+  Outcome pause(bool every_output);  // every_output: a stop switch also stops the spindle
   Outcome start_run(std::shared_ptr<const Script> script, bool checked, double estimated_time_s,
                     bool typed);
   void start_activity(std::function<void()> work);
