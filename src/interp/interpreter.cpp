@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>  // messages
 
-#include <algorithm>   // all_of
+#include <algorithm>   // all_of, count_if
 #include <cctype>      // toupper
 #include <cmath>       // isfinite, round
 #include <filesystem>  // path joining for FP and C#
@@ -16,6 +16,7 @@
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
 #include "gantry/motion/arc_chords.hpp"      // arc_to under an uneven FP scale
 #include "interp_private.hpp"                // Frame, UserFile
+#include "persistent_path.hpp"               // describe_path
 
 namespace gantry {
 
@@ -1289,12 +1290,46 @@ Value Interpreter::value_of(const Arg& a) {
   return Value::string(a.text);  // a bare word: the text as written
 }
 
+namespace {
+
+// FabMo's universal-unit variables (its runtime's UU_README): `$nameUU[].x = v` stores v at
+// index 0 in inches and index 1 in mm, whichever units are current, so that a file reads
+// `$nameUU[%(25)].x` in its own units. The empty index is that placeholder, once per path.
+size_t unit_placeholders(const LValue& t) {
+  return std::ranges::count_if(t.path, [](const Accessor& a) { return !a.is_field && !a.index; });
+}
+
+}  // namespace
+
+void Interpreter::assign_universal_units(nlohmann::json& root, const LValue& target,
+                                         const Value& v) {
+  const std::string shown = "$" + target.name;
+  if (unit_placeholders(target) > 1)
+    fail(target.loc, fmt::format("{} has more than one []; the unit index [] is given once",
+                                 describe_path(target.name, target.path, *this)));
+  if (!target.name.ends_with("UU"))
+    fail(target.loc,
+         fmt::format("[] is the unit index of universal-unit variables, whose names end in UU; "
+                     "give an index to {}, or rename it {}UU",
+                     shown, shown));
+  if (v.is_string()) {  // a name or a label: the same in both units
+    assign_path(root, target.path, v, *this, target.loc, 0);
+    assign_path(root, target.path, v, *this, target.loc, 1);
+    return;
+  }
+  const bool mm = system_variable(25, target.loc).num() == 1;
+  const double inches = mm ? v.num() / 25.4 : v.num();
+  assign_path(root, target.path, Value::number(inches), *this, target.loc, 0);
+  assign_path(root, target.path, Value::number(inches * 25.4), *this, target.loc, 1);
+}
+
 void Interpreter::assign(const LValue& target, const Value& v) {
   if (!target.persistent) {
     vars_[target.name] = v;
     return;
   }
   nlohmann::json& root = store_.variables()[target.name];
+  if (unit_placeholders(target) > 0) return assign_universal_units(root, target, v);
   if (target.path.empty()) {
     if (v.is_string())
       root = v.str();
@@ -1315,7 +1350,7 @@ void Interpreter::exec(const AssignStmt& s, const SourceLoc&) {
     } else if (const nlohmann::json* root = store_.variable(s.target.name)) {
       defined = true;
       if (!s.target.path.empty()) try {
-          read_path(*root, s.target.path, *this, s.target.loc, s.target.name);
+          read_path(*root, s.target.path, *this, s.target.loc, s.target.name, 0);
         } catch (const GantryError&) {
           defined = false;
         }

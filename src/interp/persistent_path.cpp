@@ -83,7 +83,7 @@ std::string describe_path(std::string_view name, const std::vector<Accessor>& pa
 }
 
 Value read_path(const json& root, const std::vector<Accessor>& path, EvalEnv& env,
-                const SourceLoc& loc, std::string_view name) {
+                const SourceLoc& loc, std::string_view name, std::optional<size_t> placeholder) {
   std::string shown = root_name(name);
   const json* cur = &root;
   for (const Accessor& a : path) {
@@ -100,10 +100,10 @@ Value read_path(const json& root, const std::vector<Accessor>& path, EvalEnv& en
       cur = find_field(*cur, a.field);
       if (!cur) fail(loc, fmt::format("{} is not set", shown));
     } else {
-      if (!a.index)
-        fail(loc,
-             fmt::format("empty index [] cannot be read; give the index, as in {}[0]", parent));
-      const size_t i = evaluate_index(*a.index, env);
+      if (!a.index && !placeholder)
+        fail(loc, fmt::format("empty index [] cannot be read; give the index, as in {}[%(25)]",
+                              parent));
+      const size_t i = a.index ? evaluate_index(*a.index, env) : *placeholder;
       shown += fmt::format("[{}]", i);
       if (cur->is_object())
         fail(loc, fmt::format("{} has named fields, not a list; read a field, as in {}.NAME",
@@ -136,14 +136,14 @@ Value read_path(const json& root, const std::vector<Accessor>& path, EvalEnv& en
 }
 
 void assign_path(json& root, const std::vector<Accessor>& path, const Value& v, EvalEnv& env,
-                 const SourceLoc& loc) {
+                 const SourceLoc& loc, std::optional<size_t> placeholder) {
   // Indices are evaluated before anything changes, so a failing index leaves the variable
   // as it was.
   std::vector<size_t> indices;
   for (const Accessor& a : path) {
     if (a.is_field) continue;
-    if (!a.index) fail(loc, "empty index [] is not supported; give the index");
-    indices.push_back(evaluate_index(*a.index, env));
+    if (!a.index && !placeholder) fail(loc, "empty index [] is not supported; give the index");
+    indices.push_back(a.index ? evaluate_index(*a.index, env) : *placeholder);
   }
   // Null and single values along the way become the object or array the path needs (a
   // persistent variable outlives the program, so a program must be able to reshape it); a

