@@ -866,27 +866,31 @@ TEST_F(CutCommands, ACircleCrossingTheSoftLimitsBetweenItsEndsMovesNothing) {
 // and each cut, with no plunge, runs there and leaves it there (no Z move at all); with a
 // plunge, Z goes back at the end to where the command started, at jog speed.
 TEST_F(CutCommands, EveryCutCommandEndsAtItsStartZ) {
-  const char* cuts[] = {"CA, 4, 1", "CC, 2", "CG, , 2, 0, 1, 0", "CP, 2, 3, 0", "CR, 3, 2"};
-  for (const char* cut : cuts) {
-    run(std::string("J3, 0, 0, 0.5\nM3, 1, 1, -0.22\n") + cut + "\n");
-    const std::vector<CanonMove> m = of_line(3);
-    ASSERT_FALSE(m.empty()) << cut;
-    for (const CanonMove& c : m) {
-      EXPECT_NEAR(c.to[2], -0.22, 1e-12) << cut;  // no lift, no plunge
-      EXPECT_EQ(c.speed_class, SpeedClass::Move) << cut;
+  struct Cut {
+    const char* shape;   // the command with its shape, from (1, 1)
+    const char* passes;  // the rest of its parameters, up to two passes of 0.25
+  };
+  const Cut cuts[] = {{"CA, 4, 1", ", T, 1, 0, -0.25, 2"},
+                      {"CC, 2", ", T, 1, , , -0.25, 2"},
+                      {"CG, , 2, 0, 1, 0", ", T, 1, -0.25, 2"},
+                      {"CP, 2, 3, 0", ", T, 1, 0, 0, -0.25, 2"},
+                      {"CR, 3, 2", ", T, 1, 4, -0.25, 2"}};
+  for (const Cut& cut : cuts) {
+    run(std::string("J3, 0, 0, 0.5\nM3, 1, 1, -0.22\n") + cut.shape + "\n");
+    const std::vector<CanonMove> flat = of_line(3);
+    ASSERT_FALSE(flat.empty()) << cut.shape;
+    for (const CanonMove& m : flat) {
+      EXPECT_NEAR(m.to[2], -0.22, 1e-12) << cut.shape;  // no lift, no plunge
+      EXPECT_EQ(m.speed_class, SpeedClass::Move) << cut.shape;
     }
-    // The same cut in two passes of 0.25 from Z 0.5: back to 0.5 once down at 0.
-    const std::string deeper = std::string(cut) + (cut[1] == 'R' ? ", T, 1, 4, -0.25, 2"
-                                                   : cut[1] == 'G' ? ", T, 1, -0.25, 2"
-                                                   : cut[1] == 'P' ? ", T, 1, 0, 0, -0.25, 2"
-                                                   : cut[1] == 'A' ? ", T, 1, 0, -0.25, 2"
-                                                                   : ", T, 1, , , -0.25, 2");
+    // The same cut in two passes from Z 0.5: down to 0, then back up to 0.5.
+    const std::string deeper = std::string(cut.shape) + cut.passes;
     run("J3, 1, 1, 0.5\n" + deeper + "\n");
     const std::vector<CanonMove> d = of_line(2);
-    double low = kInf;
-    for (const CanonMove& c : d) low = std::min(low, c.to[2]);
-    EXPECT_NEAR(low, 0, 1e-12) << deeper;
     ASSERT_FALSE(d.empty()) << deeper;
+    double low = kInf;
+    for (const CanonMove& m : d) low = std::min(low, m.to[2]);
+    EXPECT_NEAR(low, 0, 1e-12) << deeper;
     EXPECT_NEAR(d.back().to[2], 0.5, 1e-12) << deeper;
     EXPECT_EQ(d.back().speed_class, SpeedClass::Jog) << deeper;
     EXPECT_EQ(d.back().from[0], d.back().to[0]) << deeper;  // straight up

@@ -304,7 +304,8 @@ TEST(CutGeometry, CirclePocketLeavesNoIslandWiderThanTheOverlapAllows) {
     last = r;
   }
   EXPECT_LE(last, step / 2 + 1e-12);
-  EXPECT_NEAR((path.end() - V3(5, 5, 1)).norm(), 0, 1e-12);  // back at the start, then up
+  // Back at the start, then up to the start Z (D9; to Safe-Z, 1, before issue 21).
+  EXPECT_NEAR((path.end() - V3(5, 5, 0)).norm(), 0, 1e-12);
 }
 
 TEST(CutGeometry, EllipseAndRectanglePocketsLeaveNoIsland) {
@@ -330,7 +331,8 @@ TEST(CutGeometry, EllipseAndRectanglePocketsLeaveNoIsland) {
     const double gap_r =
         worst_gap(cut_points(rect, 512), 0, 0, 3, 0, 1.3, [](const V2&) { return true; });
     EXPECT_LE(gap_r, step / 2 + 1e-3) << feature;
-    EXPECT_NEAR((rect.end() - V3(0, 0, 1)).norm(), 0, 1e-12);
+    // Back at the start corner; no plunge, so Z stays (D9; up to Safe-Z before issue 21).
+    EXPECT_NEAR((rect.end() - V3(0, 0, 0)).norm(), 0, 1e-12);
   }
 }
 
@@ -601,7 +603,7 @@ TEST(CutGeometry, PullUpReturnsToTheStartZOnlyWhenTheCutChangedIt) {
   p.diameter = 2;
   p.pass.plunge = -0.2;
   const CutPath from_top = cut_circle(setup_at(0, 0, 0), p);
-  EXPECT_NEAR(from_top.end().z(), 0, 1e-12);  // back to the start, not to Safe-Z (1)
+  EXPECT_NEAR(from_top.end().z(), 0, 1e-12);             // back to the start, not to Safe-Z (1)
   EXPECT_EQ(from_top.moves.back().role, Role::Retract);  // out of the work: at jog speed
   EXPECT_NEAR(cut_circle(setup_at(0, 0, 2.5), p).end().z(), 2.5, 1e-12);
   p.pass.no_pull_up = true;
@@ -634,7 +636,7 @@ TEST(CutGeometry, PullUpReturnsToTheStartZOnlyWhenTheCutChangedIt) {
   p.pass.feature = 1;
   p.diameter = 6;
   const CutPath path = cut_circle(plus, p);
-  EXPECT_NEAR(path.end().z(), 0, 1e-12);  // back to the start
+  EXPECT_NEAR(path.end().z(), 0, 1e-12);             // back to the start
   EXPECT_EQ(path.moves.back().role, Role::Retract);  // towards -Z is out of the work
   double lowest = kInf;
   for (const V3& q : cut_points(path)) lowest = std::min(lowest, q.z());
