@@ -59,6 +59,9 @@ struct Post {
   const char* name;     // tests/data/posts/NAME.sbp and NAME.expected
   const char* options;  // for moves and run
 };
+void PrintTo(const Post& p, std::ostream* os) {
+  *os << p.name;
+}
 
 class PostOutput : public ::testing::TestWithParam<Post> {
  protected:
