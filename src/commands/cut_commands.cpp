@@ -58,7 +58,9 @@ ParamSpec feature() {
       .integer(0, 4);
 }
 ParamSpec no_pull_up() {
-  return flag("no pull up", "1 leaves the tool at depth; 0 (default) lifts it to Safe-Z.");
+  return flag("no pull up",
+              "0 (default): at the end Z goes back to where the command started, if the cut "
+              "changed it; 1 leaves the tool at its last depth.");
 }
 ParamSpec from_zero() {
   return flag("plunge from Z 0", "1 moves Z to 0 first and measures the plunges from there.");
@@ -307,7 +309,8 @@ void add_cut_commands(std::vector<CommandSpec>& out) {
       {"CR",
        "Cut rectangle",
        C,
-       "Cuts a rectangle whose start corner is where the tool is, then lifts the tool to Safe-Z.",
+       "Cuts a rectangle whose start corner is where the tool is; Z then goes back to where it "
+       "started, if the cut changed it.",
        {required("length X", "Width.").at_least(0),
         num("length Y", "units", std::nullopt, "Height; blank: a square.").at_least(0), side(),
         direction(),

@@ -7,7 +7,7 @@
 
 namespace gantry::cuts {
 
-double PassPlan::lift_z() const {
+double PassPlan::clear_z() const {
   return plunge_negative ? std::max(safe_z, z_start) : std::min(safe_z, z_start);
 }
 
@@ -102,7 +102,7 @@ CutPath run_passes(const V3& start, const std::vector<Contour>& rings, bool clos
                    const PassPlan& plan) {
   PathBuilder b(start);
   const V2 home = start.head<2>();
-  const double lift = plan.lift_z();
+  const double clear = plan.clear_z();
   const double up = plan.plunge_negative ? 1.0 : -1.0;
   const Contour& path = rings.front();
   const double total = length(path);
@@ -115,7 +115,7 @@ CutPath run_passes(const V3& start, const std::vector<Contour>& rings, bool clos
     const bool spiral = plan.spiral && !bottom;
     const bool last = j == passes - 1;
     if (j > 0 && !closed) {  // an open path: back to its start above the work
-      b.z(lift, Role::Retract);
+      b.z(clear, Role::Retract);
       b.xy(home, Role::Reposition);
     }
     if (plan.pocket == Pocket::OutsideIn) {
@@ -143,7 +143,11 @@ CutPath run_passes(const V3& start, const std::vector<Contour>& rings, bool clos
       z = z + tab_profile(total, plan.tabs, up * plan.tabs.sizes.pull_up, &b.path().tabs);
     b.follow(path, z);
   }
-  if (plan.pull_up) b.z(lift, Role::Retract);
+  // Back to the Z the command started at, and only if Z changed (FabMo's rule; docs/cuts.md
+  // D9): a cut at the tool's depth ends there, ready for the next move of the profile. Up
+  // out of the work at jog speed; down (the cut ended above its start) at move speed.
+  if (plan.pull_up)
+    b.z(plan.z_start, plan.is_up(b.at().z(), plan.z_start) ? Role::Retract : Role::Plunge);
   return b.take();
 }
 

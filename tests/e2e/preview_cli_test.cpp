@@ -15,39 +15,15 @@
 #include <sstream>
 #include <string>
 
+#include "../support/run_gantry.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Runs gantry in the source folder with a fresh config folder, capturing its output.
-Result gantry(const std::string& args) {
-  static int calls = 0;
-  const fs::path tmp = fs::temp_directory_path();
-  const fs::path err = tmp / fmt::format("gantry_preview_e2e_{}.err", getpid());
-  const fs::path config = tmp / fmt::format("gantry_preview_e2e_config_{}_{}", getpid(), ++calls);
-  const std::string cmd =
-      fmt::format("cd '{}' && XDG_CONFIG_HOME='{}' '{}' {} 2>'{}'", GANTRY_SOURCE_DIR,
-                  config.string(), GANTRY_BIN, args, err.string());
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  for (size_t n; (n = fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::stringstream text;
-  text << std::ifstream(err).rdbuf();
-  r.err = text.str();
-  fs::remove_all(config);
-  fs::remove(err);
-  return r;
-}
+using e2e::gantry;
+using Result = e2e::GantryResult;
 
 std::string read(const fs::path& p) {
   std::stringstream text;

@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "../support/run_gantry.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -21,44 +23,10 @@ using nlohmann::json;
 
 const fs::path kSource = GANTRY_SOURCE_DIR;
 
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Runs the gantry binary with `args`, capturing stdout and stderr.
-// Runs gantry in the source folder. Each call gets a fresh config folder, so no run sees
-// the values (or $variables) another test's run saved.
-Result gantry(const std::string& args) {
-  static int calls = 0;
-  const fs::path err_file = fs::temp_directory_path() / fmt::format("gantry_e2e_{}.err", getpid());
-  const fs::path config =
-      fs::temp_directory_path() / fmt::format("gantry_e2e_config_{}_{}", getpid(), ++calls);
-  const std::string cmd =
-      fmt::format("cd '{}' && XDG_CONFIG_HOME='{}' '{}' {} 2>'{}'", kSource.string(),
-                  config.string(), GANTRY_BIN, args, err_file.string());
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  fs::remove_all(config);
-  fs::remove(err_file);
-  return r;
-}
-
-// Steps per unit of the shipped profile, written out here so the test does not trust the code
-// under test to convert positions.
-constexpr std::array<double, 6> kStepsPerUnit{916.7324, 916.7324, 1018.5916,
-                                              13.8889,  13.8889,  13.8889};
-constexpr std::array<const char*, 6> kAxes{"x", "y", "z", "a", "b", "c"};
+using e2e::gantry;
+using e2e::kAxes;
+using e2e::kStepsPerUnit;
+using Result = e2e::GantryResult;
 
 struct Expected {
   std::array<double, 6> last_point;  // the file's last commanded point, units

@@ -234,7 +234,7 @@ TEST_F(CutCommands, Fact30_CaPlungeIsPerRepetitionNegativeDown) {
   ASSERT_EQ(a.size(), 3u);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k].to[2], -0.25 * (k + 1), 1e-12);
   run("CA, 10, 5\n");                          // default 0: the arch at the current height
-  EXPECT_NEAR(arcs().back().to[2], 1, 1e-12);  // (after the first command's pull-up)
+  EXPECT_NEAR(arcs().back().to[2], 0, 1e-12);  // (the first command returned to its start, 0)
 }
 
 TEST_F(CutCommands, Fact31_CaRepetitionsDefaultToOne) {
@@ -261,9 +261,10 @@ TEST_F(CutCommands, Fact33_CaTabsDefaultOff) {
   EXPECT_NEAR(top, -0.4, 1e-12);
 }
 
+// The pull-up returns to the start Z (D9; FabMo's CG). Before issue 21 it went to Safe-Z (1).
 TEST_F(CutCommands, Fact34_CaPullsUpUnlessNoPullUp) {
   run("CA, 10, 5, T, 1, 0, -0.5\n");
-  EXPECT_NEAR(motion().back().to[2], 1, 1e-12);  // Safe-Z
+  EXPECT_NEAR(motion().back().to[2], 0, 1e-12);  // where it started
   EXPECT_EQ(motion().back().speed_class, SpeedClass::Jog);
   run("J3, 0, 0, 0\nCA, 10, 5, T, 1, 0, -0.5, 1, 1, 1, 0, 1\n");
   EXPECT_NEAR(motion().back().to[2], -0.5, 1e-12);  // stays at depth
@@ -427,7 +428,9 @@ TEST_F(CutCommands, Fact52_CcPlungePerRepetition) {
     EXPECT_NEAR(a[k].from[2], -0.5 * (k + 1), 1e-12);
     EXPECT_NEAR(a[k].to[2], -0.5 * (k + 1), 1e-12);
   }
-  EXPECT_NEAR(motion().back().to[2], 1, 1e-12);  // then up to Safe-Z
+  // Then back up to the start Z, 0 (D9; Safe-Z, 1, before issue 21).
+  EXPECT_NEAR(motion().back().to[2], 0, 1e-12);
+  EXPECT_EQ(motion().back().speed_class, SpeedClass::Jog);
 }
 
 TEST_F(CutCommands, Fact53_CcRepetitionsDefaultToOne) {
@@ -858,6 +861,41 @@ TEST_F(CutCommands, ACircleCrossingTheSoftLimitsBetweenItsEndsMovesNothing) {
 // ===========================================================================================
 // Decisions of docs/cuts.md and the transforms
 // ===========================================================================================
+
+// D9 for all five commands, as a CAM post uses them: the post's M3 puts the tool at depth
+// and each cut, with no plunge, runs there and leaves it there (no Z move at all); with a
+// plunge, Z goes back at the end to where the command started, at jog speed.
+TEST_F(CutCommands, EveryCutCommandEndsAtItsStartZ) {
+  struct Cut {
+    const char* shape;   // the command with its shape, from (1, 1)
+    const char* passes;  // the rest of its parameters, up to two passes of 0.25
+  };
+  const Cut cuts[] = {{"CA, 4, 1", ", T, 1, 0, -0.25, 2"},
+                      {"CC, 2", ", T, 1, , , -0.25, 2"},
+                      {"CG, , 2, 0, 1, 0", ", T, 1, -0.25, 2"},
+                      {"CP, 2, 3, 0", ", T, 1, 0, 0, -0.25, 2"},
+                      {"CR, 3, 2", ", T, 1, 4, -0.25, 2"}};
+  for (const Cut& cut : cuts) {
+    run(std::string("J3, 0, 0, 0.5\nM3, 1, 1, -0.22\n") + cut.shape + "\n");
+    const std::vector<CanonMove> flat = of_line(3);
+    ASSERT_FALSE(flat.empty()) << cut.shape;
+    for (const CanonMove& m : flat) {
+      EXPECT_NEAR(m.to[2], -0.22, 1e-12) << cut.shape;  // no lift, no plunge
+      EXPECT_EQ(m.speed_class, SpeedClass::Move) << cut.shape;
+    }
+    // The same cut in two passes from Z 0.5: down to 0, then back up to 0.5.
+    const std::string deeper = std::string(cut.shape) + cut.passes;
+    run("J3, 1, 1, 0.5\n" + deeper + "\n");
+    const std::vector<CanonMove> d = of_line(2);
+    ASSERT_FALSE(d.empty()) << deeper;
+    double low = kInf;
+    for (const CanonMove& m : d) low = std::min(low, m.to[2]);
+    EXPECT_NEAR(low, 0, 1e-12) << deeper;
+    EXPECT_NEAR(d.back().to[2], 0.5, 1e-12) << deeper;
+    EXPECT_EQ(d.back().speed_class, SpeedClass::Jog) << deeper;
+    EXPECT_EQ(d.back().from[0], d.back().to[0]) << deeper;  // straight up
+  }
+}
 
 TEST_F(CutCommands, CpCentreAndCgEndFollowRelativeMode) {
   run("J2, 1, 1\nSR\nCP, 2, 4, 4\nSA\nJ2, 1, 1\nSR\nCG, , 2, 0, 1, 0\n");

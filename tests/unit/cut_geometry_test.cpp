@@ -304,7 +304,8 @@ TEST(CutGeometry, CirclePocketLeavesNoIslandWiderThanTheOverlapAllows) {
     last = r;
   }
   EXPECT_LE(last, step / 2 + 1e-12);
-  EXPECT_NEAR((path.end() - V3(5, 5, 1)).norm(), 0, 1e-12);  // back at the start, then up
+  // Back at the start, then up to the start Z (D9; to Safe-Z, 1, before issue 21).
+  EXPECT_NEAR((path.end() - V3(5, 5, 0)).norm(), 0, 1e-12);
 }
 
 TEST(CutGeometry, EllipseAndRectanglePocketsLeaveNoIsland) {
@@ -330,7 +331,8 @@ TEST(CutGeometry, EllipseAndRectanglePocketsLeaveNoIsland) {
     const double gap_r =
         worst_gap(cut_points(rect, 512), 0, 0, 3, 0, 1.3, [](const V2&) { return true; });
     EXPECT_LE(gap_r, step / 2 + 1e-3) << feature;
-    EXPECT_NEAR((rect.end() - V3(0, 0, 1)).norm(), 0, 1e-12);
+    // Back at the start corner; no plunge, so Z stays (D9; up to Safe-Z before issue 21).
+    EXPECT_NEAR((rect.end() - V3(0, 0, 0)).norm(), 0, 1e-12);
   }
 }
 
@@ -563,6 +565,9 @@ TEST(CutGeometry, TabStretchCutsAMoveAtTheTabBreakpoints) {
   EXPECT_EQ(ended, 2);
 }
 
+// Between passes an open path lifts clear of the work (Safe-Z, or the start if higher) to go
+// back to its start: the start Z alone would not do, as a cut may start at depth (D8). At
+// the end it returns to the start Z (D9), here 0, not Safe-Z as before issue 21.
 TEST(CutGeometry, OpenArcsGoBackToTheStartAboveTheWorkBetweenPasses) {
   CircleParams p;
   p.diameter = 2;
@@ -579,21 +584,60 @@ TEST(CutGeometry, OpenArcsGoBackToTheStartAboveTheWorkBetweenPasses) {
   EXPECT_NEAR(path.moves[2].to.z(), 1, 1e-12);  // Safe-Z
   EXPECT_NEAR(path.moves[3].to.head<2>().norm(), 0, 1e-12);
   EXPECT_NEAR(path.moves[4].to.z(), -0.4, 1e-12);
+  EXPECT_NEAR(path.end().z(), 0, 1e-12);  // the start Z
+  // Started at depth (below Safe-Z, in the work): still up to Safe-Z between passes.
+  const CutPath deep = cut_circle(setup_at(0, 0, -0.3), p);
+  EXPECT_NEAR(deep.moves.at(2).to.z(), 1, 1e-12);
+  EXPECT_NEAR(deep.end().z(), -0.3, 1e-12);
+  // Started above Safe-Z: never down to it.
+  EXPECT_NEAR(cut_circle(setup_at(0, 0, 2.5), p).moves.at(2).to.z(), 2.5, 1e-12);
 }
 
-TEST(CutGeometry, PullUpGoesToSafeZOrStaysAboveIt) {
+// D9, FabMo's rule (runtime/opensbp/commands/cut.js, end of CG and CR): unless "no pull up"
+// is 1, Z ends where the command started, and moves only if the command changed it. Until
+// issue 21 this test was PullUpGoesToSafeZOrStaysAboveIt: every cut ended at Safe-Z, which
+// turned each CG of a CAM profile (cut at the depth the post's M3 set, no plunge) into a
+// lift and a long ramp back down through the work.
+TEST(CutGeometry, PullUpReturnsToTheStartZOnlyWhenTheCutChangedIt) {
   CircleParams p;
   p.diameter = 2;
   p.pass.plunge = -0.2;
-  EXPECT_NEAR(cut_circle(setup_at(0, 0, 0), p).end().z(), 1, 1e-12);      // up to Safe-Z
-  EXPECT_NEAR(cut_circle(setup_at(0, 0, 2.5), p).end().z(), 2.5, 1e-12);  // never down to it
+  const CutPath from_top = cut_circle(setup_at(0, 0, 0), p);
+  EXPECT_NEAR(from_top.end().z(), 0, 1e-12);             // back to the start, not to Safe-Z (1)
+  EXPECT_EQ(from_top.moves.back().role, Role::Retract);  // out of the work: at jog speed
+  EXPECT_NEAR(cut_circle(setup_at(0, 0, 2.5), p).end().z(), 2.5, 1e-12);
+  p.pass.no_pull_up = true;
+  EXPECT_NEAR(cut_circle(setup_at(0, 0, 0), p).end().z(), -0.2, 1e-12);  // stays at depth
+  p.pass.no_pull_up = false;
+
+  // No plunge, from depth (a post's M3 to -0.22, then CG ... T, 1): Z never moves.
+  GcodeArcParams arc;
+  arc.end = V2(2, 0);
+  arc.center_offset = V2(1, 0);
+  const CutPath flat = cut_gcode_arc(setup_at(0, 0, -0.22), arc);
+  ASSERT_EQ(flat.moves.size(), 1u);
+  EXPECT_TRUE(flat.moves[0].arc);
+  EXPECT_NEAR(flat.moves[0].to.z(), -0.22, 1e-12);
+  EXPECT_EQ(flat.moves[0].role, Role::Cut);
+
+  // Plunge from Z 0 from below the surface: up to 0, the pass at -0.1, then down again to
+  // the start, at move speed (into the work), as FabMo's CG returns to its start Z.
+  p.pass.plunge = -0.1;
+  p.pass.from_zero = true;
+  const CutPath below = cut_circle(setup_at(0, 0, -0.5), p);
+  EXPECT_NEAR(below.moves.front().to.z(), 0, 1e-12);
+  EXPECT_NEAR(below.end().z(), -0.5, 1e-12);
+  EXPECT_EQ(below.moves.back().role, Role::Plunge);
+  p.pass.from_zero = false;
+
   CutSetup plus = setup_at(0, 0, 0);
   plus.plunge_negative = false;  // VC +: positive Z goes into the material
   p.pass.plunge = 0.2;
   p.pass.feature = 1;
   p.diameter = 6;
   const CutPath path = cut_circle(plus, p);
-  EXPECT_NEAR(path.end().z(), 0, 1e-12);  // the lower of Safe-Z (1) and the start (0)
+  EXPECT_NEAR(path.end().z(), 0, 1e-12);             // back to the start
+  EXPECT_EQ(path.moves.back().role, Role::Retract);  // towards -Z is out of the work
   double lowest = kInf;
   for (const V3& q : cut_points(path)) lowest = std::min(lowest, q.z());
   EXPECT_NEAR(lowest, 0.2 - 0.1, 1e-12);  // the tabs lift towards -Z

@@ -756,7 +756,8 @@ TEST_F(LanguageTest, Example11PassesTheSyntaxPassAndCutsTheRectangle) {
   EXPECT_EQ(script->line_count(), 13);
   const Outcome o = execute(script);
   EXPECT_EQ(o.ending, Ending::Normal) << format(o.diag);
-  // CR 10 x 5 from (10, 10), plunge -.25 from Z 0 (its ninth parameter), then up to Safe-Z.
+  // CR 10 x 5 from (10, 10), plunge -.25 from Z 0 (its ninth parameter), then back up to the
+  // Z it started at, .5 (docs/cuts.md D9; up to Safe-Z, 1, before issue 21).
   expect_path(moves(), {{kJog, at(0, 0, .5)},
                         {kJog, at(10, 10, .5)},
                         {kMove, at(10, 10, 0)},
@@ -765,7 +766,7 @@ TEST_F(LanguageTest, Example11PassesTheSyntaxPassAndCutsTheRectangle) {
                         {kMove, at(20, 15, -.25)},
                         {kMove, at(20, 10, -.25)},
                         {kMove, at(10, 10, -.25)},
-                        {kJog, at(10, 10, 1)}});
+                        {kJog, at(10, 10, .5)}});
 }
 
 TEST_F(LanguageTest, Example11WithoutCrRuns) {

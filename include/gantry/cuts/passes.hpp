@@ -1,6 +1,6 @@
 // The pass model shared by the cut commands: plunge per pass and repetitions, spiral
-// plunge and bottom pass, pocketing rings, tabs on the last pass, the pull-up at the end and
-// the plunge from Z 0 (docs/cuts.md).
+// plunge and bottom pass, pocketing rings, tabs on the last pass, the return to the start Z
+// at the end and the plunge from Z 0 (docs/cuts.md, D8-D10).
 #pragma once
 
 #include <vector>
@@ -28,14 +28,17 @@ struct PassPlan {
   bool spiral = false;       // Z descends along each pass instead of before it
   bool bottom_pass = false;  // one more pass, flat, at the final depth
   bool from_zero = false;    // Z goes to 0 first; passes are measured from 0
-  bool pull_up = true;       // at the end, up to lift_z
+  bool pull_up = true;       // at the end, back to z_start (unless "no pull up")
   double safe_z = 1;
   bool plunge_negative = true;  // VC 5: which way is into the material
   Pocket pocket = Pocket::None;
   TabPlan tabs;
 
-  // Out of the material: the higher (in the lifting sense) of Safe-Z and the start Z.
-  double lift_z() const;
+  // Where an open path's passes go back to their start: out of the material, the higher (in
+  // the lifting sense) of Safe-Z and the start Z.
+  double clear_z() const;
+  // Whether Z `to` is out of the material from Z `from` (up, with VC's plunge "-").
+  bool is_up(double from, double to) const { return plunge_negative ? to > from : to < from; }
   double depth(int pass) const;  // Z of pass k (0: the reference)
 };
 
