@@ -2026,11 +2026,11 @@ $fresh := 9
 // FabMo's universal-unit variables, with the values of its runtime's UU_README: [] stores
 // inches at [0] and mm at [1], from whichever units are current; `:=` keeps both.
 TEST_F(LanguageTest, UniversalUnitVariablesStoreInchesAndMillimetres) {
-  run(R"sbp(VD, 0
+  run(R"sbp(VD, , , 0
 $toolUU[3][].x = 5.5
 $safeUU[].z := 1
 $safeUU[].z := 2
-VD, 1
+VD, , , 1
 $toolUU[3][].y = 50.8
 &in_x = $toolUU[3][0].x
 &mm_x = $toolUU[3][%(25)].x
