@@ -426,7 +426,7 @@ TEST_F(LiveSystemVariables, SwitchFourModeIsTheLastSoFourMinusN) {
 
 TEST_F(LiveSystemVariables, OutputModesFollowVn) {
   // VN's fields 15-26 are the modes of outputs 1-12.
-  run("&before = %(111)\nVN, , , , , , , , , , , , , , 5, 4, , , , , , , , , , 3\n"
+  run("&before = %(111)\nVN, , , , , , , , , , , , , , , 5, 4, , , , , , , , , , 3\n"
       "&one = %(111)\n&two = %(112)\n&three = %(113)\n&twelve = %(122)\n");
   EXPECT_EQ(var("BEFORE").num(), 0);
   EXPECT_EQ(var("ONE").num(), 5);
