@@ -36,14 +36,24 @@ void KinematicsMonitor::close(int axis) {
   const double v =
       (w.positive ? 1.0 : -1.0) * static_cast<double>(w.intervals) / (lim.steps_per_unit * dt);
   const double mid = static_cast<double>(w.first + w.last) / 2 * tick_s_;
-  w.max_v_ratio = std::max(w.max_v_ratio, std::abs(v) / lim.max_speed);
+  const double v_ratio = std::abs(v) / lim.max_speed;
+  w.max_v_ratio = std::max(w.max_v_ratio, v_ratio);
+  check(axis, w.first, false, v_ratio);
   if (w.have_prev && mid > w.prev_mid) {
     const double beyond_jump = std::max(0.0, std::abs(v - w.prev_v) - lim.max_jump);
-    w.max_a_ratio = std::max(w.max_a_ratio, beyond_jump / (mid - w.prev_mid) / lim.max_accel);
+    const double a_ratio = beyond_jump / (mid - w.prev_mid) / lim.max_accel;
+    w.max_a_ratio = std::max(w.max_a_ratio, a_ratio);
+    check(axis, w.first, true, a_ratio);
   }
   w.have_prev = true;
   w.prev_v = v;
   w.prev_mid = mid;
+}
+
+void KinematicsMonitor::check(int axis, std::int64_t tick, bool accel, double ratio) {
+  if (ratio <= kTolerance) return;
+  ++violation_count_;
+  if (violations_.size() < 16) violations_.push_back({tick, axis, accel, ratio});
 }
 
 void KinematicsMonitor::finish() {

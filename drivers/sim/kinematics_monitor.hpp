@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "gantry/core/axes.hpp"  // kAxisCount
 
@@ -28,8 +29,20 @@ struct AxisLimits {
 // acceleration ratio counts only the change beyond max_jump: (|dv| - max_jump) / (a dt).
 // With max_jump 0 the ratio is the plain one; with more it is a joint bound on corners and
 // acceleration, which tolerates a sustained excess up to max_jump / dt (docs/planner.md).
+//
+// Violations. A window faster than its axis's max_speed, or a change between windows beyond
+// the jump faster than its max_accel, by more than kTolerance (0.1 %: a window's tick rounding
+// stays below it) is a violation: counted, and the first few kept for the run's report.
 class KinematicsMonitor {
  public:
+  static constexpr double kTolerance = 1.001;
+  struct Violation {
+    std::int64_t tick;  // where it was seen: the window's start (for a change, between two)
+    int axis;
+    bool accel;    // an acceleration; otherwise a velocity
+    double ratio;  // of the limit
+  };
+
   KinematicsMonitor(const std::array<AxisLimits, kAxisCount>& limits, double tick_s,
                     double window_s = 0.010);
 
@@ -46,6 +59,8 @@ class KinematicsMonitor {
   double max_accel_ratio() const;
   double velocity_ratio(int axis) const { return axes_[axis].max_v_ratio; }
   double accel_ratio(int axis) const { return axes_[axis].max_a_ratio; }
+  std::uint64_t violations() const { return violation_count_; }
+  const std::vector<Violation>& first_violations() const { return violations_; }
 
  private:
   struct Window {
@@ -57,11 +72,14 @@ class KinematicsMonitor {
     double max_v_ratio = 0, max_a_ratio = 0;
   };
   void close(int axis);
+  void check(int axis, std::int64_t tick, bool accel, double ratio);
 
   std::array<AxisLimits, kAxisCount> limits_;
   double tick_s_;
   std::int64_t window_ticks_;
   std::array<Window, kAxisCount> axes_{};
+  std::uint64_t violation_count_ = 0;
+  std::vector<Violation> violations_;  // the first few
 };
 
 }  // namespace gantry

@@ -234,15 +234,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   for (int i = 0; i < kAxisCount; ++i)
     report.position[i] = static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
   report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
-  if (sim) {
-    report.timing_violations = sim->timing_violations();
-    for (const TimingViolation& v : sim->first_violations())
-      report.violation_notes.push_back(fmt::format("tick {} axis {}: {}", v.tick,
-                                                   static_cast<char>(kAxisLetters[v.axis] - 32),
-                                                   rule_name(v.rule)));
-    report.max_velocity_ratio = sim->kinematics().max_velocity_ratio();
-    report.max_accel_ratio = sim->kinematics().max_accel_ratio();
-  }
+  if (sim) add_card_checks(report, *sim);
 
   print_errors(report.errors);
   if (a.json) {
@@ -250,7 +242,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   } else {
     fmt::print("{}", to_text(report));
   }
-  return report.errors.empty() && report.timing_violations == 0 ? 0 : 1;
+  return exit_code(report);
 }
 
 int cmd_check(const std::string& file, const std::string& settings_path, const LanguageArgs& lang) {

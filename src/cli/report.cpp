@@ -6,6 +6,7 @@
 #include <cmath>  // M_PI
 
 #include "gantry/motion/path_limits.hpp"  // nominal_path_speed
+#include "sim/sim_card.hpp"               // SimCard
 
 namespace gantry {
 namespace {
@@ -23,7 +24,38 @@ nlohmann::ordered_json vec_array(const Vec6& v) {
   return a;
 }
 
+char axis_name(int axis) {
+  return static_cast<char>(kAxisLetters[axis] - 'a' + 'A');
+}
+
+bool limits_exceeded(const RunReport& r) {
+  return r.timing_violations + r.kinematic_violations > 0;
+}
+
 }  // namespace
+
+void add_card_checks(RunReport& r, SimCard& card) {
+  r.timing_violations = card.timing_violations();
+  for (const TimingViolation& v : card.first_violations())
+    r.violation_notes.push_back(
+        fmt::format("tick {} axis {}: {}", v.tick, axis_name(v.axis), rule_name(v.rule)));
+  const KinematicsMonitor& k = card.kinematics();
+  r.max_velocity_ratio = k.max_velocity_ratio();
+  r.max_accel_ratio = k.max_accel_ratio();
+  r.kinematic_violations = k.violations();
+  for (const KinematicsMonitor::Violation& v : k.first_violations())
+    r.violation_notes.push_back(fmt::format("tick {} axis {}: {} {:.1f} % of its limit", v.tick,
+                                            axis_name(v.axis),
+                                            v.accel ? "acceleration" : "velocity", v.ratio * 100));
+}
+
+const char* run_status(const RunReport& r) {
+  return !r.errors.empty() ? "error" : limits_exceeded(r) ? "violation" : "done";
+}
+
+int exit_code(const RunReport& r) {
+  return r.errors.empty() && !limits_exceeded(r) ? 0 : 1;
+}
 
 nlohmann::ordered_json to_json(const Diagnostic& d) {
   return {{"file", d.loc.file ? *d.loc.file : ""},
@@ -35,7 +67,7 @@ nlohmann::ordered_json to_json(const Diagnostic& d) {
 
 nlohmann::ordered_json to_json(const RunReport& r) {
   nlohmann::ordered_json j;
-  j["status"] = r.errors.empty() ? "done" : "error";
+  j["status"] = run_status(r);
   j["units"] = units_name(r.units);
   j["position"] = axis_object(r.position);
   j["steps"] = axis_object(r.steps);
@@ -48,6 +80,7 @@ nlohmann::ordered_json to_json(const RunReport& r) {
   j["lines"] = r.lines;
   j["moves"] = r.moves;
   j["timing_violations"] = r.timing_violations;
+  j["kinematic_violations"] = r.kinematic_violations;
   j["max_velocity_ratio"] = r.max_velocity_ratio;
   j["max_accel_ratio"] = r.max_accel_ratio;
   j["errors"] = nlohmann::ordered_json::array();
@@ -56,7 +89,9 @@ nlohmann::ordered_json to_json(const RunReport& r) {
 }
 
 std::string to_text(const RunReport& r) {
-  std::string out = fmt::format("status     {}\n", r.errors.empty() ? "done" : "error");
+  std::string out = fmt::format(
+      "status     {}{}\n", run_status(r),
+      r.errors.empty() && limits_exceeded(r) ? ": the card saw the machine's limits exceeded" : "");
   out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)
     out += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.position[i]);
@@ -76,11 +111,11 @@ std::string to_text(const RunReport& r) {
                      r.time_s, r.planned_time_s, r.estimated_time_s);
   out += fmt::format("executed   {} statements, {} moves\n", r.lines, r.moves);
   out += fmt::format("timing     {} violations\n", r.timing_violations);
-  for (const std::string& n : r.violation_notes) out += fmt::format("           {}\n", n);
   out += fmt::format(
       "limits     peak velocity {:.1f} %, peak acceleration {:.1f} % of the "
-      "axis limits\n",
-      r.max_velocity_ratio * 100, r.max_accel_ratio * 100);
+      "axis limits; {} violations\n",
+      r.max_velocity_ratio * 100, r.max_accel_ratio * 100, r.kinematic_violations);
+  for (const std::string& n : r.violation_notes) out += fmt::format("           {}\n", n);
   return out;
 }
 

@@ -14,6 +14,8 @@
 
 namespace gantry {
 
+class SimCard;
+
 struct RunReport {
   std::vector<Diagnostic> errors;
   Units units = Units::Inches;
@@ -27,9 +29,20 @@ struct RunReport {
   double estimated_time_s = 0;  // predicted by the check, before the run
   std::size_t lines = 0, moves = 0;
   std::uint64_t timing_violations = 0;
+  std::uint64_t kinematic_violations = 0;  // speeds or accelerations beyond the axis limits
   std::vector<std::string> violation_notes;
   double max_velocity_ratio = 0, max_accel_ratio = 0;
 };
+
+// The simulated card's own checks of what it played: pulse timing, and each axis's velocity
+// and acceleration reconstructed from the step times (docs/hardware.md).
+void add_card_checks(RunReport& r, SimCard& card);
+
+// "error" (it stopped short), "violation" (it ran to its end, but the card saw a pulse, a
+// speed or an acceleration beyond the machine's limits) or "done": never "done" when a limit
+// was exceeded.
+const char* run_status(const RunReport& r);
+int exit_code(const RunReport& r);  // 0 only when "done"
 
 nlohmann::ordered_json to_json(const RunReport& r);
 std::string to_text(const RunReport& r);

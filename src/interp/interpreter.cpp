@@ -1227,9 +1227,14 @@ const nlohmann::json* Interpreter::persistent_variable(std::string_view name) co
 }
 
 Value Interpreter::system_variable(int n, const SourceLoc& loc) {
-  // An input is read where the motion is: the moves before this line play out first.
-  if ((n >= 51 && n <= 58) || (n >= 126 && n <= 129)) ctx_.sync();
-  if (std::optional<Value> v = read_system_variable(n, snapshot())) return *v;
+  // An input, and the machine's clock, are read where the motion is: the moves before this
+  // line play out first. A check has no machine: its clock reads 0 (docs/system_variables.md).
+  std::optional<MotionReport> played;
+  if ((n >= 51 && n <= 58) || (n >= 126 && n <= 129) || n == 130) played = ctx_.sync();
+  MachineSnapshot m = snapshot();
+  if (played) m.elapsed_seconds = played->elapsed_s;
+  if (n == 146 || n == 147) m.now = local_date_time();
+  if (std::optional<Value> v = read_system_variable(n, m)) return *v;
   fail(loc, fmt::format("unknown system variable %({}); docs/system_variables.md lists them", n));
 }
 
@@ -1262,6 +1267,8 @@ MachineSnapshot Interpreter::snapshot() const {
   m.input_mode = s.switches.input_modes;
   m.output_mode = s.switches.output_modes;
   m.input4_mode = s.switches.stop_normally_open ? 1 : 0;
+  for (int k = 0; k < 12; ++k) m.outputs[k] = (state_.outputs >> k & 1u) != 0;  // as set, in order
+  m.output4_auto_mode = s.machine.switch4_mode;
   for (int i = 0; i < kAxisCount; ++i) {
     m.limit_min[i] = settings_.axes[i].min;
     m.limit_max[i] = settings_.axes[i].max;

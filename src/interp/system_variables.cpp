@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>   // floor, llround
 #include <cstdio>  // snprintf
+#include <ctime>   // time, localtime_r
 #include <string>
 
 namespace gantry {
@@ -138,7 +139,8 @@ constexpr std::array kTable{
     Info{127, "Inp #10", "0-1", false, "Input switch 10: 1 closed, 0 open."},
     Info{128, "Inp #11", "0-1", false, "Input switch 11: 1 closed, 0 open."},
     Info{129, "Inp #12", "0-1", false, "Input switch 12: 1 closed, 0 open."},
-    Info{130, "Elapsed Time", "s", false, "Whole seconds since the top-level run began."},
+    Info{130, "Elapsed Time", "s", false,
+         "Whole seconds of machine time since the top-level run began; 0 in a check."},
     Info{131, "Mode Input #9", "0-4", false, "Role of input switch 9 (VN)."},
     Info{132, "Mode Input #10", "0-4", false, "Role of input switch 10 (VN)."},
     Info{133, "Mode Input #11", "0-4", false, "Role of input switch 11 (VN)."},
@@ -241,8 +243,14 @@ Where the handbook's list is unclear or contradicts the command references, Gant
 * **Speeds and ramp speeds** (%(71)-%(90)) are printed "userUnits" but are speeds: user
   units per second. X and Y report the same value, because MS, JS, VS and VR set one vector
   speed for XY.
-* **Elapsed time** (%(130), "long") is whole seconds since the top-level run started,
-  rounded down.
+* **Elapsed time** (%(130), "long") is whole seconds, rounded down, of machine time since
+  the top-level run started, read where the tool is: the moves before the line play out
+  first, as for an input. Machine time is the card's clock, the one the console shows as
+  elapsed: it runs while pulses and dwells play (SW's warning too) and stands still while
+  the file waits at rest for the operator (PAUSE, INPUT). On the simulated card it is
+  virtual time, so a run reads the same value however fast it plays. A check (`gantry
+  check`, `estimate`, `preview`, `moves`) has no machine: %(130) reads 0 there, as its inputs
+  read open.
 * **Date and time** (%(146), %(147)) are local, `MM/DD/YYYY` and `HH:MM:SS` on a 24-hour
   clock; the table prints only "string".
 * **Current file name** (%(60)) is the absolute path of the innermost file running, so a
@@ -251,6 +259,14 @@ Where the handbook's list is unclear or contradicts the command references, Gant
   say 8; hardware with fewer channels reports the missing ones as 0.
 * **Output bytes:** %(100) holds outputs 1-8 with output n in bit n-1; %(135) holds
   outputs 9-12 with output n in bit n-9.
+* **Output switches** (%(100)-%(108), %(135)-%(139)) read the switches as the file has set
+  them so far (SO, MO, a file's end; switch 4 also while it follows motion, from SW's
+  warning on). The machine switches them at rest between the moves around the SO, in
+  order, so the value read is the one in force for the next move. A preview (SP) switches
+  nothing, so it reads them unchanged.
+* **Switch 4's mode** (%(109)) is the last `SO, 4, -n` (-1 to -3: on while a run moves the
+  tool; -4: a plain switch), kept in the values like SW; -1 by default.
+* **Output modes** (%(111)-%(122)) are the VN output modes in force, as VN changes them.
 * **Driver channels** (%(36)-%(40), "XYZA or B") are one-letter strings, `X` to `B`.
 * **%(46) and %(47)** ("Inp #3 Mode", "Inp #4 Mode", 0-1) are not the 0-4 role codes of
   %(91)-%(98): %(47) is the VN wiring flag of the stop input 4 (0 normally closed,
@@ -265,6 +281,13 @@ Where the handbook's list is unclear or contradicts the command references, Gant
 )";
 
 }  // namespace
+
+MachineSnapshot::DateTime local_date_time() {
+  const std::time_t now = std::time(nullptr);
+  std::tm t{};
+  localtime_r(&now, &t);
+  return {t.tm_year + 1900, t.tm_mon + 1, t.tm_mday, t.tm_hour, t.tm_min, t.tm_sec};
+}
 
 std::span<const SystemVariableInfo> system_variable_table() {
   return kTable;

@@ -104,6 +104,7 @@ class Controller::ForwardSink : public MotionSink {
     r.machine = c_.played_machine();
     r.fired = std::exchange(c_.fired_, std::nullopt);  // the feeder is idle: its flush is done
     r.latched = c_.latched_;
+    r.elapsed_s = c_.elapsed_s();
     return r;
   }
   void watch_inputs(std::span<const InputTrigger> t, Watching w) override {
@@ -410,15 +411,20 @@ ControllerStatus Controller::status() const {
   s.line = line_.load(std::memory_order_relaxed);
   s.lines = lines_.load(std::memory_order_relaxed);
   s.playing_line = playing_line_.load(std::memory_order_relaxed);
+  s.elapsed_s = elapsed_s();
   {
     std::lock_guard lock(m_);
-    s.elapsed_s = static_cast<double>(tick_.load() - start_tick_) / settings_.card.pacer_hz();
     s.remaining_s = std::max(0.0, estimate_s_ - s.elapsed_s);
   }
   s.inputs = input_switches(inputs_.load(std::memory_order_acquire));
   for (int i = 0; i < kAxisCount; ++i) s.steps[i] = played_[i].load(std::memory_order_acquire);
   s.machine = played_machine(s.steps);
   return s;
+}
+
+double Controller::elapsed_s() const {
+  std::lock_guard lock(m_);
+  return static_cast<double>(tick_.load() - start_tick_) / settings_.card.pacer_hz();
 }
 
 // The played step counts in units (machine frame).

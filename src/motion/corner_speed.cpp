@@ -3,7 +3,8 @@
 #include "gantry/motion/corner_speed.hpp"
 
 #include <algorithm>  // min, max, clamp
-#include <cmath>      // sqrt, acos, hypot
+#include <cmath>      // sqrt, acos, hypot, copysign
+#include <limits>     // infinity
 #include <span>
 
 #include "gantry/motion/path_limits.hpp"  // limit_along, nominal_path_speed
@@ -53,6 +54,31 @@ double jump_limited_speed(const Vec6& u_in, const Vec6& u_out, const Settings& s
   std::array<double, kAxisCount> jump{};
   for (int i = 0; i < kAxisCount; ++i) jump[i] = s.planner.corner_jump * s.axes[i].max_speed;
   return along(u_out - u_in, jump);
+}
+
+// An axis may change its speed at once by at most its corner jump J_i; any change beyond
+// takes time at its acceleration a_i (the corner rule; the card's monitor checks the same
+// joint bound). A stop from the ramp speed changes axis i at once from e_i to 0, and a start
+// at path speed v along u from 0 to v u_i. Nothing rests in between unless a dwell does: a
+// sync (PAUSE, a probe, an input or %(130) read) and an output take no machine time, so the
+// card plays the start on the tick after the stop and the axis goes from e_i to v u_i at
+// once. On a reversal that is |e_i| + v |u_i|, up to twice the ramp speed: 0.8 in/s on Z,
+// whose jump is 0.44 in/s (issue 21: 2.8 times Z's acceleration by the card's measure).
+// Over a rest of T the axis may also use a_i T, so for every axis
+//     |v u_i - e_i| <= J_i + a_i T,  that is  v |u_i| <= J_i + a_i T + sign(u_i) e_i
+// (the other side, v u_i >= e_i - J_i - a_i T, holds for every v >= 0 as |e_i| <= J_i).
+// Onward in the stop's direction it costs nothing; Z reversing from 0.4 in/s starts at
+// 0.04 in/s, or at its full ramp speed after (0.8 - 0.44) / 16 = 22.5 ms of dwell.
+double start_after_stop(const Vec6& stopped, const Vec6& u_out, double rest_s, const Settings& s) {
+  double v = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < kAxisCount; ++i) {
+    if (std::abs(u_out[i]) < 1e-12) continue;
+    const double allowed =
+        s.planner.corner_jump * s.axes[i].max_speed + s.axes[i].max_accel * rest_s;
+    v = std::min(
+        v, std::max(0.0, allowed + std::copysign(1.0, u_out[i]) * stopped[i]) / std::abs(u_out[i]));
+  }
+  return v;
 }
 
 double rest_speed(const Vec6& unit, bool jog, const Settings& s) {

@@ -53,11 +53,11 @@ void LookAheadPlanner::move(const CanonMove& m) {
     return;
   }
   if (m.kind == MoveKind::Dwell || at_rest) {
-    // An output switches with the machine at rest, between the moves around it. Stopping
-    // from the ramp speed is a speed jump, and so is starting again: with no time between
-    // them (an output takes none) they add up, to twice the ramp speed on a reversal. So
-    // before an output (or MI) the machine ramps all the way to 0 and only the start jumps.
-    stop(at_rest || m.dwell_s <= 0);
+    // An output switches with the machine at rest, between the moves around it; a dwell
+    // waits there. The next move's start counts this stop's jump, less what the wait lets
+    // the axes accelerate (start_after_stop): an output takes no time.
+    stop();
+    rested_s_ += m.dwell_s;
     PlannedSegment seg;
     seg.from = seg.to = m.to;
     seg.dwell_s = m.dwell_s;
@@ -115,8 +115,8 @@ void LookAheadPlanner::arc(const CanonMove& m) {
 void LookAheadPlanner::set_speeds(Block& b, const Block* prev) const {
   b.v_max = std::min(b.v_commanded * override_, b.v_machine);
   b.rest = std::min(rest_speed(b.unit, b.speed_class == SpeedClass::Jog, settings_), b.v_max);
-  if (!prev) {
-    b.max_entry = b.rest;  // from rest
+  if (!prev) {  // from rest, right after the last stop unless a dwell came between
+    b.max_entry = std::min(b.rest, start_after_stop(stop_velocity_, b.unit, rested_s_, settings_));
     return;
   }
   Junction j;
@@ -272,17 +272,22 @@ void LookAheadPlanner::emit_front(double exit, double jerk) {
   seg.speed_class = b.speed_class;
   seg.loc = b.loc;
   planned_time_ += seg.profile.duration();
+  stop_velocity_ = b.unit * exit;
+  rested_s_ = 0;
   out_.segment(seg);
   q_.pop_front();
   if (!q_.empty()) held_length_ -= q_.front().length;
   front_locked_ = !q_.empty();
 }
 
-void LookAheadPlanner::stop(bool to_zero) {
+// The machine stops from the rest speed (SB3) even when the next move follows on the card's
+// next tick (after a sync: PAUSE, a probe, reading an input): that move's start is what
+// keeps the two speed jumps together within the corner jump (set_speeds, start_after_stop).
+void LookAheadPlanner::stop() {
   if (held_) return;  // the held moves wait for resume()
   if (!q_.empty()) {
     // The last block may end at its rest speed (SB3 stops from the ramp speed).
-    const double end = to_zero ? 0 : q_.back().rest;
+    const double end = q_.back().rest;
     replan(end);
     while (q_.size() > 1) emit_front(q_[1].entry);
     const Block& last = q_.front();

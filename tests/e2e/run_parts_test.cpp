@@ -156,6 +156,42 @@ TEST_P(PinTrace, MatchesTheGoldenTrace) {
 INSTANTIATE_TEST_SUITE_P(Golden, PinTrace,
                          ::testing::Values("trace_small", "trace_reversal", "trace_output"));
 
+// Issue 21: a stop followed at once by a start the other way. A PAUSE (answered by --yes),
+// a probe that touches nothing and the sync before a probe each play the motion out: the
+// machine stops from the ramp speed and the next move starts on the card's next tick. Z
+// reverses in each; the card measured 2.8 times Z's acceleration limit and still said "done".
+struct ReversalCase {
+  const char* name;
+  const char* text;
+  double last_z;  // where the file leaves Z
+};
+
+class ReversalAtRest : public ::testing::TestWithParam<ReversalCase> {};
+
+TEST_P(ReversalAtRest, StaysWithinTheAxisLimitsAndIsDone) {
+  const ReversalCase c = GetParam();
+  const fs::path file =
+      fs::temp_directory_path() / fmt::format("gantry_{}_{}.sbp", c.name, getpid());
+  std::ofstream(file) << c.text;
+  const Result r = gantry("run '" + file.string() + "' --yes --json");
+  fs::remove(file);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["status"], "done");
+  EXPECT_EQ(j["timing_violations"], 0);
+  EXPECT_EQ(j["kinematic_violations"], 0);
+  EXPECT_LE(j["max_velocity_ratio"].get<double>(), 1.001);
+  EXPECT_LE(j["max_accel_ratio"].get<double>(), 1.001);
+  EXPECT_EQ(j["steps"]["z"].get<std::int64_t>(), std::llround(c.last_z * kStepsPerUnit[2]));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    HoldBoundaries, ReversalAtRest,
+    ::testing::Values(ReversalCase{"pause", "MZ, 1\nPAUSE\nMZ, 0.5\n", 0.5},
+                      ReversalCase{"probe_miss", "PZ, -1, 0.5, 1\nJZ, 0.5\n", 0.5},
+                      ReversalCase{"probe_start", "MZ, 1\nPZ, -1, 0.5, 1\n", -1}),
+    [](const auto& info) { return std::string(info.param.name); });
+
 // Faults on the simulated card: the run stops, says why and where, and the position it
 // reports is exactly the pulses the card played (the card's own count and the generator's).
 struct FaultCase {

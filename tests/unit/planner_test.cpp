@@ -270,10 +270,11 @@ TEST(Outputs, AnOutputSwitchesAtRestBetweenTheMovesAroundIt) {
   p.move(line(vec(1), vec(2), s));
   p.flush();
   ASSERT_EQ(run.planned.segs.size(), 3u);
-  EXPECT_EQ(run.planned.segs[0].profile.v_exit, 0);  // all the way to rest: no stop jump
+  EXPECT_EQ(run.planned.segs[0].profile.v_exit, 0.4);  // SB3 stops from the ramp speed
   EXPECT_EQ(run.planned.segs[1].output, 2);
   EXPECT_TRUE(run.planned.segs[1].output_on);
-  EXPECT_EQ(run.planned.segs[2].profile.v_entry, 0.4);  // and the next starts from rest
+  // Onward along X, the stop's jump down and the start's jump up cancel: 0.4 to 0.4.
+  EXPECT_EQ(run.planned.segs[2].profile.v_entry, 0.4);
   EXPECT_EQ(run.card.steps()[0], std::llround(2 * s.axes[0].steps_per_unit));
   EXPECT_EQ(run.card.timing_violations(), 0u);
 }
@@ -297,6 +298,86 @@ TEST(Outputs, AReversalAroundAnOutputStaysWithinTheAcceleration) {
   p.flush();
   EXPECT_LE(run.card.kinematics().max_accel_ratio(), 1.0);
   EXPECT_EQ(run.card.timing_violations(), 0u);
+}
+
+// ---- a start right after a stop (issue 21) -------------------------------------------------
+
+// A sync (PAUSE, a probe that touched nothing, an input read) flushes the planner: the
+// machine stops from the ramp speed, and the next move starts on the card's next tick.
+// Z stops going up at 0.4 in/s; its corner jump is 0.11 x 4 = 0.44 in/s, so going down it
+// may start at 0.44 - 0.4 = 0.04 in/s at once (the stop and the start are one change of Z's
+// speed), where it used to start at 0.4: a jump of 0.8 in/s, 2.8 x Z's acceleration by the
+// card's measure.
+TEST(StartAfterStop, AReversalRightAfterASyncStartsWithinTheCornerJump) {
+  const Settings s = default_settings();
+  CardRun run(s);
+  LookAheadPlanner p(s, run.tee);
+  p.move(line(vec(0), vec(0, 0, 1), s));
+  p.flush();
+  p.move(line(vec(0, 0, 1), vec(0, 0, 0.5), s));
+  p.flush();
+  ASSERT_EQ(run.planned.segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(run.planned.segs[0].profile.v_exit, 0.4);
+  EXPECT_NEAR(run.planned.segs[1].profile.v_entry, 0.04, 1e-12);
+  EXPECT_DOUBLE_EQ(run.planned.segs[1].profile.v_exit, 0.4);
+  EXPECT_LE(run.card.kinematics().max_accel_ratio(), 1.001);
+  EXPECT_EQ(run.card.kinematics().violations(), 0u);
+  EXPECT_EQ(run.card.timing_violations(), 0u);
+}
+
+TEST(StartAfterStop, OnwardRightAfterASyncStartsAtTheRampSpeed) {
+  const Settings s = default_settings();
+  Collect out;
+  LookAheadPlanner p(s, out);
+  p.move(line(vec(0), vec(0, 0, 1), s));
+  p.flush();
+  p.move(line(vec(0, 0, 1), vec(0, 0, 1.5), s));
+  p.flush();
+  ASSERT_EQ(out.segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(out.segs[1].profile.v_entry, 0.4);
+}
+
+// A dwell lets the axis use its acceleration as well: Z reverses at its full ramp speed after
+// (0.8 - 0.44) / 16 = 22.5 ms, and after 10 ms at 0.04 + 16 x 0.01 = 0.2 in/s.
+TEST(StartAfterStop, ADwellBetweenLetsTheReversalStartFaster) {
+  const Settings s = default_settings();
+  const std::pair<double, double> cases[] = {{0.0, 0.04}, {0.01, 0.2}, {0.0225, 0.4}, {1.0, 0.4}};
+  for (const auto& [dwell, entry] : cases) {
+    SCOPED_TRACE(dwell);
+    CardRun run(s);
+    LookAheadPlanner p(s, run.tee);
+    p.move(line(vec(0), vec(0, 0, 1), s));
+    CanonMove wait;
+    wait.kind = MoveKind::Dwell;
+    wait.from = wait.to = vec(0, 0, 1);
+    wait.dwell_s = dwell;
+    p.move(wait);
+    p.move(line(vec(0, 0, 1), vec(0, 0, 0.5), s));
+    p.flush();
+    ASSERT_EQ(run.planned.segs.size(), 3u);
+    EXPECT_NEAR(run.planned.segs[2].profile.v_entry, entry, 1e-9);
+    EXPECT_LE(run.card.kinematics().max_accel_ratio(), 1.001);
+    EXPECT_EQ(run.card.kinematics().violations(), 0u);
+  }
+}
+
+// Each axis keeps its own jump. X and Y stop at 0.4 / sqrt 2 = 0.283 in/s each going +X +Y;
+// going back -X -Y each may start at 0.88 - 0.283 = 0.597 in/s, 0.845 along the path: the
+// ramp speed binds. Straight up instead, X and Y stop and Z has its whole 0.44 in/s.
+TEST(StartAfterStop, EachAxisKeepsItsOwnJump) {
+  const Settings s = default_settings();
+  Collect out;
+  LookAheadPlanner p(s, out);
+  p.move(line(vec(0), vec(1, 1), s));
+  p.flush();
+  p.move(line(vec(1, 1), vec(0.5, 0.5), s));
+  p.flush();
+  ASSERT_EQ(out.segs.size(), 2u);
+  EXPECT_DOUBLE_EQ(out.segs[1].profile.v_entry, 0.4);
+  const Vec6 stopped = vec(0.4, 0.4) / std::sqrt(2.0);
+  EXPECT_NEAR(start_after_stop(stopped, vec(-1, -1) / std::sqrt(2.0), 0, s),
+              (0.88 - 0.4 / std::sqrt(2.0)) * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(start_after_stop(stopped, vec(0, 0, 1), 0, s), 0.44, 1e-12);
 }
 
 // ---- junction and stop modes -------------------------------------------------------------

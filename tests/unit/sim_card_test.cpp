@@ -482,6 +482,19 @@ TEST(KinematicsMonitor, ConstantAccelerationGivesTheAccelRatio) {
   // The last window's mean velocity is just below the final 3 in/s.
   EXPECT_GT(m.velocity_ratio(0), 2.8 / 8);
   EXPECT_LE(m.velocity_ratio(0), 3.0 / 8);
+  EXPECT_EQ(m.violations(), 0u);
+}
+
+// From rest the first windows hold few steps and read up to about 1.5 % high (a train at
+// exactly 20 in/s^2 reads 1.014), so 90 % of the limit is safely within it.
+TEST(KinematicsMonitor, AccelerationWithinTheLimitIsNoViolation) {
+  const auto limits = default_limits();
+  KinematicsMonitor m(limits, kTick);
+  for (std::int64_t t : constant_accel(limits[0].steps_per_unit, 18, 0.3)) m.on_step(0, t, true);
+  m.finish();
+  EXPECT_NEAR(m.accel_ratio(0), 0.9, 0.05 * 0.9);
+  EXPECT_EQ(m.violations(), 0u);
+  EXPECT_TRUE(m.first_violations().empty());
 }
 
 TEST(KinematicsMonitor, ExcessiveAccelerationGivesARatioAboveOne) {
@@ -490,6 +503,13 @@ TEST(KinematicsMonitor, ExcessiveAccelerationGivesARatioAboveOne) {
   for (std::int64_t t : constant_accel(limits[0].steps_per_unit, 30, 0.2)) m.on_step(0, t, true);
   m.finish();
   EXPECT_NEAR(m.accel_ratio(0), 1.5, 0.075);
+  // Every window-to-window change is one: 0.2 s in windows of at least 10 ms.
+  EXPECT_GT(m.violations(), 5u);
+  ASSERT_FALSE(m.first_violations().empty());
+  const KinematicsMonitor::Violation& v = m.first_violations().front();
+  EXPECT_EQ(v.axis, 0);
+  EXPECT_TRUE(v.accel);
+  EXPECT_NEAR(v.ratio, 1.5, 0.075);
 }
 
 TEST(KinematicsMonitor, SpeedAboveTheLimitGivesARatioAboveOne) {
@@ -501,6 +521,11 @@ TEST(KinematicsMonitor, SpeedAboveTheLimitGivesARatioAboveOne) {
   EXPECT_NEAR(m.velocity_ratio(0), 10.0 / 8.0, 1.25 * 0.005);
   EXPECT_NEAR(m.velocity_ratio(4), 100.0 / 90.0, 1.11 * 0.005);
   EXPECT_GT(m.max_velocity_ratio(), 1.0);
+  // Every window of both axes: about 20 each in 0.2 s.
+  EXPECT_GE(m.violations(), 30u);
+  ASSERT_FALSE(m.first_violations().empty());
+  EXPECT_FALSE(m.first_violations().front().accel);
+  EXPECT_EQ(m.first_violations().front().axis, 0);
 }
 
 TEST(KinematicsMonitor, InstantReversalShowsAsALargeAcceleration) {

@@ -1,6 +1,8 @@
 // The %(n) table: every number maps to its own snapshot field, gaps are unknown, docs match.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <set>
@@ -8,7 +10,13 @@
 #include <string>
 #include <variant>
 
+#include "../support/recording_sink.hpp"
+#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/operator_io.hpp"
 #include "gantry/interp/system_variables.hpp"
+#include "gantry/lang/script.hpp"
+#include "gantry/machine/controller.hpp"
+#include "sim/sim_card.hpp"
 
 namespace gantry {
 namespace {
@@ -334,6 +342,142 @@ TEST(SystemVariablesTest, MarkdownHasOneRowPerVariable) {
   for (const SystemVariableInfo& v : system_variable_table()) {
     EXPECT_NE(md.find("\n| " + std::to_string(v.number) + " | "), std::string::npos) << v.number;
   }
+}
+
+// ---- Live: what a running file has set reaches %(n) ---------------------------------------
+
+// Runs part files through an interpreter whose motion goes nowhere, and reads &variables.
+class LiveSystemVariables : public ::testing::Test {
+ protected:
+  void run(const std::string& text) {
+    auto script = Script::from_text(text, "part.sbp");
+    ASSERT_TRUE(script->ok()) << format(script->errors().front());
+    interp().run(script);
+  }
+  std::vector<Diagnostic> check(const std::string& text) {
+    return interp().check(Script::from_text(text, "part.sbp"));
+  }
+  Value var(const std::string& name) {
+    const Value* v = interp().variable(name);
+    EXPECT_NE(v, nullptr) << name;
+    return v ? *v : Value();
+  }
+  Interpreter& interp() {
+    if (!interp_) interp_.emplace(settings, sink, io, store, InterpreterOptions{});
+    return *interp_;
+  }
+  Settings settings = default_settings();
+  RecordingSink sink;
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  std::optional<Interpreter> interp_;
+};
+
+TEST_F(LiveSystemVariables, OutputSwitchesReadAsTheFileSetThem) {
+  run("&before = %(101)\n"
+      "SO, 1, 1\n&one = %(101)\n"
+      "SO, 3, 1\nSO, 8, 1\nSO, 10, 1\nSO, 12, 1\n"
+      "&byte = %(100)\n&upper = %(135)\n&three = %(103)\n&eight = %(108)\n&two = %(102)\n"
+      "&ten = %(137)\n&eleven = %(138)\n&twelve = %(139)\n&nine = %(136)\n"
+      "SO, 1, 0\n&off = %(101)\n&byte_after = %(100)\n");
+  EXPECT_EQ(var("BEFORE").num(), 0);
+  EXPECT_EQ(var("ONE").num(), 1);
+  EXPECT_EQ(var("BYTE").num(), 1 + 4 + 128);  // outputs 1, 3 and 8: bits 0, 2 and 7
+  EXPECT_EQ(var("UPPER").num(), 2 + 8);       // outputs 10 and 12: bits 1 and 3
+  EXPECT_EQ(var("THREE").num(), 1);
+  EXPECT_EQ(var("EIGHT").num(), 1);
+  EXPECT_EQ(var("TWO").num(), 0);
+  EXPECT_EQ(var("NINE").num(), 0);
+  EXPECT_EQ(var("TEN").num(), 1);
+  EXPECT_EQ(var("ELEVEN").num(), 0);
+  EXPECT_EQ(var("TWELVE").num(), 1);
+  EXPECT_EQ(var("OFF").num(), 0);
+  EXPECT_EQ(var("BYTE_AFTER").num(), 4 + 128);
+}
+
+TEST_F(LiveSystemVariables, EveryOutputSwitchReadsItsOwnNumber) {
+  for (int n = 1; n <= 12; ++n) {
+    interp_.reset();
+    const int own = n <= 8 ? 100 + n : 127 + n;
+    std::string text = "SO, " + std::to_string(n) + ", 1\n";
+    for (int k : {101, 102, 103, 104, 105, 106, 107, 108, 136, 137, 138, 139, 100, 135})
+      text += "&V" + std::to_string(k) + " = %(" + std::to_string(k) + ")\n";
+    run(text);
+    for (int k : {101, 102, 103, 104, 105, 106, 107, 108, 136, 137, 138, 139})
+      EXPECT_EQ(var("V" + std::to_string(k)).num(), k == own ? 1 : 0)
+          << "SO " << n << ", %(" << k << ")";
+    EXPECT_EQ(var("V100").num(), n <= 8 ? 1 << (n - 1) : 0) << "SO " << n;
+    EXPECT_EQ(var("V135").num(), n > 8 ? 1 << (n - 9) : 0) << "SO " << n;
+  }
+}
+
+TEST_F(LiveSystemVariables, MotorsOffReadsEveryOutputOff) {
+  run("SO, 2, 1\nSO, 9, 1\n&on = %(100) + %(135)\nMO\n&off = %(100) + %(135)\n");
+  EXPECT_EQ(var("ON").num(), 2 + 1);
+  EXPECT_EQ(var("OFF").num(), 0);
+}
+
+TEST_F(LiveSystemVariables, SwitchFourModeIsTheLastSoFourMinusN) {
+  run("&first = %(109)\nSO, 4, -4\n&plain = %(109)\nSO, 4, -2\n&auto = %(109)\n");
+  EXPECT_EQ(var("FIRST").num(), -1);  // the shipped profile: on while a run moves the tool
+  EXPECT_EQ(var("PLAIN").num(), -4);
+  EXPECT_EQ(var("AUTO").num(), -2);
+}
+
+TEST_F(LiveSystemVariables, OutputModesFollowVn) {
+  // VN's fields 15-26 are the modes of outputs 1-12.
+  run("&before = %(111)\nVN, , , , , , , , , , , , , , , 5, 4, , , , , , , , , , 3\n"
+      "&one = %(111)\n&two = %(112)\n&three = %(113)\n&twelve = %(122)\n");
+  EXPECT_EQ(var("BEFORE").num(), 0);
+  EXPECT_EQ(var("ONE").num(), 5);
+  EXPECT_EQ(var("TWO").num(), 4);
+  EXPECT_EQ(var("THREE").num(), 0);
+  EXPECT_EQ(var("TWELVE").num(), 3);
+}
+
+// The system clock's local date and time, as %(146) and %(147) print them.
+std::pair<std::string, std::string> clock_text() {
+  const std::time_t now = std::time(nullptr);
+  std::tm t{};
+  localtime_r(&now, &t);
+  char date[16], time[16];
+  std::strftime(date, sizeof date, "%m/%d/%Y", &t);
+  std::strftime(time, sizeof time, "%H:%M:%S", &t);
+  return {date, time};
+}
+
+TEST_F(LiveSystemVariables, DateAndTimeAreTheLocalClockNow) {
+  const auto before = clock_text();
+  run("&d = %(146)\n&t = %(147)\n");
+  const auto after = clock_text();
+  const std::string d = var("D").str(), t = var("T").str();
+  EXPECT_TRUE(d == before.first || d == after.first) << d;
+  // Between the two readings (a run over midnight reads either side of it).
+  EXPECT_TRUE((before.second <= t && t <= after.second) || after.second < before.second) << t;
+  EXPECT_NE(d, "01/01/2000");
+}
+
+TEST_F(LiveSystemVariables, ElapsedTimeIsZeroInACheckWithNoMachine) {
+  const std::vector<Diagnostic> found =
+      check("MZ, 1\n&t = %(130)\nIF &t <> 0 THEN GOTO wrong\nEND\nwrong:\nMX, 99\n");
+  EXPECT_TRUE(found.empty()) << format(found.front());  // MX 99 would leave the table
+}
+
+// On the simulated card the machine's clock is virtual time: MZ, 1.5 at the move speed of
+// 0.5 in/s lasts 3 s and a little (its ramps start at 0.4 in/s), so %(130) reads 3 after it.
+TEST(LiveElapsedTime, IsTheMachineTimeOfTheMotionPlayedBeforeTheLine) {
+  const Settings settings = default_settings();
+  SimCard card(settings, false, {});
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  const Outcome o = c.run(
+      Script::from_text("&start = %(130)\nMZ, 1.5\n&t = %(130)\nJX, &t\nJY, &start\n", "part.sbp"));
+  ASSERT_TRUE(o) << o.reason;
+  c.wait();
+  EXPECT_EQ(c.state(), MachineState::Idle) << c.status().message;
+  EXPECT_DOUBLE_EQ(c.modal().position[0], 3);
+  EXPECT_DOUBLE_EQ(c.modal().position[1], 0);
 }
 
 }  // namespace

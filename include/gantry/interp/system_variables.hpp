@@ -96,9 +96,12 @@ struct MachineSnapshot {
   std::string file_path;                // absolute path of the innermost running file
   Vec6 file_offset = Vec6::Zero();      // FP offset applied to the file (X, Y, Z used)
   Vec6 file_proportion = Vec6::Ones();  // FP proportion (scale) of the file (X, Y, Z used)
-  double elapsed_seconds = 0.0;         // time since the top-level run started
+  double elapsed_seconds = 0.0;         // the machine's clock since the top-level run started
   DateTime now;                         // local date and time of the read
 };
+
+// The local calendar date and time of day now, from the system clock (%(146), %(147)).
+MachineSnapshot::DateTime local_date_time();
 
 // One row of the handbook's system-variable list.
 struct SystemVariableInfo {

@@ -149,6 +149,7 @@ class Controller {
   CanonMove keypad_move(const JogRequest& j) const;
   Vec6 played_machine(const Steps6& steps) const;
   Vec6 played_machine() const;    // the played counts now, in units
+  double elapsed_s() const;       // the card's clock since the activity began; takes m_
   MotionReport keypad_session();  // job thread: SK's wait, playing jogs
   void after_statement();         // job thread: single step, a new feed override
 

@@ -75,6 +75,9 @@ struct MotionReport {
   // motion after it was dropped; the tool came to rest at `machine`).
   std::optional<InputTrigger> fired;
   Vec6 latched = Vec6::Zero();
+  // The machine's clock: seconds of pulses (and dwells) played since the run began, on the
+  // card's pacer (virtual time on the simulated card, %(130)).
+  double elapsed_s = 0;
 };
 
 // Receives canonical moves in order. `flush` marks the end of the stream: nothing more will

@@ -29,6 +29,12 @@ double jump_limited_speed(const Vec6& u_in, const Vec6& u_out, const Settings& s
 // and stop modes start from rest.
 double rest_speed(const Vec6& unit, bool jog, const Settings& s);
 
+// The largest path speed at which a move along `u_out` may start from rest when the axes
+// stopped at velocities `stopped` (units/s, each within its corner jump) and have rested
+// `rest_s` seconds since: the stop's jump and the start's together stay within the corner
+// jump, plus what each axis could accelerate over the rest (derivation in the .cpp).
+double start_after_stop(const Vec6& stopped, const Vec6& u_out, double rest_s, const Settings& s);
+
 // The largest speed through the junction in the settings' planner mode, never above either
 // move's cruise speed. Every mode also keeps each axis's speed change within its corner jump
 // and, on a polyline that approximates a curve, the centripetal acceleration within the

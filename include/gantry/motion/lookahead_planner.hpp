@@ -63,9 +63,8 @@ class LookAheadPlanner : public MotionSink {
   // Sends the front block to `exit` with ramps of `jerk` (the profile's, unless a hold).
   void emit_front(double exit) { emit_front(exit, settings_.planner.jerk); }
   void emit_front(double exit, double jerk);
-  // Plans to rest after the last block and emits everything: ending at the ramp speed (SB3),
-  // or at 0 when something with no duration follows (an output switch).
-  void stop(bool to_zero = false);
+  // Plans to rest after the last block and emits everything, ending at the ramp speed (SB3).
+  void stop();
   Vec6 incoming_direction(const Vec6& at, const Vec6& fallback) const;
 
   Settings settings_;  // a copy: VR and VU change it mid-stream (settings_changed)
@@ -80,6 +79,10 @@ class LookAheadPlanner : public MotionSink {
   double stop_distance_ = 0;         // the longest stopping distance of any block seen
   std::deque<std::pair<Vec6, double>> trail_;  // recent path points and distance travelled
   double travelled_ = 0;
+  // The axes' velocities (units/s) as the last block sent ended, and the time rested since
+  // (dwells): a start from rest jumps on top of that stop's jump (start_after_stop).
+  Vec6 stop_velocity_ = Vec6::Zero();
+  double rested_s_ = 0;
   double planned_time_ = 0;
   size_t most_held_ = 0;
 };
