@@ -92,7 +92,25 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
     const int n = static_cast<int>(in) - 1;
     ctx_.sync();
     if (snapshot().inputs[n] == (state != 0)) return;
-    if (sink_.input_switches()) {
+    const bool live = sink_.input_switches().has_value();
+    if (options_.unattended_inputs) {
+      // Nobody is at the machine: only the simulated machine can answer, or the wait never ends.
+      const int on = state != 0;
+      const std::optional<Vec6> check_at =
+          live ? std::nullopt : std::optional<Vec6>(snapshot().table_base + state_.machine_origin);
+      if (!options_.unattended_inputs(n + 1, on, check_at))
+        fail(loc,
+             fmt::format("PAUSE UNTIL waits for input {0} to {1}, and nothing will {1} it: nobody "
+                         "is at the machine and the simulated machine has {2} for input {0}; give "
+                         "it one with --sim-input {0}={3}@SECONDS (at a machine time){4}, or run "
+                         "from a terminal",
+                         n + 1, on ? "close" : "open",
+                         live ? "no event still to come" : "no event, nor a switch where the tool rests", on,
+                         live ? "" : fmt::format(" or --sim-input {}={}@x>=POS (while X is there)",
+                                                 n + 1, on)));
+      if (!live) return;  // a check: the simulated machine answers, not a person
+    }
+    if (live) {
       // The live machine: it waits for the switch, in short dwells, so time passes on the
       // card (virtual time too) and a stop ends the wait.
       while ((*sink_.input_switches())[n] != (state != 0)) {
