@@ -233,17 +233,29 @@ void Interpreter::exec(const MsgBoxStmt& s, const SourceLoc& loc) {
 
 // FabMo's DIALOG: a message with OK/Cancel captions; one with only a cancel caption ends the
 // run once it is acknowledged.
+// TIMER=n closes it by itself after n seconds (FabMo's stock homing macro ends with one): the
+// message is shown and the machine waits that long, nobody asked.
 void Interpreter::exec(const DialogStmt& s, const SourceLoc& loc) {
   std::string ok, cancel;
+  std::optional<double> timer;
   for (const auto& [name, a] : s.options) {
     if (name == "OKTEXT")
       ok = value_of(a).to_string();
     else if (name == "CANCELTEXT")
       cancel = value_of(a).to_string();
+    else if (name == "TIMER")
+      timer = value_of(a).to_number(a.loc, "the DIALOG's TIMER");
     else if (name != "TITLE" && name != "DETAIL" && name != "NOBUTTON")
-      fail(a.loc, fmt::format("unknown DIALOG option {}; use OKTEXT, CANCELTEXT or TITLE", name));
+      fail(a.loc,
+           fmt::format("unknown DIALOG option {}; use OKTEXT, CANCELTEXT, TITLE or TIMER", name));
   }
   const std::string message = s.message.blank() ? "" : value_of(s.message).to_string();
+  if (timer) {
+    if (!(*timer >= 0)) fail(loc, fmt::format("the DIALOG's TIMER {} is not a time", *timer));
+    io_.print(message + "\n");
+    ctx_.dwell(*timer, loc);
+    return;
+  }
   if (!cancel.empty() && ok.empty()) {
     io_.choose(message, {cancel}, 0, "Gantry", loc);
     throw OperatorStop(
