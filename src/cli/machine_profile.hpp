@@ -21,9 +21,10 @@ struct MachineProfile {
 // (settings/profiles/, found from any directory) or a profile file; default: built in.
 void add_profile_option(CLI::App* cmd, std::string& profile);
 
-// Loads `profile_path` (a file, a shipped profile's name, or "" the built-in default) and the values file (`values_path`, or ""
-// for the profile's file in the config folder, which may not exist yet). On an error, prints
-// every error to stderr (naming the file, line and key) and returns false.
+// Loads `profile_path` (a file, a shipped profile's name, or "" the built-in default) and the
+// values file (`values_path`, or "" for the profile's file in the config folder, which may not
+// exist yet). On an error, prints every error to stderr (naming the file, line and key) and returns
+// false.
 bool load_machine_profile(const std::string& profile_path, const std::string& values_path,
                           MachineProfile& out);
 

@@ -118,7 +118,8 @@ struct RunArgs {
     if (level != 0 && level != 1) return bad("the state is 0 (open) or 1 (closed)");
     const int bit = bits.switch_bits[static_cast<size_t>(n - 1)];
     if (bit < 0)
-      return bad(fmt::format("input switch {} is not wired in this profile (inputs.switch_bits)", n));
+      return bad(
+          fmt::format("input switch {} is not wired in this profile (inputs.switch_bits)", n));
     const std::string when = e.substr(at + 1);
     const size_t axis = when.empty() ? std::string::npos
                                      : std::string("xyzabc").find(static_cast<char>(
@@ -134,8 +135,9 @@ struct RunArgs {
     if (std::from_chars(when.data(), end, value).ptr != end || value < 0)
       return bad("not a machine time in seconds");
     w.input_events.push_back({value, bit, level == 1});
-    std::stable_sort(w.input_events.begin(), w.input_events.end(),
-                     [](const SimInputEvent& a, const SimInputEvent& b) { return a.at_s < b.at_s; });
+    std::stable_sort(
+        w.input_events.begin(), w.input_events.end(),
+        [](const SimInputEvent& a, const SimInputEvent& b) { return a.at_s < b.at_s; });
     return true;
   }
 };
@@ -521,8 +523,9 @@ int main(int argc, char** argv) {
                       "Simulate the pulse producer stalling at this machine time, s");
   run_cmd->add_option("--sim-limit", run.limits,
                       "Simulate a limit switch: AXIS-=POS (low side) or AXIS+=POS (high side)");
-  run_cmd->add_option("--sim-probe-z", run.probe_z,
-                      "Simulate a probe surface at this Z (default: the profile's simulator.plate_z)");
+  run_cmd->add_option(
+      "--sim-probe-z", run.probe_z,
+      "Simulate a probe surface at this Z (default: the profile's simulator.plate_z)");
   run_cmd->add_option("--sim-input", run.sim_inputs,
                       "Simulate input switch N reading S: N=S@SECONDS from that machine time on, "
                       "or N=S@AXIS>=POS / AXIS<=POS while the axis is there");

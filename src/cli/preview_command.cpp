@@ -12,8 +12,8 @@
 #include "gantry/core/text_file.hpp"    // write_file_atomically
 #include "gantry/preview/material.hpp"  // carve, render_material
 #include "gantry/preview/render.hpp"    // render_lines, render_svg
-#include "machine_profile.hpp"            // add_profile_option
 #include "gantry/preview/toolpath.hpp"  // load_toolpath
+#include "machine_profile.hpp"          // add_profile_option
 #include "report.hpp"                   // to_json(Diagnostic)
 
 namespace gantry {

@@ -59,12 +59,12 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
       const char letter = static_cast<char>(std::toupper(kAxisLetters[i]));
       const std::string base =
           table[i] == target[i] ? "" : fmt::format(" (table base {}={:.4f})", letter, table[i]);
-      fail(loc, fmt::format("move to {}={:.4f}{} is outside the soft limits {:.4f} to {:.4f} {} "
-                            "(axes.{}.min/max in the profile); nothing was moved{}",
-                            letter, target[i], base, ax.min, ax.max, unit, kAxisLetters[i],
-                            interp_ ? other_tables(interp_->options().profile_name, settings_,
-                                                   table)
-                                    : ""));
+      fail(loc,
+           fmt::format(
+               "move to {}={:.4f}{} is outside the soft limits {:.4f} to {:.4f} {} "
+               "(axes.{}.min/max in the profile); nothing was moved{}",
+               letter, target[i], base, ax.min, ax.max, unit, kAxisLetters[i],
+               interp_ ? other_tables(interp_->options().profile_name, settings_, table) : ""));
     }
   }
   if (!std::isfinite(table.sum()))

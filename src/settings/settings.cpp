@@ -528,8 +528,7 @@ void read_profile(TableReader root, Settings& s) {
   // The simulated card's switches (optional: a real card's profile has none).
   TableReader sim = root.optional_table("simulator");
   for (int i = 0; i < kAxisCount; ++i)
-    s.simulator.home[i] =
-        sim.optional_number(std::string("home_") + kAxisLetters[i], {-1e9, 1e9});
+    s.simulator.home[i] = sim.optional_number(std::string("home_") + kAxisLetters[i], {-1e9, 1e9});
   s.simulator.plate_z = sim.optional_number("plate_z", {-1e9, 1e9});
   sim.finish();
   root.finish();

@@ -474,12 +474,12 @@ std::int64_t steps_of(const json& j, int axis) {
 
 // Where homing leaves each axis: the step where its switch closed, then backed off 0.25 in.
 struct Homed {
-  std::int64_t x = std::llround(std::floor(-1.5 * kStepsPerUnit[0]) +
-                                std::llround(0.25 * kStepsPerUnit[0]));
-  std::int64_t y = std::llround(std::floor(-1.0 * kStepsPerUnit[1]) +
-                                std::llround(0.25 * kStepsPerUnit[1]));
-  std::int64_t z = std::llround(std::ceil(0.75 * kStepsPerUnit[2]) -
-                                std::llround(0.25 * kStepsPerUnit[2]));
+  std::int64_t x =
+      std::llround(std::floor(-1.5 * kStepsPerUnit[0]) + std::llround(0.25 * kStepsPerUnit[0]));
+  std::int64_t y =
+      std::llround(std::floor(-1.0 * kStepsPerUnit[1]) + std::llround(0.25 * kStepsPerUnit[1]));
+  std::int64_t z =
+      std::llround(std::ceil(0.75 * kStepsPerUnit[2]) - std::llround(0.25 * kStepsPerUnit[2]));
 };
 
 // The least time homing can take: each axis searches its switch's distance at 1 in/s and
@@ -506,8 +506,7 @@ TEST_P(Homing, C3EndsBackedOffEachSwitchToTheStepInABoundedTime) {
   fs::remove(file);
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltInAndShipped, Homing,
-                         ::testing::Values("", "--macros parts/macros"));
+INSTANTIATE_TEST_SUITE_P(BuiltInAndShipped, Homing, ::testing::Values("", "--macros parts/macros"));
 
 // C2 makes the plate's top read its thickness: a move to Z 0.118 afterwards lands on the step
 // where the cutter touched it. Homed first, the plate is where it was on the table.
@@ -524,7 +523,8 @@ TEST(Zeroing, C2MakesThePlateTopReadItsThickness) {
 
 TEST(Zeroing, C2EndsLiftedClearOfThePlate) {
   const std::string file = part_file("zero_lift", "C2\n");
-  const json j = json::parse(gantry(fmt::format("run '{}' --json --macros parts/macros", file)).out);
+  const json j =
+      json::parse(gantry(fmt::format("run '{}' --json --macros parts/macros", file)).out);
   EXPECT_EQ(steps_of(j, 2), std::llround(std::floor(-2.0 * kStepsPerUnit[2])) +
                                 std::llround(1.0 * kStepsPerUnit[2]));
   fs::remove(file);

@@ -21,7 +21,7 @@ Settings load(const std::string& name) {
 
 // The tables issue 21 asks for, inch and millimetre, each one file.
 const std::vector<std::string> kTables = {
-    "shopbot-desktop",    "shopbot-desktop-max", "prsalpha-48x96", "prsalpha-60x120",
+    "shopbot-desktop",   "shopbot-desktop-max", "prsalpha-48x96", "prsalpha-60x120",
     "prsstandard-48x96", "prsstandard-60x120",  "handibot"};
 
 TEST(ShippedProfiles, EveryOneLoadsWithoutErrorAndHasItsSimulatedSwitches) {
@@ -97,9 +97,9 @@ TEST(ShippedProfiles, TheTablesThatHoldAPointAreThoseOfItsUnits) {
   Vec6 p = Vec6::Zero();
   p << 30, 10, 1, 0, 0, 0;
   const std::vector<std::string> inch = shipped_profiles_holding(p, Units::Inches);
-  EXPECT_EQ(inch, (std::vector<std::string>{"prsalpha-48x96", "prsalpha-60x120",
-                                            "prsstandard-48x96", "prsstandard-60x120",
-                                            "shopbot-desktop-max"}));
+  EXPECT_EQ(inch,
+            (std::vector<std::string>{"prsalpha-48x96", "prsalpha-60x120", "prsstandard-48x96",
+                                      "prsstandard-60x120", "shopbot-desktop-max"}));
   p << 30 * 25.4, 10 * 25.4, 25.4, 0, 0, 0;
   EXPECT_EQ(shipped_profiles_holding(p, Units::Millimetres).size(), inch.size());
   p << 100, 55, 1, 0, 0, 0;
