@@ -109,7 +109,6 @@ struct RunArgs {
     };
     const size_t eq = e.find('='), at = e.find('@');
     int n = 0, level = 0;
-    const char* end = e.data() + e.size();
     if (eq == std::string::npos || at != eq + 2 ||
         std::from_chars(e.data(), e.data() + eq, n).ptr != e.data() + eq ||
         std::from_chars(e.data() + eq + 1, e.data() + at, level).ptr != e.data() + at)
@@ -121,6 +120,7 @@ struct RunArgs {
       return bad(
           fmt::format("input switch {} is not wired in this profile (inputs.switch_bits)", n));
     const std::string when = e.substr(at + 1);
+    const char* end = when.data() + when.size();
     const size_t axis = when.empty() ? std::string::npos
                                      : std::string("xyzabc").find(static_cast<char>(
                                            std::tolower(static_cast<unsigned char>(when[0]))));

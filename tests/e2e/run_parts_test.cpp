@@ -553,7 +553,9 @@ TEST(PauseUntil, NothingToCloseTheInputIsRefusedAtItsLineBeforeAnythingMoves) {
               std::string::npos)
         << text;
     EXPECT_NE(text.find("--sim-input 3=1@SECONDS"), std::string::npos) << text;
-    if (std::string(how).find("run") == 0) EXPECT_EQ(steps_of(json::parse(r.out), 0), 0);
+    if (std::string(how).find("run") == 0) {
+      EXPECT_EQ(steps_of(json::parse(r.out), 0), 0);
+    }
   }
   fs::remove(file);
 }
