@@ -57,7 +57,7 @@ TABLES = {
         move_z=(1.5, "D"), jog_xy=(6.0, "D"), jog_z=(3.0, "D"), home_fast=(2.0, "chosen"))),
     "handibot": ("Handibot 6x8", dict(
         x=(6, "H"), y=(8, "H"), z=(4.0, "chosen"), xy_spu=(916.7324, "chosen"),
-        z_spu=(1018.5916, "chosen"), xy_max=(6.0, "F"), z_max=(4.0, "chosen"),
+        z_spu=(1018.5916, "chosen"), xy_max=(6.0, "F"), z_max=(6.0, "chosen"),
         xy_acc=(15.0, "chosen"), z_acc=(16.0, "chosen"), move_xy=(2.0, "F"),
         move_z=(0.5, "chosen"), jog_xy=(6.0, "F"), jog_z=(3.0, "chosen"),
         home_fast=(1.0, "chosen"))),

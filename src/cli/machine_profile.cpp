@@ -29,7 +29,9 @@ bool load_machine_profile(const std::string& profile_arg, const std::string& val
   std::string profile_path;
   if (!profile_arg.empty()) {
     const std::optional<std::string> found = resolve_profile(profile_arg);
-    if (!found) {
+    const bool a_path = profile_arg.find('/') != std::string::npos ||
+                        std::filesystem::path(profile_arg).extension() == ".toml";
+    if (!found && !a_path) {
       std::string names;
       for (const std::string& n : shipped_profile_names()) names += "\n  " + n;
       fmt::print(stderr,
@@ -38,7 +40,7 @@ bool load_machine_profile(const std::string& profile_arg, const std::string& val
                  profile_arg, shipped_profiles_dir(), names);
       return false;
     }
-    profile_path = *found;
+    profile_path = found.value_or(profile_arg);  // a missing file: the loader says so
   }
   out.name = profile_path.empty() ? "default" : std::filesystem::path(profile_path).stem().string();
   const std::optional<std::string> text = profile_path.empty()

@@ -650,7 +650,7 @@ SettingsLoad load_settings_file(const std::string& path) {
   if (!text) {
     SettingsLoad out;
     out.errors.push_back({file_loc(path), Severity::Error,
-                          "cannot open the settings file; check the path (--settings) and its "
+                          "cannot open the settings file; check the path (--profile) and its "
                           "permissions"});
     return out;
   }

@@ -614,6 +614,32 @@ TEST(Profiles, AShippedProfileIsFoundByNameFromAnyDirectory) {
   fs::remove(file);
 }
 
+// FabMo's Handibot plate macro (C77) on the shipped Handibot profile runs to its end: it drives
+// Z to its top, touches the plate twice and records the second touch (working Z, zeroed at the
+// first) as the plate's height. FabMo runs with soft limits off (tests/data/fabmo/
+// no_soft_limits.toml). With the plate's top at Z 2.0 both touches are at the first step at or
+// below it, so the height reads 0 and Z ends 0.5 above that step.
+TEST(Corpus, FabmoPlateMacroTouchesThePlateOnTheHandibot) {
+  const fs::path corpus = kSource.parent_path() / "shared" / "corpus";
+  if (!fs::exists(corpus)) GTEST_SKIP() << "no shared/corpus beside the repository";
+  const fs::path store = fs::temp_directory_path() / fmt::format("gantry_c77_{}.json", getpid());
+  fs::copy_file(kSource / "tests/data/fabmo/macro_201_variables.json", store,
+                fs::copy_options::overwrite_existing);
+  const Result r = gantry(fmt::format(
+      "run '{}' --profile handibot --yes --json --persistent '{}' --values "
+      "tests/data/fabmo/no_soft_limits.toml --sim-probe-z 2",
+      (corpus / "fabmo_handibot2_macro_77.sbp").string(), store.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const std::int64_t touch = std::llround(std::floor(2.0 * kStepsPerUnit[2]));
+  EXPECT_EQ(steps_of(j, 2), touch + std::llround(0.5 * kStepsPerUnit[2]));
+  // The Handibot profile has the Desktop's unit values. M2, 6, 0 takes it to the plate's place.
+  EXPECT_EQ(steps_of(j, 0), std::llround(6 * kStepsPerUnit[0]));
+  std::ifstream in(store);
+  EXPECT_EQ(json::parse(in)["variables"]["ZZEROPLATETHICKNESS"], 0);
+  fs::remove(store);
+}
+
 TEST(Cli, VersionAndHelp) {
   const Result v = gantry("--version");
   EXPECT_EQ(v.exit_code, 0);
