@@ -99,19 +99,19 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
       const std::optional<Vec6> check_at =
           live ? std::nullopt : std::optional<Vec6>(snapshot().table_base + state_.machine_origin);
       if (!options_.unattended_inputs(n + 1, on, check_at))
-        fail(
-            loc,
-            fmt::format("PAUSE UNTIL waits for input {0} to {1}, and nothing will {1} it: nobody "
-                        "is at the machine, and the simulated machine has no event{2} for input "
-                        "{0}{3}; give it one with --sim-input {0}={4}@SECONDS (at a machine "
-                        "time){5}, or run from a terminal",
-                        n + 1, on ? "close" : "open", live ? " still to come" : "",
-                        live ? "" : fmt::format(", nor a switch that {}s it where the tool rests",
-                                                on ? "close" : "open"),
-                        on,
-                        live ? ""
-                             : fmt::format(" or --sim-input {}={}@x>=POS (while X is there)",
-                                           n + 1, on)));
+        fail(loc,
+             fmt::format(
+                 "PAUSE UNTIL waits for input {0} to {1}, and nothing will {1} it: nobody "
+                 "is at the machine, and the simulated machine has no event{2} for input "
+                 "{0}{3}; give it one with --sim-input {0}={4}@SECONDS (at a machine "
+                 "time){5}, or run from a terminal",
+                 n + 1, on ? "close" : "open", live ? " still to come" : "",
+                 live ? ""
+                      : fmt::format(", nor a switch that {}s it where the tool rests",
+                                    on ? "close" : "open"),
+                 on,
+                 live ? ""
+                      : fmt::format(" or --sim-input {}={}@x>=POS (while X is there)", n + 1, on)));
       if (!live) return;  // a check: the simulated machine answers, not a person
     }
     if (live) {

@@ -625,10 +625,10 @@ TEST(Corpus, FabmoPlateMacroTouchesThePlateOnTheHandibot) {
   const fs::path store = fs::temp_directory_path() / fmt::format("gantry_c77_{}.json", getpid());
   fs::copy_file(kSource / "tests/data/fabmo/macro_201_variables.json", store,
                 fs::copy_options::overwrite_existing);
-  const Result r = gantry(fmt::format(
-      "run '{}' --profile handibot --yes --json --persistent '{}' --values "
-      "tests/data/fabmo/no_soft_limits.toml --sim-probe-z 2",
-      (corpus / "fabmo_handibot2_macro_77.sbp").string(), store.string()));
+  const Result r =
+      gantry(fmt::format("run '{}' --profile handibot --yes --json --persistent '{}' --values "
+                         "tests/data/fabmo/no_soft_limits.toml --sim-probe-z 2",
+                         (corpus / "fabmo_handibot2_macro_77.sbp").string(), store.string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = json::parse(r.out);
   const std::int64_t touch = std::llround(std::floor(2.0 * kStepsPerUnit[2]));
