@@ -83,6 +83,8 @@ void SimCard::update_switches(int axis) {
                                     : at_of(i) <= *world_.home_switch[i]);
     set_input(bit, home, false);
   }
+  for (const SimPositionInput& p : world_.position_inputs)
+    if (p.axis == axis) set_input(p.bit, (p.above ? at >= p.at : at <= p.at) == p.high, false);
   if (axis == 2 && world_.probe_z) set_input(input_bits_.probe_bit, at <= *world_.probe_z, false);
   if (axis <= 2 && world_.probe_surface)
     set_input(input_bits_.probe_bit, at_of(2) <= world_.probe_surface(at_of(0), at_of(1)), false);

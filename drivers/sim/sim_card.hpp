@@ -56,6 +56,11 @@ class SimCard : public Card {
   // Exact: every word's inputs are compared, and a `stop` bit stops the card at its word.
   void watch(const InputWatch& w) override;
   std::optional<InputEdge> watch_fired() override { return fired_; }
+  // Whether an input event still to come sets `bit` to `high` (the tool at rest: nothing
+  // else here changes an input).
+  bool input_may_change(int bit, bool high) const {
+    return world_.can_set(bit, high, input_bits_, time_s(), std::nullopt);
+  }
 
   const Steps6& steps() const { return steps_; }     // decoded from the step and dir lines
   std::uint32_t last_word() const { return prev_; }  // the output lines now

@@ -13,7 +13,7 @@ void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::stri
   cmd->add_option("--card", a.card, "Card to run on (default: the profile's card.type)")
       ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
   cmd->add_flag("--realtime", a.realtime, realtime_help);
-  cmd->add_option("--profile,--settings", a.profile, "Machine profile (TOML); default: built-in");
+  add_profile_option(cmd, a.profile);
   cmd->add_option("--values", a.values,
                   "File of the V commands' values (TOML); default: the profile's in "
                   "~/.config/gantry/values");
@@ -58,6 +58,7 @@ std::unique_ptr<Card> open_live_card(const LiveMachineArgs& a, const Settings& s
   CardChoice choice;
   choice.type = a.card.empty() ? settings.card.type : a.card;
   choice.realtime = a.realtime;
+  choice.world = simulated_world(settings);  // the profile's switches and Z zero plate
   *type = choice.type;
   std::string why;
   std::unique_ptr<Card> card = open_card(choice, settings, &why);

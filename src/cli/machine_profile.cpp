@@ -8,15 +8,41 @@
 #include <optional>
 
 #include "gantry/core/text_file.hpp"        // read_text_file
+#include "gantry/settings/profiles.hpp"     // resolve_profile, shipped_profile_names
 #include "gantry/settings/values_file.hpp"  // parse_settings with values, default_values_path
 
 namespace gantry {
 
-bool load_machine_profile(const std::string& profile_path, const std::string& values_path,
+void add_profile_option(CLI::App* cmd, std::string& profile) {
+  std::string names;
+  for (const std::string& n : shipped_profile_names()) names += (names.empty() ? "" : ", ") + n;
+  cmd->add_option("--profile,--settings", profile,
+                  "Machine profile: a shipped one by name (" + names +
+                      "; docs/settings.md) or a TOML file; default: built in");
+}
+
+bool load_machine_profile(const std::string& profile_arg, const std::string& values_path,
                           MachineProfile& out) {
   auto print_errors = [](const std::vector<Diagnostic>& errors) {
     for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));
   };
+  std::string profile_path;
+  if (!profile_arg.empty()) {
+    const std::optional<std::string> found = resolve_profile(profile_arg);
+    const bool a_path = profile_arg.find('/') != std::string::npos ||
+                        std::filesystem::path(profile_arg).extension() == ".toml";
+    if (!found && !a_path) {
+      std::string names;
+      for (const std::string& n : shipped_profile_names()) names += "\n  " + n;
+      fmt::print(stderr,
+                 "{}: error: no such profile file, and no shipped profile of that name; give a "
+                 "TOML file or one of the shipped profiles (in {}):{}\n",
+                 profile_arg, shipped_profiles_dir(), names);
+      return false;
+    }
+    profile_path = found.value_or(profile_arg);  // a missing file: the loader says so
+  }
+  out.name = profile_path.empty() ? "default" : std::filesystem::path(profile_path).stem().string();
   const std::optional<std::string> text = profile_path.empty()
                                               ? std::optional<std::string>(default_profile_text())
                                               : read_text_file(profile_path);

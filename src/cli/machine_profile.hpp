@@ -2,6 +2,7 @@
 // the operator's values file laid over it.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 
 #include "gantry/settings/settings.hpp"  // Settings
@@ -13,11 +14,17 @@ struct MachineProfile {
   Settings settings;  // with the values
   std::string values_path;
   std::string path;  // of the profile; "" the built-in default
+  std::string name;  // for messages: the file's name without .toml, or "default"
 };
 
-// Loads `profile_path` ("" the built-in default) and the values file (`values_path`, or ""
-// for the profile's file in the config folder, which may not exist yet). On an error, prints
-// every error to stderr (naming the file, line and key) and returns false.
+// --profile NAME|PATH (--settings, its older name, too): a shipped profile's name
+// (settings/profiles/, found from any directory) or a profile file; default: built in.
+void add_profile_option(CLI::App* cmd, std::string& profile);
+
+// Loads `profile_path` (a file, a shipped profile's name, or "" the built-in default) and the
+// values file (`values_path`, or "" for the profile's file in the config folder, which may not
+// exist yet). On an error, prints every error to stderr (naming the file, line and key) and returns
+// false.
 bool load_machine_profile(const std::string& profile_path, const std::string& values_path,
                           MachineProfile& out);
 

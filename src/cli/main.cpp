@@ -45,21 +45,39 @@ void describe(const MachineProfile& p, InterpreterOptions& o) {
   o.profile = &p.bare;
   o.profile_path = p.path;
   o.values_path = p.values_path;
+  o.profile_name = p.name;
+}
+
+// With nobody at the simulated machine: what its events and switches do to an input while
+// the tool rests (PAUSE UNTIL). `sim`: the live card, which knows which events are still to
+// come; a check (`check_at` given) counts every event, and the switches where the tool is.
+std::function<bool(int, bool, const std::optional<Vec6>&)> unattended_inputs(
+    const SimWorld& world, const InputSettings& bits, const SimCard* sim = nullptr) {
+  return [world, bits, sim](int n, bool closed, const std::optional<Vec6>& check_at) {
+    const int bit = bits.switch_bits[static_cast<size_t>(n - 1)];
+    if (!check_at && sim) return sim->input_may_change(bit, closed);
+    return world.can_set(bit, closed, bits, 0, check_at);
+  };
 }
 
 struct RunArgs {
-  std::string file, settings, card;  // card: empty = the profile's
+  std::string file, profile, card;  // card: empty = the profile's
   bool json = false, realtime = false;
   std::string trace;                         // --trace FILE: the simulated card's pin trace
   std::optional<double> estop_at, stall_at;  // simulated operator and producer
   std::optional<double> probe_z;
   std::vector<std::string> limits;  // AXIS-=POS or AXIS+=POS: simulated limit switches
+  std::vector<std::string> sim_inputs;  // N=S@SECONDS or N=S@AXIS>=POS / AXIS<=POS
 
-  // The simulated machine's switches and events; false (after saying why) on a bad --sim-limit.
-  bool world(SimWorld& w) const {
+  // The simulated machine's switches and events: the profile's ([simulator]) and the options';
+  // false (after saying why) on a bad --sim-limit or --sim-input.
+  bool world(SimWorld& w, const Settings& settings) const {
+    w = simulated_world(settings);
     w.estop_at_s = estop_at;
     w.stall_at_s = stall_at;
-    w.probe_z = probe_z;
+    if (probe_z) w.probe_z = probe_z;
+    for (const std::string& e : sim_inputs)
+      if (!add_sim_input(e, settings.inputs, w)) return false;
     for (const std::string& l : limits) {
       const size_t eq = l.find('=');
       const std::string axes = "xyzabc";
@@ -75,6 +93,51 @@ struct RunArgs {
       }
       (l[1] == '-' ? w.min_switch : w.max_switch)[axis] = pos;
     }
+    return true;
+  }
+
+  // --sim-input N=S@SECONDS (input switch N reads S from that machine time on) or
+  // N=S@AXIS>=POS / AXIS<=POS (it reads S while the axis is there, the other level elsewhere).
+  static bool add_sim_input(const std::string& e, const InputSettings& bits, SimWorld& w) {
+    auto bad = [&](const std::string& why) {
+      fmt::print(stderr,
+                 "error: --sim-input {}: {}; write N=S@SECONDS (input switch N, 1-12, reads S, 0 "
+                 "or 1, from that machine time on) or N=S@AXIS>=POS / N=S@AXIS<=POS (while the "
+                 "axis is there), e.g. --sim-input 5=1@2.5 or --sim-input 3=1@x<=0\n",
+                 e, why);
+      return false;
+    };
+    const size_t eq = e.find('='), at = e.find('@');
+    int n = 0, level = 0;
+    if (eq == std::string::npos || at != eq + 2 ||
+        std::from_chars(e.data(), e.data() + eq, n).ptr != e.data() + eq ||
+        std::from_chars(e.data() + eq + 1, e.data() + at, level).ptr != e.data() + at)
+      return bad("not of that form");
+    if (n < 1 || n > 12) return bad(fmt::format("there is no input switch {}", n));
+    if (level != 0 && level != 1) return bad("the state is 0 (open) or 1 (closed)");
+    const int bit = bits.switch_bits[static_cast<size_t>(n - 1)];
+    if (bit < 0)
+      return bad(
+          fmt::format("input switch {} is not wired in this profile (inputs.switch_bits)", n));
+    const std::string when = e.substr(at + 1);
+    const char* end = when.data() + when.size();
+    const size_t axis = when.empty() ? std::string::npos
+                                     : std::string("xyzabc").find(static_cast<char>(
+                                           std::tolower(static_cast<unsigned char>(when[0]))));
+    double value = 0;
+    if (axis != std::string::npos) {
+      const bool above = when.compare(1, 2, ">=") == 0;
+      if (!above && when.compare(1, 2, "<=") != 0) return bad("the position needs >= or <=");
+      if (std::from_chars(when.data() + 3, end, value).ptr != end) return bad("not a position");
+      w.position_inputs.push_back({bit, level == 1, static_cast<int>(axis), value, above});
+      return true;
+    }
+    if (std::from_chars(when.data(), end, value).ptr != end || value < 0)
+      return bad("not a machine time in seconds");
+    w.input_events.push_back({value, bit, level == 1});
+    std::stable_sort(
+        w.input_events.begin(), w.input_events.end(),
+        [](const SimInputEvent& a, const SimInputEvent& b) { return a.at_s < b.at_s; });
     return true;
   }
 };
@@ -147,11 +210,16 @@ struct CheckedFile {
 
 // False (after saying why) when the profile or an --input is malformed. `estimate`: the
 // check also plans the motion and gives the cycle time, answering no question itself.
+// Nobody is at a check: on the simulated card, its machine answers PAUSE UNTIL or nothing does.
 bool load_and_check(const std::string& file, const std::string& settings_path,
                     const LanguageArgs& lang, CheckedFile& out, bool estimate = false) {
   if (!load_machine_profile(settings_path, lang.values, out.profile)) return false;
   if (!lang.job_options(out.profile.settings, out.opt)) return false;
   describe(out.profile, out.opt.interpreter);
+  const Settings& settings = out.profile.settings;
+  if (settings.card.type == "sim")
+    out.opt.interpreter.unattended_inputs =
+        unattended_inputs(simulated_world(settings), settings.inputs);
   if (estimate) out.opt.operator_present = false;  // --yes and --input answer
   out.script = Script::load(file);
   out.found = check_program(out.script, out.profile.settings, lang.store(), out.opt, true,
@@ -162,7 +230,7 @@ bool load_and_check(const std::string& file, const std::string& settings_path,
 int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   MachineProfile profile;
   RunReport report;
-  if (!load_machine_profile(a.settings, lang.values, profile)) return 1;
+  if (!load_machine_profile(a.profile, lang.values, profile)) return 1;
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
@@ -182,7 +250,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   choice.realtime = a.realtime;
   choice.trace = a.trace;
   opt.interpreter.warn_before_motion = plays_in_real_time(choice.type, choice.realtime);
-  if (!a.world(choice.world)) return 1;
+  if (!a.world(choice.world, settings)) return 1;
   std::string why;
   const std::unique_ptr<Card> card = open_card(choice, settings, &why);
   if (!card) {
@@ -190,6 +258,9 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
     return 1;
   }
   auto* sim = dynamic_cast<SimCard*>(card.get());  // the simulated card reports more
+  // Nobody at the simulated machine: its events and switches answer PAUSE UNTIL, or nothing.
+  if (sim && !interactive)
+    opt.interpreter.unattended_inputs = unattended_inputs(choice.world, settings.inputs, sim);
   if (!a.json)
     fmt::print(stderr, "gantry: running {} on the {} card, profile \"{}\"\n", a.file,
                sim ? "simulated" : choice.type, settings.name);
@@ -433,7 +504,7 @@ int main(int argc, char** argv) {
   CLI::App* run_cmd = app.add_subcommand("run", "Run a part file on the card");
   run_cmd->add_option("file", run.file, "Part file (.sbp, or G-code: .nc .tap .gcode .ngc)")
       ->required();
-  run_cmd->add_option("--settings", run.settings, "Machine profile (TOML); default: built-in");
+  add_profile_option(run_cmd, run.profile);
   run_cmd->add_option("--card", run.card, "Card to run on (default: the profile's card.type)")
       ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
   run_cmd->add_flag("--json", run.json, "Print the report as one JSON object on stdout");
@@ -444,7 +515,12 @@ int main(int argc, char** argv) {
                       "Simulate the pulse producer stalling at this machine time, s");
   run_cmd->add_option("--sim-limit", run.limits,
                       "Simulate a limit switch: AXIS-=POS (low side) or AXIS+=POS (high side)");
-  run_cmd->add_option("--sim-probe-z", run.probe_z, "Simulate a probe surface at this Z");
+  run_cmd->add_option(
+      "--sim-probe-z", run.probe_z,
+      "Simulate a probe surface at this Z (default: the profile's simulator.plate_z)");
+  run_cmd->add_option("--sim-input", run.sim_inputs,
+                      "Simulate input switch N reading S: N=S@SECONDS from that machine time on, "
+                      "or N=S@AXIS>=POS / AXIS<=POS while the axis is there");
   LanguageArgs run_lang, check_lang, moves_lang;
   run_lang.add_to(run_cmd);
   run_cmd
@@ -458,7 +534,7 @@ int main(int argc, char** argv) {
   std::string check_file, check_settings;
   CLI::App* check_cmd = app.add_subcommand("check", "Check a part file without motion");
   check_cmd->add_option("file", check_file, "Part file (.sbp, or G-code)")->required();
-  check_cmd->add_option("--settings", check_settings, "Machine profile (TOML)");
+  add_profile_option(check_cmd, check_settings);
   check_lang.add_to(check_cmd);
   check_cmd->add_option("--budget", check_lang.budget,
                         "Statements a check may run before it "
@@ -467,7 +543,7 @@ int main(int argc, char** argv) {
   std::string moves_file, moves_settings, moves_format = "text";
   CLI::App* moves_cmd = app.add_subcommand("moves", "Print the canonical moves of a part file");
   moves_cmd->add_option("file", moves_file, "Part file (.sbp, or G-code)")->required();
-  moves_cmd->add_option("--settings", moves_settings, "Machine profile (TOML)");
+  add_profile_option(moves_cmd, moves_settings);
   moves_cmd->add_option("--format", moves_format, "text or jsonl")
       ->check(CLI::IsMember({"text", "jsonl"}));
   std::string moves_svg_file;
@@ -485,7 +561,7 @@ int main(int argc, char** argv) {
   CLI::App* estimate_cmd =
       app.add_subcommand("estimate", "Predict a part file's cycle time without running it");
   estimate_cmd->add_option("file", estimate_file, "Part file (.sbp, or G-code)")->required();
-  estimate_cmd->add_option("--settings", estimate_settings, "Machine profile (TOML)");
+  add_profile_option(estimate_cmd, estimate_settings);
   estimate_cmd->add_flag("--json", estimate_json, "Print the estimate as one JSON object");
   estimate_lang.add_to(estimate_cmd);
   estimate_cmd
@@ -498,7 +574,7 @@ int main(int argc, char** argv) {
       "export-gcode", "Write a part file's canonical moves as G-code for another controller");
   export_cmd->add_option("file", export_file, "Part file (.sbp, or G-code)")->required();
   export_cmd->add_option("-o,--output", export_out, "The G-code file to write; default: stdout");
-  export_cmd->add_option("--settings", export_settings, "Machine profile (TOML)");
+  add_profile_option(export_cmd, export_settings);
   export_lang.add_to(export_cmd);
 
   std::string commands_group;

@@ -13,6 +13,7 @@
 #include "gantry/preview/material.hpp"  // carve, render_material
 #include "gantry/preview/render.hpp"    // render_lines, render_svg
 #include "gantry/preview/toolpath.hpp"  // load_toolpath
+#include "machine_profile.hpp"          // add_profile_option
 #include "report.hpp"                   // to_json(Diagnostic)
 
 namespace gantry {
@@ -45,7 +46,7 @@ CLI::App* add_preview_command(CLI::App& app, PreviewArgs& a) {
       "Draw a part file's toolpath to a PNG or SVG file, without a display or a machine");
   cmd->add_option("file", a.file, "Part file (.sbp)")->required();
   cmd->add_option("-o,--output", a.output, "Picture to write: NAME.png or NAME.svg")->required();
-  cmd->add_option("--settings", a.settings, "Machine profile (TOML)");
+  add_profile_option(cmd, a.settings);
   cmd->add_option("--view", a.view, "top, iso, front or side")
       ->check(CLI::IsMember({"top", "iso", "front", "side"}));
   cmd->add_option("--size", a.size, "Picture size in pixels, WxH (16 to 8192 each)");

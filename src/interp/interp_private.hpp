@@ -37,9 +37,14 @@ class Interpreter::GatedSink : public MotionSink {
  public:
   explicit GatedSink(MotionSink& out) : out_(out) {}
   void move(const CanonMove& m) override {
+    touched.reset();
     if (!closed) out_.move(m);
   }
   void flush() override { out_.flush(); }
+  // Without a machine (a check) a probe is taken to reach its target and to touch there: its
+  // input reads as the probe asked (closed, or open for G38.4) until the next move, so a file
+  // follows the path of a probe that found its switch.
+  std::optional<std::pair<int, bool>> touched;
   void settings_changed(const Settings& s) override {
     if (closed)
       changed = true;

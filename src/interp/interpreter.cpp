@@ -15,12 +15,33 @@
 #include "gantry/cuts/passes.hpp"            // tabs on plain moves
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
 #include "gantry/motion/arc_chords.hpp"      // arc_to under an uneven FP scale
+#include "gantry/settings/profiles.hpp"      // shipped_profiles_holding
 #include "interp_private.hpp"                // Frame, UserFile
 #include "persistent_path.hpp"               // describe_path
 
 namespace gantry {
 
 // ---- CommandContext -------------------------------------------------------------------
+
+namespace {
+
+// "; it is outside the table of profile 'shopbot-desktop' (24 x 18 x 5.5 in); it fits:
+// prsalpha-48x96, ..." for a soft-limit message (the table: X by Y by Z's height above 0): the
+// shipped profiles in the same units whose soft limits hold the point's X, Y and Z. "" when no
+// profile is named.
+std::string other_tables(const std::string& profile, const Settings& s, const Vec6& table) {
+  if (profile.empty()) return "";
+  auto span = [&](int i) { return s.axes[i].max - s.axes[i].min; };
+  std::string fits;
+  for (const std::string& name : shipped_profiles_holding(table, s.units))
+    if (name != profile) fits += (fits.empty() ? "" : ", ") + name;
+  return fmt::format("; it is outside the table of profile '{}' ({:g} x {:g} x {:g} {}); {}",
+                     profile, span(0), span(1), s.axes[2].max, units_name(s.units),
+                     fits.empty() ? "no shipped profile's table holds it"
+                                  : "it fits: " + fits + " (--profile NAME)");
+}
+
+}  // namespace
 
 void CommandContext::check_reach(const Vec6& point, const SourceLoc& loc) const {
   check_working(transform_.to_machine(point), loc);
@@ -39,9 +60,12 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
       const char letter = static_cast<char>(std::toupper(kAxisLetters[i]));
       const std::string base =
           table[i] == target[i] ? "" : fmt::format(" (table base {}={:.4f})", letter, table[i]);
-      fail(loc, fmt::format("move to {}={:.4f}{} is outside the soft limits {:.4f} to {:.4f} {} "
-                            "(axes.{}.min/max in the profile); nothing was moved",
-                            letter, target[i], base, ax.min, ax.max, unit, kAxisLetters[i]));
+      fail(loc,
+           fmt::format(
+               "move to {}={:.4f}{} is outside the soft limits {:.4f} to {:.4f} {} "
+               "(axes.{}.min/max in the profile); nothing was moved{}",
+               letter, target[i], base, ax.min, ax.max, unit, kAxisLetters[i],
+               interp_ ? other_tables(interp_->options().profile_name, settings_, table) : ""));
     }
   }
   if (!std::isfinite(table.sum()))
@@ -476,6 +500,7 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
   state_.speeds = speeds;
   const std::optional<MotionReport> r = sync();
   const bool hit = r && r->fired;
+  if (!r) interp_->gated_sink_->touched = {{input, closing}};
   if (hit) {
     // It came to rest a little past the point where the switch closed: back there. The
     // axes the probe did not move keep their exact locations.
@@ -1287,7 +1312,10 @@ MachineSnapshot Interpreter::snapshot() const {
     m.file_offset = f.transform.origin;
     m.file_proportion = f.transform.scale;
   }
-  if (std::optional<std::array<bool, 12>> in = sink_.input_switches()) m.inputs = *in;
+  if (std::optional<std::array<bool, 12>> in = sink_.input_switches())
+    m.inputs = *in;
+  else if (const auto& touched = gated_sink_->touched)
+    m.inputs[static_cast<size_t>(touched->first - 1)] = touched->second;
   return m;
 }
 

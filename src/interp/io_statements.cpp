@@ -92,7 +92,29 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
     const int n = static_cast<int>(in) - 1;
     ctx_.sync();
     if (snapshot().inputs[n] == (state != 0)) return;
-    if (sink_.input_switches()) {
+    const bool live = sink_.input_switches().has_value();
+    if (options_.unattended_inputs) {
+      // Nobody is at the machine: only the simulated machine can answer, or the wait never ends.
+      const int on = state != 0;
+      const std::optional<Vec6> check_at =
+          live ? std::nullopt : std::optional<Vec6>(snapshot().table_base + state_.machine_origin);
+      if (!options_.unattended_inputs(n + 1, on, check_at))
+        fail(loc,
+             fmt::format(
+                 "PAUSE UNTIL waits for input {0} to {1}, and nothing will {1} it: nobody "
+                 "is at the machine, and the simulated machine has no event{2} for input "
+                 "{0}{3}; give it one with --sim-input {0}={4}@SECONDS (at a machine "
+                 "time){5}, or run from a terminal",
+                 n + 1, on ? "close" : "open", live ? " still to come" : "",
+                 live ? ""
+                      : fmt::format(", nor a switch that {}s it where the tool rests",
+                                    on ? "close" : "open"),
+                 on,
+                 live ? ""
+                      : fmt::format(" or --sim-input {}={}@x>=POS (while X is there)", n + 1, on)));
+      if (!live) return;  // a check: the simulated machine answers, not a person
+    }
+    if (live) {
       // The live machine: it waits for the switch, in short dwells, so time passes on the
       // card (virtual time too) and a stop ends the wait.
       while ((*sink_.input_switches())[n] != (state != 0)) {
@@ -215,17 +237,29 @@ void Interpreter::exec(const MsgBoxStmt& s, const SourceLoc& loc) {
 
 // FabMo's DIALOG: a message with OK/Cancel captions; one with only a cancel caption ends the
 // run once it is acknowledged.
+// TIMER=n closes it by itself after n seconds (FabMo's stock homing macro ends with one): the
+// message is shown and the machine waits that long, nobody asked.
 void Interpreter::exec(const DialogStmt& s, const SourceLoc& loc) {
   std::string ok, cancel;
+  std::optional<double> timer;
   for (const auto& [name, a] : s.options) {
     if (name == "OKTEXT")
       ok = value_of(a).to_string();
     else if (name == "CANCELTEXT")
       cancel = value_of(a).to_string();
+    else if (name == "TIMER")
+      timer = value_of(a).to_number(a.loc, "the DIALOG's TIMER");
     else if (name != "TITLE" && name != "DETAIL" && name != "NOBUTTON")
-      fail(a.loc, fmt::format("unknown DIALOG option {}; use OKTEXT, CANCELTEXT or TITLE", name));
+      fail(a.loc,
+           fmt::format("unknown DIALOG option {}; use OKTEXT, CANCELTEXT, TITLE or TIMER", name));
   }
   const std::string message = s.message.blank() ? "" : value_of(s.message).to_string();
+  if (timer) {
+    if (!(*timer >= 0)) fail(loc, fmt::format("the DIALOG's TIMER {} is not a time", *timer));
+    io_.print(message + "\n");
+    ctx_.dwell(*timer, loc);
+    return;
+  }
   if (!cancel.empty() && ok.empty()) {
     io_.choose(message, {cancel}, 0, "Gantry", loc);
     throw OperatorStop(

@@ -181,6 +181,36 @@ class TableReader {
     return fallback;
   }
 
+  // A number key that may be left out (nullopt then); within `range` when given.
+  std::optional<double> optional_number(std::string_view key, Range range) {
+    seen_.insert(std::string(key));
+    const toml::node* node = table_.get(key);
+    if (!node) return std::nullopt;
+    const std::optional<double> v = node->value<double>();
+    if (!v || node->is_boolean()) {
+      error(*node, fmt::format("{} must be a number", full(key)));
+      return std::nullopt;
+    }
+    if (!range.contains(*v)) {
+      error(*node,
+            fmt::format("{} = {} is out of range; allowed: {}", full(key), *v, range.describe()));
+      return std::nullopt;
+    }
+    return v;
+  }
+
+  // A sub-table that profiles may leave out; its keys are then not asked for.
+  TableReader optional_table(std::string_view key) {
+    static const toml::table empty;
+    seen_.insert(std::string(key));
+    const toml::node* node = table_.get(key);
+    if (node && !node->is_table()) {
+      error(*node, fmt::format("{} must be a table", full(key)));
+      node = nullptr;
+    }
+    return TableReader(node ? *node->as_table() : empty, full(key), origin_, errors_, !node);
+  }
+
   // A string key that profiles written before it existed may leave out.
   std::string optional_text(std::string_view key, std::string fallback) {
     seen_.insert(std::string(key));
@@ -494,6 +524,13 @@ void read_profile(TableReader root, Settings& s) {
     ax.finish();
   }
   homing.finish();
+
+  // The simulated card's switches (optional: a real card's profile has none).
+  TableReader sim = root.optional_table("simulator");
+  for (int i = 0; i < kAxisCount; ++i)
+    s.simulator.home[i] = sim.optional_number(std::string("home_") + kAxisLetters[i], {-1e9, 1e9});
+  s.simulator.plate_z = sim.optional_number("plate_z", {-1e9, 1e9});
+  sim.finish();
   root.finish();
 }
 
@@ -613,7 +650,7 @@ SettingsLoad load_settings_file(const std::string& path) {
   if (!text) {
     SettingsLoad out;
     out.errors.push_back({file_loc(path), Severity::Error,
-                          "cannot open the settings file; check the path (--settings) and its "
+                          "cannot open the settings file; check the path (--profile) and its "
                           "permissions"});
     return out;
   }

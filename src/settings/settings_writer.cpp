@@ -102,6 +102,12 @@ toml::table settings_table(const Settings& s) {
   homing.insert("slow_speed", s.homing.slow_speed);
   homing.insert("back_off", s.homing.back_off);
   root.insert("homing", std::move(homing));
+  toml::table simulator;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (s.simulator.home[i])
+      simulator.insert(std::string("home_") + kAxisLetters[i], *s.simulator.home[i]);
+  if (s.simulator.plate_z) simulator.insert("plate_z", *s.simulator.plate_z);
+  if (!simulator.empty()) root.insert("simulator", std::move(simulator));
 
   const CutterSettings& k = s.cutter;
   root.insert("cutter", toml::table{{"diameter", k.diameter},

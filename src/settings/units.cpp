@@ -51,7 +51,9 @@ void convert_units(Settings& s, Units to) {
     a.min = round12(a.min * scale[i]);
     a.max = round12(a.max * scale[i]);
     s.homing.at[i] = round12(s.homing.at[i] * scale[i]);
+    if (std::optional<double>& h = s.simulator.home[i]) *h = round12(*h * scale[i]);
   }
+  if (s.simulator.plate_z) *s.simulator.plate_z = round12(*s.simulator.plate_z * f);
   RampSettings& r = s.ramps;
   for (GroupSpeeds* g : {&s.speeds.move, &s.speeds.jog, &r.move_ramp_speed, &r.jog_ramp_speed})
     scale_speeds(*g, scale);

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -456,6 +457,191 @@ TEST(Corpus, EveryLineOfEveryFileParses) {
     }
   }
   EXPECT_EQ(files, 28);
+}
+
+// ---- Homing and zeroing on the simulated machine (issue 21) ----------------------------
+// The default profile's [simulator], written out here: X's proximity switch closes at or below
+// X -1.5, Y's at or below -1.0, Z's at or above 0.75 (input 3, bit 8), the plate's top at
+// Z -2.0 (input 1), all in the card's coordinates (0 where the tool starts). A switch closes at
+// the first step at or beyond its place.
+
+// Writes `text` to a part file of its own and gives its path.
+std::string part_file(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / fmt::format("gantry_{}_{}.sbp", name, getpid());
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+std::int64_t steps_of(const json& j, int axis) {
+  return j["steps"][kAxes[axis]].get<std::int64_t>();
+}
+
+// Where homing leaves each axis: the step where its switch closed, then backed off 0.25 in.
+struct Homed {
+  std::int64_t x =
+      std::llround(std::floor(-1.5 * kStepsPerUnit[0]) + std::llround(0.25 * kStepsPerUnit[0]));
+  std::int64_t y =
+      std::llround(std::floor(-1.0 * kStepsPerUnit[1]) + std::llround(0.25 * kStepsPerUnit[1]));
+  std::int64_t z =
+      std::llround(std::ceil(0.75 * kStepsPerUnit[2]) - std::llround(0.25 * kStepsPerUnit[2]));
+};
+
+// The least time homing can take: each axis searches its switch's distance at 1 in/s and
+// comes back the last 0.25 in at 0.1 in/s; the back-offs (at 1 in/s, or jog speed in C3.sbp),
+// the ramps and each probe's return to the latch come on top, less than 3 s in all.
+constexpr double kLeastHomingTime = (0.75 + 1.5 + 1.0) + 3 * 2.5;
+
+class Homing : public ::testing::TestWithParam<const char*> {};
+
+// C3 without a C3.sbp is the built-in homing; with --macros parts/macros, the shipped C3.sbp.
+TEST_P(Homing, C3EndsBackedOffEachSwitchToTheStepInABoundedTime) {
+  const std::string file = part_file("home", "C3\n");
+  const Result r = gantry(fmt::format("run '{}' --json {}", file, GetParam()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const Homed want;
+  EXPECT_EQ(steps_of(j, 0), want.x);
+  EXPECT_EQ(steps_of(j, 1), want.y);
+  EXPECT_EQ(steps_of(j, 2), want.z);
+  const double t = j["time_s"].get<double>();
+  EXPECT_GT(t, kLeastHomingTime);
+  EXPECT_LT(t, kLeastHomingTime + 3.0) << "homing ran further than its switches";
+  EXPECT_EQ(j["timing_violations"], 0);
+  fs::remove(file);
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltInAndShipped, Homing, ::testing::Values("", "--macros parts/macros"));
+
+// C2 makes the plate's top read its thickness: a move to Z 0.118 afterwards lands on the step
+// where the cutter touched it. Homed first, the plate is where it was on the table.
+TEST(Zeroing, C2MakesThePlateTopReadItsThickness) {
+  for (const char* before : {"", "C3\n"}) {
+    const std::string file = part_file("zero", std::string(before) + "C2\nJZ, 0.118\n");
+    const Result r = gantry(fmt::format("run '{}' --json --macros parts/macros", file));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(steps_of(j, 2), std::llround(std::floor(-2.0 * kStepsPerUnit[2]))) << before;
+    fs::remove(file);
+  }
+}
+
+TEST(Zeroing, C2EndsLiftedClearOfThePlate) {
+  const std::string file = part_file("zero_lift", "C2\n");
+  const json j =
+      json::parse(gantry(fmt::format("run '{}' --json --macros parts/macros", file)).out);
+  EXPECT_EQ(steps_of(j, 2), std::llround(std::floor(-2.0 * kStepsPerUnit[2])) +
+                                std::llround(1.0 * kStepsPerUnit[2]));
+  fs::remove(file);
+}
+
+// ON INPUT fires on a proximity switch: the card stops at the step that closes it.
+TEST(SimulatedSwitches, OnInputStopsAtTheStepWhereTheZSwitchCloses) {
+  const std::string file =
+      part_file("on_input", "ON INPUT(3, 1) GOTO HIT\nMZ, 3\nMX, 5\nEND\nHIT:\nMX, 1\n");
+  const Result r = gantry(fmt::format("run '{}' --json", file));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(steps_of(j, 2), std::llround(std::ceil(0.75 * kStepsPerUnit[2])));
+  EXPECT_EQ(steps_of(j, 0), std::llround(kStepsPerUnit[0]));
+  fs::remove(file);
+}
+
+TEST(PauseUntil, NothingToCloseTheInputIsRefusedAtItsLineBeforeAnythingMoves) {
+  const std::string file = part_file("pause_until", "MX, 1\nPAUSE UNTIL 3, 1\nMX, 2\n");
+  for (const char* how : {"run '{}' --json --yes", "check '{}'"}) {
+    const Result r = gantry(fmt::format(fmt::runtime(how), file));
+    EXPECT_EQ(r.exit_code, 1);
+    const std::string text = r.err + r.out;
+    EXPECT_NE(text.find(":2:1: error: PAUSE UNTIL waits for input 3 to close, and nothing will "
+                        "close it: nobody is at the machine"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("--sim-input 3=1@SECONDS"), std::string::npos) << text;
+    if (std::string(how).find("run") == 0) {
+      EXPECT_EQ(steps_of(json::parse(r.out), 0), 0);
+    }
+  }
+  fs::remove(file);
+}
+
+TEST(PauseUntil, AnInputEventEndsTheWaitAtItsTime) {
+  const std::string file = part_file("pause_event", "MX, 1\nPAUSE UNTIL 3, 1\nMX, 2\n");
+  const Result r = gantry(fmt::format("run '{}' --json --yes --sim-input 3=1@6.5", file));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(steps_of(j, 0), std::llround(2 * kStepsPerUnit[0]));
+  const double t = j["time_s"].get<double>();
+  EXPECT_GT(t, 6.5 + 0.5);  // the wait, then 1 in at 2 in/s
+  EXPECT_LT(t, 6.5 + 0.5 + 0.2);
+  fs::remove(file);
+}
+
+TEST(PauseUntil, ASwitchWhereTheToolRestsAnswersIt) {
+  const std::string file = part_file("pause_switch", "MZ, 1\nPAUSE UNTIL 3, 1\nMZ, 0\n");
+  const Result r = gantry(fmt::format("run '{}' --json --yes", file));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  fs::remove(file);
+}
+
+TEST(PauseUntil, AMalformedSimInputSaysTheForm) {
+  for (const char* bad : {"3=1", "13=1@2", "3=2@1", "2=1@1", "3=1@q>=2", "3=1@x=2"}) {
+    const Result r = gantry(fmt::format("run parts/demo.sbp --sim-input '{}'", bad));
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_NE(r.err.find(fmt::format("error: --sim-input {}: ", bad)), std::string::npos) << r.err;
+  }
+}
+
+// ---- Shipped profiles --------------------------------------------------------------------
+
+TEST(Profiles, AShippedProfileIsFoundByNameFromAnyDirectory) {
+  const std::string file = part_file("profile", "MX, 30\n");
+  const Result r = gantry(fmt::format("check '{}' --profile shopbot-desktop", file));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("outside the table of profile 'shopbot-desktop' (24 x 18 x 5.5 in); it "
+                       "fits: prsalpha-48x96, prsalpha-60x120, prsstandard-48x96, "
+                       "prsstandard-60x120, shopbot-desktop-max (--profile NAME)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(gantry(fmt::format("check '{}' --profile prsalpha-48x96", file)).exit_code, 0);
+  // From another directory too: the shipped folder's path is compiled in.
+  EXPECT_EQ(std::system(fmt::format("cd / && '{}' check '{}' --profile prsalpha-48x96 "
+                                    ">/dev/null 2>&1",
+                                    GANTRY_BIN, file)
+                            .c_str()),
+            0);
+  const Result missing = gantry(fmt::format("check '{}' --profile no-such-table", file));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("no-such-table: error: no such profile file, and no shipped profile "
+                             "of that name"),
+            std::string::npos);
+  EXPECT_NE(missing.err.find("  prsalpha-60x120"), std::string::npos);
+  fs::remove(file);
+}
+
+// FabMo's Handibot plate macro (C77) on the shipped Handibot profile runs to its end: it drives
+// Z to its top, touches the plate twice and records the second touch (working Z, zeroed at the
+// first) as the plate's height. FabMo runs with soft limits off (tests/data/fabmo/
+// no_soft_limits.toml). With the plate's top at Z 2.0 both touches are at the first step at or
+// below it, so the height reads 0 and Z ends 0.5 above that step.
+TEST(Corpus, FabmoPlateMacroTouchesThePlateOnTheHandibot) {
+  const fs::path corpus = kSource.parent_path() / "shared" / "corpus";
+  if (!fs::exists(corpus)) GTEST_SKIP() << "no shared/corpus beside the repository";
+  const fs::path store = fs::temp_directory_path() / fmt::format("gantry_c77_{}.json", getpid());
+  fs::copy_file(kSource / "tests/data/fabmo/macro_201_variables.json", store,
+                fs::copy_options::overwrite_existing);
+  const Result r =
+      gantry(fmt::format("run '{}' --profile handibot --yes --json --persistent '{}' --values "
+                         "tests/data/fabmo/no_soft_limits.toml --sim-probe-z 2",
+                         (corpus / "fabmo_handibot2_macro_77.sbp").string(), store.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const std::int64_t touch = std::llround(std::floor(2.0 * kStepsPerUnit[2]));
+  EXPECT_EQ(steps_of(j, 2), touch + std::llround(0.5 * kStepsPerUnit[2]));
+  // The Handibot profile has the Desktop's unit values. M2, 6, 0 takes it to the plate's place.
+  EXPECT_EQ(steps_of(j, 0), std::llround(6 * kStepsPerUnit[0]));
+  std::ifstream in(store);
+  EXPECT_EQ(json::parse(in)["variables"]["ZZEROPLATETHICKNESS"], 0);
+  fs::remove(store);
 }
 
 TEST(Cli, VersionAndHelp) {

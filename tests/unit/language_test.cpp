@@ -1708,8 +1708,9 @@ TEST_F(LanguageTest, DialogWithOkTextAsksToContinue) {
   const Outcome o = execute("DIALOG \"Again?\", OKTEXT=\"Yes\"\n");
   EXPECT_EQ(o.ending, Ending::OperatorStop);
   EXPECT_EQ(format(o.diag), "part.sbp:1:1: error: stopped by the operator at DIALOG");
-  EXPECT_EQ(format(run_error("DIALOG \"x\", FOO=1\n")),
-            "part.sbp:1:17: error: unknown DIALOG option FOO; use OKTEXT, CANCELTEXT or TITLE");
+  EXPECT_EQ(
+      format(run_error("DIALOG \"x\", FOO=1\n")),
+      "part.sbp:1:17: error: unknown DIALOG option FOO; use OKTEXT, CANCELTEXT, TITLE or TIMER");
 }
 
 TEST_F(LanguageTest, FailStopsWithItsMessage) {

@@ -654,7 +654,7 @@ TEST(LoadSettingsFile, MissingFileIsOneErrorNamingIt) {
   ASSERT_EQ(l.errors.size(), 1u);
   EXPECT_EQ(where(l.errors[0].loc), path + ":0:0");
   EXPECT_EQ(l.errors[0].message,
-            "cannot open the settings file; check the path (--settings) and its permissions");
+            "cannot open the settings file; check the path (--profile) and its permissions");
   EXPECT_FALSE(l.ok());
 }
 
@@ -664,7 +664,7 @@ TEST(LoadSettingsFile, DirectoryIsAnUnreadableFile) {
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
   EXPECT_EQ(where(l.errors[0].loc), path + ":0:0");
   EXPECT_EQ(l.errors[0].message,
-            "cannot open the settings file; check the path (--settings) and its permissions");
+            "cannot open the settings file; check the path (--profile) and its permissions");
 }
 
 TEST(LoadSettingsFile, ReportsErrorsWithThePath) {

@@ -117,6 +117,30 @@ TEST(SimCardInputs, InputEventsSetTheirBitsAtTheirTimes) {
   EXPECT_EQ(card.fault(), CardFault::None);
 }
 
+TEST(SimCardInputs, APositionInputReadsItsLevelWhileTheAxisIsThere) {
+  SimWorld w;
+  w.position_inputs.push_back({12, true, 0, 1.5 / 916.7324, true});  // X's second step on
+  SimCard card(default_settings(), false, w);
+  EXPECT_EQ(card.inputs() & (1u << 12), 0u);
+  play(card, {kXStep, 0});
+  EXPECT_EQ(card.inputs() & (1u << 12), 0u);
+  play(card, {kXStep, 0});
+  EXPECT_EQ(card.inputs() & (1u << 12), 1u << 12);
+  play(card, {kXDir, kXDir | kXStep, kXDir});  // back to one step: off again
+  EXPECT_EQ(card.inputs() & (1u << 12), 0u);
+}
+
+TEST(SimCardInputs, OnlyAnEventStillToComeMayChangeAnInputAtRest) {
+  SimWorld w;
+  w.input_events = {{3 * 5e-6, 12, true}};
+  SimCard card(default_settings(), false, w);
+  card.start(200000);
+  EXPECT_TRUE(card.input_may_change(12, true));
+  EXPECT_FALSE(card.input_may_change(12, false));
+  play(card, {0, 0, 0, 0, 0});
+  EXPECT_FALSE(card.input_may_change(12, true));  // it has passed
+}
+
 TEST(SimCardInputs, StopDropsWhatFollowsAndIdlesTheLines) {
   SimCard card(default_settings());
   play(card, {kXStep});

@@ -323,6 +323,15 @@ struct InterpreterOptions {
   const Settings* profile = nullptr;
   std::string profile_path;
   std::string values_path;
+  // The profile's name, for the soft limits' message, which then also lists the shipped
+  // profiles whose table holds the move ("": the message names no profile).
+  std::string profile_name;
+  // With nobody at the machine (--yes, a check): whether anything but a person brings input
+  // switch `n` (1-12) to `closed` while the tool rests: the simulated machine's events, and in
+  // a check (`check_at`: where the dry run has the tool, machine coordinates) its switches
+  // there. On the live machine (nullopt) only an event still to come. Null: the machine's
+  // inputs are unknown (a real card's sensors may change them): PAUSE UNTIL waits.
+  std::function<bool(int n, bool closed, const std::optional<Vec6>& check_at)> unattended_inputs;
 };
 
 class Interpreter : private EvalEnv {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,16 @@ struct HomingSettings {
   double back_off = 0.25;
   std::array<int, kAxisCount> direction{-1, -1, 1, -1, -1, -1};  // towards the switch
   std::array<double, kAxisCount> at{};                           // table base at the switch
+};
+
+// The simulated card's machine (card.type "sim"; docs/hardware.md): where its proximity
+// switches and its Z zero plate are, in the card's own coordinates (the table base at power-up,
+// before any homing), in the profile's units. Each is optional: absent, there is none.
+struct SimulatorSettings {
+  // The proximity (home) switch of each axis: closed at or beyond this position on the side
+  // homing.<axis>.direction points to (at or below it for "-", at or above it for "+").
+  std::array<std::optional<double>, kAxisCount> home{};
+  std::optional<double> plate_z;  // the Z zero plate's top: the probe input closes at or below
 };
 
 // A GPIO line and the bit of the card's word it carries (type = "gpiod").
@@ -208,6 +219,7 @@ struct Settings {
   OutputSettings outputs;
   InputSettings inputs;
   HomingSettings homing;
+  SimulatorSettings simulator;
   CutterSettings cutter;
   TabSettings tabs;
   DisplaySettings display;
