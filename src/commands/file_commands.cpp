@@ -3,6 +3,7 @@
 // drawing (HP-GL, DXF) into a part file.
 #include <fmt/format.h>  // messages
 
+#include <algorithm>  // replace
 #include <cctype>      // tolower
 #include <cmath>       // round
 #include <cstdlib>     // getenv, system
@@ -18,10 +19,17 @@
 namespace gantry {
 namespace {
 
+// A name with no extension is a part file's, as SB3 takes it: `FP, sub` runs sub.sbp.
+std::string part_file_name(const std::string& name) {
+  std::string unix_name = name;
+  std::replace(unix_name.begin(), unix_name.end(), '\\', '/');  // written on Windows
+  return std::filesystem::path(unix_name).has_extension() ? name : name + ".sbp";
+}
+
 // FP's nine parameters (FG's first nine).
 FileCall file_call(const CommandCall& call) {
   FileCall fc;
-  fc.path = *call.text(0);
+  fc.path = part_file_name(*call.text(0));
   fc.proportion[0] = *call.number(1);
   fc.proportion[1] = *call.number(2);
   fc.proportion[2] = *call.number(3);
@@ -71,7 +79,8 @@ void file_goto(CommandContext& ctx, const CommandCall& call) {
 std::vector<ParamSpec> part_params() {
   return {
       {"file name", "", true, std::nullopt,
-       "The part file; a relative name is found in the parts folder (the top-level file's).",
+       "The part file (.sbp when the name has none); a relative name is found in the parts "
+       "folder (the top-level file's), regardless of case when the exact name is missing.",
        ParamKind::Text},
       {"proportion X", "", false, 1.0, "Scale of X."},
       {"proportion Y", "", false, 1.0, "Scale of Y."},
