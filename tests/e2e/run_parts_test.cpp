@@ -261,7 +261,7 @@ TEST(CamPost, FusionShapedJobChangesToolsAndSwitchesTheSpindleWithTheShippedMacr
   }
   const std::vector<std::string> want = {
       // tool 1 (at 0, 0, 0): C9 lifts; the change position is where the tool is
-      "C9.sbp:24 line 0,0,1", "C7.sbp:15 output 1 off", "C7.sbp:16 dwell 5",
+      "C9.sbp:26 line 0,0,1", "C7.sbp:15 output 1 off", "C7.sbp:16 dwell 5",
       "C6.sbp:14 output 1 on", "C6.sbp:15 dwell 3", "fusion_post.sbp:11 dwell 2",
       "fusion_post.sbp:13 line 0,0,0.6", "fusion_post.sbp:14 line 2,2,0.6",
       "fusion_post.sbp:15 line 2,2,0.2", "fusion_post.sbp:16 line 2,2,-0.25",
@@ -269,8 +269,8 @@ TEST(CamPost, FusionShapedJobChangesToolsAndSwitchesTheSpindleWithTheShippedMacr
       "fusion_post.sbp:19 line 2,5,-0.25", "fusion_post.sbp:20 line 2,2,-0.25",
       "fusion_post.sbp:21 line 2,2,0.6",
       // tool 2: up, over to the change position, spindle off, back over 2, 2
-      "C9.sbp:24 line 2,2,1", "C9.sbp:26 line 0,0,1", "C7.sbp:15 output 1 off", "C7.sbp:16 dwell 5",
-      "C9.sbp:31 line 2,2,1", "C6.sbp:14 output 1 on", "C6.sbp:15 dwell 3",
+      "C9.sbp:26 line 2,2,1", "C9.sbp:28 line 0,0,1", "C7.sbp:15 output 1 off", "C7.sbp:16 dwell 5",
+      "C9.sbp:33 line 2,2,1", "C6.sbp:14 output 1 on", "C6.sbp:15 dwell 3",
       "fusion_post.sbp:27 dwell 2", "fusion_post.sbp:29 line 8,3,1",
       "fusion_post.sbp:30 line 8,3,0.2", "fusion_post.sbp:31 line 8,3,-0.125",
       "fusion_post.sbp:32 line 10,3,-0.125", "fusion_post.sbp:33 line 10,4,-0.125",
