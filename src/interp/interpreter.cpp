@@ -1409,12 +1409,6 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
     std::optional<Value> v;
     if (a) v = value_of(*a);
     if (v && v->is_string() && v->str().empty()) v.reset();  // "" counts as blank
-    // A bare `&name` never assigned reads as its own name: no number, file or letter means that.
-    if (v && v->is_string() && a->text.size() > 1 && a->text[0] == '&' &&
-        std::all_of(a->text.begin() + 1, a->text.end(), scan::is_word) &&
-        !user_variable(scan::upper(a->text.substr(1))))
-      fail(a->loc,
-           fmt::format("undefined variable {}; set it before this line", scan::upper(a->text)));
     if (!v) {
       if (ps.required)
         fail(call.param_loc(i),
@@ -1426,6 +1420,11 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
       if (!a->is_expression() && a->expr_error && v->is_string())
         fail(a->loc, fmt::format("expected a number for {} ({}), found '{}'", ps.name, spec->code,
                                  a->text));
+      if (v->is_string() && a->text.size() > 1 && a->text[0] == '&' &&
+          std::all_of(a->text.begin() + 1, a->text.end(), scan::is_word) &&
+          !user_variable(scan::upper(a->text.substr(1))))
+        fail(a->loc,
+             fmt::format("undefined variable {}; set it before this line", scan::upper(a->text)));
       if (v->is_string())  // the message is only built when a conversion is needed
         v = Value::number(v->to_number(a->loc, fmt::format("{} ({})", ps.name, spec->code)));
       check_param(*spec, ps, i, v->num(), a->loc);

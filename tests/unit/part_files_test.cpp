@@ -151,7 +151,7 @@ TEST_F(PartFilesTest, FpRefusesTwoNamesThatDifferOnlyInCase) {
 TEST_F(PartFilesTest, FpWithAnUndefinedVariableSaysSoAtItsColumn) {
   write("main.sbp", "MX, 1\nFP,  &part\n");
   EXPECT_EQ(run_error("main.sbp"), path("main.sbp") +
-                                       ":2:5: error: undefined variable &PART; set it before "
+                                       ":2:6: error: undefined variable &PART; set it before "
                                        "this line");
 }
 
@@ -174,19 +174,21 @@ TEST_F(PartFilesTest, AMissingFpFileNamesThePathTriedAndTheCallingLine) {
 TEST_F(PartFilesTest, TheShippedC6SwitchesTheSpindleOnAndWaitsForSpinUp) {
   write("main.sbp", "C6\n");
   ASSERT_FALSE(run("main.sbp")) << run_error("main.sbp");
-  ASSERT_EQ(sink.moves.size(), 2u);
+  ASSERT_EQ(sink.moves.size(), 3u);
   EXPECT_EQ(sink.moves[0].kind, MoveKind::Output);
   EXPECT_EQ(sink.moves[0].output, 1);
   EXPECT_TRUE(sink.moves[0].output_on);
   EXPECT_EQ(sink.moves[1].kind, MoveKind::Dwell);
   EXPECT_EQ(sink.moves[1].dwell_s, 3);  // &SpinUp's default, C6.sbp's header
   EXPECT_EQ(*sink.moves[1].loc.file, kShipped + "/C6.sbp");
+  EXPECT_EQ(sink.moves[2].kind, MoveKind::Output);  // every output goes off at the run's end
+  EXPECT_FALSE(sink.moves[2].output_on);
 }
 
 TEST_F(PartFilesTest, TheCallersSpinUpVariableIsKept) {
   write("main.sbp", "&SpinUp = 7\nC6\n");
   ASSERT_FALSE(run("main.sbp")) << run_error("main.sbp");
-  ASSERT_EQ(sink.moves.size(), 2u);
+  ASSERT_EQ(sink.moves.size(), 3u);
   EXPECT_EQ(sink.moves[1].dwell_s, 7);
 }
 
@@ -214,6 +216,29 @@ TEST_F(PartFilesTest, MacrosReplacesThePartsAndOperatorsFolders) {
   ASSERT_FALSE(run("main.sbp")) << run_error("main.sbp");
   EXPECT_EQ(x_targets(), std::vector<double>{4});                // C6 from --macros,
   EXPECT_EQ(*sink.moves.back().loc.file, kShipped + "/C7.sbp");  // C7 still shipped
+}
+
+// C9's change position is in table base coordinates, wherever the part's zero is; the tool
+// comes back over the point it left (moves are in table base coordinates too).
+TEST_F(PartFilesTest, TheShippedC9ChangesToolsAtATableBasePosition) {
+  write("main.sbp", "MX, 5\nMY, 4\nZ2\n&Tool = 3\n&ChangeX = 1\nC9\n");
+  ASSERT_FALSE(run("main.sbp")) << run_error("main.sbp");
+  std::vector<std::string> lines;
+  for (const CanonMove& m : sink.moves)
+    if (m.kind == MoveKind::Line && m.loc.file && *m.loc.file == kShipped + "/C9.sbp")
+      lines.push_back(std::to_string(m.loc.line) + ": " + std::to_string(m.to[0]) + "," +
+                      std::to_string(m.to[1]) + "," + std::to_string(m.to[2]));
+  EXPECT_EQ(lines, (std::vector<std::string>{"26: 5.000000,4.000000,1.000000",  // Safe-Z
+                                             "28: 1.000000,0.000000,1.000000",  // the change
+                                             "33: 5.000000,4.000000,1.000000"}));  // back
+}
+
+TEST_F(PartFilesTest, TheShippedC9RefusesAMissingToolNumber) {
+  write("main.sbp", "MX, 1\nC9\n");
+  EXPECT_EQ(run_error("main.sbp"),
+            path("main.sbp") + ":2 -> " + kShipped +
+                "/C9.sbp:20:19: error: FAIL: C9 needs the tool to put in: set &Tool first "
+                "(&Tool = 2, then C9)");
 }
 
 TEST_F(PartFilesTest, ACustomCutFoundNowhereNamesEveryFolderLookedIn) {

@@ -93,7 +93,7 @@ TEST_F(SpindleSpeedTest, AboveMaxRpmIsRefusedAtItsColumnAndNothingIsSent) {
   settings.spindle.pwm_bit = 30;
   settings.spindle.max_rpm = 24000;
   EXPECT_EQ(run("TR,  30000\n"),
-            "part.sbp:1:5: error: TR 30000 RPM is faster than this spindle runs (24000 RPM, "
+            "part.sbp:1:6: error: TR 30000 RPM is faster than this spindle runs (24000 RPM, "
             "spindle.max_rpm); nothing was changed");
   EXPECT_TRUE(speeds_sent().empty());
   EXPECT_EQ(run("TR, -1\n").find("part.sbp:1:5: error: TR parameter 1 (speed) is -1"), 0u);
