@@ -97,6 +97,9 @@ void GcodeWriter::move(const CanonMove& m) {
     case MoveKind::Output:
       out_ += fmt::format("{} P{}\n", m.output_on ? "M64" : "M65", m.output);
       return;
+    case MoveKind::SpindleSpeed:
+      out_ += fmt::format("S{}\n", num(m.spindle_rpm));
+      return;
     case MoveKind::Independent:  // G-code has no axis moving on its own: say so, in place
       out_ += m.independent.running()
                   ? fmt::format("(MI: {} moves on its own here; G-code cannot say so)\n",

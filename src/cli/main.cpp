@@ -158,7 +158,9 @@ struct LanguageArgs {
     cmd->add_flag("--yes", yes, "Continue every PAUSE and press each MSGBOX's default button");
     cmd->add_option("--input", inputs, "Answer INPUT for a variable: --input '&DEPTH=0.5'");
     cmd->add_flag("--allow-shell", allow_shell, "Let SHELL start programs");
-    cmd->add_option("--macros", macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
+    cmd->add_option("--macros", macros,
+                    "Folder C<n> looks in first for C<n>.sbp / macro_<n>.sbp (then the shipped "
+                    "macros)");
     cmd->add_option("--persistent", persistent, "File of persistent $variables (JSON)");
     cmd->add_option("--values", values,
                     "File of the V commands' values (TOML); default: the profile's in "

@@ -134,6 +134,12 @@ nlohmann::ordered_json to_json(const CanonMove& m) {
     j["sweep"] = m.sweep;
     if (m.plane != ArcPlane::XY) j["plane"] = m.plane == ArcPlane::ZX ? "ZX" : "YZ";
   }
+  if (m.kind == MoveKind::Dwell) j["dwell_s"] = m.dwell_s;
+  if (m.kind == MoveKind::Output) {
+    j["output"] = m.output;
+    j["on"] = m.output_on;
+  }
+  if (m.kind == MoveKind::SpindleSpeed) j["rpm"] = m.spindle_rpm;
   return j;
 }
 

@@ -3,6 +3,7 @@
 // drawing (HP-GL, DXF) into a part file.
 #include <fmt/format.h>  // messages
 
+#include <algorithm>  // replace
 #include <cctype>      // tolower
 #include <cmath>       // round
 #include <cstdlib>     // getenv, system
@@ -11,6 +12,7 @@
 #include "gantry/commands/command_table.hpp"
 #include "gantry/convert/to_sbp.hpp"  // hpgl_to_sbp, dxf_to_sbp
 #include "gantry/interp/interpreter.hpp"
+#include "../lang/scan.hpp"  // upper, is_word
 
 #include <sys/wait.h>  // WEXITSTATUS
 #include <unistd.h>    // isatty
@@ -18,10 +20,33 @@
 namespace gantry {
 namespace {
 
+// Parameter i, a file or folder name. A bare `&name` never assigned reads as its own name,
+// which as a file name is always a mistake: it is refused where it is written.
+std::optional<std::string> file_name(const CommandContext& ctx, const CommandCall& call,
+                                     size_t i) {
+  const std::string text = i < call.args.size() ? call.args[i].text : "";
+  if (text.size() > 1 && text[0] == '&' &&
+      std::all_of(text.begin() + 1, text.end(), scan::is_word)) {
+    const std::string name = scan::upper(text.substr(1));
+    const auto vars = ctx.variables();
+    if (std::none_of(vars.begin(), vars.end(), [&](const auto& v) { return v.first == name; }))
+      fail(call.args[i].loc,
+           fmt::format("undefined variable &{}; set it before this line", name));
+  }
+  return call.text(i);
+}
+
+// A name with no extension is a part file's, as SB3 takes it: `FP, sub` runs sub.sbp.
+std::string part_file_name(const std::string& name) {
+  std::string unix_name = name;
+  std::replace(unix_name.begin(), unix_name.end(), '\\', '/');  // written on Windows
+  return std::filesystem::path(unix_name).has_extension() ? name : name + ".sbp";
+}
+
 // FP's nine parameters (FG's first nine).
-FileCall file_call(const CommandCall& call) {
+FileCall file_call(const CommandContext& ctx, const CommandCall& call) {
   FileCall fc;
-  fc.path = *call.text(0);
+  fc.path = part_file_name(*file_name(ctx, call, 0));
   fc.proportion[0] = *call.number(1);
   fc.proportion[1] = *call.number(2);
   fc.proportion[2] = *call.number(3);
@@ -43,7 +68,7 @@ FileCall file_call(const CommandCall& call) {
 }
 
 void file_part(CommandContext& ctx, const CommandCall& call) {
-  ctx.call_file(file_call(call), call.loc);
+  ctx.call_file(file_call(ctx, call), call.loc);
 }
 
 // FG: FP from a chosen line; the lines before it run without motion, then the tool comes
@@ -51,7 +76,7 @@ void file_part(CommandContext& ctx, const CommandCall& call) {
 // FG: with no start line, the line where the last run of that file stopped (after a broken
 // bit, say), else its first.
 void file_goto(CommandContext& ctx, const CommandCall& call) {
-  FileCall fc = file_call(call);
+  FileCall fc = file_call(ctx, call);
   fc.start_loc = call.param_loc(9);
   if (const std::optional<double> line = call.number(9)) {
     fc.start_line = static_cast<int>(*line);
@@ -71,7 +96,8 @@ void file_goto(CommandContext& ctx, const CommandCall& call) {
 std::vector<ParamSpec> part_params() {
   return {
       {"file name", "", true, std::nullopt,
-       "The part file; a relative name is found in the parts folder (the top-level file's).",
+       "The part file (.sbp when the name has none); a relative name is found in the parts "
+       "folder (the top-level file's), regardless of case when the exact name is missing.",
        ParamKind::Text},
       {"proportion X", "", false, 1.0, "Scale of X."},
       {"proportion Y", "", false, 1.0, "Scale of Y."},
@@ -95,7 +121,7 @@ std::vector<ParamSpec> part_params() {
 // part file can move down into a folder of sub-files and back.
 void file_set_folder(CommandContext& ctx, const CommandCall& call) {
   std::string folder = ctx.top_folder();
-  if (const std::optional<std::string> name = call.text(0)) {
+  if (const std::optional<std::string> name = file_name(ctx, call, 0)) {
     std::filesystem::path p =
         std::filesystem::path(ctx.file_path(*name, call.param_loc(0))).lexically_normal();
     folder = p.string();
@@ -127,7 +153,7 @@ std::string quoted(const std::string& path) {
 }
 
 void file_edit(CommandContext& ctx, const CommandCall& call) {
-  const std::optional<std::string> name = call.text(0);
+  const std::optional<std::string> name = file_name(ctx, call, 0);
   const std::string path = name ? ctx.file_path(*name, call.param_loc(0)) : ctx.last_file();
   if (name) ctx.set_last_file(path);
   const std::string program = editor(ctx);
@@ -175,7 +201,7 @@ Drawing kind_of(const std::string& name) {
 enum Fc { kFcFile, kFcPart, kFcCutZ, kFcSafeZ, kFcScale };
 
 void file_convert(CommandContext& ctx, const CommandCall& call) {
-  const std::string name = *call.text(kFcFile);
+  const std::string name = *file_name(ctx, call, kFcFile);
   const SourceLoc& at = call.param_loc(kFcFile);
   const Drawing kind = kind_of(name);
   if (kind == Drawing::GCode)

@@ -1,4 +1,4 @@
-// Output switches: SO, and MO (M0) which turns them all off.
+// Output switches: SO, and MO (M0) which turns them all off; TR, the spindle's speed.
 #include <fmt/format.h>  // messages
 
 #include <cmath>  // trunc
@@ -47,6 +47,19 @@ void motors_off(CommandContext& ctx, const CommandCall& call) {
     if (ctx.state().outputs & (1u << (n - 1))) ctx.set_output(n, false, call.loc);
 }
 
+// TR rpm: the speed the spindle (output switch 1, which C6 and C7 switch) runs at. CAM posts
+// write it before C6 at every tool.
+void spindle_speed(CommandContext& ctx, const CommandCall& call) {
+  const double rpm = *call.number(0);
+  const SpindleSettings& spindle = ctx.settings().spindle;
+  if (spindle.pwm_bit >= 0 && rpm > spindle.max_rpm)
+    fail(call.param_loc(0),
+         fmt::format("TR {} RPM is faster than this spindle runs ({} RPM, spindle.max_rpm); "
+                     "nothing was changed",
+                     format_number(rpm), format_number(spindle.max_rpm)));
+  ctx.set_spindle_speed(rpm, call.loc);
+}
+
 }  // namespace
 
 void add_output_commands(std::vector<CommandSpec>& out) {
@@ -63,6 +76,25 @@ void add_output_commands(std::vector<CommandSpec>& out) {
                    "1 turns it on, 0 (or blank) off. Switch 4 only: -1, -2 or -3 on while the "
                    "tool moves (the default), -4 not."}},
                  set_output_switch});
+  out.push_back(
+      {"TR",
+       "Tools: spindle speed (RPM)",
+       CommandGroup::Tools,
+       "Sets the spindle's speed in RPM; output switch 1 (C6, C7) switches the spindle on and "
+       "off. Where the profile has a speed output ([spindle] pwm_bit), its PWM duty becomes "
+       "rpm / max_rpm between the moves around TR; otherwise the speed is recorded and the "
+       "run warns once that the spindle keeps the speed set on it. %(161) reads the speed "
+       "while output 1 is on.",
+       {ParamSpec{"speed", "RPM", true, std::nullopt,
+                  "Spindle speed, at most spindle.max_rpm where a speed output is wired."}
+            .at_least(0),
+        ParamSpec{"spindle", "", false, 1.0, "FabMo's spindle number; Gantry drives one (1)."}
+            .integer(1, 1)},
+       spindle_speed,
+       "one spindle; its speed as a PWM duty on an output bit, not over a VFD's serial link",
+       {},
+       false,
+       "%(161)"});
   for (std::string_view code : {"MO", "M0"})
     out.push_back({code,
                    "Motors off",

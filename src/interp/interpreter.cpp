@@ -351,6 +351,22 @@ void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
   state_.outputs = on ? state_.outputs | bit : state_.outputs & ~bit;
 }
 
+void CommandContext::set_spindle_speed(double rpm, const SourceLoc& loc) {
+  state_.spindle_rpm = rpm;
+  if (state_.preview) return;  // a preview switches nothing
+  if (settings_.spindle.pwm_bit < 0) {
+    if (!std::exchange(spindle_speed_warned_, true))
+      warn(loc,
+           "TR: this machine's profile has no spindle speed output ([spindle] pwm_bit), so "
+           "the spindle runs at the speed set on it; the RPM is only recorded (%(161)). "
+           "Said once a run");
+    return;
+  }
+  CanonMove m = here(MoveKind::SpindleSpeed, loc);
+  m.spindle_rpm = rpm;
+  sink_.move(m);
+}
+
 void CommandContext::come_to_rest(const SourceLoc& loc) {
   if (state_.preview) return;
   sink_.move(here(MoveKind::Stop, loc));
@@ -597,7 +613,7 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
 
 std::optional<std::string> CommandContext::read_file(const std::string& name, const SourceLoc& loc,
                                                      std::string* path) {
-  const std::string p = interp_->file_path(name, loc);
+  const std::string p = interp_->existing_file(name, loc);
   if (path) *path = p;
   std::shared_ptr<std::istream> in = interp_->files_system_->open_read(p);
   if (!in) return std::nullopt;
@@ -734,6 +750,12 @@ std::string Interpreter::file_path(const std::string& name, const SourceLoc& loc
   std::filesystem::path p(n);
   if (p.is_relative() && !parts_dir_.empty()) p = std::filesystem::path(parts_dir_) / p;
   return p.string();
+}
+
+std::string Interpreter::existing_file(const std::string& name, const SourceLoc& loc) const {
+  const PartFileLookup found = find_part_file(*files_system_, file_path(name, loc));
+  if (!found.error.empty()) fail(loc, found.error);
+  return found.path;
 }
 
 void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall& call,
@@ -1002,6 +1024,12 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
           ctx_.set_output(n, false, SourceLoc{});
       }
       state_.tool_offset = Vec6::Zero();
+      // The speed output goes to 0 with the spindle; TR's RPM stays, as a VFD keeps it.
+      if (state_.spindle_rpm > 0 && settings_.spindle.pwm_bit >= 0 && !state_.preview) {
+        CanonMove m = ctx_.here(MoveKind::SpindleSpeed, SourceLoc{});
+        sink_.move(m);
+      }
+      ctx_.spindle_speed_warned_ = false;
     }
     end_quiet();  // a start line never reached: the machine was never told otherwise
     start_.reset();
@@ -1110,7 +1138,7 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
         FileCall call = *pending_call_;
         pending_call_.reset();
         const std::string path =
-            call.resolved ? call.path : file_path(call.path, pending_call_loc_);
+            call.resolved ? call.path : existing_file(call.path, pending_call_loc_);
         push_file(call.lines ? call.lines : files_system_->load_script(path), call,
                   pending_call_loc_);
       }
@@ -1306,6 +1334,7 @@ MachineSnapshot Interpreter::snapshot() const {
   m.jog_speed = groups(state_.speeds.jog);
   m.move_ramp = groups(settings_.ramps.move_ramp_speed);
   m.jog_ramp = groups(settings_.ramps.jog_ramp_speed);
+  m.spindle_rpm = (state_.outputs & 1u) ? state_.spindle_rpm : 0;  // the spindle is output 1
   if (!frames_.empty()) {
     const Frame& f = frames_.back();
     m.file_path = std::filesystem::absolute(*f.script->name()).string();
@@ -1486,24 +1515,47 @@ void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
   call_macro(s.number, loc);
 }
 
-void Interpreter::call_macro(int number, const SourceLoc& loc) {
-  const std::string dir = options_.macro_dir.empty() ? parts_dir_ : options_.macro_dir;
-  for (const std::string& name :
-       {fmt::format("C{}.sbp", number), fmt::format("macro_{}.sbp", number)}) {
-    const std::string path = (std::filesystem::path(dir) / name).string();
-    if (files_system_->is_file(path)) {
-      FileCall call;
-      call.path = path;
-      call.resolved = true;
-      pending_call_ = call;
-      pending_call_loc_ = loc;
-      return;
-    }
+// --macros, else the parts folder ("": the working directory) and the operator's folder;
+// then the shipped macros.
+std::vector<std::string> Interpreter::macro_folders() const {
+  std::vector<std::string> folders;
+  if (!options_.macro_dir.empty()) {
+    folders.push_back(options_.macro_dir);
+  } else {
+    folders.push_back(parts_dir_);
+    if (!options_.user_macro_dir.empty()) folders.push_back(options_.user_macro_dir);
   }
+  if (!options_.shipped_macro_dir.empty()) folders.push_back(options_.shipped_macro_dir);
+  return folders;
+}
+
+void Interpreter::call_macro(int number, const SourceLoc& loc) {
+  const std::vector<std::string> folders = macro_folders();
+  for (const std::string& dir : folders)
+    for (const std::string& name :
+         {fmt::format("C{}.sbp", number), fmt::format("macro_{}.sbp", number)}) {
+      const PartFileLookup found =
+          find_part_file(*files_system_, (std::filesystem::path(dir) / name).string());
+      if (!found.error.empty()) fail(loc, found.error);
+      if (files_system_->is_file(found.path)) {
+        FileCall call;
+        call.path = found.path;
+        call.resolved = true;
+        pending_call_ = call;
+        pending_call_loc_ = loc;
+        return;
+      }
+    }
   if (number == 3) return home_on_switches(ctx_, loc);  // the built-in homing
+  std::string where;
+  for (size_t i = 0; i < folders.size(); ++i)
+    where += (i == 0                    ? ""
+              : i + 1 == folders.size() ? " or "
+                                        : ", ") +
+             (folders[i].empty() ? std::string("the working directory") : folders[i]);
   fail(loc, fmt::format("C{0} runs custom cut {0}, but there is no C{0}.sbp or macro_{0}.sbp in "
-                        "{1}; put the macro there or give its folder with --macros",
-                        number, dir.empty() ? "." : dir));
+                        "{1}; put the macro in one of them or give its folder with --macros",
+                        number, where));
 }
 
 }  // namespace gantry

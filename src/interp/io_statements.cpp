@@ -292,7 +292,8 @@ void Interpreter::exec(const OpenStmt& s, const SourceLoc& loc) {
   UserFile& f = user_file(s.number, loc, false);
   if (!f.path.empty())
     fail(loc, fmt::format("file #{} is already open ({}); CLOSE it first", f.number, f.path));
-  const std::string path = file_path(name, s.path.loc);
+  const std::string path = s.mode == OpenStmt::Mode::Input ? existing_file(name, s.path.loc)
+                                                           : file_path(name, s.path.loc);
   if (s.mode == OpenStmt::Mode::Input) {
     f.in = files_system_->open_read(path);
     if (!f.in) fail(s.path.loc, fmt::format("cannot open {} for reading", path));

@@ -168,7 +168,8 @@ constexpr std::array kTable{
     Info{156, "Multiplier C", "0-10", false, "Resolution multiplier of C."},
     Info{158, "Current uController Voltage", "0-9", false, "Supply reading of the card."},
     Info{159, "Current uController Temp", "°C", false, "Temperature of the card."},
-    Info{161, "RPM Spindle", "text", true, "Measured spindle speed in RPM, as whole digits."},
+    Info{161, "RPM Spindle", "text", true,
+         "Spindle speed in RPM (TR's) while output 1, the spindle, is on; whole digits."},
 };
 
 Value flag(bool b) {
@@ -271,8 +272,9 @@ Where the handbook's list is unclear or contradicts the command references, Gant
 * **%(46) and %(47)** ("Inp #3 Mode", "Inp #4 Mode", 0-1) are not the 0-4 role codes of
   %(91)-%(98): %(47) is the VN wiring flag of the stop input 4 (0 normally closed,
   1 normally open) and %(46) the matching legacy flag of input 3.
-* **Spindle RPM** (%(161)) is a string, as listed: the measured speed rounded to whole
-  revolutions per minute, `0` when the spindle is stopped.
+* **Spindle RPM** (%(161)) is a string, as listed: the speed rounded to whole revolutions
+  per minute, `0` when the spindle is stopped. Gantry measures no speed: it is the speed TR
+  last set while output switch 1, the spindle, is on.
 * **Rows 158 and 159** are printed over two lines each in the handbook; they are one
   variable each, the card's supply voltage reading and its temperature in degrees Celsius.
 * **The list ends at 169.** The handbook's row 170 ("current max") marks the end of the

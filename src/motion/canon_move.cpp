@@ -17,6 +17,8 @@ const char* kind_name(MoveKind k) {
       return "output";
     case MoveKind::Independent:
       return "independent";
+    case MoveKind::SpindleSpeed:
+      return "spindle_speed";
   }
   return "?";
 }

@@ -43,7 +43,8 @@ double LookAheadPlanner::reach(double v, const Block& b) const {
 void LookAheadPlanner::move(const CanonMove& m) {
   // During a hold, a dwell or an output cannot go out before the held moves ahead of it:
   // it and everything after it wait in arrival order until resume().
-  const bool at_rest = m.kind == MoveKind::Output || m.kind == MoveKind::Independent;
+  const bool at_rest = m.kind == MoveKind::Output || m.kind == MoveKind::Independent ||
+                       m.kind == MoveKind::SpindleSpeed;
   if (held_ && (!deferred_.empty() || m.kind == MoveKind::Dwell || at_rest)) {
     deferred_.push_back(m);
     return;
@@ -65,6 +66,7 @@ void LookAheadPlanner::move(const CanonMove& m) {
     seg.output = m.kind == MoveKind::Output ? m.output : 0;
     seg.output_on = m.output_on;
     if (m.kind == MoveKind::Independent) seg.independent = m.independent;
+    if (m.kind == MoveKind::SpindleSpeed) seg.spindle_rpm = m.spindle_rpm;
     seg.loc = m.loc;
     planned_time_ += m.dwell_s;
     out_.segment(seg);

@@ -491,6 +491,13 @@ void read_profile(TableReader root, Settings& s) {
   o.aux_bits = outputs.int_list("aux_bits", -1, 31);
   outputs.finish();
 
+  TableReader spindle = root.optional_table("spindle");  // profiles before TR have none
+  SpindleSettings& sp = s.spindle;
+  sp.pwm_bit = spindle.integer("pwm_bit", -1, 31, -1);
+  sp.pwm_hz = spindle.number("pwm_hz", {0, 1e6, true}, 1000);
+  sp.max_rpm = spindle.number("max_rpm", {0, 1e6, true}, 24000);
+  spindle.finish();
+
   TableReader inputs = root.table("inputs");
   InputSettings& in = s.inputs;
   in.estop_bit = inputs.integer("estop_bit", -1, 31, 0);
@@ -567,15 +574,23 @@ static void check_consistency(const Settings& s, const std::string& origin,
     }
   }
   std::vector<std::pair<std::string, int>> outputs = {
-      {"charge_pump_bit", s.outputs.charge_pump_bit}, {"spindle_bit", s.outputs.spindle_bit}};
+      {"outputs.charge_pump_bit", s.outputs.charge_pump_bit},
+      {"outputs.spindle_bit", s.outputs.spindle_bit}};
   for (size_t k = 0; k < s.outputs.aux_bits.size(); ++k)
-    outputs.emplace_back(fmt::format("aux_bits (output {})", k + 1), s.outputs.aux_bits[k]);
+    outputs.emplace_back(fmt::format("outputs.aux_bits (output {})", k + 1), s.outputs.aux_bits[k]);
+  outputs.emplace_back("spindle.pwm_bit", s.spindle.pwm_bit);
   for (const auto& [name, bit] : outputs) {
     if (bit < 0) continue;
     if (used & (1u << bit))
-      err(fmt::format("outputs.{}: output bit {} is already used by another pin", name, bit));
+      err(fmt::format("{}: output bit {} is already used by another pin", name, bit));
     used |= 1u << bit;
   }
+  // TR's duty is whole ticks of a period: 100 of them keep it within 1 % of the RPM asked.
+  if (s.spindle.pwm_bit >= 0 && pacer / s.spindle.pwm_hz < 100)
+    err(
+        fmt::format("spindle.pwm_hz {} leaves {:.0f} ticks a period at the card's {:.0f} Hz "
+                    "pacer; at most {:.0f} Hz keeps TR's duty within 1 %",
+                    s.spindle.pwm_hz, pacer / s.spindle.pwm_hz, pacer, pacer / 100));
   // Each bit has one role, but the proximity switches of several axes may share one (wired
   // in parallel), and switch_bits only names bits for part files.
   std::uint32_t inputs_used = 0, home_bits = 0;

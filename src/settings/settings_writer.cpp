@@ -90,6 +90,9 @@ toml::table settings_table(const Settings& s) {
                                      {"charge_pump_hz", o.charge_pump_hz},
                                      {"spindle_bit", o.spindle_bit},
                                      {"aux_bits", joined(o.aux_bits, number)}});
+  root.insert("spindle", toml::table{{"pwm_bit", s.spindle.pwm_bit},
+                                     {"pwm_hz", s.spindle.pwm_hz},
+                                     {"max_rpm", s.spindle.max_rpm}});
   inputs.insert("estop_bit", s.inputs.estop_bit);
   inputs.insert("estop_active_low", s.inputs.estop_active_low);
   inputs.insert("probe_bit", s.inputs.probe_bit);

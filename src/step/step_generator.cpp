@@ -39,6 +39,12 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
         1, std::llround(settings.card.pacer_hz() / (2 * settings.outputs.charge_pump_hz)));
   }
   if (settings.outputs.spindle_bit >= 0) spindle_mask_ = 1u << settings.outputs.spindle_bit;
+  if (settings.spindle.pwm_bit >= 0) {
+    pwm_mask_ = 1u << settings.spindle.pwm_bit;
+    pwm_period_ticks_ =
+        std::max<std::int64_t>(1, std::llround(settings.card.pacer_hz() / settings.spindle.pwm_hz));
+    max_rpm_ = settings.spindle.max_rpm;
+  }
   aux_bits_ = settings.outputs.aux_bits;
   step_log_.resize(4096);
   history_ticks_ = std::llround(settings.card.pacer_hz());
@@ -68,6 +74,11 @@ void StepGenerator::set_card_trips() {
 
 void StepGenerator::set_spindle(bool on) {
   level_word_ = on ? level_word_ | spindle_mask_ : level_word_ & ~spindle_mask_;
+}
+
+void StepGenerator::set_spindle_speed(double rpm) {
+  const double duty = std::clamp(rpm / max_rpm_, 0.0, 1.0);
+  pwm_high_ticks_ = pwm_mask_ ? std::llround(duty * static_cast<double>(pwm_period_ticks_)) : 0;
 }
 
 bool StepGenerator::set_output(int n, bool on) {
@@ -178,6 +189,13 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
     if (stops.now() <= t0) return 0.0;
     emit_until(segment_end_);
     set_output(seg.output, seg.output_on);  // checked by SO: it is wired
+    emit_levels();
+    return std::nullopt;
+  }
+  if (seg.spindle_rpm) {  // at rest, as an output
+    if (stops.now() <= t0) return 0.0;
+    emit_until(segment_end_);
+    set_spindle_speed(*seg.spindle_rpm);
     emit_levels();
     return std::nullopt;
   }
@@ -397,8 +415,9 @@ void StepGenerator::emit_words(std::int64_t tick) {
   }
 }
 
-// `count` words from cursor_ on. The charge pump's bit flips every pump_half_ticks_ ticks
-// (by the tick's own number, so the square wave is unbroken across runs and blocks).
+// `count` words from cursor_ on. The charge pump's bit flips every pump_half_ticks_ ticks,
+// and the spindle speed's bit is high for the first pwm_high_ticks_ of each period (both by
+// the tick's own number, so the square waves are unbroken across runs and blocks).
 void StepGenerator::write_run(std::uint32_t word, std::int64_t count) {
   std::int64_t tick = cursor_;
   while (count > 0) {
@@ -409,6 +428,12 @@ void StepGenerator::write_run(std::uint32_t word, std::int64_t count) {
       const std::int64_t phase = tick / pump_half_ticks_;
       n = std::min(n, (phase + 1) * pump_half_ticks_ - tick);
       if (phase & 1) w |= pump_mask_;
+    }
+    if (pwm_high_ticks_ > 0) {
+      const std::int64_t phase = tick % pwm_period_ticks_;
+      const bool high = phase < pwm_high_ticks_;
+      n = std::min(n, (high ? pwm_high_ticks_ : pwm_period_ticks_) - phase);
+      if (high) w |= pwm_mask_;
     }
     block_.insert(block_.end(), static_cast<std::size_t>(n), w);
     count -= n;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "../support/run_gantry.hpp"
 
@@ -192,6 +194,145 @@ INSTANTIATE_TEST_SUITE_P(
                       ReversalCase{"probe_miss", "PZ, -1, 0.5, 1\nJZ, 0.5\n", 0.5},
                       ReversalCase{"probe_start", "MZ, 1\nPZ, -1, 0.5, 1\n", -1}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// A job in the shape of Fusion 360's OpenSBP post (tests/data/fusion_post.sbp: &Tool, C9,
+// TR, C6, PAUSE 2 at each of two tools, C7 and END) with Gantry's shipped macros and no
+// --macros. Expected values worked out by hand from the file and parts/macros/C6, C7, C9.
+struct TraceWord {
+  std::int64_t tick;
+  std::uint32_t word;
+};
+
+std::vector<TraceWord> read_trace(const fs::path& path) {
+  std::vector<TraceWord> out;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream l(line);
+    TraceWord w{};
+    l >> w.tick >> std::hex >> w.word;
+    out.push_back(w);
+  }
+  return out;
+}
+
+// The ticks at which `bit` rises (or falls).
+std::vector<std::int64_t> edges(const std::vector<TraceWord>& t, int bit, bool rising) {
+  std::vector<std::int64_t> out;
+  for (size_t i = 1; i < t.size(); ++i) {
+    const bool was = t[i - 1].word >> bit & 1u, is = t[i].word >> bit & 1u;
+    if (is != was && is == rising) out.push_back(t[i].tick);
+  }
+  return out;
+}
+
+// The fraction of [from, to) during which `bit` is high.
+double duty(const std::vector<TraceWord>& t, int bit, std::int64_t from, std::int64_t to) {
+  std::int64_t high = 0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const std::int64_t a = std::max(from, t[i].tick);
+    const std::int64_t b = std::min(to, i + 1 < t.size() ? t[i + 1].tick : to);
+    if (b > a && (t[i].word >> bit & 1u)) high += b - a;
+  }
+  return static_cast<double>(high) / static_cast<double>(to - from);
+}
+
+TEST(CamPost, FusionShapedJobChangesToolsAndSwitchesTheSpindleWithTheShippedMacros) {
+  const std::string file = "tests/data/fusion_post.sbp";
+  const Result c = gantry("check " + file + " --yes");
+  EXPECT_EQ(c.exit_code, 0) << c.out << c.err;
+
+  // The moves: C9 lifts to Safe-Z (1), goes to the change position (table base 0, 0), the
+  // spindle goes off (C7: output 1 off, 5 s spin-down), and it comes back over where it was.
+  const Result m = gantry("moves " + file + " --format jsonl --yes");
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  std::vector<std::string> seen;  // "file:line kind to" of every move with an effect
+  std::istringstream lines(m.out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const json j = json::parse(line);
+    const std::string kind = j["kind"];
+    if (kind == "stop" || (kind == "line" && j["from"] == j["to"])) continue;  // MS; no motion
+    std::string what = fs::path(j["file"].get<std::string>()).filename().string() + ":" +
+                       std::to_string(j["line"].get<int>()) + " " + kind;
+    if (kind == "line")
+      what += fmt::format(" {:g},{:g},{:g}", j["to"][0].get<double>(), j["to"][1].get<double>(),
+                          j["to"][2].get<double>());
+    if (kind == "output")
+      what += fmt::format(" {} {}", j["output"].get<int>(), j["on"] ? "on" : "off");
+    if (kind == "dwell") what += fmt::format(" {:g}", j["dwell_s"].get<double>());
+    seen.push_back(what);
+  }
+  const std::vector<std::string> want = {
+      // tool 1 (at 0, 0, 0): C9 lifts; the change position is where the tool is
+      "C9.sbp:26 line 0,0,1", "C7.sbp:15 output 1 off", "C7.sbp:16 dwell 5",
+      "C6.sbp:14 output 1 on", "C6.sbp:15 dwell 3", "fusion_post.sbp:11 dwell 2",
+      "fusion_post.sbp:13 line 0,0,0.6", "fusion_post.sbp:14 line 2,2,0.6",
+      "fusion_post.sbp:15 line 2,2,0.2", "fusion_post.sbp:16 line 2,2,-0.25",
+      "fusion_post.sbp:17 line 6,2,-0.25", "fusion_post.sbp:18 line 6,5,-0.25",
+      "fusion_post.sbp:19 line 2,5,-0.25", "fusion_post.sbp:20 line 2,2,-0.25",
+      "fusion_post.sbp:21 line 2,2,0.6",
+      // tool 2: up, over to the change position, spindle off, back over 2, 2
+      "C9.sbp:26 line 2,2,1", "C9.sbp:28 line 0,0,1", "C7.sbp:15 output 1 off", "C7.sbp:16 dwell 5",
+      "C9.sbp:33 line 2,2,1", "C6.sbp:14 output 1 on", "C6.sbp:15 dwell 3",
+      "fusion_post.sbp:27 dwell 2", "fusion_post.sbp:29 line 8,3,1",
+      "fusion_post.sbp:30 line 8,3,0.2", "fusion_post.sbp:31 line 8,3,-0.125",
+      "fusion_post.sbp:32 line 10,3,-0.125", "fusion_post.sbp:33 line 10,4,-0.125",
+      "fusion_post.sbp:34 line 10,4,0.6", "C7.sbp:15 output 1 off", "C7.sbp:16 dwell 5"};
+  EXPECT_EQ(seen, want);
+
+  // On the card with the shipped profile: TR has no speed output, so one warning for both.
+  const Result r = gantry("run " + file + " --yes --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["status"], "done");
+  EXPECT_EQ(j["timing_violations"], 0);
+  const std::array<double, 3> end{10, 4, 0.6};
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(j["steps"][kAxes[i]].get<std::int64_t>(), std::llround(end[i] * kStepsPerUnit[i]));
+  size_t tr_warnings = 0;
+  for (size_t at = r.err.find("TR: "); at != std::string::npos; at = r.err.find("TR: ", at + 1))
+    ++tr_warnings;
+  EXPECT_EQ(tr_warnings, 1u) << r.err;
+}
+
+TEST(CamPost, WithAPwmSpeedOutputTheTraceCarriesEachToolsDuty) {
+  // The shipped profile with the spindle's speed on bit 30: 1 kHz (200 ticks), 24000 RPM.
+  std::ifstream in(kSource / "settings/default.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string profile = text.str();
+  profile.replace(profile.find("pwm_bit = -1"), 12, "pwm_bit = 30");
+  const fs::path settings = fs::temp_directory_path() / fmt::format("gantry_pwm_{}.toml", getpid());
+  const fs::path trace = fs::temp_directory_path() / fmt::format("gantry_pwm_{}.trace", getpid());
+  std::ofstream(settings) << profile;
+  const Result r =
+      gantry(fmt::format("run tests/data/fusion_post.sbp --yes --json --settings '{}' "
+                         "--trace '{}'",
+                         settings.string(), trace.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("TR: "), std::string::npos) << r.err;  // no warning: it is wired
+  const std::vector<TraceWord> t = read_trace(trace);
+  fs::remove(trace);
+  fs::remove(settings);
+  ASSERT_GT(t.size(), 100u);
+  // Output 1 (bit 18), the spindle: on at each C6, off at tool 2's C9 and at the end.
+  const std::vector<std::int64_t> on = edges(t, 18, true), off = edges(t, 18, false);
+  ASSERT_EQ(on.size(), 2u);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_LT(on[0], off[0]);
+  EXPECT_LT(off[0], on[1]);
+  EXPECT_LT(on[1], off[1]);
+  // C6 waits 3 s and the post 2 s more before the tool moves: 5 s at 200 kHz.
+  EXPECT_GE(off[0] - on[0], 5 * 200000);
+  // While the spindle runs, bit 30's duty is TR's RPM over 24000, to within the 1 % the
+  // profile's pwm_hz allows.
+  EXPECT_NEAR(duty(t, 30, on[0], off[0]), 18000.0 / 24000, 0.005);
+  EXPECT_NEAR(duty(t, 30, on[1], off[1]), 16000.0 / 24000, 0.005);
+  EXPECT_EQ(duty(t, 30, 0, on[0] - 200000 * 3), 0.0);  // before TR: C9's lift, C7's wait
+  EXPECT_EQ(t.back().word >> 30 & 1u, 0u);             // 0 once the job has ended
+}
 
 // Faults on the simulated card: the run stops, says why and where, and the position it
 // reports is exactly the pulses the card played (the card's own count and the generator's).

@@ -46,7 +46,10 @@ TEST(CommandCatalogue, EveryCodeOfTheReferencesHasATableEntry) {
   // neither reference documents (shared/corpus).
   EXPECT_NE(table.find("CN"), nullptr);
   EXPECT_NE(table.find("SU"), nullptr);
-  EXPECT_EQ(table.all().size(), 128u);  // the 125, M0, CN and SU, each once
+  // TR, the spindle's speed: the Programming Handbook's virtual tool example (`TR, &speed`),
+  // which every CAM post for ShopBot writes.
+  EXPECT_NE(table.find("TR"), nullptr);
+  EXPECT_EQ(table.all().size(), 129u);  // the 125, M0, CN, SU and TR, each once
 }
 
 TEST(CommandCatalogue, GroupsAreTheSpecs) {

@@ -132,7 +132,7 @@ TEST_F(HelpToolsTest, WebCommandsPrintShopBotsAddress) {
 TEST_F(HelpToolsTest, HcListsEveryCodeByGroup) {
   run("HC\n");
   EXPECT_NE(printed.find("docs/commands.md"), std::string::npos);
-  EXPECT_NE(printed.find("  Tools      TC TD TF TH TI TS TT TU\n"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("  Tools      TR TC TD TF TH TI TS TT TU\n"), std::string::npos) << printed;
   for (const CommandSpec& s : CommandTable::standard().all())
     EXPECT_NE(printed.find(" " + std::string(s.code)), std::string::npos) << s.code;
 }

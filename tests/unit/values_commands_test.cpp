@@ -238,7 +238,7 @@ TEST_F(ValuesTest, CnRunsTheNumberedMacro) {
   run("CN, 75\nMY, 1\n");
   ASSERT_EQ(sink.moves.size(), 2u);
   EXPECT_DOUBLE_EQ(sink.moves[0].to[0], 3);
-  EXPECT_NE(run_error("CN, 9\n").message.find("no C9.sbp or macro_9.sbp"), std::string::npos);
+  EXPECT_NE(run_error("CN, 8\n").message.find("no C8.sbp or macro_8.sbp"), std::string::npos);
 }
 
 // ---- locations: VA, ZT, UZ, ST

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "gantry/lang/script.hpp"  // Script
 
@@ -20,7 +21,25 @@ class FileSystem {
   // A user file to read (null if it cannot be read) or to write (null if it cannot be made).
   virtual std::shared_ptr<std::istream> open_read(const std::string& path) = 0;
   virtual std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) = 0;
+  // The names of the files and folders in `folder` ("": the working directory); none when
+  // it cannot be listed.
+  virtual std::vector<std::string> list(const std::string& /*folder*/) { return {}; }
 };
+
+// A part file's path as files written on Windows name it: where `path` is missing, each
+// missing part is looked up without regard to case (`MyPart.SBP` finds `mypart.sbp`). An exact
+// name always wins; two names that differ only in case, and no exact one, are refused.
+struct PartFileLookup {
+  std::string path;   // the file found, else the path tried
+  std::string error;  // why it was refused ("": found, or simply missing)
+};
+PartFileLookup find_part_file(FileSystem& files, const std::string& path);
+
+// C<n>'s folders besides --macros: the operator's ($XDG_CONFIG_HOME/gantry/macros, else
+// ~/.config/gantry/macros) and the macros Gantry ships (C6, C7, C9...): beside an installed
+// gantry, <prefix>/share/gantry/macros, else the source tree's parts/macros.
+std::string user_macro_folder();
+std::string shipped_macro_folder();
 
 // The machine's own files.
 class DiskFileSystem : public FileSystem {
@@ -29,6 +48,7 @@ class DiskFileSystem : public FileSystem {
   bool is_file(const std::string& path) override;
   std::shared_ptr<std::istream> open_read(const std::string& path) override;
   std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
+  std::vector<std::string> list(const std::string& folder) override;
 };
 
 // Reads the disk (or another file system) but keeps every write in memory, where later reads find
@@ -41,6 +61,7 @@ class SandboxFileSystem : public FileSystem {
   bool is_file(const std::string& path) override;
   std::shared_ptr<std::istream> open_read(const std::string& path) override;
   std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
+  std::vector<std::string> list(const std::string& folder) override;
 
  private:
   DiskFileSystem disk_;

@@ -36,6 +36,7 @@ struct ModalState {
   bool absolute = true;          // SA (true) or SR (false)
   SpeedSettings speeds;          // MS / JS / VS
   std::uint32_t outputs = 0;     // SO: bit n-1 set while output switch n is on
+  double spindle_rpm = 0;        // TR: the speed asked for; the spindle (output 1) runs at it
   std::optional<std::array<double, 2>> last_xy_move;  // its X, Y displacement (for MD)
   // Where table base 0 is in the machine's own frame, the one the step counts are in: ZT,
   // UZ and VA's table base fields move table base coordinates without moving the tool.
@@ -189,6 +190,9 @@ class CommandContext {
   void come_to_rest(const SourceLoc& loc);
   // Output switch n (1-based) on or off, at rest between the moves around it (SO).
   void set_output(int n, bool on, const SourceLoc& loc);
+  // TR: the spindle speed, at rest between the moves around it, to the profile's speed
+  // output ([spindle]); without one it is only recorded, with one warning a run.
+  void set_spindle_speed(double rpm, const SourceLoc& loc);
   // Makes the current location of `axes` (bits 0 X .. 5 C) working 0; the table base
   // location stays where it is.
   void zero_axes(unsigned axes);
@@ -294,6 +298,7 @@ class CommandContext {
   bool independent_resting_ = false;  // the machine came to rest under MI: restart it
   bool warned_ = false;               // this run's first motion was warned of
   bool switch4_auto_ = false;         // ... and switch 4 came on with the warning
+  bool spindle_speed_warned_ = false;  // TR with no speed output: this run was told once
 };
 
 struct InterpreterOptions {
@@ -308,7 +313,12 @@ struct InterpreterOptions {
   // Virtual time has nobody to warn, and its cycle times leave the wait out.
   bool warn_before_motion = false;
   std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
-  std::string macro_dir;             // where C<n> finds its files ("" = beside the file)
+  // Where C<n> finds its files (docs/language.md, "Custom cuts"): `macro_dir` (--macros),
+  // else the parts folder and then `user_macro_dir`; last `shipped_macro_dir`, Gantry's own
+  // C6, C7, C9... ("" leaves a folder out).
+  std::string macro_dir;
+  std::string user_macro_dir = user_macro_folder();
+  std::string shipped_macro_dir = shipped_macro_folder();
   int max_file_depth = 8;            // FP nesting, the top-level file included
   // The top-level file's first line to run (0 or 1: all of it): the lines before it run
   // without motion, output or questions, then the tool approaches where they leave it
@@ -445,6 +455,9 @@ class Interpreter : private EvalEnv {
   // `$nameUU[].x = v`: FabMo's universal units, stored in inches at [0] and mm at [1].
   void assign_universal_units(nlohmann::json& root, const LValue& target, const Value& v);
   std::string file_path(const std::string& name, const SourceLoc& loc) const;
+  // file_path's file as it is on the disk (case-insensitive where the exact name is missing).
+  std::string existing_file(const std::string& name, const SourceLoc& loc) const;
+  std::vector<std::string> macro_folders() const;  // where C<n> looks, in order
   Diagnostic located(Diagnostic d) const;
   [[noreturn]] void rethrow_located(const GantryError& e) const;
   void unwind_all();

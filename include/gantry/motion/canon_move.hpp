@@ -16,7 +16,8 @@ namespace gantry {
 // axes moving in proportion (a helix). Dwell: a timed wait at rest. Stop: come to rest, then go on
 // (MS and JS punctuate the moves around them this way). Output: at rest, switch output `output` on
 // or off (SO). Independent: at rest, start (or end) an axis moving on its own beside the path (MI).
-enum class MoveKind { Line, Arc, Dwell, Stop, Output, Independent };
+// SpindleSpeed: at rest, the spindle's speed output to `spindle_rpm` (TR).
+enum class MoveKind { Line, Arc, Dwell, Stop, Output, Independent, SpindleSpeed };
 
 // Move (cutting) speed or Jog (rapid) speed: the two speed sets of OpenSBP.
 enum class SpeedClass { Move, Jog };
@@ -52,6 +53,7 @@ struct CanonMove {
   bool keypad = false;            // a keypad jog: it ramps at VR's keypad ramp rate
   bool warning = false;           // Dwell: SW's warning before the run's first motion
   bool output_on = false;
+  double spindle_rpm = 0;         // SpindleSpeed: the RPM TR asked for
   IndependentMotion independent;  // Independent: what the axis does from here on
   SourceLoc loc;                  // the statement that asked for it
 };

@@ -16,6 +16,7 @@ struct PlannedSegment {
   bool warning = false;  // the dwell is SW's warning that the machine is about to move
   int output = 0;      // > 0: switch this output (1-based) at this point, at rest
   bool output_on = false;
+  std::optional<double> spindle_rpm;  // set: at rest, the spindle speed output to this (TR)
   // Set: at rest, the axis moving on its own (MI) changes to this (comes to rest if it is
   // not running); the planned path leaves that axis alone while it runs.
   std::optional<IndependentMotion> independent;

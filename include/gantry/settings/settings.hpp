@@ -75,6 +75,15 @@ struct OutputSettings {
   std::vector<int> aux_bits;      // output switches 1, 2, ... (SO); -1: that one not wired
 };
 
+// The spindle's speed signal, set by TR (docs/settings.md, [spindle]). With `pwm_bit` wired,
+// that output bit carries a square wave whose duty is rpm / max_rpm (a PWM-to-0-10 V board
+// feeds it to the VFD's speed input); its on/off is output switch 1, as on every ShopBot.
+struct SpindleSettings {
+  int pwm_bit = -1;        // -1: no speed output; TR only records the RPM
+  double pwm_hz = 1000;    // the square wave's frequency
+  double max_rpm = 24000;  // the RPM at 100 % duty, and the most TR may ask for
+};
+
 // Bits of the card's 32-bit input word. -1: not wired. A switch is "active" when its bit
 // reads 1, or 0 for the active-low ones (normally-closed E-stop chains read 0 when broken).
 struct InputSettings {
@@ -217,6 +226,7 @@ struct Settings {
   CardSettings card;
   std::array<PinSettings, kAxisCount> pins{};
   OutputSettings outputs;
+  SpindleSettings spindle;
   InputSettings inputs;
   HomingSettings homing;
   SimulatorSettings simulator;

@@ -94,6 +94,10 @@ class StepGenerator : public SegmentSink {
   // profile does not wire it.
   bool set_output(int n, bool on);
   bool output_on(int n) const;  // output switch n's level in the words
+  // The spindle's speed output (spindle.pwm_bit) to `rpm`, from the next word on: a square
+  // wave of duty rpm / max_rpm, by the tick's own number like the charge pump. No-op
+  // when the profile wires none.
+  void set_spindle_speed(double rpm);
   // At rest: one word at the levels set since (outputs switched between segments).
   void emit_levels();
   bool faulted() const { return faulted_; }
@@ -150,6 +154,9 @@ class StepGenerator : public SegmentSink {
   std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
   std::vector<int> aux_bits_;
   std::int64_t pump_half_ticks_ = 1;
+  std::uint32_t pwm_mask_ = 0;
+  std::int64_t pwm_period_ticks_ = 1, pwm_high_ticks_ = 0;  // high for the first ticks of a period
+  double max_rpm_ = 0;
   // A ring of steps: [log_begin_, log_played_) played (kept as history), [log_played_,
   // log_end_) not yet confirmed played.
   std::vector<StepRecord> step_log_;
