@@ -445,13 +445,14 @@ TEST_F(InterpreterTest, VsChangesEndWithTheFileButMsStays) {
 
 // SB3 ignores parameters past the last (docs/language.md §1): a warning at the first one.
 TEST_F(InterpreterTest, VsIgnoresANinthParameterWithAWarning) {
-  run("VS, 1, 1, 1, 1, 1, 1, 1, 1, 1\n");
+  run("VS, 1, 1, 1, 1, 1, 1, 1, 1, 1\nMX, 1\n");
   ASSERT_EQ(io.warnings().size(), 1u);
   EXPECT_EQ(where(io.warnings()[0].loc), "part.sbp:1:29");
   EXPECT_EQ(io.warnings()[0].message,
             "VS takes 8 parameters; parameter 9 and those after it are ignored, as SB3 ignores "
             "them");
-  EXPECT_EQ(state().speeds.move.xy, 1);
+  ASSERT_EQ(moves().size(), 1u);
+  EXPECT_EQ(moves()[0].speeds.xy, 1);  // the eight values are taken
 }
 
 TEST_F(InterpreterTest, EachMoveKeepsTheSpeedInForceWhenIssued) {
