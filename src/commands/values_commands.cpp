@@ -627,6 +627,18 @@ std::vector<ParamSpec> va_params(std::string_view letters) {
 // Table base values first, then working ones (FabMo states that order; SB3 is silent).
 void values_locations(CommandContext& ctx, const CommandCall& call) {
   const int n = ctx.settings().dialect == Dialect::FabMo ? 6 : 5;
+  // FabMo's `VA, 0,,,,,, 0` (X, then table base X) read in SB3's layout would set table base
+  // Y: parameter 6 (C in FabMo's layout, table base X in SB3's) left blank while a later one
+  // is set is read neither way.
+  if (n == 5 && !call.number(5))
+    for (int i = 6; i < 10; ++i)
+      if (call.number(i))
+        fail(call.param_loc(i),
+             fmt::format("VA parameter {} is table base {} in SB3's 10-value layout (this "
+                         "profile's dialect) but table base {} in FabMo's 12-value one, which "
+                         "this line's blank parameter 6 suggests; set dialect = \"fabmo\" for "
+                         "FabMo's layout, or give parameter 6 (table base X) for SB3's",
+                         i + 1, "XYZAB"[i - 5], "XYZABC"[i - 6]));
   Vec6 base = Vec6::Zero();
   unsigned base_axes = 0;
   for (int i = 0; i < n; ++i)
@@ -710,8 +722,10 @@ void add_values_commands(std::vector<CommandSpec>& out) {
   out.push_back({"VA", "Values for axis locations", V,
                  "Gives the current location new working values, then table base values, "
                  "without moving. Blank keeps an axis's value.",
-                 va_params("XYZAB"), values_locations, "", va_params("XYZABC"), false,
-                 "%(1)-%(10)"});
+                 va_params("XYZAB"), values_locations, "", va_params("XYZABC"), false, "%(1)-%(10)",
+                 "SB3's VA has 10 values (X to B, then table base X to B) and FabMo's 12 (X to "
+                 "C, then table base X to C); set dialect = \"fabmo\" in the profile for "
+                 "FabMo's layout"});
   out.push_back({"VB",
                  "Values for tabs",
                  V,

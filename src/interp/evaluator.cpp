@@ -95,6 +95,8 @@ std::string_view op_text(ExprOp op) {
       return "*";
     case ExprOp::Div:
       return "/";
+    case ExprOp::IntDiv:
+      return "\\";
     case ExprOp::Mod:
       return "MOD";
     case ExprOp::Pow:
@@ -160,6 +162,12 @@ class Evaluator {
         const double y = num(*n.b);
         if (y == 0) fail(n.b->start_loc(), "division by zero");
         return finite(x / y, n);
+      }
+      case ExprOp::IntDiv: {  // BASIC's `\`, truncating toward zero (docs/language.md §3)
+        const double x = num(*n.a);
+        const double y = num(*n.b);
+        if (y == 0) fail(n.b->start_loc(), "division by zero (the right side of \\ is 0)");
+        return finite(std::trunc(x / y), n);
       }
       case ExprOp::Mod: {
         const double x = num(*n.a);

@@ -1003,6 +1003,7 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
   };
   clear_run_flag();
   frames_.clear();
+  extra_params_warned_.clear();
   // Ends the run whatever happened: files closed, VS speeds of every open file undone
   // (innermost first), the moves already issued completed, the store saved.
   auto finish = [&] {
@@ -1070,6 +1071,7 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
   // As a run would: SetUsrValClrd starts empty (the store is a check's own copy).
   if (store_.registry_value("uValueClrd")) store_.registry().erase("uValueClrd");
   parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
+  extra_params_warned_.clear();
   try {
     frames_.clear();
     // A check goes through a file with syntax errors too (they are reported already).
@@ -1465,10 +1467,7 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
                           "knows",
                           cmd.code));
   const std::vector<ParamSpec>& params = spec->params_for(settings_.dialect);
-  if (cmd.args.size() > params.size())
-    fail(cmd.args[params.size()].loc,
-         fmt::format("{} takes {} parameter{}; this is parameter {}", spec->code, params.size(),
-                     params.size() == 1 ? "" : "s", params.size() + 1));
+  if (cmd.args.size() > params.size()) extra_params(*spec, cmd, params.size(), loc);
   // The values' storage is kept from line to line (taken, so a nested call gets its own).
   std::vector<std::optional<Value>> values = std::move(values_storage_);
   values.assign(params.size(), std::nullopt);
@@ -1507,12 +1506,44 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
   values_storage_ = std::move(values);
 }
 
+// SB3 ignores parameters past a command's last one, and ShopBot's own sample files write
+// some (CR with 10, CP with 15): Gantry ignores them too, with one warning per command and
+// file. Moves, jogs and zero commands refuse them: there an extra value is most likely meant
+// for another command (M2 for M3, ZX for VA), and ignoring it would put the tool somewhere the
+// file did not mean. So does a command whose table gives a reason (VA: another layout's
+// values would be misread). Trailing blanks are already gone, so one of them is written.
+void Interpreter::extra_params(const CommandSpec& spec, const CommandStmt& cmd, size_t count,
+                               const SourceLoc& loc) {
+  size_t first = count;
+  while (cmd.args[first].blank()) ++first;
+  const Arg& extra = cmd.args[first];
+  const std::string takes =
+      fmt::format("{} takes {} parameter{}", spec.code, count, count == 1 ? "" : "s");
+  if (!spec.extra_params_refused.empty())
+    fail(extra.loc,
+         fmt::format("{}; this is parameter {}: {}", takes, first + 1, spec.extra_params_refused));
+  if (spec.group == CommandGroup::Move || spec.group == CommandGroup::Jog ||
+      spec.group == CommandGroup::Zero)
+    fail(extra.loc, fmt::format("{}; this is parameter {}", takes, first + 1));
+  const std::string key = fmt::format("{}\n{}", loc.file ? *loc.file : "", spec.code);
+  if (!extra_params_warned_.insert(key).second) return;
+  io_.warn({extra.loc, Severity::Warning,
+            fmt::format("{}; parameter {} and those after it are ignored, as SB3 ignores them",
+                        takes, first + 1)});
+}
+
 void Interpreter::exec(const GcodeStmt& s, const SourceLoc& loc) {
   gcode_->execute(s.block, loc);
 }
 
 void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {
-  call_macro(s.number, loc);
+  if (!s.computed) return call_macro(s.number, loc);
+  const SourceLoc& at = s.computed->loc;
+  const double n = value_of(*s.computed).to_number(at, "the custom cut's number (C#)");
+  if (n < 0 || n > kMaxCustomCut || n != std::floor(n))
+    fail(at, fmt::format("custom cuts are numbered 0 to {}; C# was given {}", kMaxCustomCut,
+                         format_number(n)));
+  call_macro(static_cast<int>(n), loc);
 }
 
 // --macros, else the parts folder ("": the working directory) and the operator's folder;

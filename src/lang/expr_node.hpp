@@ -28,6 +28,7 @@ enum class ExprOp : std::uint8_t {
   Sub,
   Mul,
   Div,
+  IntDiv,  // `\`: the quotient truncated toward zero
   Mod,
   Pow,
   Join,  // `&`

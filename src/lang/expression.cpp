@@ -86,6 +86,7 @@ enum class Tok : std::uint8_t {
   Minus,
   Star,
   Slash,
+  Backslash,  // integer division
   Caret,
   Amp,
   Eq,
@@ -118,8 +119,14 @@ struct Proto {
 class Parser {
  public:
   // `at` locates text[0]; a location without a column (0) counts text[0] as column 1.
-  Parser(std::string_view text, const SourceLoc& at, size_t pos, int nesting)
-      : text_(text), at_(at), base_(at.column > 0 ? at.column : 1), pos_(pos), nesting_(nesting) {}
+  Parser(std::string_view text, const SourceLoc& at, size_t pos, int nesting,
+         bool bare_words = false)
+      : text_(text),
+        at_(at),
+        base_(at.column > 0 ? at.column : 1),
+        pos_(pos),
+        nesting_(nesting),
+        bare_words_(bare_words) {}
 
   Expr parse_whole() {
     advance();
@@ -248,6 +255,9 @@ class Parser {
       case '/':
         set(Tok::Slash, 1);
         break;
+      case '\\':
+        set(Tok::Backslash, 1);
+        break;
       case '^':
         set(Tok::Caret, 1);
         break;
@@ -260,8 +270,10 @@ class Parser {
       }
       case '&':
         // `&` followed by a name starts a variable; otherwise it is the join operator, so
-        // `"a"&&x` joins "a" and &x (handbook examples always space the operator).
-        if (is_name_start(next))
+        // `"a"&&x` joins "a" and &x (handbook examples always space the operator). SB3 also
+        // takes names that start with a digit (`&3zero_input`): a run of name characters
+        // with a letter or `_` in it is a name, so `"a"&3` still joins the number 3.
+        if (is_name_start(next) || variable_name_at(i + 1))
           set(Tok::UserVar, name_end(i + 1) - i);
         else
           set(Tok::Amp, 1);
@@ -325,6 +337,14 @@ class Parser {
   size_t name_end(size_t i) const {
     while (i < text_.size() && is_name_char(text_[i])) ++i;
     return i;
+  }
+  // Digits then a letter or `_` at i: a user variable's name that starts with a digit.
+  bool variable_name_at(size_t i) const {
+    if (i >= text_.size() || !is_digit(text_[i])) return false;
+    const size_t e = name_end(i);
+    for (size_t k = i; k < e; ++k)
+      if (is_name_start(text_[k])) return true;
+    return false;
   }
   // A dotted name such as machine.envelope.ymax.
   size_t name_path_end(size_t i) const {
@@ -406,7 +426,8 @@ class Parser {
   //   cmp  := join [ cmpop join ]           one comparison; a second one is an error
   //   join := add { "&" add }
   //   add  := mod { ("+" | "-") mod }
-  //   mod  := mul { MOD mul }               VB's level, between * / and + -
+  //   mod  := idiv { MOD idiv }             VB's level, between \ and + -
+  //   idiv := mul { "\" mul }               VB's level, between * / and MOD
   //   mul  := unary { ("*" | "/") unary }
   //   unary:= ("-" | "+") unary | pow        so -2^2 = -(2^2) = -4
   //   pow  := primary { "^" signed }        LEFT-associative: 2^3^2 = (2^3)^2 = 64
@@ -503,11 +524,21 @@ class Parser {
   }
 
   int parse_mod() {
-    int x = parse_mul();
+    int x = parse_int_div();
     while (is_keyword(tok_, "MOD")) {
       const Token op = tok_;
       advance();
-      x = add(ExprOp::Mod, op.pos, x, parse_mul());
+      x = add(ExprOp::Mod, op.pos, x, parse_int_div());
+    }
+    return x;
+  }
+
+  int parse_int_div() {
+    int x = parse_mul();
+    while (tok_.kind == Tok::Backslash) {
+      const Token op = tok_;
+      advance();
+      x = add(ExprOp::IntDiv, op.pos, x, parse_mul());
     }
     return x;
   }
@@ -746,6 +777,9 @@ class Parser {
           advance();
           return parse_call(t);
         }
+        if (bare_words_) {
+          if (const int node = bare_text(t); node >= 0) return node;
+        }
         fail(loc(t.pos), fmt::format("{} is not a value: put text in double quotes, write a "
                                      "variable as &name, or call a function as NAME(x)",
                                      describe(t)));
@@ -755,11 +789,46 @@ class Parser {
     }
   }
 
+  static bool is_comparison(Tok k) {
+    ExprOp op;
+    return comparison(k, &op);
+  }
+
+  // Unquoted words right beside a comparison (`&answer = Cancel`, `Yes <> &a`) are text,
+  // as the handbook allows strings without quotation marks; elsewhere a word stays an
+  // error, so a forgotten `&` or quote is not silently taken as text. The words run to the
+  // next token that is not a plain word; their spacing is kept. -1: not bare text here.
+  int bare_text(const Token& first) {
+    const bool after_comparison = is_comparison(prev_.kind);
+    const size_t saved_pos = pos_;
+    const Token saved_tok = tok_, saved_prev = prev_;
+    Token last = first;
+    advance();
+    while (tok_.kind == Tok::Word && !is_keyword(tok_, "AND") && !is_keyword(tok_, "OR") &&
+           !is_keyword(tok_, "MOD") && !is_keyword(tok_, "NOT")) {
+      size_t next = pos_;
+      while (next < text_.size() && is_space(text_[next])) ++next;
+      if (next < text_.size() && text_[next] == '(') break;  // a call: not part of the text
+      last = tok_;
+      advance();
+    }
+    if (!after_comparison && !is_comparison(tok_.kind)) {
+      pos_ = saved_pos;
+      tok_ = saved_tok;
+      prev_ = saved_prev;
+      return -1;
+    }
+    const int node = add(ExprOp::Text, first.pos);
+    set_text(node, text_.substr(first.pos, last.pos + last.len - first.pos));
+    return node;
+  }
+
   std::string_view text_;
   SourceLoc at_;  // the location of text[0]; columns are base_ + offset
   std::int32_t base_;
   size_t pos_;
   int nesting_;
+  bool bare_words_;  // unquoted words beside a comparison are text (IF tests)
   Token tok_, prev_;
   std::vector<Proto> protos_;
   std::string strings_;
@@ -781,10 +850,10 @@ std::string_view function_name(ExprFunc f) {
   return "?";
 }
 
-ExprParse parse_expression(std::string_view text, const SourceLoc& at) {
+ExprParse parse_expression(std::string_view text, const SourceLoc& at, bool bare_words) {
   ExprParse out;
   try {
-    out.expr = Parser(text, at, 0, 0).parse_whole();
+    out.expr = Parser(text, at, 0, 0, bare_words).parse_whole();
   } catch (const GantryError& e) {
     out.error = e.diagnostic();
   }

@@ -25,6 +25,7 @@ class LineParser {
   Statement assignment(size_t b, size_t e) const;
   Statement command(const std::string& word, size_t b, size_t w, size_t e) const;
   Statement custom_cut(const std::string& word, size_t b, size_t w, size_t e) const;
+  Statement computed_custom_cut(size_t b, size_t p, size_t e) const;
   Statement jump(bool gosub, size_t b, size_t w, size_t e) const;
   Statement if_statement(size_t b, size_t w, size_t e) const;
   Statement on_input(size_t b, size_t w, size_t e) const;
@@ -48,7 +49,7 @@ class LineParser {
   [[noreturn]] void error(size_t col0, std::string message) const;
   size_t skip_space(size_t i, size_t end) const;
   Arg arg(size_t b, size_t e, bool whole_quotes = true) const;
-  Expr expression(size_t b, size_t e, std::string_view what) const;
+  Expr expression(size_t b, size_t e, std::string_view what, bool bare_words = false) const;
   LValue lvalue(size_t b, size_t e) const;
   std::vector<std::pair<size_t, size_t>> split_commas(size_t b, size_t e) const;
   std::string label_name(size_t b, size_t e, bool* ok) const;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>  // messages
 
 #include <algorithm>  // count
+#include <cmath>      // floor
 
 #include "gantry/interp/value.hpp"  // parse_number_literal
 #include "line_parser.hpp"          // LineParser
@@ -49,11 +50,11 @@ Arg LineParser::arg(size_t b, size_t e, bool whole_quotes) const {
   return a;
 }
 
-Expr LineParser::expression(size_t b, size_t e, std::string_view what) const {
+Expr LineParser::expression(size_t b, size_t e, std::string_view what, bool bare_words) const {
   b = skip_space(b, e);
   while (e > b && is_space(line_[e - 1])) --e;
   if (b == e) error(b, fmt::format("expected {}", what));
-  ExprParse p = parse_expression(line_.substr(b, e - b), loc(b));
+  ExprParse p = parse_expression(line_.substr(b, e - b), loc(b), bare_words);
   if (!p.expr) throw GantryError(*p.error);
   return *p.expr;
 }
@@ -129,9 +130,10 @@ Statement LineParser::statement(size_t b, size_t e) const {
           "unexpected text after the label; put the next statement on its "
           "own line");
   if (std::optional<Statement> st = program_statement(word, b, w, e)) return std::move(*st);
-  if (word.size() >= 2 && word.size() <= 3 && word[0] == 'C' &&
+  if (word.size() >= 2 && word.size() <= kMaxCustomCutDigits + 1 && word[0] == 'C' &&
       word.find_first_not_of("0123456789", 1) == std::string::npos)
     return custom_cut(word, b, w, e);
+  if (word == "C" && w < e && line_[w] == '#') return computed_custom_cut(b, w + 1, e);
   return command(word, b, w, e);
 }
 
@@ -195,6 +197,37 @@ Statement LineParser::custom_cut(const std::string& word, size_t b, size_t w, si
   return {loc(b), std::move(st)};
 }
 
+// `C#, n [, params]`: ShopBot's spelling of `C<n>`, the number being the first parameter (a
+// number or an expression, evaluated when the line runs). `p` is just after the `#`.
+Statement LineParser::computed_custom_cut(size_t b, size_t p, size_t e) const {
+  if (p < e && line_[p] == ',') ++p;  // FabMo also takes `C# 90` and `C#90`
+  const auto fields = split_commas(skip_space(p, e), e);
+  Arg number = arg(fields[0].first, fields[0].second);
+  if (number.blank())
+    error(number.loc.column - 1,
+          "C# needs the number of the custom cut: write `C#, 90` to run custom cut 90");
+  CustomCutStmt st;
+  if (number.number) {
+    const double n = *number.number;
+    if (n < 0 || n != std::floor(n) || n > kMaxCustomCut)
+      error(number.loc.column - 1, fmt::format("custom cuts are numbered 0 to {}; C# was given {}",
+                                               kMaxCustomCut, number.text));
+    st.number = static_cast<int>(n);
+  } else if (number.expr) {
+    st.computed = std::move(number);
+  } else if (looks_like_expression(number.text, true)) {
+    throw GantryError(*number.expr_error);  // `C#, &n +`: say where it breaks
+  } else {
+    error(number.loc.column - 1,
+          fmt::format("C# needs a number or a variable, not '{}': write `C#, 90` or `C#, &n`",
+                      number.text));
+  }
+  for (size_t i = 1; i < fields.size(); ++i)
+    st.args.push_back(arg(fields[i].first, fields[i].second));
+  while (!st.args.empty() && st.args.back().blank()) st.args.pop_back();
+  return {loc(b), std::move(st)};
+}
+
 Statement LineParser::jump(bool gosub, size_t b, size_t w, size_t e) const {
   const size_t lb = skip_space(w, e);
   bool ok = false;
@@ -214,7 +247,7 @@ Statement LineParser::if_statement(size_t b, size_t w, size_t e) const {
   const size_t then = find_keyword(s, "THEN", w);
   if (then == std::string_view::npos) error(b, "IF needs THEN: write IF test THEN statement");
   IfStmt st;
-  st.test = expression(w, then, "a test after IF");
+  st.test = expression(w, then, "a test after IF", /*bare_words=*/true);
   const size_t ab = skip_space(then + 4, e);
   if (ab == e) error(then, "THEN needs a statement after it");
   st.action = action(ab, e, "IF ... THEN");
@@ -232,9 +265,12 @@ StatementPtr LineParser::action(size_t b, size_t e, std::string_view owner) cons
 Statement LineParser::on_input(size_t b, size_t w, size_t e) const {
   const std::string_view s = line_.substr(0, e);
   size_t p = skip_space(w, e);
-  if (find_keyword(s, "INPUT", p) != p)
-    error(p, "expected INPUT after ON: ON INPUT(switch, state)");
-  p = skip_space(p + 5, e);
+  // ShopBot's files often abbreviate INPUT to INP, as FabMo accepts.
+  const size_t keyword = find_keyword(s, "INPUT", p) == p ? 5
+                         : find_keyword(s, "INP", p) == p ? 3
+                                                          : 0;
+  if (keyword == 0) error(p, "expected INPUT after ON: ON INPUT(switch, state)");
+  p = skip_space(p + keyword, e);
   if (p >= e || line_[p] != '(') error(p, "expected '(' after ON INPUT");
   const size_t close = find_top_level(s, ')', p + 1);
   const size_t comma = find_top_level(s, ',', p + 1);

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace gantry::scan {
 
@@ -52,6 +53,34 @@ inline size_t find_top_level(std::string_view s, char sep, size_t from = 0) {
     if (quoted) continue;
     if (c == '(' || c == '[') ++depth;
     if ((c == ')' || c == ']') && depth > 0) --depth;
+    if (c == sep && depth == 0) return i;
+  }
+  return std::string_view::npos;
+}
+
+// Like find_top_level, but only a '(' with its own ')' in `s` hides what it encloses: in bare
+// text (a MSGBOX body such as `Remove the clamps (all four` ) a lone '(' is a character.
+inline size_t find_top_level_matched(std::string_view s, char sep, size_t from = 0) {
+  std::vector<bool> matched(s.size(), false);  // '(' and ')' that pair up
+  std::vector<size_t> open;
+  bool quoted = false;
+  for (size_t i = from; i < s.size(); ++i) {
+    if (s[i] == '"') quoted = !quoted;
+    if (quoted) continue;
+    if (s[i] == '(') open.push_back(i);
+    if (s[i] == ')' && !open.empty()) {
+      matched[open.back()] = matched[i] = true;
+      open.pop_back();
+    }
+  }
+  quoted = false;
+  int depth = 0;
+  for (size_t i = from; i < s.size(); ++i) {
+    const char c = s[i];
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    if (c == '(' && matched[i]) ++depth;
+    if (c == ')' && matched[i]) --depth;
     if (c == sep && depth == 0) return i;
   }
   return std::string_view::npos;

@@ -247,6 +247,8 @@ Statement LineParser::input(size_t b, size_t w, size_t e) const {
 }
 
 // MSGBOX(body, buttons, title): split at the first two commas; the title runs to the last ')'.
+// Commas inside quotes or inside a matched pair of parentheses (`ROUND(&x, 2)`) do not split;
+// a lone '(' in the body is text and hides nothing.
 Statement LineParser::msgbox(size_t b, size_t w, size_t e) const {
   size_t p = skip_space(w, e);
   if (p >= e || line_[p] != '(') error(p, "MSGBOX needs (text, buttons, title)");
@@ -255,8 +257,8 @@ Statement LineParser::msgbox(size_t b, size_t w, size_t e) const {
   if (skip_space(close + 1, e) < e) error(close + 1, "unexpected text after MSGBOX(...)");
   MsgBoxStmt st;
   const std::string_view s = line_.substr(0, close);
-  const size_t c1 = find_top_level(s, ',', p + 1);
-  const size_t c2 = c1 == std::string_view::npos ? c1 : find_top_level(s, ',', c1 + 1);
+  const size_t c1 = find_top_level_matched(s, ',', p + 1);
+  const size_t c2 = c1 == std::string_view::npos ? c1 : find_top_level_matched(s, ',', c1 + 1);
   st.body = arg(p + 1, c1 == std::string_view::npos ? close : c1);
   st.buttons = c1 == std::string_view::npos
                    ? arg(close, close)

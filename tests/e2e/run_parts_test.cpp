@@ -524,6 +524,27 @@ TEST(Check, ReportsEveryErrorInOrder) {
             "tests/data/many_errors.sbp:6:8: error: MZ takes 1 parameter; this is parameter 2\n");
 }
 
+// ShopBot's own spellings (issue 21): `\`, a name starting with a digit, ON INP, a '(' in a
+// MSGBOX's text, an unquoted answer in an IF test, CR with 10 parameters and C#, &n. Each was
+// an error before; now the file reads, CR's extra parameter is the one warning, and C#, &whole
+// runs C7.sbp beside the file.
+TEST(Check, ShopBotsOwnSpellingsRead) {
+  const Result r = gantry("check tests/data/shopbot_spellings.sbp");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err,
+            "tests/data/shopbot_spellings.sbp:8:36: warning: CR takes 9 parameters; parameter 10 "
+            "and those after it are ignored, as SB3 ignores them\n");
+  const Result moves = gantry("moves tests/data/shopbot_spellings.sbp --format jsonl --yes");
+  ASSERT_EQ(moves.exit_code, 0) << moves.err;
+  std::istringstream in(moves.out);
+  std::string line, last;
+  while (std::getline(in, line)) last = line;
+  ASSERT_FALSE(last.empty());
+  const json m = json::parse(last);
+  EXPECT_EQ(m["file"], "tests/data/C7.sbp");
+  EXPECT_EQ(m["to"][0], 1);
+}
+
 TEST(Moves, JsonlGivesEveryCanonicalMove) {
   const Result r = gantry("moves parts/relative_steps.sbp --format jsonl");
   ASSERT_EQ(r.exit_code, 0) << r.err;

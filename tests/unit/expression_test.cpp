@@ -4,6 +4,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -190,6 +191,70 @@ TEST_F(ExpressionTest, Mod) {
   EXPECT_EQ(num("7 MOD 2*2"), 3);
   EXPECT_EQ(num("1 + 7 MOD 3"), 2);
   EXPECT_EQ(num("7 MOD 4 MOD 2"), 1);  // (7 MOD 4) MOD 2
+}
+
+// BASIC's integer division (ShopBot files write `(&x)\1` for the whole part): the quotient
+// truncated toward zero, at VB's level between * / and MOD.
+TEST_F(ExpressionTest, IntegerDivision) {
+  EXPECT_EQ(num("7 \\ 2"), 3);
+  EXPECT_EQ(num("-7 \\ 2"), -3);  // toward zero, not floor (-4)
+  EXPECT_EQ(num("7 \\ -2"), -3);
+  EXPECT_EQ(num("7.9 \\ 1"), 7);  // operands are not rounded first (VB6 would give 8)
+  EXPECT_EQ(num("(-2.5)\\1"), -2);
+  env.vars["X"] = Value::number(12.75);
+  EXPECT_EQ(num("(&x)\\1"), 12);
+  EXPECT_EQ(num("8 \\ 2 * 2"), 2);    // * first: 8 \ (2*2), as in VB
+  EXPECT_EQ(num("9 / 2 \\ 2"), 2);    // (9/2) \ 2
+  EXPECT_EQ(num("7 MOD 5 \\ 2"), 1);  // \ before MOD: 7 MOD (5\2)
+  EXPECT_EQ(num("1 + 7 \\ 2"), 4);
+  EXPECT_EQ(num("100 \\ 10 \\ 3"), 3);  // left-associative
+  const Diagnostic d = eval_error("5 \\ &zero", 10);
+  EXPECT_EQ(d.message, "division by zero (the right side of \\ is 0)");
+  EXPECT_EQ(d.loc.column, 14);
+}
+
+// SB3 takes user variable names that start with a digit; a digit run alone after `&` is
+// still the join operator and a number.
+TEST_F(ExpressionTest, VariableNamesMayStartWithADigit) {
+  env.vars["3ZERO_INPUT"] = Value::number(3);
+  env.vars["5AX_OFFSET"] = Value::number(0.5);
+  EXPECT_EQ(num("&3zero_input + 1"), 4);
+  EXPECT_EQ(num("&5AX_offset * 2"), 1);
+  EXPECT_EQ(str("\"a\"&3"), "a3");
+  EXPECT_EQ(parse_error("&12").loc.column, 1);
+  std::optional<Diagnostic> err;
+  const std::optional<LValue> v = parse_lvalue("&3zero_input", at(), &err);
+  ASSERT_TRUE(v) << (err ? format(*err) : "");
+  EXPECT_EQ(v->name, "3ZERO_INPUT");
+}
+
+// In an IF test (parse_expression's bare_words), unquoted words beside a comparison are
+// text, as the handbook allows strings without quotation marks; elsewhere they stay errors.
+TEST_F(ExpressionTest, BareWordsBesideAComparisonAreText) {
+  auto test = [&](std::string_view text) {
+    ExprParse p = parse_expression(text, at(), /*bare_words=*/true);
+    EXPECT_TRUE(p.expr) << text << ": " << (p.error ? format(*p.error) : "");
+    return p.expr ? evaluate(*p.expr, env).to_string() : "<parse error>";
+  };
+  env.vars["MSGANSWER"] = Value::string("Cancel");
+  env.vars["ORIGIN"] = Value::string("Material Surface");
+  EXPECT_EQ(test("&msganswer = Cancel"), "-1");
+  EXPECT_EQ(test("&msganswer = cancel"), "-1");  // text compares without case
+  EXPECT_EQ(test("&msganswer = OK"), "0");
+  EXPECT_EQ(test("Cancel = &msganswer"), "-1");
+  EXPECT_EQ(test("&msganswer <> Yes"), "-1");
+  EXPECT_EQ(test("&origin = Material Surface"), "-1");
+  EXPECT_EQ(test("&origin = Material   Surface"), "0");  // the text as written
+  EXPECT_EQ(test("&msganswer = Cancel OR &msganswer = No"), "-1");
+  EXPECT_EQ(test("&msganswer = Yes AND &x = 5"), "0");
+  // Not beside a comparison, or a call: still an error.
+  for (std::string_view bad : {"Cancel", "Cancel + 1 = 2", "&x = SQRT2(4)"}) {
+    ExprParse p = parse_expression(bad, at(), true);
+    EXPECT_FALSE(p.expr) << bad;
+  }
+  EXPECT_EQ(parse_error("&msganswer = Cancel").message,  // without bare_words
+            "'Cancel' is not a value: put text in double quotes, write a variable as &name, or "
+            "call a function as NAME(x)");
 }
 
 // ---- strings ----

@@ -443,10 +443,16 @@ TEST_F(InterpreterTest, VsChangesEndWithTheFileButMsStays) {
   expect_speeds(state().speeds.move, 1.5, 0.3, 10, 10, 10);
 }
 
-TEST_F(InterpreterTest, VsHasNoNinthParameter) {
-  const Diagnostic d = run_error("VS, 1, 1, 1, 1, 1, 1, 1, 1, 1\n");
-  EXPECT_EQ(where(d.loc), "part.sbp:1:29");
-  EXPECT_EQ(d.message, "VS takes 8 parameters; this is parameter 9");
+// SB3 ignores parameters past the last (docs/language.md §1): a warning at the first one.
+TEST_F(InterpreterTest, VsIgnoresANinthParameterWithAWarning) {
+  run("VS, 1, 1, 1, 1, 1, 1, 1, 1, 1\nMX, 1\n");
+  ASSERT_EQ(io.warnings().size(), 1u);
+  EXPECT_EQ(where(io.warnings()[0].loc), "part.sbp:1:29");
+  EXPECT_EQ(io.warnings()[0].message,
+            "VS takes 8 parameters; parameter 9 and those after it are ignored, as SB3 ignores "
+            "them");
+  ASSERT_EQ(moves().size(), 1u);
+  EXPECT_EQ(moves()[0].speeds.xy, 1);  // the eight values are taken
 }
 
 TEST_F(InterpreterTest, EachMoveKeepsTheSpeedInForceWhenIssued) {
@@ -583,10 +589,25 @@ TEST_F(InterpreterTest, TooManyParametersIsAnErrorAtTheFirstExtraParameter) {
   EXPECT_TRUE(moves().empty());
 }
 
-TEST_F(InterpreterTest, ParameterToACommandWithoutParametersIsAnError) {
-  const Diagnostic d = run_error("SA 1\n");
-  EXPECT_EQ(where(d.loc), "part.sbp:1:4");
-  EXPECT_EQ(d.message, "SA takes 0 parameters; this is parameter 1");
+TEST_F(InterpreterTest, ParameterToACommandWithoutParametersIsIgnoredWithAWarning) {
+  run("SA 1\nSA, , 2\n");
+  ASSERT_EQ(io.warnings().size(), 1u);  // once per command and file
+  EXPECT_EQ(where(io.warnings()[0].loc), "part.sbp:1:4");
+  EXPECT_EQ(io.warnings()[0].message,
+            "SA takes 0 parameters; parameter 1 and those after it are ignored, as SB3 ignores "
+            "them");
+}
+
+// A move, a jog or a zero command refuses them: the value is likely meant for another
+// command (M2 for M3), and ignoring it would move the tool where the file did not mean.
+TEST_F(InterpreterTest, ExtraParametersOnMovesJogsAndZerosAreErrors) {
+  for (const char* line : {"M2, 1, 2, 3\n", "J2, 1, 2, 3\n", "ZX, 1\n"}) {
+    SCOPED_TRACE(line);
+    const Diagnostic d = run_error(line);
+    EXPECT_NE(d.message.find("; this is parameter "), std::string::npos) << d.message;
+  }
+  EXPECT_TRUE(moves().empty());
+  EXPECT_TRUE(io.warnings().empty());
 }
 
 TEST_F(InterpreterTest, TooManyParametersForMultiAxisCommand) {

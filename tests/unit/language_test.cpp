@@ -2385,6 +2385,84 @@ TEST_F(LanguageTest, ErrorInACustomCutNamesTheCallingLine) {
                                               ":2:1: error: unknown command 'QQ'" + kUnknownSuffix);
 }
 
+// ---- ShopBot's own spellings (issue 21)
+
+// `C#, n` runs custom cut n as `C<n>` does; n may be a variable or an expression.
+TEST_F(LanguageTest, ComputedCustomCutRunsTheSameMacro) {
+  dir().write("macros/C90.sbp", "MX, 3\n");
+  dir().write("macros/macro_211.sbp", "MY, 2\n");
+  options.macro_dir = dir().path("macros");
+  run_file(dir().write("main.sbp", "C#,90\n&n = 200\nC#, &n + 11\n"));
+  expect_path(moves(), {{kMove, at(3)}, {kMove, at(3, 2)}});
+  EXPECT_EQ(where(moves()[1].loc), dir().path("macros/macro_211.sbp") + ":1:1");
+}
+
+TEST_F(LanguageTest, ComputedCustomCutNeedsAWholeNumber) {
+  EXPECT_EQ(format(run_error("&n = 2.5\nC#, &n\n")),
+            "part.sbp:2:5: error: custom cuts are numbered 0 to 9999; C# was given 2.5");
+  EXPECT_EQ(format(run_error("&n = left\nC#, &n\n")).rfind("part.sbp:2:5: error: ", 0), 0u);
+}
+
+// The handbook: MSGBOX's answer goes to &msganswer "so that you can use it in an IF test",
+// and strings work with or without quotation marks.
+TEST_F(LanguageTest, IfComparesAnUnquotedAnswer) {
+  use_recording_io = true;
+  rec.choice = "Cancel";
+  run("MSGBOX(Remove the clamps (all four) then press OK,OKCANCEL,Clamps)\n"
+      "IF &msganswer = Cancel THEN END\n"
+      "MX, 1\n");
+  const auto boxes = rec.of("choose");
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes[0].text, "Remove the clamps (all four) then press OK");
+  EXPECT_EQ(boxes[0].buttons, (std::vector<std::string>{"OK", "Cancel"}));
+  EXPECT_EQ(boxes[0].title, "Clamps");
+  EXPECT_TRUE(moves().empty());
+}
+
+// A lone '(' in the box's text used to hide the commas after it: the box was OK-only and
+// Cancel could not be pressed.
+TEST_F(LanguageTest, MsgBoxWithALoneParenthesisKeepsItsButtons) {
+  use_recording_io = true;
+  rec.choice = "Cancel";
+  run("MSGBOX(Check the bit (1/4 inch,OKCANCEL,Tool)\nIF &msganswer = \"Cancel\" THEN END\n"
+      "MX, 1\n");
+  const auto boxes = rec.of("choose");
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes[0].text, "Check the bit (1/4 inch");
+  EXPECT_EQ(boxes[0].buttons, (std::vector<std::string>{"OK", "Cancel"}));
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(LanguageTest, UnquotedMultiWordValueComparesInAnIfTest) {
+  run("&PWZorigin = Material Surface\nIF &PWZorigin = material surface THEN &top = 1\n");
+  expect_text("PWZORIGIN", "Material Surface");
+  expect_number("TOP", 1);
+}
+
+TEST_F(LanguageTest, VariableNamesStartingWithADigitAndIntegerDivision) {
+  run("&3zero_input = 7.75\n&5AX_whole = (&3zero_input)\\1\nMX, &5AX_whole\n");
+  expect_number("5AX_WHOLE", 7);
+  expect_path(moves(), {{kMove, at(7)}});
+}
+
+// SB3 ignores parameters past a command's last; ShopBot's own samples write CR with 10 and CP
+// with 15. One warning per command and file, at the first extra parameter.
+TEST_F(LanguageTest, ExtraTrailingParametersAreIgnoredOncePerCommandAndFile) {
+  use_recording_io = true;
+  dir().write("child.sbp", "SA, 1\n");
+  run_file(dir().write("main.sbp", "SA, 1\nSA, 2, 3\nSR, , 4\nFP, child.sbp\n"));
+  ASSERT_EQ(rec.warnings.size(), 3u);
+  EXPECT_EQ(format(rec.warnings[0]),
+            dir().path("main.sbp") +
+                ":1:5: warning: SA takes 0 parameters; parameter 1 and those after it are "
+                "ignored, as SB3 ignores them");
+  EXPECT_EQ(format(rec.warnings[1]),
+            dir().path("main.sbp") +
+                ":3:7: warning: SR takes 0 parameters; parameter 2 and those after it are "
+                "ignored, as SB3 ignores them");
+  EXPECT_EQ(where(rec.warnings[2].loc), dir().path("child.sbp") + ":1:5");
+}
+
 // ---- check()
 
 TEST_F(LanguageTest, CheckStopsAnEndlessLoopWithTheStatementBudget) {

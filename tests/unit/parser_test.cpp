@@ -479,6 +479,106 @@ TEST(Parser, ErrorFormatsAsFileLineColumn) {
 
 // ---- files
 
+// ---- spellings from ShopBot's own files (issue 21)
+
+// `C#, n` is ShopBot's spelling of `C<n>`: the number is the first parameter.
+TEST(Parser, ComputedCustomCutTakesItsNumberFromTheFirstParameter) {
+  const Program p = parse("C#,90\nC#, &tool, 2\nc# 5\nC#7\nC211\n");
+  ASSERT_TRUE(p.ok()) << format(p.errors[0]);
+  ASSERT_EQ(p.statements.size(), 5u);
+  const auto* c90 = std::get_if<CustomCutStmt>(&p.statements[0].body);
+  ASSERT_TRUE(c90);
+  EXPECT_EQ(c90->number, 90);
+  EXPECT_FALSE(c90->computed);
+  EXPECT_TRUE(c90->args.empty());
+  const auto* var = std::get_if<CustomCutStmt>(&p.statements[1].body);
+  ASSERT_TRUE(var);
+  ASSERT_TRUE(var->computed);
+  EXPECT_EQ(var->computed->text, "&tool");
+  EXPECT_EQ(where(var->computed->loc), "part.sbp:2:5");
+  EXPECT_EQ(param_texts(CommandStmt{"", var->args}), (Texts{"2"}));
+  EXPECT_EQ(std::get<CustomCutStmt>(p.statements[2].body).number, 5);
+  EXPECT_EQ(std::get<CustomCutStmt>(p.statements[3].body).number, 7);
+  EXPECT_EQ(std::get<CustomCutStmt>(p.statements[4].body).number, 211);  // FabMo's macro numbers
+}
+
+TEST(Parser, ComputedCustomCutErrors) {
+  const Program p = parse("C#\nC#, 2.5\nC#, clamps\nC#, &n +\n");
+  ASSERT_EQ(p.errors.size(), 4u);
+  EXPECT_EQ(format(p.errors[0]),
+            "part.sbp:1:3: error: C# needs the number of the custom cut: write `C#, 90` to run "
+            "custom cut 90");
+  EXPECT_EQ(format(p.errors[1]),
+            "part.sbp:2:5: error: custom cuts are numbered 0 to 9999; C# was given 2.5");
+  EXPECT_EQ(format(p.errors[2]),
+            "part.sbp:3:5: error: C# needs a number or a variable, not 'clamps': write `C#, 90` "
+            "or `C#, &n`");
+  EXPECT_EQ(where(p.errors[3].loc), "part.sbp:4:9");
+}
+
+// ShopBot's files abbreviate ON INPUT to ON INP, as FabMo accepts.
+TEST(Parser, OnInpIsOnInput) {
+  const Program p = parse("ON INP(&a,1) GOTO hit\nON inp (3, 1) GOSUB x\nON INP(3,1)\n");
+  ASSERT_TRUE(p.ok()) << format(p.errors[0]);
+  ASSERT_EQ(p.statements.size(), 3u);
+  const auto& first = std::get<OnInputStmt>(p.statements[0].body);
+  ASSERT_TRUE(first.action);
+  EXPECT_EQ(std::get<JumpStmt>(first.action->body).label, "HIT");
+  const auto& second = std::get<OnInputStmt>(p.statements[1].body);
+  ASSERT_TRUE(second.action);
+  EXPECT_TRUE(std::get<JumpStmt>(second.action->body).gosub);
+  EXPECT_FALSE(std::get<OnInputStmt>(p.statements[2].body).action);  // clears the handler
+  const Program bad = parse("ON INPX(3,1) GOTO a\n");
+  ASSERT_EQ(bad.errors.size(), 1u);
+  EXPECT_EQ(format(bad.errors[0]),
+            "part.sbp:1:4: error: expected INPUT after ON: ON INPUT(switch, state)");
+}
+
+// The handbook: strings work with or without quotation marks; in an IF test unquoted words
+// beside a comparison are text.
+TEST(Parser, IfTestTakesUnquotedWordsBesideAComparison) {
+  const Program p = parse(
+      "IF &msganswer = Cancel THEN END\n"
+      "IF &PWZorigin = Material Surface THEN GOTO top\n"
+      "IF Cancel THEN END\n");
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(where(p.errors[0].loc), "part.sbp:3:4");
+  ASSERT_EQ(p.statements.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<IfStmt>(p.statements[1].body));
+}
+
+// A '(' in a MSGBOX's unquoted text is text: the commas after it still split the box.
+TEST(Parser, MsgBoxTextMayHoldParentheses) {
+  const Program p = parse(
+      "MSGBOX(Remove the clamps (all four) then press OK,OKCANCEL,Title)\n"
+      "MSGBOX(Remove the clamps (all four then press OK,OKCANCEL,Clamps (1/2)\n"
+      "MSGBOX(\"Width \" & ROUND(&w, 2),YesNo,Check)\n");
+  ASSERT_TRUE(p.ok()) << format(p.errors[0]);
+  ASSERT_EQ(p.statements.size(), 3u);
+  const auto& balanced = std::get<MsgBoxStmt>(p.statements[0].body);
+  EXPECT_EQ(balanced.body.text, "Remove the clamps (all four) then press OK");
+  EXPECT_EQ(balanced.buttons.text, "OKCANCEL");
+  EXPECT_EQ(balanced.title.text, "Title");
+  const auto& lone = std::get<MsgBoxStmt>(p.statements[1].body);
+  EXPECT_EQ(lone.body.text, "Remove the clamps (all four then press OK");
+  EXPECT_EQ(lone.buttons.text, "OKCANCEL");
+  EXPECT_EQ(where(lone.buttons.loc), "part.sbp:2:50");
+  EXPECT_EQ(lone.title.text, "Clamps (1/2");
+  const auto& call = std::get<MsgBoxStmt>(p.statements[2].body);
+  EXPECT_EQ(call.body.text, "\"Width \" & ROUND(&w, 2)");
+  EXPECT_EQ(call.buttons.text, "YesNo");
+}
+
+TEST(Parser, IntegerDivisionAndDigitLeadingNamesParse) {
+  const Program p = parse("&3zero_input = (&x)\\1\n&5AX_offset = 7 \\ 2\n");
+  ASSERT_TRUE(p.ok()) << format(p.errors[0]);
+  ASSERT_EQ(p.statements.size(), 2u);
+  const auto& a = std::get<AssignStmt>(p.statements[0].body);
+  EXPECT_EQ(a.target.name, "3ZERO_INPUT");
+  EXPECT_TRUE(a.value.is_expression());
+  EXPECT_EQ(std::get<AssignStmt>(p.statements[1].body).target.name, "5AX_OFFSET");
+}
+
 TEST(ParseFile, MissingFileIsOneErrorNamingIt) {
   const std::string path = std::string(GANTRY_SOURCE_DIR) + "/tests/data/no_such_file.sbp";
   const Program p = parse_file(path);

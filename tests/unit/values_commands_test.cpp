@@ -164,8 +164,11 @@ TEST_F(ValuesTest, WordsAndWholeNumbersAreChecked) {
             "VC parameter 5 (plunge direction) is 'x'; allowed: -, +, 0, 1 or -1");
   EXPECT_EQ(run_error("VD, , 3.5\n").message,
             "VD parameter 2 (number of axes) must be a whole number, not 3.5");
-  EXPECT_EQ(run_error("VC, , , , , , , , , , , , , 4\n").message,
-            "VC takes 12 parameters; this is parameter 13");
+  run("VC, , , , , , , , , , , , , 4\n");  // past the last: ignored, as SB3 does
+  ASSERT_EQ(io.warnings().size(), 1u);
+  EXPECT_EQ(io.warnings()[0].message,
+            "VC takes 12 parameters; parameter 13 and those after it are ignored, as SB3 ignores "
+            "them");
   EXPECT_NE(run_error("VC, , , , , , , , , , , , 4\n").message.find("cannot be output 4"),
             std::string::npos);
 }
@@ -271,6 +274,38 @@ TEST_F(ValuesTest, UzZerosBothAndStRemovesOffsets) {
   run("MX, 2\nZX\nST\n");
   EXPECT_DOUBLE_EQ(state().position[0], 2);
   EXPECT_DOUBLE_EQ(state().zero[0], 0);
+}
+
+// FabMo's `VA, 0,,,,,, 0` (X, then table base X) read in SB3's layout would set table base Y:
+// the default dialect refuses it, and FabMo's reads it as FabMo does (spec commands.md §4.1).
+TEST_F(ValuesTest, VaInFabmosLayoutIsRefusedUnderTheSb3Dialect) {
+  run("MX, 5\nMY, 3\n");
+  Diagnostic d = run_error("VA,0,,,,,,0\n");
+  EXPECT_EQ(d.loc.line, 1);
+  EXPECT_EQ(d.loc.column, 11);  // parameter 7
+  EXPECT_EQ(d.message,
+            "VA parameter 7 is table base Y in SB3's 10-value layout (this profile's dialect) but "
+            "table base X in FabMo's 12-value one, which this line's blank parameter 6 suggests; "
+            "set dialect = \"fabmo\" for FabMo's layout, or give parameter 6 (table base X) for "
+            "SB3's");
+  EXPECT_DOUBLE_EQ(state().position[0], 5);  // nothing changed
+  EXPECT_DOUBLE_EQ(interp().snapshot().table_base[1], 3);
+  d = run_error("VA,1,2,3,4,5,6,7,8,9,10,11,12\n");
+  EXPECT_EQ(d.loc.column, 25);
+  EXPECT_EQ(d.message,
+            "VA takes 10 parameters; this is parameter 11: SB3's VA has 10 values (X to B, then "
+            "table base X to B) and FabMo's 12 (X to C, then table base X to C); set dialect = "
+            "\"fabmo\" in the profile for FabMo's layout");
+  run("VA, 1, , , , , 10\n");  // SB3's own layout still works
+  EXPECT_DOUBLE_EQ(interp().snapshot().table_base[0], 10);
+}
+
+TEST_F(ValuesTest, VaInFabmosLayoutUnderTheFabmoDialect) {
+  settings.dialect = Dialect::FabMo;
+  run("MX, 5\nMY, 3\nVA,0,,,,,,0\n");
+  EXPECT_DOUBLE_EQ(state().position[0], 0);
+  EXPECT_DOUBLE_EQ(interp().snapshot().table_base[0], 0);
+  EXPECT_DOUBLE_EQ(interp().snapshot().table_base[1], 3);
 }
 
 // ---- VO and SP/SM

@@ -108,6 +108,9 @@ struct CommandSpec {
   std::vector<ParamSpec> fabmo_params = {};
   bool immediate = false;      // runs as soon as the code is typed (no parameter line)
   std::string_view sets = {};  // system variables it changes, e.g. "%(1)-%(5)"
+  // Parameters past the last are ignored with a warning, as SB3 does; when this says why,
+  // they are refused instead (their values would be misread).
+  std::string_view extra_params_refused = {};
 
   // The parameter list in force for `dialect`.
   const std::vector<ParamSpec>& params_for(Dialect d) const {

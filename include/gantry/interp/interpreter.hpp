@@ -426,6 +426,8 @@ class Interpreter : private EvalEnv {
   // One overload per statement kind: control flow and commands in interpreter.cpp, operator
   // and file statements in io_statements.cpp.
   void exec(const CommandStmt& s, const SourceLoc& loc);
+  void extra_params(const CommandSpec& spec, const CommandStmt& cmd, size_t count,
+                    const SourceLoc& loc);
   void exec(const CustomCutStmt& s, const SourceLoc& loc);
   void call_macro(int number, const SourceLoc& loc);
   void exec(const LabelStmt&, const SourceLoc&) {}
@@ -477,6 +479,7 @@ class Interpreter : private EvalEnv {
   std::vector<Frame> frames_;
   std::unordered_map<std::string, Value> vars_;
   std::set<std::string> failed_vars_;      // check: assignments that failed
+  std::set<std::string> extra_params_warned_;  // "file\ncode": warned of ignored parameters
   std::unique_ptr<FileSystem> own_files_;  // when options_.files is null
   FileSystem* files_system_ = nullptr;
   // ON INPUT handlers by (switch, 1 closing or 0 opening): one-shot, for the run.

@@ -46,8 +46,9 @@ struct ExprParse {
 };
 
 // Parses `text` as exactly one expression (leading/trailing spaces allowed). `at` is the
-// location of text[0]; error columns are computed from it.
-ExprParse parse_expression(std::string_view text, const SourceLoc& at);
+// location of text[0]; error columns are computed from it. With `bare_words`, unquoted
+// words beside a comparison are text (`&answer = Cancel`), as in IF tests.
+ExprParse parse_expression(std::string_view text, const SourceLoc& at, bool bare_words = false);
 
 // Parses `text` as exactly one lvalue; nullopt with `error` set otherwise.
 std::optional<LValue> parse_lvalue(std::string_view text, const SourceLoc& at,

@@ -34,8 +34,12 @@ struct CommandStmt {
   std::string code;
   std::vector<Arg> args;
 };
-struct CustomCutStmt {  // C<n>: runs the macro file numbered n
+// Custom cuts are numbered 0 to 9999 (FabMo's macros pass 200).
+constexpr int kMaxCustomCutDigits = 4;
+constexpr int kMaxCustomCut = 9999;
+struct CustomCutStmt {  // C<n> or C#, n: runs the macro file numbered n
   int number = 0;
+  std::optional<Arg> computed;  // C#, &n: the number, an expression evaluated when it runs
   std::vector<Arg> args;
 };
 struct LabelStmt {
