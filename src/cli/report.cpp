@@ -23,6 +23,16 @@ nlohmann::ordered_json vec_array(const Vec6& v) {
   return a;
 }
 
+// The status line: never "done" alone when the check did not cover the whole file.
+std::string status_text(const RunReport& r) {
+  if (!r.errors.empty()) return "error";
+  if (!r.check_stopped) return "done";
+  const Diagnostic& d = *r.check_stopped;
+  return fmt::format("done, but the check before the run stopped at {}:{} and the lines after "
+                     "it ran unchecked",
+                     d.loc.file ? *d.loc.file : "", d.loc.line);
+}
+
 }  // namespace
 
 nlohmann::ordered_json to_json(const Diagnostic& d) {
@@ -52,11 +62,16 @@ nlohmann::ordered_json to_json(const RunReport& r) {
   j["max_accel_ratio"] = r.max_accel_ratio;
   j["errors"] = nlohmann::ordered_json::array();
   for (const Diagnostic& d : r.errors) j["errors"].push_back(to_json(d));
+  if (!r.error_summary.empty()) j["errors_not_shown"] = r.error_summary;
+  // "complete": the check before the run covered the whole file; "partial": it stopped at
+  // `check_stopped` (why: its message), and the run went past that line unchecked.
+  j["check"] = r.check_stopped ? "partial" : "complete";
+  if (r.check_stopped) j["check_stopped"] = to_json(*r.check_stopped);
   return j;
 }
 
 std::string to_text(const RunReport& r) {
-  std::string out = fmt::format("status     {}\n", r.errors.empty() ? "done" : "error");
+  std::string out = fmt::format("status     {}\n", status_text(r));
   out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)
     out += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.position[i]);

@@ -6,8 +6,8 @@
 
 namespace gantry {
 
-std::shared_ptr<const Script> DiskFileSystem::load_script(const std::string& path) {
-  return Script::load(path);
+std::shared_ptr<const Script> DiskFileSystem::load_script(const std::string& path, const IsCommand& is_command) {
+  return Script::load(path, is_command);
 }
 
 bool DiskFileSystem::is_file(const std::string& path) {
@@ -26,10 +26,10 @@ std::shared_ptr<std::ostream> DiskFileSystem::open_write(const std::string& path
   return *out ? out : nullptr;
 }
 
-std::shared_ptr<const Script> SandboxFileSystem::load_script(const std::string& path) {
+std::shared_ptr<const Script> SandboxFileSystem::load_script(const std::string& path, const IsCommand& is_command) {
   auto it = written_.find(path);  // a part file the run wrote itself
-  if (it != written_.end()) return Script::from_text(it->second->str(), path);
-  return base_->load_script(path);
+  if (it != written_.end()) return Script::from_text(it->second->str(), path, is_command);
+  return base_->load_script(path, is_command);
 }
 
 bool SandboxFileSystem::is_file(const std::string& path) {

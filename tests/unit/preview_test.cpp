@@ -46,7 +46,7 @@ class KeepingSink : public MotionSink {
 std::vector<CanonMove> listed_moves(const std::string& file, const Settings& settings) {
   auto script = Script::load(file);
   PersistentStore store;
-  EXPECT_TRUE(check_program(script, settings, store).empty());
+  EXPECT_TRUE(check_program(script, settings, store).kept().empty());
   KeepingSink sink;
   ScriptedIO io(true, {});
   JobOptions opt;
