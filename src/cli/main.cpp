@@ -297,9 +297,10 @@ int cmd_check(const std::string& file, const std::string& settings_path, const L
   print_errors(c.found);
   if (c.found.has_errors()) return 1;
   if (const std::optional<Diagnostic>& why = c.found.stopped_short()) {
-    fmt::print("{}: NOT fully checked: the check stopped at line {} of {} (see above); the "
-               "lines after it were not checked\n",
-               file, top_line(*why), c.script->line_count());
+    fmt::print(
+        "{}: NOT fully checked: the check stopped at line {} of {} (see above); the "
+        "lines after it were not checked\n",
+        file, top_line(*why), c.script->line_count());
     return 2;
   }
   fmt::print("{}: ok, {} lines\n", file, c.script->line_count());

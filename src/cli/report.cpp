@@ -28,9 +28,10 @@ std::string status_text(const RunReport& r) {
   if (!r.errors.empty()) return "error";
   if (!r.check_stopped) return "done";
   const Diagnostic& d = *r.check_stopped;
-  return fmt::format("done, but the check before the run stopped at {}:{} and the lines after "
-                     "it ran unchecked",
-                     d.loc.file ? *d.loc.file : "", d.loc.line);
+  return fmt::format(
+      "done, but the check before the run stopped at {}:{} and the lines after "
+      "it ran unchecked",
+      d.loc.file ? *d.loc.file : "", d.loc.line);
 }
 
 }  // namespace

@@ -56,9 +56,9 @@ std::string DiagnosticLog::summary() const {
     return a.second != b.second ? a.second > b.second : a.first < b.first;
   });
   constexpr std::size_t kNamed = 4;  // one line: the commonest kinds, the rest counted
-  std::string out = fmt::format("stopped after {} error{}; {} more not shown: ",
-                                with_commas(errors_), errors_ == 1 ? "" : "s",
-                                with_commas(omitted_));
+  std::string out =
+      fmt::format("stopped after {} error{}; {} more not shown: ", with_commas(errors_),
+                  errors_ == 1 ? "" : "s", with_commas(omitted_));
   std::size_t rest = omitted_;
   for (std::size_t i = 0; i < kinds.size() && i < kNamed; ++i) {
     out += fmt::format("{}{} '{}'", i ? ", " : "", with_commas(kinds[i].second), kinds[i].first);

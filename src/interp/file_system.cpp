@@ -6,7 +6,8 @@
 
 namespace gantry {
 
-std::shared_ptr<const Script> DiskFileSystem::load_script(const std::string& path, const IsCommand& is_command) {
+std::shared_ptr<const Script> DiskFileSystem::load_script(const std::string& path,
+                                                          const IsCommand& is_command) {
   return Script::load(path, is_command);
 }
 
@@ -26,7 +27,8 @@ std::shared_ptr<std::ostream> DiskFileSystem::open_write(const std::string& path
   return *out ? out : nullptr;
 }
 
-std::shared_ptr<const Script> SandboxFileSystem::load_script(const std::string& path, const IsCommand& is_command) {
+std::shared_ptr<const Script> SandboxFileSystem::load_script(const std::string& path,
+                                                             const IsCommand& is_command) {
   auto it = written_.find(path);  // a part file the run wrote itself
   if (it != written_.end()) return Script::from_text(it->second->str(), path, is_command);
   return base_->load_script(path, is_command);

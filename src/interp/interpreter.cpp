@@ -99,7 +99,7 @@ void CommandContext::arc_to(const Vec6& file_target, double cx, double cy, doubl
 }
 
 void CommandContext::make_arc(const Vec6& file_target, double cx, double cy, double sweep,
-                                      SpeedClass cls, const SourceLoc& loc, ArcPlane plane) {
+                              SpeedClass cls, const SourceLoc& loc, ArcPlane plane) {
   const std::array<int, 3> ax = plane_axes(plane);
   const int u = ax[0], v = ax[1];
   const Vec6 from = position();
@@ -1132,8 +1132,8 @@ void Interpreter::loop(DiagnosticLog* collect) {
         pending_call_.reset();
         const std::string path =
             call.resolved ? call.path : file_path(call.path, pending_call_loc_);
-        push_file(call.lines ? call.lines : files_system_->load_script(path, table_.is_command()), call,
-                  pending_call_loc_);
+        push_file(call.lines ? call.lines : files_system_->load_script(path, table_.is_command()),
+                  call, pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;

@@ -199,7 +199,8 @@ void Script::index(const IsCommand& is_command) {
   Statement simple;  // its storage reused line after line
   auto check_command = [&](const Statement& st) {
     const std::string& code = std::get<CommandStmt>(st.body).code;
-    if (!is_command(code)) errors_.push_back({st.loc, Severity::Error, unknown_command_message(code)});
+    if (!is_command(code))
+      errors_.push_back({st.loc, Severity::Error, unknown_command_message(code)});
   };
   Cursor c = start();
   while (!at_end(c)) {

@@ -217,7 +217,8 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
   std::vector<Diagnostic> errors;
   double estimate = estimated_time_s;
   if (!checked) {
-    DiagnosticLog found = check_program(script, interp_->settings(), store_, check, false, &estimate);
+    DiagnosticLog found =
+        check_program(script, interp_->settings(), store_, check, false, &estimate);
     for (Diagnostic& d : found.kept())
       if (d.severity == Severity::Error) errors.push_back(std::move(d));
   }

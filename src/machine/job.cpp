@@ -42,9 +42,8 @@ class NullSegments : public SegmentSink {
 }  // namespace
 
 DiagnosticLog check_program(std::shared_ptr<const Script> script, const Settings& settings,
-                            const PersistentStore& store,
-                            const JobOptions& options, bool runtime_warnings,
-                            double* estimated_time_s) {
+                            const PersistentStore& store, const JobOptions& options,
+                            bool runtime_warnings, double* estimated_time_s) {
   NullSink nothing;
   NullSegments segments;
   LookAheadPlanner planner(settings, segments);

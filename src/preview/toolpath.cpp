@@ -87,11 +87,12 @@ Toolpath load_toolpath(const std::string& path, const Settings& settings,
   job.check_moves = &sink;
   const PersistentStore none;
   try {
-    std::shared_ptr<const Script> script = Script::load(path, CommandTable::standard().is_command());
-    out.violations = std::move(check_program(std::move(script), settings,
-                                             opts.store ? *opts.store : none, job, true,
-                                             opts.estimate ? &out.estimated_time_s : nullptr)
-                                   .kept());
+    std::shared_ptr<const Script> script =
+        Script::load(path, CommandTable::standard().is_command());
+    out.violations =
+        std::move(check_program(std::move(script), settings, opts.store ? *opts.store : none, job,
+                                true, opts.estimate ? &out.estimated_time_s : nullptr)
+                      .kept());
   } catch (const GantryError& e) {
     out.violations.push_back(e.diagnostic());
   } catch (const Cancelled&) {

@@ -479,9 +479,9 @@ TEST(Check, StopsAfterTheErrorCapAndSummarisesTheRestInOneLine) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(count_lines(r.err), 101) << r.err.substr(0, 2000);
   EXPECT_NE(r.err.find(file + ":2:1: error: unknown command 'QQ'"), std::string::npos);
-  EXPECT_NE(r.err.find(
-                "\ngantry: stopped after 100 errors; 200 more not shown: 200 'unknown command'\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("\ngantry: stopped after 100 errors; 200 more not shown: 200 'unknown command'\n"),
+      std::string::npos)
       << r.err.substr(r.err.size() - 300);
   const Result five = gantry(fmt::format("check '{}' --max-errors 5", file));
   EXPECT_EQ(count_lines(five.err), 6) << five.err;
@@ -495,21 +495,22 @@ TEST(Check, AnUnknownCommandOnALineNeverReachedIsAnError) {
   const std::string file = part_file("unreached.sbp", "MX, 1\nEND\nQQ, 1\n");
   const Result r = gantry(fmt::format("check '{}'", file));
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, file + ":3:1: error: unknown command 'QQ'; see docs/commands.md for the "
-                          "commands Gantry knows\n");
+  EXPECT_EQ(r.err, file +
+                       ":3:1: error: unknown command 'QQ'; see docs/commands.md for the "
+                       "commands Gantry knows\n");
   EXPECT_EQ(r.out, "");
   fs::remove(file);
 }
 
 // An INPUT the check cannot answer: not "ok"; where it stopped, and how to answer.
 TEST(Check, AnUnansweredInputIsNotCalledClean) {
-  const std::string file =
-      part_file("input.sbp", "MX, 1\nINPUT \"Depth?\" &depth\nMZ, -&depth\n");
+  const std::string file = part_file("input.sbp", "MX, 1\nINPUT \"Depth?\" &depth\nMZ, -&depth\n");
   const Result r = gantry(fmt::format("check '{}'", file));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out.find("ok"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out, file + ": NOT fully checked: the check stopped at line 2 of 3 (see above); the "
-                          "lines after it were not checked\n");
+  EXPECT_EQ(r.out, file +
+                       ": NOT fully checked: the check stopped at line 2 of 3 (see above); the "
+                       "lines after it were not checked\n");
   EXPECT_NE(r.err.find(file + ":2:1: warning: checking stopped here: the file asks the operator "
                               "for &DEPTH; run from a terminal, or give it with --input "
                               "'&DEPTH=VALUE'"),
@@ -536,8 +537,8 @@ TEST(Run, JsonStdoutIsOneObjectWhenTheFilePrints) {
 // A check that stopped short (here the budget) lets the run go on, and the report says the
 // run went past that line unchecked: never plain "done".
 TEST(Run, ReportSaysWhenTheCheckStoppedShort) {
-  const std::string file = part_file(
-      "budget.sbp", "&i = 0\nLOOP:\n&i = &i + 1\nIF &i < 30 THEN GOTO LOOP\nMX, 1\n");
+  const std::string file =
+      part_file("budget.sbp", "&i = 0\nLOOP:\n&i = &i + 1\nIF &i < 30 THEN GOTO LOOP\nMX, 1\n");
   const Result r = gantry(fmt::format("run '{}' --budget 20 --json", file));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json j = json::parse(r.out);
@@ -559,13 +560,11 @@ TEST(Signals, SigtermStopsACheckThatLoops) {
   const std::string file = part_file("forever.sbp", "LOOP:\nMX, 1\nMX, 2\nGOTO LOOP\n");
   for (const char* sub : {"check", "run"}) {
     const fs::path err = fs::temp_directory_path() / fmt::format("gantry_e2e_sig_{}.err", getpid());
-    const std::string cmd =
-        fmt::format("exec '{}' {} '{}' --budget 0 2>'{}' >/dev/null", GANTRY_BIN, sub, file,
-                    err.string());
+    const std::string cmd = fmt::format("exec '{}' {} '{}' --budget 0 2>'{}' >/dev/null",
+                                        GANTRY_BIN, sub, file, err.string());
     pid_t pid = 0;
     const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
-    ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ),
-              0);
+    ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     kill(pid, SIGTERM);
     int status = 0;

@@ -282,7 +282,7 @@ class CommandContext {
   void end_tab_path();
   // arc_to's work (arc_to adds what a check assumes of a refused arc).
   void make_arc(const Vec6& target, double cx, double cy, double sweep, SpeedClass cls,
-                        const SourceLoc& loc, ArcPlane plane);
+                const SourceLoc& loc, ArcPlane plane);
   // A check goes on past a refused move to `file_target` as though it had been made.
   void assume_reached(const Vec6& file_target);
   // Every line, arc and dwell goes to the sink through here: a move of the axis MI moves is

@@ -99,10 +99,9 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
 // CLOSE), which a run reports itself.
 // With `estimated_time_s`, the check also plans the motion it finds and gives its cycle time
 // (what `gantry estimate` prints); operator waits (PAUSE with no time) count as zero.
-DiagnosticLog check_program(std::shared_ptr<const Script> script,
-                                      const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options = {}, bool runtime_warnings = true,
-                                      double* estimated_time_s = nullptr);
+DiagnosticLog check_program(std::shared_ptr<const Script> script, const Settings& settings,
+                            const PersistentStore& store, const JobOptions& options = {},
+                            bool runtime_warnings = true, double* estimated_time_s = nullptr);
 
 // Interprets a checked program, handing each canonical move to `sink` (for `gantry moves`).
 void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
