@@ -31,13 +31,13 @@ std::string with_commas(std::size_t n) {
 }  // namespace
 
 bool DiagnosticLog::add(Diagnostic d) {
+  if (!seen_.insert(repeat_key(d)).second) return false;
   const bool error = d.severity == Severity::Error;
   if (error && full()) {
     ++omitted_;
     ++omitted_kinds_[diagnostic_kind(d.message)];
     return false;
   }
-  if (!seen_.insert(repeat_key(d)).second) return false;
   if (error) ++errors_;
   kept_.push_back(std::move(d));
   return true;

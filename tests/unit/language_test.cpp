@@ -2490,7 +2490,9 @@ IF 1 THEN MZ, 1, 2
       part + ":9:5: error: expected a number for Y location (MY), found 'abc'",
       part + ":10:18: error: MZ takes 1 parameter; this is parameter 2"};
   EXPECT_EQ(got, expected);
-  expect_path(moves(), {{kMove, at(2)}, {kMove, at(3)}});
+  // child.sbp's unknown command is found when it is loaded, so FP refuses it as it refuses a
+  // file with a syntax error: its MX, 3 does not run.
+  expect_path(moves(), {{kMove, at(2)}});
   EXPECT_EQ(sink.flushes, 1);
 }
 
