@@ -2424,7 +2424,8 @@ TEST_F(LanguageTest, CheckGoesOnFromWhereARefusedMoveMeantTheToolToBe) {
   EXPECT_EQ(ds[0].loc.line, 2);
   EXPECT_NE(ds[0].message.find("outside the soft limits"), std::string::npos) << ds[0].message;
   ASSERT_FALSE(moves().empty());
-  expect_vec(moves().back().to, at(13, 6));
+  EXPECT_NEAR(moves().back().to[0], 13, 1e-12);  // SR from (10, 5): where the arcs ended
+  EXPECT_NEAR(moves().back().to[1], 6, 1e-12);
 }
 
 // A run is not a check: a refused move leaves the location where the tool is.
@@ -2491,8 +2492,9 @@ IF 1 THEN MZ, 1, 2
       part + ":10:18: error: MZ takes 1 parameter; this is parameter 2"};
   EXPECT_EQ(got, expected);
   // child.sbp's unknown command is found when it is loaded, so FP refuses it as it refuses a
-  // file with a syntax error: its MX, 3 does not run.
-  expect_path(moves(), {{kMove, at(2)}});
+  // file with a syntax error: its MX, 3 does not run. The refused MX, 30 left the check at
+  // X=30, where the file meant the tool to be.
+  expect_path(moves(), {{kMove, at(2)}}, at(30));
   EXPECT_EQ(sink.flushes, 1);
 }
 

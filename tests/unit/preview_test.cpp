@@ -150,8 +150,9 @@ TEST(Toolpath, SoftLimitViolationNamesItsLineAndIsNotDrawn) {
   EXPECT_EQ(d.loc.line, 3);
   EXPECT_NE(d.message.find("soft limits"), std::string::npos) << d.message;
   EXPECT_TRUE(path.has_errors());
-  // Line 3 moved nothing: the tool went on to 3, 3 from 2, 2.
-  EXPECT_LE(path.bounds.max().x(), 3.0f);
+  // Line 3 is not drawn, but the check goes on from where it meant the tool to be (X=30,
+  // docs/language.md 6.2): the next move is drawn from there to 3, 3.
+  EXPECT_EQ(path.bounds.max().x(), 30.0f);
   EXPECT_EQ(path.segments.size(), 3u);
 }
 
