@@ -151,9 +151,11 @@ TEST(Toolpath, SoftLimitViolationNamesItsLineAndIsNotDrawn) {
   EXPECT_NE(d.message.find("soft limits"), std::string::npos) << d.message;
   EXPECT_TRUE(path.has_errors());
   // Line 3 is not drawn, but the check goes on from where it meant the tool to be (X=30,
-  // docs/language.md 6.2): the next move is drawn from there to 3, 3.
+  // docs/language.md 6.2): the model's break to there is a jog, then line 4 from there.
   EXPECT_EQ(path.bounds.max().x(), 30.0f);
-  EXPECT_EQ(path.segments.size(), 3u);
+  ASSERT_EQ(path.segments.size(), 4u);
+  EXPECT_EQ(path.segments[2].kind, PathKind::Jog);
+  EXPECT_EQ(path.segments[2].x, 30.0f);
 }
 
 TEST(Toolpath, MissingAndBadFilesGiveLocatedErrors) {
