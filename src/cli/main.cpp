@@ -2,7 +2,6 @@
 #include <fmt/format.h>  // output
 #include <CLI/CLI.hpp>   // command-line parsing
 
-#include <algorithm>   // any_of
 #include <cctype>      // toupper
 #include <charconv>    // from_chars
 #include <cstdio>      // stdout, stderr
@@ -38,6 +37,17 @@ namespace {
 
 void print_errors(const std::vector<Diagnostic>& errors) {  // and warnings
   for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));
+}
+
+// A check's errors and warnings, then the errors beyond its cap in one line.
+void print_errors(const DiagnosticLog& found) {
+  print_errors(found.kept());
+  if (const std::string s = found.summary(); !s.empty()) fmt::print(stderr, "gantry: {}\n", s);
+}
+
+// The line of the top-level file where a check stopped short.
+int top_line(const Diagnostic& d) {
+  return d.via.empty() ? d.loc.line : d.via.front().line;
 }
 
 // UV, UD and UR show or load the profile and say where it and the values live.
@@ -151,6 +161,7 @@ struct LanguageArgs {
   std::string persistent;  // file of $variables; default in the user's config directory
   std::string values;      // the values file; default in the user's config directory
   std::size_t budget = 10'000'000;
+  std::size_t max_errors = 100;
   double feed_override = 100;  // percent
   int from_line = 0;           // run and moves: the first line to run (0: all)
 
@@ -165,6 +176,12 @@ struct LanguageArgs {
     cmd->add_option("--values", values,
                     "File of the V commands' values (TOML); default: the profile's in "
                     "~/.config/gantry/values");
+    cmd->add_option("--budget", budget,
+                    "Statements the check may run before it calls the file a runaway loop "
+                    "and stops (default 10,000,000; 0: no limit)");
+    cmd->add_option("--max-errors", max_errors,
+                    "Stop checking after this many errors and count the rest by kind in one "
+                    "line (default 100; 0: no limit)");
   }
 
   // Options for the job; false (after printing why) when an --input is malformed.
@@ -173,6 +190,7 @@ struct LanguageArgs {
     out.interpreter.macro_dir = macros;
     out.interpreter.trig_in_degrees = settings.dialect == Dialect::FabMo;
     out.check_budget = budget;
+    out.max_errors = max_errors;
     out.feed_override = feed_override / 100;
     out.yes = yes;
     out.interpreter.start_line = from_line;
@@ -195,26 +213,28 @@ struct LanguageArgs {
   }
 };
 
-bool has_error(const std::vector<Diagnostic>& found) {
-  return std::any_of(found.begin(), found.end(),
-                     [](const Diagnostic& d) { return d.severity == Severity::Error; });
-}
-
 // What the commands that read a part file share: the profile, the job's options and the
 // file, checked (every statement run dry). Filled in place: `opt` points into `profile`.
 struct CheckedFile {
   MachineProfile profile;
   JobOptions opt;
   std::shared_ptr<const Script> script;
-  std::vector<Diagnostic> found;  // errors and warnings
+  DiagnosticLog found;  // errors and warnings
   double estimate_s = 0;
 };
+
+// A part file as every command loads it: the load pass reports unknown commands too.
+std::shared_ptr<const Script> load_part_file(const std::string& file) {
+  return Script::load(file, CommandTable::standard().is_command());
+}
 
 // False (after saying why) when the profile or an --input is malformed. `estimate`: the
 // check also plans the motion and gives the cycle time, answering no question itself.
 // Nobody is at a check: on the simulated card, its machine answers PAUSE UNTIL or nothing does.
+// `control`: stops the check from another thread (a signal).
 bool load_and_check(const std::string& file, const std::string& settings_path,
-                    const LanguageArgs& lang, CheckedFile& out, bool estimate = false) {
+                    const LanguageArgs& lang, CheckedFile& out, bool estimate = false,
+                    RunControl* control = nullptr) {
   if (!load_machine_profile(settings_path, lang.values, out.profile)) return false;
   if (!lang.job_options(out.profile.settings, out.opt)) return false;
   describe(out.profile, out.opt.interpreter);
@@ -223,7 +243,8 @@ bool load_and_check(const std::string& file, const std::string& settings_path,
     out.opt.interpreter.unattended_inputs =
         unattended_inputs(simulated_world(settings), settings.inputs);
   if (estimate) out.opt.operator_present = false;  // --yes and --input answer
-  out.script = Script::load(file);
+  out.opt.control = control;
+  out.script = load_part_file(file);
   out.found = check_program(out.script, out.profile.settings, lang.store(), out.opt, true,
                             estimate ? &out.estimate_s : nullptr);
   return true;
@@ -239,10 +260,12 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   describe(profile, opt.interpreter);
   PersistentStore store = lang.store();
   report.units = settings.units;
-  std::shared_ptr<const Script> script = Script::load(a.file);
-  // A person at a terminal answers the file's questions, unless --yes/--input do.
-  ScriptedIO scripted(lang.yes, opt.inputs);
-  TerminalIO terminal(opt.inputs);
+  std::shared_ptr<const Script> script = load_part_file(a.file);
+  // A person at a terminal answers the file's questions, unless --yes/--input do. With
+  // --json, stdout holds only the report: PRINT goes to stderr.
+  std::FILE* const print_to = a.json ? stderr : stdout;
+  ScriptedIO scripted(lang.yes, opt.inputs, nullptr, print_to);
+  TerminalIO terminal(opt.inputs, print_to);
   const bool interactive = !lang.yes && isatty(STDIN_FILENO) && isatty(STDERR_FILENO);
   opt.operator_present = interactive;
   OperatorIO& io = interactive ? static_cast<OperatorIO&>(terminal) : scripted;
@@ -273,9 +296,10 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
     opt.profile = &profile.bare;
     opt.values_path = profile.values_path;
-    // Ctrl-C (or SIGTERM, a closed terminal) stops the run in order: the tool ramps down
-    // along the path, a question waiting at the terminal ends, and the report says where
-    // the tool is. A second one E-stops. Blocked before the controller's threads start.
+    // Ctrl-C (or SIGTERM, a closed terminal) stops the run in order: the check before it
+    // ends at its next statement and nothing moves, or the tool ramps down along the path,
+    // a question waiting at the terminal ends, and the report says where the tool is. A
+    // second one E-stops. Blocked before the controller's threads start.
     RunControl control;
     SignalWatch signals;
     signals.start([&](int sig) {
@@ -293,6 +317,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));
   for (const Diagnostic& w : scripted.warnings()) fmt::print(stderr, "{}\n", format(w));
   report.errors = job.errors;
+  report.error_summary = job.error_summary;
+  report.check_stopped = job.check_stopped;
   report.lines = job.lines;
   report.moves = job.moves;
   report.commanded_steps = job.commanded_steps;
@@ -310,6 +336,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   if (sim) add_card_checks(report, *sim);
 
   print_errors(report.errors);
+  if (!report.error_summary.empty()) fmt::print(stderr, "gantry: {}\n", report.error_summary);
   if (a.json) {
     std::cout << to_json(report).dump() << "\n";
   } else {
@@ -318,11 +345,29 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   return exit_code(report);
 }
 
+// Exit status: 0 the whole file checked without an error, 1 errors (a stop by a signal
+// included), 2 no error but the check stopped short (an INPUT it cannot answer, the budget).
 int cmd_check(const std::string& file, const std::string& settings_path, const LanguageArgs& lang) {
   CheckedFile c;
-  if (!load_and_check(file, settings_path, lang, c)) return 1;
+  // Ctrl-C or SIGTERM ends the check at its next statement, with what it found so far.
+  RunControl control;
+  SignalWatch signals;
+  signals.start([&](int sig) {
+    fmt::print(stderr, "\ngantry: signal {}: stopping the check\n", sig);
+    control.stop();
+  });
+  const bool loaded = load_and_check(file, settings_path, lang, c, false, &control);
+  signals.stop();
+  if (!loaded) return 1;
   print_errors(c.found);
-  if (has_error(c.found)) return 1;
+  if (c.found.has_errors()) return 1;
+  if (const std::optional<Diagnostic>& why = c.found.stopped_short()) {
+    fmt::print(
+        "{}: NOT fully checked: the check stopped at line {} of {} (see above); the "
+        "lines after it were not checked\n",
+        file, top_line(*why), c.script->line_count());
+    return 2;
+  }
   fmt::print("{}: ok, {} lines\n", file, c.script->line_count());
   return 0;
 }
@@ -333,7 +378,7 @@ int cmd_estimate(const std::string& file, const std::string& settings_path, bool
   CheckedFile c;
   if (!load_and_check(file, settings_path, lang, c, /*estimate=*/true)) return 1;
   print_errors(c.found);
-  if (has_error(c.found)) return 1;
+  if (c.found.has_errors()) return 1;
   const double seconds = c.estimate_s;
   const char* mode = planner_mode_name(c.profile.settings.planner.mode);
   if (json) {
@@ -377,7 +422,7 @@ int cmd_moves(const std::string& file, const std::string& settings_path, const s
               const std::string& svg, const LanguageArgs& lang) {
   CheckedFile c;
   if (!load_and_check(file, settings_path, lang, c)) return 1;
-  if (has_error(c.found)) {
+  if (c.found.has_errors()) {
     print_errors(c.found);
     return 1;
   }
@@ -411,7 +456,7 @@ int cmd_export_gcode(const std::string& file, const std::string& out_path,
   CheckedFile c;
   if (!load_and_check(file, settings_path, lang, c)) return 1;
   print_errors(c.found);
-  if (has_error(c.found)) return 1;
+  if (c.found.has_errors()) return 1;
   GcodeWriter writer(c.profile.settings, std::filesystem::path(file).filename().string());
   std::string printed;
   ScriptedIO io(true, c.opt.inputs, &printed);
@@ -538,9 +583,6 @@ int main(int argc, char** argv) {
   check_cmd->add_option("file", check_file, "Part file (.sbp, or G-code)")->required();
   add_profile_option(check_cmd, check_settings);
   check_lang.add_to(check_cmd);
-  check_cmd->add_option("--budget", check_lang.budget,
-                        "Statements a check may run before it "
-                        "calls the file a runaway loop");
 
   std::string moves_file, moves_settings, moves_format = "text";
   CLI::App* moves_cmd = app.add_subcommand("moves", "Print the canonical moves of a part file");

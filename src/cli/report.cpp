@@ -32,6 +32,18 @@ bool limits_exceeded(const RunReport& r) {
   return r.timing_violations + r.kinematic_violations > 0;
 }
 
+// The status line: run_status with why, and never "done" alone when the check did not cover
+// the whole file.
+std::string status_text(const RunReport& r) {
+  std::string out = run_status(r);
+  if (r.errors.empty() && limits_exceeded(r)) out += ": the card saw the machine's limits exceeded";
+  if (r.errors.empty() && r.check_stopped)
+    out += fmt::format(
+        ", but the check before the run stopped at {}:{} and the lines after it ran unchecked",
+        r.check_stopped->loc.file ? *r.check_stopped->loc.file : "", r.check_stopped->loc.line);
+  return out;
+}
+
 }  // namespace
 
 void add_card_checks(RunReport& r, SimCard& card) {
@@ -85,13 +97,16 @@ nlohmann::ordered_json to_json(const RunReport& r) {
   j["max_accel_ratio"] = r.max_accel_ratio;
   j["errors"] = nlohmann::ordered_json::array();
   for (const Diagnostic& d : r.errors) j["errors"].push_back(to_json(d));
+  if (!r.error_summary.empty()) j["errors_not_shown"] = r.error_summary;
+  // "complete": the check before the run covered the whole file; "partial": it stopped at
+  // `check_stopped` (why: its message), and the run went past that line unchecked.
+  j["check"] = r.check_stopped ? "partial" : "complete";
+  if (r.check_stopped) j["check_stopped"] = to_json(*r.check_stopped);
   return j;
 }
 
 std::string to_text(const RunReport& r) {
-  std::string out = fmt::format(
-      "status     {}{}\n", run_status(r),
-      r.errors.empty() && limits_exceeded(r) ? ": the card saw the machine's limits exceeded" : "");
+  std::string out = fmt::format("status     {}\n", status_text(r));
   out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)
     out += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.position[i]);

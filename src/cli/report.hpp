@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>  // json
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,10 @@ class SimCard;
 
 struct RunReport {
   std::vector<Diagnostic> errors;
+  std::string error_summary;  // the check's errors beyond its cap, in one line ("" none)
+  // Where the check before the run stopped short (an INPUT answered at the terminal, the
+  // statement budget): the run went past it unchecked, and the report says so.
+  std::optional<Diagnostic> check_stopped;
   Units units = Units::Inches;
   Vec6 position = Vec6::Zero();  // from the steps the card counted
   Steps6 steps{};                // counted by the card from its pulses

@@ -34,7 +34,7 @@ std::optional<std::string> TerminalIO::read_line(const SourceLoc& loc) {
 }
 
 void TerminalIO::print(std::string_view text) {
-  fmt::print("{}", text);
+  fmt::print(stream_, "{}", text);
 }
 
 bool TerminalIO::confirm(std::string_view message, const SourceLoc& loc) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdio>  // FILE
 #include <map>
 
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
@@ -10,8 +11,9 @@ namespace gantry {
 
 class TerminalIO : public OperatorIO {
  public:
-  // `inputs` (--input) answer INPUT without asking.
-  explicit TerminalIO(std::map<std::string, std::string> inputs) : inputs_(std::move(inputs)) {}
+  // `inputs` (--input) answer INPUT without asking; PRINT text goes to `stream`.
+  explicit TerminalIO(std::map<std::string, std::string> inputs, std::FILE* stream = stdout)
+      : inputs_(std::move(inputs)), stream_(stream) {}
   void print(std::string_view text) override;
   bool confirm(std::string_view message, const SourceLoc& loc) override;
   std::optional<std::string> ask(std::string_view prompt, std::string_view variable,
@@ -28,6 +30,7 @@ class TerminalIO : public OperatorIO {
   std::optional<std::string> read_line(const SourceLoc& loc);
 
   std::map<std::string, std::string> inputs_;
+  std::FILE* stream_;
   std::atomic<bool> cancelled_{false};
 };
 

@@ -12,8 +12,9 @@
 
 namespace gantry {
 
-std::shared_ptr<const Script> DiskFileSystem::load_script(const std::string& path) {
-  return Script::load(path);
+std::shared_ptr<const Script> DiskFileSystem::load_script(const std::string& path,
+                                                          const IsCommand& is_command) {
+  return Script::load(path, is_command);
 }
 
 bool DiskFileSystem::is_file(const std::string& path) {
@@ -41,10 +42,11 @@ std::vector<std::string> DiskFileSystem::list(const std::string& folder) {
   return names;
 }
 
-std::shared_ptr<const Script> SandboxFileSystem::load_script(const std::string& path) {
+std::shared_ptr<const Script> SandboxFileSystem::load_script(const std::string& path,
+                                                             const IsCommand& is_command) {
   auto it = written_.find(path);  // a part file the run wrote itself
-  if (it != written_.end()) return Script::from_text(it->second->str(), path);
-  return base_->load_script(path);
+  if (it != written_.end()) return Script::from_text(it->second->str(), path, is_command);
+  return base_->load_script(path, is_command);
 }
 
 bool SandboxFileSystem::is_file(const std::string& path) {

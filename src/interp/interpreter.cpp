@@ -11,6 +11,7 @@
 #include <utility>     // exchange
 
 #include "../lang/scan.hpp"                  // looks_like_expression
+#include "gantry/core/diagnostic_log.hpp"    // DiagnosticLog
 #include "gantry/core/text_file.hpp"         // write_file_atomically
 #include "gantry/cuts/passes.hpp"            // tabs on plain moves
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
@@ -73,10 +74,23 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
 }
 
 void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
-  check_reach(file_target, loc);
+  try {
+    check_reach(file_target, loc);
+    const Vec6 target = transform_.to_machine(file_target);
+    if (tab_move(target, nullptr, cls, loc)) return;
+    send_line(target, cls, loc);
+  } catch (const GantryError&) {
+    assume_reached(file_target);
+    throw;
+  }
+}
+
+void CommandContext::assume_reached(const Vec6& file_target) {
   const Vec6 target = transform_.to_machine(file_target);
-  if (tab_move(target, nullptr, cls, loc)) return;
-  send_line(target, cls, loc);
+  if (!checking_ || !target.allFinite()) return;
+  state_.position = target;
+  state_.applied_offset = state_.tool_offset;
+  end_tab_path();
 }
 
 void CommandContext::send_line(const Vec6& target, SpeedClass cls, const SourceLoc& loc) {
@@ -101,6 +115,16 @@ void CommandContext::send_line(const Vec6& target, SpeedClass cls, const SourceL
 
 void CommandContext::arc_to(const Vec6& file_target, double cx, double cy, double sweep,
                             SpeedClass cls, const SourceLoc& loc, ArcPlane plane) {
+  try {
+    make_arc(file_target, cx, cy, sweep, cls, loc, plane);
+  } catch (const GantryError&) {
+    assume_reached(file_target);
+    throw;
+  }
+}
+
+void CommandContext::make_arc(const Vec6& file_target, double cx, double cy, double sweep,
+                              SpeedClass cls, const SourceLoc& loc, ArcPlane plane) {
   const std::array<int, 3> ax = plane_axes(plane);
   const int u = ax[0], v = ax[1];
   const Vec6 from = position();
@@ -1066,20 +1090,36 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
       recorder_.record(script->line_at(c, &next));
 }
 
+namespace {
+
+// A check stopped from another thread (InterpreterOptions::stop_check).
+struct CheckInterrupted {
+  SourceLoc at;
+};
+
+}  // namespace
+
 std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script) {
-  std::vector<Diagnostic> out = script->errors();
+  DiagnosticLog log;
+  check(std::move(script), log);
+  return std::move(log.kept());
+}
+
+void Interpreter::check(std::shared_ptr<const Script> script, DiagnosticLog& log) {
+  for (const Diagnostic& d : script->errors()) log.add(d);
   // As a run would: SetUsrValClrd starts empty (the store is a check's own copy).
   if (store_.registry_value("uValueClrd")) store_.registry().erase("uValueClrd");
   parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
   extra_params_warned_.clear();
+  ctx_.checking_ = true;
   try {
     frames_.clear();
     // A check goes through a file with syntax errors too (they are reported already).
     push_file(script, top_call(*script, options_.start_line), SourceLoc{},
               /*refuse_broken=*/false);
     outputs_on_at_start(*script);
-    loop(&out);
-    if (start_) start_missed();  // ENDALL before it
+    loop(&log);
+    if (start_ && !log.full()) start_missed();  // ENDALL before it
   } catch (const NeedsOperator& e) {
     // The rest depends on an answer. With an operator at the run that is fine (a warning);
     // without one the run would stop here, part-way through the job: an error now.
@@ -1087,21 +1127,26 @@ std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script)
     const bool fine = d.severity == Severity::Warning || options_.operator_present;
     d.message = (fine ? "checking stopped here: " : "the run would stop here: ") + d.message;
     d.severity = fine ? Severity::Warning : Severity::Error;
-    out.push_back(std::move(d));
+    log.stop_short(std::move(d));
+  } catch (const CheckInterrupted& e) {
+    log.stop_short(located({e.at, Severity::Error,
+                            "the check was stopped here (a signal); the lines from here on were "
+                            "not checked, and nothing ran"}));
   } catch (const OperatorStop&) {
     // a DIALOG or FAIL that ends the run ends the check too
   } catch (const GantryError& e) {
-    append_once(out, e.diagnostic());
+    log.add(e.diagnostic());
   }
+  ctx_.checking_ = false;
+  frames_.clear();  // where a full log, or an error, left the check
   end_quiet();
   start_.reset();
   state_.independent.reset();
   sink_.flush();
-  return out;
 }
 
-void Interpreter::loop(std::vector<Diagnostic>* collect) {
-  while (!frames_.empty()) {
+void Interpreter::loop(DiagnosticLog* collect) {
+  while (!frames_.empty() && !(collect && collect->full())) {
     Frame& f = frames_.back();
     if (f.script->at_end(f.pc)) {
       end_file();
@@ -1124,6 +1169,8 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
     if (!st && !error) continue;
     if (error && collect) continue;  // already reported by the script's own pass
     ++executed_;
+    if (collect && options_.stop_check && options_.stop_check->load(std::memory_order_relaxed))
+      throw CheckInterrupted{st ? st->loc : error->loc};
     if (options_.statement_budget && executed_ > options_.statement_budget)
       throw NeedsOperator(
           Diagnostic{st ? st->loc : error->loc, Severity::Warning,
@@ -1141,8 +1188,8 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
         pending_call_.reset();
         const std::string path =
             call.resolved ? call.path : existing_file(call.path, pending_call_loc_);
-        push_file(call.lines ? call.lines : files_system_->load_script(path), call,
-                  pending_call_loc_);
+        push_file(call.lines ? call.lines : files_system_->load_script(path, table_.is_command()),
+                  call, pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;
@@ -1159,7 +1206,7 @@ void Interpreter::loop(std::vector<Diagnostic>* collect) {
       if (const auto* a = std::get_if<AssignStmt>(&st->body))
         if (!a->target.persistent) failed_vars_.insert(a->target.name);
       if (cascade) continue;
-      append_once(*collect, located(e.diagnostic()));
+      collect->add(located(e.diagnostic()));
     }
     if (stop_all_) {
       unwind_all();
@@ -1462,10 +1509,7 @@ void check_choice(const CommandSpec& spec, const ParamSpec& ps, size_t i, const 
 
 void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
   const CommandSpec* spec = table_.find(cmd.code);
-  if (!spec)
-    fail(loc, fmt::format("unknown command '{}'; see docs/commands.md for the commands Gantry "
-                          "knows",
-                          cmd.code));
+  if (!spec) fail(loc, unknown_command_message(cmd.code));
   const std::vector<ParamSpec>& params = spec->params_for(settings_.dialect);
   if (cmd.args.size() > params.size()) extra_params(*spec, cmd, params.size(), loc);
   // The values' storage is kept from line to line (taken, so a nested call gets its own).

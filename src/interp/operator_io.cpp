@@ -21,7 +21,7 @@ void ScriptedIO::print(std::string_view text) {
   if (out_)
     out_->append(text);
   else
-    fmt::print("{}", text);
+    fmt::print(stream_, "{}", text);
 }
 
 bool ScriptedIO::confirm(std::string_view message, const SourceLoc& loc) {
@@ -45,7 +45,7 @@ std::optional<std::string> ScriptedIO::ask(std::string_view, std::string_view va
     if (it == inputs_.end())
       throw NeedsOperator({loc, Severity::Error,
                            fmt::format("the file asks the operator for {}; run from a "
-                                       "terminal, or give it with --input {}=VALUE",
+                                       "terminal, or give it with --input '{}=VALUE'",
                                        name, name)});
     answer += (answer.empty() ? "" : ",") + it->second;
     start = comma + 1;

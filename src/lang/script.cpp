@@ -37,9 +37,22 @@ size_t line_end(std::string_view s, size_t from) {
   return s.size();
 }
 
+// Commands in a statement (also as IF and ON INPUT actions).
+void collect_commands(const Statement& st, std::vector<const Statement*>& out) {
+  if (std::holds_alternative<CommandStmt>(st.body)) out.push_back(&st);
+  if (const auto* i = std::get_if<IfStmt>(&st.body)) collect_commands(*i->action, out);
+  if (const auto* o = std::get_if<OnInputStmt>(&st.body))
+    if (o->action) collect_commands(*o->action, out);
+}
+
 constexpr size_t kWindow = size_t{1} << 20;  // bytes read at a time from a file
 
 }  // namespace
+
+std::string unknown_command_message(std::string_view code) {
+  return fmt::format("unknown command '{}'; see docs/commands.md for the commands Gantry knows",
+                     code);
+}
 
 Script::Script(std::string text, const std::string& name)
     : size_(text.size()),
@@ -52,7 +65,7 @@ Script::~Script() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-std::shared_ptr<const Script> Script::load(const std::string& path) {
+std::shared_ptr<const Script> Script::load(const std::string& path, const IsCommand& is_command) {
   std::shared_ptr<Script> s(new Script(std::string(), path));
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   struct stat st {};
@@ -67,7 +80,7 @@ std::shared_ptr<const Script> Script::load(const std::string& path) {
   s->read_window(0, kWindow);
   if (s->window_.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
   s->gcode_ = is_gcode_file(path, std::string_view(s->window_).substr(s->text_start_));
-  s->index();
+  s->index(is_command);
   return s;
 }
 
@@ -86,10 +99,11 @@ void Script::read_window(size_t offset, size_t len) const {
   window_start_ = offset;
 }
 
-std::shared_ptr<const Script> Script::from_text(std::string text, const std::string& name) {
+std::shared_ptr<const Script> Script::from_text(std::string text, const std::string& name,
+                                                const IsCommand& is_command) {
   std::shared_ptr<Script> s(new Script(std::move(text), name));
   s->gcode_ = is_gcode_file(name, std::string_view(s->window_).substr(s->text_start_));
-  s->index();
+  s->index(is_command);
   return s;
 }
 
@@ -170,7 +184,7 @@ std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
   return slot.parse;
 }
 
-void Script::index() {
+void Script::index(const IsCommand& is_command) {
   if (gcode_) {  // G-code has no labels: only each block's syntax
     GcodeBlock block;
     Diagnostic error;
@@ -182,18 +196,31 @@ void Script::index() {
     return;
   }
   std::vector<std::pair<std::string, SourceLoc>> targets;
+  Statement simple;  // its storage reused line after line
+  auto check_command = [&](const Statement& st) {
+    const std::string& code = std::get<CommandStmt>(st.body).code;
+    if (!is_command(code))
+      errors_.push_back({st.loc, Severity::Error, unknown_command_message(code)});
+  };
   Cursor c = start();
   while (!at_end(c)) {
     Cursor next;
     const std::string_view text = line_at(c, &next);
     ++lines_;
-    if (is_simple_command(text)) {  // no error, label or jump in it
+    // A simple command has no error, label or jump in it; only its code may be unknown.
+    if (is_command ? parse_simple_command(text, name_, c.line, &simple) : is_simple_command(text)) {
+      if (is_command) check_command(simple);
       c = next;
       continue;
     }
     LineParse lp = parse_line(text, name_, c.line);
     if (lp.error) errors_.push_back(*lp.error);
     if (lp.statement) {
+      if (is_command) {
+        std::vector<const Statement*> commands;
+        collect_commands(*lp.statement, commands);
+        for (const Statement* st : commands) check_command(*st);
+      }
       if (const auto* l = std::get_if<LabelStmt>(&lp.statement->body)) {
         if (!labels_.emplace(l->name, next).second)
           errors_.push_back({lp.statement->loc, Severity::Warning,

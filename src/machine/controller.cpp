@@ -217,10 +217,12 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
   check.record = &interp_->recorder();  // RP, RR: the lines they would play are checked
   std::vector<Diagnostic> errors;
   double estimate = estimated_time_s;
-  if (!checked)
-    for (Diagnostic& d :
-         check_program(script, interp_->settings(), store_, check, false, &estimate))
+  if (!checked) {
+    DiagnosticLog found =
+        check_program(script, interp_->settings(), store_, check, false, &estimate);
+    for (Diagnostic& d : found.kept())
       if (d.severity == Severity::Error) errors.push_back(std::move(d));
+  }
   if (!errors.empty()) return {false, "run: refused, the file has errors", std::move(errors)};
   return refuse_or(Request::Run, [&] {
     message_.clear();

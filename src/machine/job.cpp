@@ -41,10 +41,9 @@ class NullSegments : public SegmentSink {
 
 }  // namespace
 
-std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
-                                      const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options, bool runtime_warnings,
-                                      double* estimated_time_s) {
+DiagnosticLog check_program(std::shared_ptr<const Script> script, const Settings& settings,
+                            const PersistentStore& store, const JobOptions& options,
+                            bool runtime_warnings, double* estimated_time_s) {
   NullSink nothing;
   NullSegments segments;
   LookAheadPlanner planner(settings, segments);
@@ -59,20 +58,22 @@ std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
   opt.dry_run = true;
   opt.statement_budget = options.check_budget;
   opt.operator_present = options.operator_present;
+  if (options.control) opt.stop_check = &options.control->stopped();
   Interpreter interp(settings, sink, io, scratch, opt);
   if (options.start_state) interp.restore_state(*options.start_state);
   if (options.start_variables) interp.restore_variables(*options.start_variables);
   if (options.record) interp.recorder() = *options.record;
-  std::vector<Diagnostic> out = interp.check(std::move(script));
+  DiagnosticLog log(options.max_errors);
+  interp.check(std::move(script), log);
   if (estimated_time_s) *estimated_time_s = planner.planned_time();
   if (runtime_warnings)
-    for (const Diagnostic& w : io.warnings()) append_once(out, w);
+    for (const Diagnostic& w : io.warnings()) log.add(w);
   // In line order: the script's own pass found the syntax errors, the run the others.
   // Messages from nested files keep their order after those of the top-level file.
   auto key = [](const Diagnostic& d) { return d.via.empty() ? d.loc.line : INT_MAX; };
-  std::stable_sort(out.begin(), out.end(),
+  std::stable_sort(log.kept().begin(), log.kept().end(),
                    [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
-  return out;
+  return log;
 }
 
 void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
@@ -84,6 +85,7 @@ void interpret(std::shared_ptr<const Script> script, const Settings& settings, M
 bool RunControl::stop() {
   std::lock_guard lock(m_);
   const bool first = ++stops_ == 1;
+  stopped_ = true;
   if (machine_) first ? (void)machine_->stop() : (void)machine_->estop();
   return first;
 }
@@ -105,9 +107,12 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
                   OperatorIO& io, PersistentStore& store, const JobOptions& options) {
   JobResult result;
   result.settings = settings;
-  for (Diagnostic& d :
-       check_program(script, settings, store, options, false, &result.estimated_time_s))
+  DiagnosticLog checked =
+      check_program(script, settings, store, options, false, &result.estimated_time_s);
+  for (Diagnostic& d : checked.kept())
     (d.severity == Severity::Error ? result.errors : result.warnings).push_back(std::move(d));
+  result.error_summary = checked.summary();
+  result.check_stopped = checked.stopped_short();
   if (!result.ok()) return result;
 
   // The live machine runs it: the same controller as the console's, so probes, ON INPUT,

@@ -3,6 +3,7 @@
 
 #include <algorithm>  // any_of
 
+#include "gantry/commands/command_table.hpp"  // CommandTable::is_command
 #include "gantry/lang/script.hpp"        // Script
 #include "gantry/motion/arc_chords.hpp"  // arc_chords
 
@@ -86,9 +87,12 @@ Toolpath load_toolpath(const std::string& path, const Settings& settings,
   job.check_moves = &sink;
   const PersistentStore none;
   try {
-    std::shared_ptr<const Script> script = Script::load(path);
-    out.violations = check_program(std::move(script), settings, opts.store ? *opts.store : none,
-                                   job, true, opts.estimate ? &out.estimated_time_s : nullptr);
+    std::shared_ptr<const Script> script =
+        Script::load(path, CommandTable::standard().is_command());
+    out.violations =
+        std::move(check_program(std::move(script), settings, opts.store ? *opts.store : none, job,
+                                true, opts.estimate ? &out.estimated_time_s : nullptr)
+                      .kept());
   } catch (const GantryError& e) {
     out.violations.push_back(e.diagnostic());
   } catch (const Cancelled&) {

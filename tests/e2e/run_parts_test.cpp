@@ -1,11 +1,15 @@
 // End to end: real part files through `gantry` on the simulated card, checked to the step.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -15,6 +19,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "../support/run_gantry.hpp"
@@ -804,6 +809,130 @@ TEST(Corpus, FabmoPlateMacroTouchesThePlateOnTheHandibot) {
   std::ifstream in(store);
   EXPECT_EQ(json::parse(in)["variables"]["ZZEROPLATETHICKNESS"], 0);
   fs::remove(store);
+
+int count_lines(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// Many errors: at most --max-errors of them (100 by default) and one line for the rest.
+TEST(Check, StopsAfterTheErrorCapAndSummarisesTheRestInOneLine) {
+  std::string text = "MX, 1\n";
+  for (int i = 0; i < 300; ++i) text += "QQ, 1\n";
+  const std::string file = part_file("many.sbp", text);
+  const Result r = gantry(fmt::format("check '{}'", file));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(count_lines(r.err), 101) << r.err.substr(0, 2000);
+  EXPECT_NE(r.err.find(file + ":2:1: error: unknown command 'QQ'"), std::string::npos);
+  EXPECT_NE(
+      r.err.find("\ngantry: stopped after 100 errors; 200 more not shown: 200 'unknown command'\n"),
+      std::string::npos)
+      << r.err.substr(r.err.size() - 300);
+  const Result five = gantry(fmt::format("check '{}' --max-errors 5", file));
+  EXPECT_EQ(count_lines(five.err), 6) << five.err;
+  const Result all = gantry(fmt::format("check '{}' --max-errors 0", file));
+  EXPECT_EQ(count_lines(all.err), 300);
+  fs::remove(file);
+}
+
+// The load pass reads every line: an unknown command is an error even where no run goes.
+TEST(Check, AnUnknownCommandOnALineNeverReachedIsAnError) {
+  const std::string file = part_file("unreached.sbp", "MX, 1\nEND\nQQ, 1\n");
+  const Result r = gantry(fmt::format("check '{}'", file));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, file +
+                       ":3:1: error: unknown command 'QQ'; see docs/commands.md for the "
+                       "commands Gantry knows\n");
+  EXPECT_EQ(r.out, "");
+  fs::remove(file);
+}
+
+// An INPUT the check cannot answer: not "ok"; where it stopped, and how to answer.
+TEST(Check, AnUnansweredInputIsNotCalledClean) {
+  const std::string file = part_file("input.sbp", "MX, 1\nINPUT \"Depth?\" &depth\nMZ, -&depth\n");
+  const Result r = gantry(fmt::format("check '{}'", file));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out.find("ok"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out, file +
+                       ": NOT fully checked: the check stopped at line 2 of 3 (see above); the "
+                       "lines after it were not checked\n");
+  EXPECT_NE(r.err.find(file + ":2:1: warning: checking stopped here: the file asks the operator "
+                              "for &DEPTH; run from a terminal, or give it with --input "
+                              "'&DEPTH=VALUE'"),
+            std::string::npos)
+      << r.err;
+  const Result answered = gantry(fmt::format("check '{}' --input depth=0.25", file));
+  EXPECT_EQ(answered.exit_code, 0) << answered.err;
+  EXPECT_EQ(answered.out, file + ": ok, 3 lines\n");
+  fs::remove(file);
+}
+
+// --json: stdout is one JSON object; what the file PRINTs goes to stderr.
+TEST(Run, JsonStdoutIsOneObjectWhenTheFilePrints) {
+  const std::string file = part_file("prints.sbp", "PRINT \"hello from the part\"\nMX, 1\n");
+  const Result r = gantry(fmt::format("run '{}' --json", file));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(json::accept(r.out)) << r.out;
+  EXPECT_NE(r.err.find("hello from the part"), std::string::npos) << r.err;
+  const Result text = gantry(fmt::format("run '{}'", file));  // without --json, on stdout
+  EXPECT_NE(text.out.find("hello from the part"), std::string::npos) << text.out;
+  fs::remove(file);
+}
+
+// A check that stopped short (here the budget) lets the run go on, and the report says the
+// run went past that line unchecked: never plain "done".
+TEST(Run, ReportSaysWhenTheCheckStoppedShort) {
+  const std::string file =
+      part_file("budget.sbp", "&i = 0\nLOOP:\n&i = &i + 1\nIF &i < 30 THEN GOTO LOOP\nMX, 1\n");
+  const Result r = gantry(fmt::format("run '{}' --budget 20 --json", file));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["check"], "partial");
+  EXPECT_EQ(j["check_stopped"]["line"], 3);  // the 21st statement
+  const Result text = gantry(fmt::format("run '{}' --budget 20", file));
+  EXPECT_NE(text.out.find("status     done, but the check before the run stopped at " + file +
+                          ":3 and the lines after it ran unchecked\n"),
+            std::string::npos)
+      << text.out;
+  const Result full = gantry(fmt::format("run '{}' --json", file));
+  EXPECT_EQ(json::parse(full.out)["check"], "complete");
+  fs::remove(file);
+}
+
+// SIGTERM while the file is checked (before any motion): gantry stops promptly, says why and
+// exits non-zero. The 2 s bound only keeps a broken build from hanging the test.
+TEST(Signals, SigtermStopsACheckThatLoops) {
+  const std::string file = part_file("forever.sbp", "LOOP:\nMX, 1\nMX, 2\nGOTO LOOP\n");
+  for (const char* sub : {"check", "run"}) {
+    const fs::path err = fs::temp_directory_path() / fmt::format("gantry_e2e_sig_{}.err", getpid());
+    const std::string cmd = fmt::format("exec '{}' {} '{}' --budget 0 2>'{}' >/dev/null",
+                                        GANTRY_BIN, sub, file, err.string());
+    pid_t pid = 0;
+    const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+    ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    kill(pid, SIGTERM);
+    int status = 0;
+    bool ended = false;
+    for (int i = 0; i < 200 && !ended; ++i) {
+      ended = waitpid(pid, &status, WNOHANG) == pid;
+      if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (!ended) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+    }
+    std::ifstream in(err);
+    std::stringstream e;
+    e << in.rdbuf();
+    EXPECT_TRUE(ended) << sub << " did not stop within 2 s of SIGTERM";
+    ASSERT_TRUE(WIFEXITED(status)) << sub << ": killed, not stopped";
+    EXPECT_NE(WEXITSTATUS(status), 0) << sub;
+    EXPECT_NE(e.str().find("gantry: signal 15: stopping the"), std::string::npos) << e.str();
+    EXPECT_NE(e.str().find("error: the check was stopped here (a signal)"), std::string::npos)
+        << e.str();
+    fs::remove(err);
+  }
+  fs::remove(file);
 }
 
 TEST(Cli, VersionAndHelp) {

@@ -349,7 +349,7 @@ TEST(Controller, SkWithoutAKeypadGoesOnOnlyWhenTheOperatorSaysSo) {
   JobOptions opt;
   opt.operator_present = false;
   const std::vector<Diagnostic> errors =
-      check_program(Script::from_text(kZeroAtTheKeypad, "part.sbp"), settings, store, opt);
+      check_program(Script::from_text(kZeroAtTheKeypad, "part.sbp"), settings, store, opt).kept();
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_EQ(errors[0].loc.line, 2);
   EXPECT_NE(errors[0].message.find("SK hands the keypad to the operator (\"Jog to"),

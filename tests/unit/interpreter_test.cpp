@@ -748,9 +748,10 @@ TEST_F(InterpreterTest, CheckCollectsEveryErrorAndContinues) {
   EXPECT_EQ(where(errors[5].loc), "part.sbp:9:1");
   EXPECT_EQ(errors[0].message.rfind("unknown command 'QQ'", 0), 0u);
   EXPECT_EQ(errors[3].message, "MZ takes 1 parameter; this is parameter 2");
-  // The good moves still ran, and the failed move to X=30 left X at 1.
+  // The good moves still ran, and the check went on from X=30, where the refused move meant
+  // the tool to be.
   ASSERT_EQ(moves().size(), 2u);
-  expect_vec(moves()[1].from, at(1));
+  expect_vec(moves()[1].from, at(30));
   expect_vec(moves()[1].to, at(2));
   EXPECT_EQ(interp().statements_executed(), 9u);
   EXPECT_EQ(sink.flushes, 1);

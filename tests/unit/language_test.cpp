@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>  // getpid, for unique temporary directories
 
+#include <atomic>
 #include <cmath>
 #include <deque>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "gantry/core/diagnostic.hpp"
+#include "gantry/core/diagnostic_log.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/interp/persistent_store.hpp"
@@ -1568,7 +1570,7 @@ TEST_F(LanguageTest, InputWithoutAnAnswerNeedsTheOperator) {
   EXPECT_EQ(o.ending, Ending::NeedsOperator);
   EXPECT_EQ(format(o.diag),
             "part.sbp:1:1: error: the file asks the operator for &DEPTH; run from a terminal, or "
-            "give it with --input &DEPTH=VALUE");
+            "give it with --input '&DEPTH=VALUE'");
 }
 
 TEST_F(LanguageTest, InputCancelEndsTheRun) {
@@ -2487,6 +2489,88 @@ TEST_F(LanguageTest, CheckStopsWhereAnOperatorAnswerIsNeeded) {
   EXPECT_EQ(moves().size(), 1u);
 }
 
+// A statement that fails differently on every pass (one step further off the table each time)
+// is reported once, and the budget still ends the loop.
+TEST_F(LanguageTest, CheckReportsALineThatFailsOnEveryPassOnce) {
+  options.statement_budget = 1000;
+  const std::vector<Diagnostic> ds = check("&x = 20\nLOOP:\n&x = &x + 1\nMX, &x\nGOTO LOOP\n");
+  ASSERT_EQ(ds.size(), 2u) << all(ds);
+  EXPECT_EQ(format(ds[0]).rfind("part.sbp:4:1: error: move to X=25.0000 is outside the soft "
+                                "limits",
+                                0),
+            0u)
+      << format(ds[0]);
+  EXPECT_EQ(format(ds[1]).rfind("part.sbp:", 0), 0u);
+  EXPECT_NE(ds[1].message.find("1000 statements executed"), std::string::npos);
+}
+
+TEST_F(LanguageTest, CheckReportsAMissingFileCalledInALoopOnce) {
+  options.statement_budget = 1000;
+  const std::string part =
+      dir().write("loop.sbp", "&i = 0\nLOOP:\n&i = &i + 1\nFP, missing.sbp\nGOTO LOOP\n");
+  DiagnosticLog log;
+  interp().check(Script::load(part), log);
+  ASSERT_EQ(log.kept().size(), 2u) << all(log.kept());
+  EXPECT_EQ(log.kept()[0].via.at(0).line, 4);
+  EXPECT_NE(log.kept()[1].message.find("1000 statements executed"), std::string::npos);
+  EXPECT_TRUE(log.stopped_short());
+}
+
+// A refused move leaves the check where the file meant the tool to be: the relative move and
+// the arcs after it are checked from there, and only the refused move is an error.
+TEST_F(LanguageTest, CheckGoesOnFromWhereARefusedMoveMeantTheToolToBe) {
+  const std::vector<Diagnostic> ds = check(
+      "SA\n"
+      "J2, 30, 5\n"  // off the 24 in table: refused
+      "SR\n"
+      "JX, -20\n"  // to X=10
+      "SA\n"
+      "CG, , 14, 5, 2, 0, T, 1\n"  // half circles about (12, 5), there and back
+      "CG, , 10, 5, -2, 0, T, 1\n"
+      "SR\n"
+      "M2, 3, 1\n");
+  ASSERT_EQ(ds.size(), 1u) << all(ds);
+  EXPECT_EQ(ds[0].loc.line, 2);
+  EXPECT_NE(ds[0].message.find("outside the soft limits"), std::string::npos) << ds[0].message;
+  ASSERT_FALSE(moves().empty());
+  EXPECT_NEAR(moves().back().to[0], 13, 1e-12);  // SR from (10, 5): where the arcs ended
+  EXPECT_NEAR(moves().back().to[1], 6, 1e-12);
+}
+
+// A run is not a check: a refused move leaves the location where the tool is.
+TEST_F(LanguageTest, ARefusedMoveInARunDoesNotMoveTheLocation) {
+  run_error("MX, 2\nMX, 30\n");
+  expect_vec(state().position, at(2));
+}
+
+TEST_F(LanguageTest, CheckStopsAtItsErrorCapWithoutRunningFurther) {
+  DiagnosticLog log(2);
+  interp().check(Script::from_text("MX, 30\nMX, 31\nMX, 32\nMX, 33\n", "part.sbp"), log);
+  EXPECT_EQ(log.kept().size(), 2u) << all(log.kept());
+  EXPECT_TRUE(log.full());
+  EXPECT_EQ(interp().statements_executed(), 2u);
+}
+
+TEST_F(LanguageTest, CheckStopsWhenAskedToFromAnotherThread) {
+  std::atomic<bool> stop{true};  // a signal came before the first statement
+  options.stop_check = &stop;
+  DiagnosticLog log;
+  interp().check(Script::from_text("MX, 1\nMX, 2\n", "part.sbp"), log);
+  ASSERT_TRUE(log.stopped_short());
+  EXPECT_EQ(format(*log.stopped_short()),
+            "part.sbp:1:1: error: the check was stopped here (a signal); the lines from here on "
+            "were not checked, and nothing ran");
+  EXPECT_TRUE(moves().empty());
+}
+
+TEST_F(LanguageTest, CheckStopsShortAtAnInputWithoutAnAnswer) {
+  DiagnosticLog log;
+  interp().check(Script::from_text("MX, 1\nINPUT \"Depth?\" &d\nMZ, -&d\n", "part.sbp"), log);
+  ASSERT_TRUE(log.stopped_short());
+  EXPECT_EQ(log.stopped_short()->loc.line, 2);
+  EXPECT_FALSE(log.has_errors());
+}
+
 TEST_F(LanguageTest, CheckReportsEveryErrorOfAFile) {
   dir().write("child.sbp", "MX, 3\n  QQ\n");
   const std::string part = dir().write("all.sbp", R"sbp(SA
@@ -2516,7 +2600,10 @@ IF 1 THEN MZ, 1, 2
       part + ":9:5: error: expected a number for Y location (MY), found 'abc'",
       part + ":10:18: error: MZ takes 1 parameter; this is parameter 2"};
   EXPECT_EQ(got, expected);
-  expect_path(moves(), {{kMove, at(2)}, {kMove, at(3)}});
+  // child.sbp's unknown command is found when it is loaded, so FP refuses it as it refuses a
+  // file with a syntax error: its MX, 3 does not run. The refused MX, 30 left the check at
+  // X=30, where the file meant the tool to be.
+  expect_path(moves(), {{kMove, at(2)}}, at(30));
   EXPECT_EQ(sink.flushes, 1);
 }
 

@@ -46,7 +46,7 @@ class KeepingSink : public MotionSink {
 std::vector<CanonMove> listed_moves(const std::string& file, const Settings& settings) {
   auto script = Script::load(file);
   PersistentStore store;
-  EXPECT_TRUE(check_program(script, settings, store).empty());
+  EXPECT_TRUE(check_program(script, settings, store).kept().empty());
   KeepingSink sink;
   ScriptedIO io(true, {});
   JobOptions opt;
@@ -150,9 +150,12 @@ TEST(Toolpath, SoftLimitViolationNamesItsLineAndIsNotDrawn) {
   EXPECT_EQ(d.loc.line, 3);
   EXPECT_NE(d.message.find("soft limits"), std::string::npos) << d.message;
   EXPECT_TRUE(path.has_errors());
-  // Line 3 moved nothing: the tool went on to 3, 3 from 2, 2.
-  EXPECT_LE(path.bounds.max().x(), 3.0f);
-  EXPECT_EQ(path.segments.size(), 3u);
+  // Line 3 is not drawn, but the check goes on from where it meant the tool to be (X=30,
+  // docs/language.md 6.2): the model's break to there is a jog, then line 4 from there.
+  EXPECT_EQ(path.bounds.max().x(), 30.0f);
+  ASSERT_EQ(path.segments.size(), 4u);
+  EXPECT_EQ(path.segments[2].kind, PathKind::Jog);
+  EXPECT_EQ(path.segments[2].x, 30.0f);
 }
 
 TEST(Toolpath, MissingAndBadFilesGiveLocatedErrors) {

@@ -93,5 +93,24 @@ TEST(ScriptFile, ByteOrderMarkIsSkippedAndADirectoryIsNotAFile) {
   EXPECT_FALSE(dir->ok());
 }
 
+// The load pass reads every line: given the command table's predicate it reports an unknown
+// command wherever it is, reached by a run or not; without one (lang alone) it cannot.
+
+TEST(ScriptLoadPass, ReportsUnknownCommandsOnEveryLineGivenWhichAreCommands) {
+  const IsCommand known = [](std::string_view code) { return code == "MX" || code == "JY"; };
+  const std::string text = "MX, 1\nEND\nQQ, 2\nIF 1 THEN ZZ\n  jy 3\nPRINT \"QQ\"\n'QQ\n";
+  const auto s = Script::from_text(text, "part.sbp", known);
+  ASSERT_EQ(s->errors().size(), 2u);
+  EXPECT_EQ(format(s->errors()[0]),
+            "part.sbp:3:1: error: unknown command 'QQ'; see docs/commands.md for the commands "
+            "Gantry knows");
+  EXPECT_EQ(s->errors()[1].loc.line, 4);
+  EXPECT_EQ(s->errors()[1].message, unknown_command_message("ZZ"));
+  EXPECT_TRUE(Script::from_text(text, "part.sbp")->ok());
+  const std::string path = write_temp("unknown.sbp", text);
+  EXPECT_EQ(Script::load(path, known)->errors().size(), 2u);
+  fs::remove(path);
+}
+
 }  // namespace
 }  // namespace gantry

@@ -27,9 +27,11 @@ namespace {
 
 class MemoryFiles : public FileSystem {
  public:
-  std::shared_ptr<const Script> load_script(const std::string& path) override {
+  std::shared_ptr<const Script> load_script(const std::string& path,
+                                            const IsCommand& is_command) override {
     const auto it = texts.find(path);
-    return it == texts.end() ? Script::load(path) : Script::from_text(it->second, path);
+    return it == texts.end() ? Script::load(path, is_command)
+                             : Script::from_text(it->second, path, is_command);
   }
   bool is_file(const std::string& path) override { return texts.count(path) > 0; }
   std::shared_ptr<std::istream> open_read(const std::string&) override { return nullptr; }

@@ -9,6 +9,7 @@
 
 #include "gantry/core/diagnostic.hpp"    // SourceLoc
 #include "gantry/interp/value.hpp"       // Value
+#include "gantry/lang/script.hpp"        // IsCommand
 #include "gantry/lang/statement.hpp"     // Arg
 #include "gantry/settings/settings.hpp"  // Dialect
 
@@ -125,6 +126,10 @@ class CommandTable {
   static const CommandTable& standard();
 
   const CommandSpec* find(std::string_view code) const;  // code upper case
+  // find() as the predicate a script's load pass reports unknown commands with.
+  IsCommand is_command() const {
+    return [this](std::string_view code) { return find(code) != nullptr; };
+  }
   std::span<const CommandSpec> all() const { return specs_; }
 
  private:

@@ -16,7 +16,9 @@ namespace gantry {
 class FileSystem {
  public:
   virtual ~FileSystem() = default;
-  virtual std::shared_ptr<const Script> load_script(const std::string& path) = 0;
+  // A part file, loaded as Script::load does (`is_command` finds its unknown commands).
+  virtual std::shared_ptr<const Script> load_script(const std::string& path,
+                                                    const IsCommand& is_command) = 0;
   virtual bool is_file(const std::string& path) = 0;
   // A user file to read (null if it cannot be read) or to write (null if it cannot be made).
   virtual std::shared_ptr<std::istream> open_read(const std::string& path) = 0;
@@ -44,7 +46,8 @@ std::string shipped_macro_folder();
 // The machine's own files.
 class DiskFileSystem : public FileSystem {
  public:
-  std::shared_ptr<const Script> load_script(const std::string& path) override;
+  std::shared_ptr<const Script> load_script(const std::string& path,
+                                            const IsCommand& is_command) override;
   bool is_file(const std::string& path) override;
   std::shared_ptr<std::istream> open_read(const std::string& path) override;
   std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
@@ -57,7 +60,8 @@ class SandboxFileSystem : public FileSystem {
  public:
   // `base`: where reads go when the sandbox has not written the file (null: the disk).
   explicit SandboxFileSystem(FileSystem* base = nullptr) : base_(base ? base : &disk_) {}
-  std::shared_ptr<const Script> load_script(const std::string& path) override;
+  std::shared_ptr<const Script> load_script(const std::string& path,
+                                            const IsCommand& is_command) override;
   bool is_file(const std::string& path) override;
   std::shared_ptr<std::istream> open_read(const std::string& path) override;
   std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -23,6 +24,8 @@
 #include "gantry/settings/settings.hpp"          // Settings
 
 namespace gantry {
+
+class DiagnosticLog;
 
 // Where the tool was when SP started a preview: SM returns there.
 struct PreviewReturn {
@@ -141,13 +144,15 @@ class CommandContext {
     return transform_.to_file(p);
   }
   // A straight move to `target` (file coordinates). A target outside the soft limits is an
-  // error at `loc`, and nothing is emitted.
+  // error at `loc`, and nothing is emitted; in a check the location still becomes `target`
+  // (the check goes on as though the move had been made: no cascade of errors after it).
   void line_to(const Vec6& target, SpeedClass cls, const SourceLoc& loc);
   // An arc in `plane` about (cx, cy) (along the plane's first and second axes) through
   // `sweep` radians (positive counter-clockwise) to `target`, the other axes moving in
   // proportion (file coordinates). Its extreme points are checked against the soft limits
-  // too. When FP scales the plane's axes differently the arc is no longer circular, and tabs
-  // follow only XY arcs: such an arc is sent as lines within the chord tolerance.
+  // too (refused as line_to refuses). When FP scales the plane's axes differently the arc is
+  // no longer circular, and tabs follow only XY arcs: such an arc is sent as lines within the
+  // chord tolerance.
   void arc_to(const Vec6& target, double cx, double cy, double sweep, SpeedClass cls,
               const SourceLoc& loc, ArcPlane plane = ArcPlane::XY);
   // How the running file's coordinates map to working ones (FP's proportions and offsets).
@@ -279,6 +284,11 @@ class CommandContext {
   bool tab_move(const Vec6& target, const std::array<double, 3>* arc, SpeedClass cls,
                 const SourceLoc& loc);
   void end_tab_path();
+  // arc_to's work (arc_to adds what a check assumes of a refused arc).
+  void make_arc(const Vec6& target, double cx, double cy, double sweep, SpeedClass cls,
+                const SourceLoc& loc, ArcPlane plane);
+  // A check goes on past a refused move to `file_target` as though it had been made.
+  void assume_reached(const Vec6& file_target);
   // Every line, arc and dwell goes to the sink through here: a move of the axis MI moves is
   // refused, and an axis MI rested starts again first; the run's first motion is warned of.
   void emit(const CanonMove& m);
@@ -297,6 +307,7 @@ class CommandContext {
   bool own_tabs_ = false;
   bool independent_resting_ = false;  // the machine came to rest under MI: restart it
   bool warned_ = false;               // this run's first motion was warned of
+  bool checking_ = false;             // a check: a refused move still changes the location
   bool switch4_auto_ = false;         // ... and switch 4 came on with the warning
   bool spindle_speed_warned_ = false;  // TR with no speed output: this run was told once
 };
@@ -313,6 +324,8 @@ struct InterpreterOptions {
   // Virtual time has nobody to warn, and its cycle times leave the wait out.
   bool warn_before_motion = false;
   std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
+  // Set from another thread (a signal): a check stops before its next statement.
+  const std::atomic<bool>* stop_check = nullptr;
   // Where C<n> finds its files (docs/language.md, "Custom cuts"): `macro_dir` (--macros),
   // else the parts folder and then `user_macro_dir`; last `shipped_macro_dir`, Gantry's own
   // C6, C7, C9... ("" leaves a folder out).
@@ -357,9 +370,13 @@ class Interpreter : private EvalEnv {
   // change stay, output switches stay on), and each is recorded (RA...) once it ran cleanly.
   void run(std::shared_ptr<const Script> script, bool typed = false);
 
-  // Runs without stopping at errors: each statement that fails is reported and skipped.
-  // Includes the script's own syntax errors. Stops (with a warning) where the rest of the
-  // run depends on an operator answer it does not have, or when the budget runs out.
+  // Runs without stopping at errors: each statement that fails is reported into `log` and
+  // skipped, and a refused move leaves the location where the file meant it to be, so the
+  // lines after it are checked from there. Includes the script's own syntax errors. Stops
+  // short (log.stop_short) where the rest of the run depends on an operator answer it does
+  // not have, when the budget runs out, or at options().stop_check; and when the log is full.
+  void check(std::shared_ptr<const Script> script, DiagnosticLog& log);
+  // The same into a log without a cap: what it kept.
   std::vector<Diagnostic> check(std::shared_ptr<const Script> script);
 
   // Called after each statement with (line reached in the top-level file, its line count).
@@ -421,7 +438,7 @@ class Interpreter : private EvalEnv {
   [[noreturn]] void start_missed();
   void restore_file_values(Frame& f);
   void plunge_for_pass(Frame& f);
-  void loop(std::vector<Diagnostic>* collect);
+  void loop(DiagnosticLog* collect);
   void execute(const Statement& st);
   // One overload per statement kind: control flow and commands in interpreter.cpp, operator
   // and file statements in io_statements.cpp.

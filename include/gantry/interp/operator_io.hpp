@@ -1,6 +1,7 @@
 // The operator, as the interpreter sees one: messages out, answers in.
 #pragma once
 
+#include <cstdio>  // FILE, stdout
 #include <map>
 #include <optional>
 #include <string>
@@ -38,11 +39,13 @@ class OperatorIO {
 
 // Answers without a person: `yes` continues every PAUSE and presses a MSGBOX's default
 // button; `inputs` answers INPUT by variable name. A question it cannot answer is an error
-// naming its line and the option that would answer it.
+// naming its line and the option that would answer it. PRINT text goes to `out`, or when
+// that is null to `stream`.
 class ScriptedIO : public OperatorIO {
  public:
-  ScriptedIO(bool yes, std::map<std::string, std::string> inputs, std::string* out = nullptr)
-      : yes_(yes), inputs_(std::move(inputs)), out_(out) {}
+  ScriptedIO(bool yes, std::map<std::string, std::string> inputs, std::string* out = nullptr,
+             std::FILE* stream = stdout)
+      : yes_(yes), inputs_(std::move(inputs)), out_(out), stream_(stream) {}
   void print(std::string_view text) override;
   bool confirm(std::string_view message, const SourceLoc& loc) override;
   std::optional<std::string> ask(std::string_view prompt, std::string_view variable,
@@ -56,7 +59,8 @@ class ScriptedIO : public OperatorIO {
  private:
   bool yes_;
   std::map<std::string, std::string> inputs_;  // keys upper case, e.g. "&DEPTH"
-  std::string* out_;                           // PRINT text goes here (or to stdout)
+  std::string* out_;                           // PRINT text goes here (or to stream_)
+  std::FILE* stream_;
   std::vector<Diagnostic> warnings_;
 };
 

@@ -1,6 +1,7 @@
 // A loaded part file: its text, its label index, and the errors one pass over it finds.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,16 +20,26 @@ struct Cursor {
   int line = 1;
 };
 
+// Whether a two-letter code (upper case) names a command. The command table, in a layer above
+// this one, answers (CommandTable::is_command); a script loaded with one reports an unknown
+// command on every line, whether a run would reach it or not.
+using IsCommand = std::function<bool(std::string_view code)>;
+
+// The error for an unknown command: the load pass and the interpreter say the same.
+std::string unknown_command_message(std::string_view code);
+
 // Statements are parsed when they are executed, so memory does not grow with the file: a
 // script loaded from disk keeps the file open and reads it through a window of about a
 // mebibyte (pread), plus one entry per label. Loading makes one pass over every line to
 // index the labels and to find every syntax error, duplicate label and jump to a missing
-// label before anything runs.
+// label (and, given `is_command`, every unknown command) before anything runs.
 class Script {
  public:
   // Reads `path`; an unreadable file gives a script with one error and no text.
-  static std::shared_ptr<const Script> load(const std::string& path);
-  static std::shared_ptr<const Script> from_text(std::string text, const std::string& name);
+  static std::shared_ptr<const Script> load(const std::string& path,
+                                            const IsCommand& is_command = {});
+  static std::shared_ptr<const Script> from_text(std::string text, const std::string& name,
+                                                 const IsCommand& is_command = {});
 
   const std::shared_ptr<const std::string>& name() const { return name_; }
   const std::vector<Diagnostic>& errors() const { return errors_; }  // all severities
@@ -58,7 +69,7 @@ class Script {
 
  private:
   Script(std::string text, const std::string& name);
-  void index();
+  void index(const IsCommand& is_command);
   // Makes the window hold [offset, offset + len) or up to the end of the file.
   void read_window(size_t offset, size_t len) const;
 

@@ -1,14 +1,17 @@
 // A part-file job: checks the whole file, then runs it through planner, steps and card.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
+#include "gantry/core/diagnostic_log.hpp"      // DiagnosticLog
 #include "gantry/hal/card.hpp"                 // Card
 #include "gantry/interp/interpreter.hpp"       // InterpreterOptions
 #include "gantry/interp/operator_io.hpp"       // OperatorIO
@@ -25,8 +28,11 @@ class Controller;
 class RunControl {
  public:
   // A stop: the running file ramps down and ends, the position known; asked before the run
-  // starts, the run never starts. Again: an E-stop. True for a stop, false for an E-stop.
+  // starts (while the file is checked, say), the run never starts and the check ends at its
+  // next statement. Again: an E-stop. True for a stop, false for an E-stop.
   bool stop();
+  // Set by the first stop: what a check polls (InterpreterOptions::stop_check).
+  const std::atomic<bool>& stopped() const { return stopped_; }
   // run_job: starts the run with `start` unless a stop came first (false), and keeps the
   // machine until detach(). A stop waits while the run starts, so it always reaches it.
   bool start(Controller& machine, const std::function<void()>& start);
@@ -36,6 +42,7 @@ class RunControl {
   std::mutex m_;
   Controller* machine_ = nullptr;
   int stops_ = 0;
+  std::atomic<bool> stopped_{false};
 };
 
 struct JobOptions {
@@ -45,6 +52,8 @@ struct JobOptions {
   bool yes = false;                           // --yes: PAUSE continues, MSGBOX defaults
   bool operator_present = true;               // a person answers at a terminal
   std::size_t check_budget = 10'000'000;      // statements a check may run (loops end there)
+  std::size_t max_errors = 100;  // a check stops after this many errors (0: never); the rest
+                                 // are counted by kind (DiagnosticLog::summary)
   double feed_override = 1;                   // 0.1 to 2: the speeds' factor (estimate too)
   // Where the run saves the values it leaves changed (V commands, MS, JS), as the keys that
   // differ from `profile`; empty (or no profile): nothing is saved.
@@ -62,6 +71,10 @@ struct JobOptions {
 
 struct JobResult {
   std::vector<Diagnostic> errors;     // empty when the job ran to its end
+  std::string error_summary;          // the check's errors beyond its cap, in one line
+  // Where and why the check stopped before the end of the file (an INPUT the operator
+  // answered in the run, the statement budget): the run went on past it unchecked.
+  std::optional<Diagnostic> check_stopped;
   std::vector<Diagnostic> warnings;   // from the check and the run
   std::size_t lines = 0;              // statements executed
   std::size_t moves = 0;              // canonical moves issued
@@ -80,15 +93,15 @@ struct JobResult {
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options = {});
 
-// Interprets without motion and returns every error and warning: what `gantry check` says.
-// `runtime_warnings`: also the warnings statements give as they run (PLAY, CLOSE), which
-// a run reports itself.
+// Interprets without motion and returns every error and warning (up to options.max_errors
+// errors, the rest summarised), in line order, and whether it stopped short: what `gantry
+// check` says. `runtime_warnings`: also the warnings statements give as they run (PLAY,
+// CLOSE), which a run reports itself.
 // With `estimated_time_s`, the check also plans the motion it finds and gives its cycle time
 // (what `gantry estimate` prints); operator waits (PAUSE with no time) count as zero.
-std::vector<Diagnostic> check_program(std::shared_ptr<const Script> script,
-                                      const Settings& settings, const PersistentStore& store,
-                                      const JobOptions& options = {}, bool runtime_warnings = true,
-                                      double* estimated_time_s = nullptr);
+DiagnosticLog check_program(std::shared_ptr<const Script> script, const Settings& settings,
+                            const PersistentStore& store, const JobOptions& options = {},
+                            bool runtime_warnings = true, double* estimated_time_s = nullptr);
 
 // Interprets a checked program, handing each canonical move to `sink` (for `gantry moves`).
 void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
