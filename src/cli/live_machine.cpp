@@ -45,7 +45,7 @@ InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeepe
   opt.allow_shell = a.allow_shell;
   opt.macro_dir = a.macros;
   opt.warn_before_motion = real_time;
-  opt.trig_in_degrees = p.settings.dialect == Dialect::FabMo;
+  opt.trig_in_degrees = opt.plus_joins_text = p.settings.dialect == Dialect::FabMo;
   opt.profile = &p.bare;
   opt.profile_path = p.path;
   opt.values_path = p.values_path;

@@ -188,7 +188,8 @@ struct LanguageArgs {
   bool job_options(const Settings& settings, JobOptions& out) const {
     out.interpreter.allow_shell = allow_shell;
     out.interpreter.macro_dir = macros;
-    out.interpreter.trig_in_degrees = settings.dialect == Dialect::FabMo;
+    out.interpreter.trig_in_degrees = out.interpreter.plus_joins_text =
+        settings.dialect == Dialect::FabMo;
     out.check_budget = budget;
     out.max_errors = max_errors;
     out.feed_override = feed_override / 100;

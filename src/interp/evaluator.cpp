@@ -223,9 +223,25 @@ class Evaluator {
         append(n, s);
         return Value::string(std::move(s));
       }
+      case ExprOp::Add:
+        if (env_.plus_joins_text()) return plus(n);
+        return Value::number(num(n));
       default:
         return Value::number(num(n));
     }
+  }
+
+  // FabMo's `+`: text that is not a number on either side makes the sum the two joined
+  // (its macros write DIALOG "Offset: " + $z); numbers, and text that reads as one, add.
+  Value plus(const ExprNode& n) {
+    const Value a = val(*n.a);
+    const Value b = val(*n.b);
+    const auto text = [](const Value& v) { return v.is_string() && !parse_number_literal(v.str()); };
+    if (text(a) || text(b)) return Value::string(a.to_string() + b.to_string());
+    const auto number = [](const Value& v) {
+      return v.is_number() ? v.num() : *parse_number_literal(v.str());
+    };
+    return Value::number(finite(number(a) + number(b), n));
   }
 
  private:

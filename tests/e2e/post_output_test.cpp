@@ -120,12 +120,14 @@ TEST_P(PostOutput, RunsCleanOnTheSimulatedCardToItsLastPoint) {
   EXPECT_LE(j["max_accel_ratio"].get<double>(), 1.0);
 }
 
-// fusion_opensbp_inch (Fusion 360's shopbot.cps: CN, &Tool, C9, TR, C6, PAUSE 2, C7) joins
-// this list, with " --macros tests/data/posts/macros" (stand-ins for C6, C7, C9 and CN 90),
-// once TR is a command; its .expected is ready.
+// fusion_opensbp_inch (Fusion 360's shopbot.cps: CN, &Tool, C9, TR, C6, PAUSE 2, C7) runs
+// with stand-ins for C6, C7, C9 and CN 90 that do not move, so that its moves are the post's
+// own; CamPost.* in run_parts_test.cpp runs a Fusion-shaped job with the shipped macros.
 INSTANTIATE_TEST_SUITE_P(Posts, PostOutput,
                          ::testing::Values(Post{"vcarve_profile_arcs_inch", ""},
-                                           Post{"aspire_rotary_wrap_x_inch", ""}),
+                                           Post{"aspire_rotary_wrap_x_inch", ""},
+                                           Post{"fusion_opensbp_inch",
+                                                " --macros tests/data/posts/macros"}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -809,6 +809,7 @@ TEST(Corpus, FabmoPlateMacroTouchesThePlateOnTheHandibot) {
   std::ifstream in(store);
   EXPECT_EQ(json::parse(in)["variables"]["ZZEROPLATETHICKNESS"], 0);
   fs::remove(store);
+}
 
 int count_lines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));

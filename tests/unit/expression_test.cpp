@@ -38,11 +38,13 @@ class MapEnv : public EvalEnv {
     return it->second;
   }
   bool trig_in_degrees() const override { return degrees; }
+  bool plus_joins_text() const override { return joins; }
 
   std::map<std::string, Value, std::less<>> vars;
   std::map<std::string, json, std::less<>> persistent;
   std::map<int, Value> system;
   bool degrees = false;
+  bool joins = false;
 };
 
 SourceLoc at(int column = 1) {
@@ -195,6 +197,19 @@ TEST_F(ExpressionTest, Mod) {
 
 // BASIC's integer division (ShopBot files write `(&x)\1` for the whole part): the quotient
 // truncated toward zero, at VB's level between * / and MOD.
+// FabMo's macros join text with + (fabmo_macro_2.sbp: DIALOG "... " + $offset + " (vs " ...);
+// its runtime is JavaScript. Numbers and numeric text still add; SB3's dialect refuses text.
+TEST_F(ExpressionTest, PlusJoinsTextInFabmosDialect) {
+  env.joins = true;
+  EXPECT_EQ(eval(R"("Offset: " + &x + " in")").str(), "Offset: 5 in");
+  EXPECT_EQ(eval(R"(&s + 1)").str(), "abc1");
+  EXPECT_EQ(eval("&x + &b").num(), 9);
+  EXPECT_EQ(eval("&x + 0.5").num(), 5.5);
+  env.joins = false;
+  EXPECT_NE(eval_error(R"("abc" + 1)").message.find("to join text use & instead of +"),
+            std::string::npos);
+}
+
 TEST_F(ExpressionTest, IntegerDivision) {
   EXPECT_EQ(num("7 \\ 2"), 3);
   EXPECT_EQ(num("-7 \\ 2"), -3);  // toward zero, not floor (-4)

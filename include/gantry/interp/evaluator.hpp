@@ -22,6 +22,8 @@ class EvalEnv {
   virtual Value system_variable(int n, const SourceLoc& loc) = 0;
   // Trigonometry in degrees (dialect = "fabmo") rather than radians (SB3).
   virtual bool trig_in_degrees() const = 0;
+  // `+` with text on either side joins, as in FabMo's JavaScript runtime (dialect = "fabmo").
+  virtual bool plus_joins_text() const { return false; }
 };
 
 // Evaluates `e`; throws GantryError located at the failing part of the expression.

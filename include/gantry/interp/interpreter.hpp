@@ -314,6 +314,7 @@ class CommandContext {
 
 struct InterpreterOptions {
   bool trig_in_degrees = false;  // dialect "fabmo"
+  bool plus_joins_text = false;  // dialect "fabmo": "Offset: " + &z is text
   bool allow_shell = false;      // SHELL runs programs only when allowed
   bool dry_run = false;          // check: no programs started; files (unless `files`
                                  // is given) in a sandbox, so nothing is written
@@ -423,6 +424,7 @@ class Interpreter : private EvalEnv {
   const nlohmann::json* persistent_variable(std::string_view name) const override;
   Value system_variable(int n, const SourceLoc& loc) override;
   bool trig_in_degrees() const override { return options_.trig_in_degrees; }
+  bool plus_joins_text() const override { return options_.plus_joins_text; }
 
   void push_file(std::shared_ptr<const Script> script, const FileCall& call, SourceLoc from,
                  bool refuse_broken = true);
