@@ -627,18 +627,19 @@ std::vector<ParamSpec> va_params(std::string_view letters) {
 // Table base values first, then working ones (FabMo states that order; SB3 is silent).
 void values_locations(CommandContext& ctx, const CommandCall& call) {
   const int n = ctx.settings().dialect == Dialect::FabMo ? 6 : 5;
-  // FabMo's `VA, 0,,,,,, 0` (X, then table base X) read in SB3's layout would set table base
-  // Y: parameter 6 (C in FabMo's layout, table base X in SB3's) left blank while a later one
-  // is set is read neither way.
+  // FabMo's `VA, 0,,,,,, 0` (X, then table base X) read in SB3's layout sets table base Y:
+  // parameter 6 (C in FabMo's layout, table base X in SB3's) blank while a later one is set
+  // may be either. SB3's own files write such lines (table base Z alone), so the profile's
+  // dialect decides and the line says how it was read.
   if (n == 5 && !call.number(5))
     for (int i = 6; i < 10; ++i)
       if (call.number(i))
-        fail(call.param_loc(i),
-             fmt::format("VA parameter {} is table base {} in SB3's 10-value layout (this "
-                         "profile's dialect) but table base {} in FabMo's 12-value one, which "
-                         "this line's blank parameter 6 suggests; set dialect = \"fabmo\" for "
-                         "FabMo's layout, or give parameter 6 (table base X) for SB3's",
-                         i + 1, "XYZAB"[i - 5], "XYZABC"[i - 6]));
+        ctx.warn(call.param_loc(i),
+                 fmt::format("VA parameter {} is read as table base {} in SB3's 10-value layout "
+                             "(this profile's dialect); in FabMo's 12-value one, which this "
+                             "line's blank parameter 6 suggests, it is table base {}: set "
+                             "dialect = \"fabmo\" if this is a FabMo file",
+                             i + 1, "XYZAB"[i - 5], "XYZABC"[i - 6]));
   Vec6 base = Vec6::Zero();
   unsigned base_axes = 0;
   for (int i = 0; i < n; ++i)

@@ -407,7 +407,7 @@ TEST(Commands, TheTableAsJsonHasEveryCodeWithItsParametersAndCoverage) {
   const Result r = gantry("commands --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json all = json::parse(r.out);
-  EXPECT_EQ(all.size(), 128u);  // 125 codes, the M0 alias, and FabMo's CN and SU
+  EXPECT_EQ(all.size(), 129u);  // 126 codes (TR the newest), the M0 alias, FabMo's CN and SU
   const auto mx =
       std::find_if(all.begin(), all.end(), [](const json& c) { return c["code"] == "MX"; });
   ASSERT_NE(mx, all.end());
@@ -535,19 +535,19 @@ TEST(Check, ReportsEveryErrorInOrder) {
 // an error before; now the file reads, CR's extra parameter is the one warning, and C#, &whole
 // runs C7.sbp beside the file.
 TEST(Check, ShopBotsOwnSpellingsRead) {
-  const Result r = gantry("check tests/data/shopbot_spellings.sbp");
+  const Result r = gantry("check tests/data/spellings/shopbot_spellings.sbp");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err,
-            "tests/data/shopbot_spellings.sbp:8:36: warning: CR takes 9 parameters; parameter 10 "
+            "tests/data/spellings/shopbot_spellings.sbp:8:36: warning: CR takes 9 parameters; parameter 10 "
             "and those after it are ignored, as SB3 ignores them\n");
-  const Result moves = gantry("moves tests/data/shopbot_spellings.sbp --format jsonl --yes");
+  const Result moves = gantry("moves tests/data/spellings/shopbot_spellings.sbp --format jsonl --yes");
   ASSERT_EQ(moves.exit_code, 0) << moves.err;
   std::istringstream in(moves.out);
   std::string line, last;
   while (std::getline(in, line)) last = line;
   ASSERT_FALSE(last.empty());
   const json m = json::parse(last);
-  EXPECT_EQ(m["file"], "tests/data/C7.sbp");
+  EXPECT_EQ(m["file"], "tests/data/spellings/C7.sbp");
   EXPECT_EQ(m["to"][0], 1);
 }
 

@@ -140,9 +140,15 @@ TEST(SpindleSettings, APwmTooFastForThePacerIsRefused) {
             "most 2000 Hz keeps TR's duty within 1 %\n");
 }
 
-TEST(SpindleSettings, AMissingSpindleTableIsReported) {
-  const SettingsLoad l = parse_settings(profile_with("[spindle]", "[spindle_]"), "p.toml");
-  EXPECT_NE(messages(l).find("missing key spindle"), std::string::npos) << messages(l);
+// Profiles written before TR have no [spindle]: they load, with no speed output.
+TEST(SpindleSettings, AProfileWithoutASpindleTableHasNoSpeedOutput) {
+  std::string text = default_profile_text();
+  const size_t from = text.find("\n[spindle]\n");
+  ASSERT_NE(from, std::string::npos);
+  text.erase(from, text.find("\n[", from + 1) - from);
+  const SettingsLoad l = parse_settings(text, "p.toml");
+  EXPECT_EQ(messages(l), "");
+  EXPECT_EQ(l.settings.spindle.pwm_bit, -1);
 }
 
 }  // namespace

@@ -278,18 +278,20 @@ TEST_F(ValuesTest, UzZerosBothAndStRemovesOffsets) {
 
 // FabMo's `VA, 0,,,,,, 0` (X, then table base X) read in SB3's layout would set table base Y:
 // the default dialect refuses it, and FabMo's reads it as FabMo does (spec commands.md §4.1).
-TEST_F(ValuesTest, VaInFabmosLayoutIsRefusedUnderTheSb3Dialect) {
-  run("MX, 5\nMY, 3\n");
-  Diagnostic d = run_error("VA,0,,,,,,0\n");
-  EXPECT_EQ(d.loc.line, 1);
-  EXPECT_EQ(d.loc.column, 11);  // parameter 7
-  EXPECT_EQ(d.message,
-            "VA parameter 7 is table base Y in SB3's 10-value layout (this profile's dialect) but "
-            "table base X in FabMo's 12-value one, which this line's blank parameter 6 suggests; "
-            "set dialect = \"fabmo\" for FabMo's layout, or give parameter 6 (table base X) for "
-            "SB3's");
-  EXPECT_DOUBLE_EQ(state().position[0], 5);  // nothing changed
-  EXPECT_DOUBLE_EQ(interp().snapshot().table_base[1], 3);
+// SB3's own files set one table base value with parameter 6 blank, so under SB3's dialect
+// such a line is read in SB3's layout, and says so: a FabMo file is told to set the dialect.
+TEST_F(ValuesTest, VaInFabmosLayoutIsReadAsSb3sAndSaysSoUnderTheSb3Dialect) {
+  run("MX, 5\nMY, 3\nVA,0,,,,,,0\n");
+  ASSERT_EQ(io.warnings().size(), 1u);
+  EXPECT_EQ(io.warnings()[0].loc.line, 3);
+  EXPECT_EQ(io.warnings()[0].loc.column, 11);  // parameter 7
+  EXPECT_EQ(io.warnings()[0].message,
+            "VA parameter 7 is read as table base Y in SB3's 10-value layout (this profile's "
+            "dialect); in FabMo's 12-value one, which this line's blank parameter 6 suggests, it "
+            "is table base X: set dialect = \"fabmo\" if this is a FabMo file");
+  EXPECT_DOUBLE_EQ(state().position[0], 0);
+  EXPECT_DOUBLE_EQ(interp().snapshot().table_base[1], 0);
+  Diagnostic d;
   d = run_error("VA,1,2,3,4,5,6,7,8,9,10,11,12\n");
   EXPECT_EQ(d.loc.column, 25);
   EXPECT_EQ(d.message,
