@@ -126,6 +126,7 @@ TEST_P(PostOutput, RunsCleanOnTheSimulatedCardToItsLastPoint) {
 INSTANTIATE_TEST_SUITE_P(Posts, PostOutput,
                          ::testing::Values(Post{"vcarve_profile_arcs_inch", ""},
                                            Post{"aspire_rotary_wrap_x_inch", ""},
+                                           Post{"fusion_5axis_inch", ""},
                                            Post{"fusion_opensbp_inch",
                                                 " --macros tests/data/posts/macros"}),
                          [](const auto& info) { return std::string(info.param.name); });
