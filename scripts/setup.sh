@@ -8,6 +8,8 @@ PACKAGES=(
   cmake ninja-build g++ pkg-config
   # core libraries
   libeigen3-dev libfmt-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  # a part file's blocks hashed, so what runs is what was checked
+  libxxhash-dev
   # the preview's PNG pictures (stb_image_write)
   libstb-dev
   # tests, benchmarks, fuzzing (clang's libFuzzer and sanitizer runtimes)

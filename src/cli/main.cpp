@@ -177,8 +177,9 @@ struct LanguageArgs {
                     "File of the V commands' values (TOML); default: the profile's in "
                     "~/.config/gantry/values");
     cmd->add_option("--budget", budget,
-                    "Statements the check may run before it calls the file a runaway loop "
-                    "and stops (default 10,000,000; 0: no limit)");
+                    "Statements the check may run beyond the file's own lines before it "
+                    "calls the file an endless loop, an error (default 10,000,000; 0: no "
+                    "limit)");
     cmd->add_option("--max-errors", max_errors,
                     "Stop checking after this many errors and count the rest by kind in one "
                     "line (default 100; 0: no limit)");

@@ -45,7 +45,11 @@ bool DiagnosticLog::add(Diagnostic d) {
 
 void DiagnosticLog::stop_short(Diagnostic why) {
   if (!stopped_) stopped_ = why;
-  add(std::move(why));
+  const bool error = why.severity == Severity::Error;
+  if (add(why) || (error && full())) return;
+  // On a line reported already, why the check ended is still said.
+  if (error) ++errors_;
+  kept_.push_back(std::move(why));
 }
 
 std::string DiagnosticLog::summary() const {

@@ -618,6 +618,7 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
   for (const Interpreter::Frame& f : interp_->frames_)
     if (f.script->name() && !target.empty() && canonical(*f.script->name()) == target)
       fail(loc, fmt::format("{} is running; a command cannot rewrite a running part file", path));
+  interp_->forget_called(path);
   if (atomic && dynamic_cast<DiskFileSystem*>(interp_->files_system_)) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     std::error_code ec;
@@ -762,6 +763,10 @@ Interpreter::~Interpreter() = default;
 
 void Interpreter::set_machine_position(const Vec6& machine) {
   state_.position = machine - state_.machine_origin - state_.zero - state_.applied_offset;
+}
+
+void Interpreter::forget_called(const std::string& path) const {
+  if (!frames_.empty()) frames_.front().script->forget_called(path);
 }
 
 std::string Interpreter::file_path(const std::string& name, const SourceLoc& loc) const {
@@ -1097,6 +1102,11 @@ struct CheckInterrupted {
   SourceLoc at;
 };
 
+// A check that ran its statement budget out (InterpreterOptions::statement_budget).
+struct BudgetSpent {
+  SourceLoc at;
+};
+
 }  // namespace
 
 std::vector<Diagnostic> Interpreter::check(std::shared_ptr<const Script> script) {
@@ -1111,6 +1121,7 @@ void Interpreter::check(std::shared_ptr<const Script> script, DiagnosticLog& log
   if (store_.registry_value("uValueClrd")) store_.registry().erase("uValueClrd");
   parts_dir_ = std::filesystem::path(*script->name()).parent_path().string();
   extra_params_warned_.clear();
+  budget_lines_ = static_cast<std::size_t>(script->line_count());  // a long file is no loop
   ctx_.checking_ = true;
   try {
     frames_.clear();
@@ -1128,6 +1139,15 @@ void Interpreter::check(std::shared_ptr<const Script> script, DiagnosticLog& log
     d.message = (fine ? "checking stopped here: " : "the run would stop here: ") + d.message;
     d.severity = fine ? Severity::Warning : Severity::Error;
     log.stop_short(std::move(d));
+  } catch (const BudgetSpent& e) {
+    // Not "stopped short" with a warning: a run would loop here for ever, or at least far
+    // longer than any part file's lines explain.
+    log.stop_short(located(
+        {e.at, Severity::Error,
+         fmt::format("the check ran {} statements and the file had not ended: it loops here "
+                     "without end (a GOTO back with no way out?). Nothing ran; if the file is "
+                     "meant to run that long, give a larger --budget",
+                     options_.statement_budget + budget_lines_)}));
   } catch (const CheckInterrupted& e) {
     log.stop_short(located({e.at, Severity::Error,
                             "the check was stopped here (a signal); the lines from here on were "
@@ -1169,14 +1189,14 @@ void Interpreter::loop(DiagnosticLog* collect) {
     if (!st && !error) continue;
     if (error && collect) continue;  // already reported by the script's own pass
     ++executed_;
-    if (collect && options_.stop_check && options_.stop_check->load(std::memory_order_relaxed))
-      throw CheckInterrupted{st ? st->loc : error->loc};
-    if (options_.statement_budget && executed_ > options_.statement_budget)
-      throw NeedsOperator(
-          Diagnostic{st ? st->loc : error->loc, Severity::Warning,
-                     fmt::format("{} statements executed; the file may loop forever (the statement "
-                                 "budget stops it)",
-                                 options_.statement_budget)});
+    const SourceLoc& at = st ? st->loc : error->loc;
+    // A stop is seen before every statement, so a loop that moves nothing ends too.
+    if (options_.stop_check && options_.stop_check->load(std::memory_order_relaxed)) {
+      if (collect) throw CheckInterrupted{at};
+      throw OperatorStop({at, Severity::Error, "stopped by the operator"});
+    }
+    if (options_.statement_budget && executed_ > options_.statement_budget + budget_lines_)
+      throw BudgetSpent{at};
     try {
       if (error) throw GantryError(*error);
       ctx_.transform_ = f.transform;
@@ -1188,7 +1208,9 @@ void Interpreter::loop(DiagnosticLog* collect) {
         pending_call_.reset();
         const std::string path =
             call.resolved ? call.path : existing_file(call.path, pending_call_loc_);
-        push_file(call.lines ? call.lines : files_system_->load_script(path, table_.is_command()),
+        push_file(call.lines ? call.lines : frames_.front().script->called(path, [&] {
+          return files_system_->load_script(path, table_.is_command());
+        }),
                   call, pending_call_loc_);
       }
     } catch (const NeedsOperator&) {

@@ -298,6 +298,7 @@ void Interpreter::exec(const OpenStmt& s, const SourceLoc& loc) {
     f.in = files_system_->open_read(path);
     if (!f.in) fail(s.path.loc, fmt::format("cannot open {} for reading", path));
   } else {
+    forget_called(path);
     f.out = files_system_->open_write(path, s.mode == OpenStmt::Mode::Append);
     if (!f.out) fail(s.path.loc, fmt::format("cannot open {} for writing", path));
   }

@@ -3,11 +3,13 @@
 
 #include <fmt/format.h>  // messages
 
-#include <cstring>  // memchr
+#include <cstring>     // memchr
+#include <filesystem>  // weakly_canonical: one key per called file
 
 #include <fcntl.h>     // open
 #include <sys/stat.h>  // fstat: only regular files
 #include <unistd.h>    // pread, close
+#include <xxhash.h>    // XXH3_64bits: the blocks' hashes
 
 namespace gantry {
 namespace {
@@ -46,6 +48,7 @@ void collect_commands(const Statement& st, std::vector<const Statement*>& out) {
 }
 
 constexpr size_t kWindow = size_t{1} << 20;  // bytes read at a time from a file
+constexpr size_t kBlock = size_t{1} << 16;   // bytes per hash; windows hold whole blocks
 
 }  // namespace
 
@@ -77,26 +80,49 @@ std::shared_ptr<const Script> Script::load(const std::string& path, const IsComm
   }
   s->fd_ = fd;
   s->size_ = static_cast<size_t>(st.st_size);
-  s->read_window(0, kWindow);
-  if (s->window_.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
-  s->gcode_ = is_gcode_file(path, std::string_view(s->window_).substr(s->text_start_));
-  s->index(is_command);
+  s->mtime_ = st.st_mtim;
+  s->block_hashes_.assign((s->size_ + kBlock - 1) / kBlock, 0);
+  try {
+    s->read_or_throw(Cursor{}, kWindow);
+    if (s->window_.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
+    s->gcode_ = is_gcode_file(path, std::string_view(s->window_).substr(s->text_start_));
+    s->index(is_command);
+  } catch (const GantryError& e) {  // written while being loaded
+    s->errors_.push_back(e.diagnostic());
+  }
   return s;
 }
 
-void Script::read_window(size_t offset, size_t len) const {
-  if (fd_ < 0) return;  // text scripts hold everything already
-  len = std::min(len, size_ - std::min(offset, size_));
-  window_.resize(len);
+bool Script::read_window(size_t offset, size_t len) const {
+  if (fd_ < 0) return true;  // text scripts hold everything already
+  offset = std::min(offset, size_);
+  const size_t begin = offset / kBlock * kBlock;
+  const size_t end = std::min(size_, (offset + std::min(len, size_ - offset) + kBlock - 1) /
+                                         kBlock * kBlock);
+  window_.resize(end - begin);
   size_t got = 0;
-  while (got < len) {
-    const ssize_t n =
-        ::pread(fd_, window_.data() + got, len - got, static_cast<off_t>(offset + got));
-    if (n <= 0) break;  // the file shrank or failed: what was read is what there is
+  while (got < window_.size()) {
+    const ssize_t n = ::pread(fd_, window_.data() + got, window_.size() - got,
+                              static_cast<off_t>(begin + got));
+    if (n <= 0) break;
     got += static_cast<size_t>(n);
   }
+  window_start_ = begin;
+  struct stat st {};
+  bool same = got == window_.size() && ::fstat(fd_, &st) == 0 &&
+              static_cast<size_t>(st.st_size) == size_ && st.st_mtim.tv_sec == mtime_.tv_sec &&
+              st.st_mtim.tv_nsec == mtime_.tv_nsec;
   window_.resize(got);
-  window_start_ = offset;
+  // The first read of a block records its hash (|1: never 0), every later one compares.
+  for (size_t at = 0; same && at < got; at += kBlock) {
+    const size_t n = std::min(kBlock, got - at);
+    const std::uint64_t h = XXH3_64bits(window_.data() + at, n) | 1u;
+    std::uint64_t& known = block_hashes_[(begin + at) / kBlock];
+    if (known == 0) known = h;
+    same = known == h;
+  }
+  if (!same) window_.clear();
+  return same;
 }
 
 std::shared_ptr<const Script> Script::from_text(std::string text, const std::string& name,
@@ -125,15 +151,15 @@ std::string_view Script::line_at(Cursor c, Cursor* next) const {
   while (true) {
     const size_t end = window_start_ + window_.size();
     if (c.offset < window_start_ || c.offset >= end) {
-      read_window(c.offset, want);
+      read_or_throw(c, want);
       continue;
     }
     const size_t stop = line_end(window_, c.offset - window_start_);
     const size_t abs_stop = window_start_ + stop;
     const bool complete = abs_stop + 1 < end || end == size_;  // terminator and next byte seen
     if (!complete) {
-      if (window_start_ == c.offset) want *= 2;  // a line longer than the window
-      read_window(c.offset, want);
+      want = std::max(want, 2 * (end - c.offset));  // a line longer than the window left
+      read_or_throw(c, want);
       continue;
     }
     size_t after = abs_stop;
@@ -144,12 +170,20 @@ std::string_view Script::line_at(Cursor c, Cursor* next) const {
   }
 }
 
+void Script::read_or_throw(Cursor c, size_t len) const {
+  if (read_window(c.offset, len)) return;
+  throw GantryError({SourceLoc{name_, c.line, 0}, Severity::Error,
+                     "the part file changed on disk after it was checked (it was written over "
+                     "while loaded); stopped here: nothing from this line on ran. Save a new "
+                     "file under a new name, or run this one again to check it anew"});
+}
+
 std::optional<std::string_view> Script::line_before(Cursor c) const {
   if (c.offset <= text_start_ || c.offset > size_) return std::nullopt;
   // Read back up to 64 KiB: a comment worth showing is never longer.
   const size_t from = c.offset > 65536 ? c.offset - 65536 : 0;
   if (from < window_start_ || c.offset > window_start_ + window_.size())
-    read_window(from, c.offset - from);
+    read_or_throw(Cursor{from, 0}, c.offset - from);
   const std::string_view w = std::string_view(window_).substr(0, c.offset - window_start_);
   size_t end = w.size();  // strip the previous line's terminator
   if (end > 0 && w[end - 1] == '\n') --end;
@@ -169,6 +203,33 @@ std::optional<Cursor> Script::label(const std::string& name) const {
   auto it = labels_.find(name);
   if (it == labels_.end()) return std::nullopt;
   return it->second;
+}
+
+namespace {
+
+std::string same_file_key(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::weakly_canonical(path, ec);
+  return ec ? path : p.string();
+}
+
+}  // namespace
+
+std::shared_ptr<const Script> Script::called(
+    const std::string& path, const std::function<std::shared_ptr<const Script>()>& load) const {
+  const std::string key = same_file_key(path);
+  std::lock_guard lock(called_m_);
+  auto it = called_.find(key);
+  if (it != called_.end()) return it->second;
+  std::shared_ptr<const Script> s = load();
+  if (s && s->fd_ >= 0 && s->ok()) called_.emplace(key, s);
+  return s;
+}
+
+void Script::forget_called(const std::string& path) const {
+  const std::string key = same_file_key(path);
+  std::lock_guard lock(called_m_);
+  called_.erase(key);
 }
 
 std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {

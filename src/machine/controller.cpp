@@ -141,6 +141,7 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
       forward_(std::make_unique<ForwardSink>(*this)) {
   planner_ = std::make_unique<LookAheadPlanner>(settings, *qsink_);
   forward_->to = planner_.get();
+  options.stop_check = &abort_;  // a stop ends even a file that loops without moving
   interp_ = std::make_unique<Interpreter>(settings, *forward_, io, store, std::move(options));
   interp_->on_progress([this](std::size_t done, std::size_t total) {
     line_.store(done, std::memory_order_relaxed);

@@ -955,21 +955,22 @@ TEST(Run, JsonStdoutIsOneObjectWhenTheFilePrints) {
   fs::remove(file);
 }
 
-// A check that stopped short (here the budget) lets the run go on, and the report says the
-// run went past that line unchecked: never plain "done".
-TEST(Run, ReportSaysWhenTheCheckStoppedShort) {
+// A spent statement budget is an error, located in the loop: the run is refused and nothing
+// moves (a warning let `gantry run` loop for ever, deaf to Ctrl-C).
+TEST(Run, ASpentStatementBudgetRefusesTheRun) {
   const std::string file =
       part_file("budget.sbp", "&i = 0\nLOOP:\n&i = &i + 1\nIF &i < 30 THEN GOTO LOOP\nMX, 1\n");
   const Result r = gantry(fmt::format("run '{}' --budget 20 --json", file));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.exit_code, 1) << r.err;
   const json j = json::parse(r.out);
-  EXPECT_EQ(j["check"], "partial");
-  EXPECT_EQ(j["check_stopped"]["line"], 3);  // the 21st statement
-  const Result text = gantry(fmt::format("run '{}' --budget 20", file));
-  EXPECT_NE(text.out.find("status     done, but the check before the run stopped at " + file +
-                          ":3 and the lines after it ran unchecked\n"),
+  EXPECT_EQ(j["status"], "error");
+  EXPECT_EQ(j["steps"]["x"], 0);
+  EXPECT_NE(r.err.find(file + ":4:1: error: the check ran 25 statements and the file had not "
+                              "ended: it loops here"),
             std::string::npos)
-      << text.out;
+      << r.err;
+  const Result check = gantry(fmt::format("check '{}' --budget 20", file));
+  EXPECT_EQ(check.exit_code, 1);
   const Result full = gantry(fmt::format("run '{}' --json", file));
   EXPECT_EQ(json::parse(full.out)["check"], "complete");
   fs::remove(file);

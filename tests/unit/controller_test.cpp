@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -135,6 +137,25 @@ TEST(Controller, AStopEndsTheFileWithThePositionOfThePulsesPlayed) {
   m.c.wait();
   EXPECT_EQ(m.c.status().steps[0], m.steps(2.0));
   EXPECT_EQ(m.c.state(), MachineState::Idle);
+}
+
+// A loop that moves nothing never waits on the motion queue, where a stop used to be seen:
+// the stop is seen before every statement. The check refuses such a file (its statement
+// budget), so the run here skips it, as a file that loops on a switch nobody sets would.
+TEST(Controller, StopAndEStopEndALoopThatMovesNothing) {
+  for (const Request r : {Request::Stop, Request::EStop}) {
+    Machine m;
+    ASSERT_TRUE(m.c.run(Script::from_text("MX, 0.5\nL:\nGOTO L\n", "loop.sbp"), true));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // looping by now
+    EXPECT_TRUE(r == Request::Stop ? m.c.stop() : m.c.estop());
+    m.c.wait();  // before the fix: for ever
+    const Controller::Summary sum = m.c.summary();
+    ASSERT_TRUE(sum.error);
+    EXPECT_EQ(sum.error->loc.line == 2 || sum.error->loc.line == 3, true) << sum.error->loc.line;
+    // The planner held the move for what would follow it: the tool is where its pulses are.
+    EXPECT_EQ(m.c.status().steps, m.card.steps());
+    EXPECT_EQ(m.c.state(), r == Request::Stop ? MachineState::Stopped : MachineState::EStop);
+  }
 }
 
 TEST(Controller, EStopStopsThePulsesAtOnceAndNeedsAcknowledging) {

@@ -93,6 +93,70 @@ TEST(ScriptFile, ByteOrderMarkIsSkippedAndADirectoryIsNotAFile) {
   EXPECT_FALSE(dir->ok());
 }
 
+// What runs is what was checked: a file written over in place after its load (a CAM
+// program exporting again to the same name while it runs) is refused at the next read from
+// the disk (its modification time, size or a block's hash differ), never run. Replacing the file (a new file renamed over it) changes nothing.
+
+// Overwrites `len` bytes at `at` in place (the same inode), as an editor's in-place save does.
+void overwrite_in_place(const std::string& path, size_t at, const std::string& bytes) {
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(static_cast<std::streamoff>(at));
+  f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string three_mib_file() {
+  std::string text;
+  while (text.size() < 3 * kMiB) text += "MX, 1.000\n";
+  return text + "MZ, 0.000\n";
+}
+
+TEST(ScriptChecked, AFileWrittenOverInPlaceIsRefusedWhereTheChangeIsRead) {
+  const std::string path = write_temp("changed.sbp", three_mib_file());
+  const auto s = Script::load(path);
+  ASSERT_TRUE(s->ok());
+  const size_t last = fs::file_size(path) - 10;
+  overwrite_in_place(path, last, "MZ, -3.00\n");  // same size: only the bytes differ
+  try {
+    lines_of(*s);
+    FAIL() << "the changed last line was read";
+  } catch (const GantryError& e) {
+    EXPECT_NE(e.diagnostic().message.find("changed on disk after it was checked"),
+              std::string::npos);
+    EXPECT_GE(e.diagnostic().loc.line, 1);  // located at the line being read
+  }
+}
+
+TEST(ScriptChecked, AChangeInTheWindowAlreadyReadIsNeverSeenAndANewFileIsNoChange) {
+  const std::string path = write_temp("renamed.sbp", three_mib_file());
+  const auto s = Script::load(path);
+  const std::string other = write_temp("renamed.new", "MZ, -3\n");
+  fs::rename(other, path);  // the loaded file is still open: its bytes are what runs
+  const std::vector<std::string> lines = lines_of(*s);
+  EXPECT_EQ(lines.back(), "MZ, 0.000");
+}
+
+TEST(ScriptChecked, ATruncatedFileIsRefusedToo) {
+  const std::string path = write_temp("shrunk.sbp", three_mib_file());
+  const auto s = Script::load(path);
+  fs::resize_file(path, kMiB);
+  EXPECT_THROW(lines_of(*s), GantryError);
+}
+
+TEST(ScriptChecked, ACalledFileIsLoadedOnceForTheCheckAndTheRun) {
+  const auto top = Script::from_text("FP, sub.sbp\n", "top.sbp");
+  int loads = 0;
+  auto load = [&] {
+    ++loads;
+    return Script::load(write_temp("called.sbp", "MX, 1\n"));
+  };
+  const auto first = top->called("sub.sbp", load);
+  EXPECT_EQ(top->called("sub.sbp", load), first);  // the run reads the check's file
+  EXPECT_EQ(loads, 1);
+  top->forget_called("sub.sbp");  // the job wrote it: what it wrote is called next
+  EXPECT_NE(top->called("sub.sbp", load), first);
+  EXPECT_EQ(loads, 2);
+}
+
 // The load pass reads every line: given the command table's predicate it reports an unknown
 // command wherever it is, reached by a run or not; without one (lang alone) it cannot.
 

@@ -324,8 +324,11 @@ struct InterpreterOptions {
   // where someone may stand at the machine (a real card, the simulated one in real time).
   // Virtual time has nobody to warn, and its cycle times leave the wait out.
   bool warn_before_motion = false;
-  std::size_t statement_budget = 0;  // 0: unlimited; check uses one to stop loops
-  // Set from another thread (a signal): a check stops before its next statement.
+  // 0: unlimited. A check runs at most this many statements more than the file has lines;
+  // past them the file loops (an error).
+  std::size_t statement_budget = 0;
+  // Set from another thread (a signal, the operator's stop): a check or a run stops before
+  // its next statement, so even a loop that moves nothing ends.
   const std::atomic<bool>* stop_check = nullptr;
   // Where C<n> finds its files (docs/language.md, "Custom cuts"): `macro_dir` (--macros),
   // else the parts folder and then `user_macro_dir`; last `shipped_macro_dir`, Gantry's own
@@ -476,6 +479,8 @@ class Interpreter : private EvalEnv {
   // `$nameUU[].x = v`: FabMo's universal units, stored in inches at [0] and mm at [1].
   void assign_universal_units(nlohmann::json& root, const LValue& target, const Value& v);
   std::string file_path(const std::string& name, const SourceLoc& loc) const;
+  // The job writes `path`: a part file it calls from now on is what it wrote.
+  void forget_called(const std::string& path) const;
   // file_path's file as it is on the disk (case-insensitive where the exact name is missing).
   std::string existing_file(const std::string& name, const SourceLoc& loc) const;
   std::vector<std::string> macro_folders() const;  // where C<n> looks, in order
@@ -525,6 +530,7 @@ class Interpreter : private EvalEnv {
   bool warning_off_ = false;
   bool stop_all_ = false;
   std::size_t executed_ = 0;
+  std::size_t budget_lines_ = 0;  // the checked file's lines, on top of the statement budget
   std::function<void(std::size_t, std::size_t)> progress_;
   std::unique_ptr<StartLine> start_;      // a start line not reached yet
   std::unique_ptr<GcodeExecutor> gcode_;  // G-code's modes and parameters

@@ -1,8 +1,12 @@
 // A loaded part file: its text, its label index, and the errors one pass over it finds.
 #pragma once
 
+#include <cstdint>
+#include <ctime>  // timespec
 #include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -33,6 +37,11 @@ std::string unknown_command_message(std::string_view code);
 // mebibyte (pread), plus one entry per label. Loading makes one pass over every line to
 // index the labels and to find every syntax error, duplicate label and jump to a missing
 // label (and, given `is_command`, every unknown command) before anything runs.
+//
+// What runs is what was checked: that pass also records a hash of every 64 KiB block, and
+// every later read of a block must give the same hash, the file the same size and
+// modification time, or line_at throws (a CAM program writing over the file in place while
+// it runs). A file replaced by a new one (rename) is no change: the open file is the old one.
 class Script {
  public:
   // Reads `path`; an unreadable file gives a script with one error and no text.
@@ -51,7 +60,8 @@ class Script {
   Cursor start() const { return {text_start_, 1}; }
   bool at_end(Cursor c) const { return c.offset >= size_; }
   // The line at `c` (without its terminator); `next` receives the following line's cursor.
-  // The view is valid until the next call on this script.
+  // The view is valid until the next call on this script. Throws GantryError when the file
+  // on disk is no longer the one loaded.
   std::string_view line_at(Cursor c, Cursor* next) const;
   // The physical line just above `c`, if any (same validity).
   std::optional<std::string_view> line_before(Cursor c) const;
@@ -63,6 +73,15 @@ class Script {
   // while memory stays bounded.
   std::shared_ptr<const LineParse> parse(Cursor c, Cursor* next) const;
 
+  // The file `path` that this script's job calls (FP, C#, a custom cut), loaded by `load`
+  // the first time and kept: a check and the run after it read one loaded file, so the
+  // called file's bytes are verified against the check's too. Only files read from disk are
+  // kept (a file the check wrote itself, in its sandbox, is not the run's).
+  std::shared_ptr<const Script> called(
+      const std::string& path, const std::function<std::shared_ptr<const Script>()>& load) const;
+  // The job wrote `path` itself: a later call loads what it wrote.
+  void forget_called(const std::string& path) const;
+
   ~Script();
   Script(const Script&) = delete;
   Script& operator=(const Script&) = delete;
@@ -70,11 +89,15 @@ class Script {
  private:
   Script(std::string text, const std::string& name);
   void index(const IsCommand& is_command);
-  // Makes the window hold [offset, offset + len) or up to the end of the file.
-  void read_window(size_t offset, size_t len) const;
+  // Makes the window hold whole blocks covering [offset, offset + len), or up to the end of
+  // the file; false when the file is no longer the one loaded.
+  bool read_window(size_t offset, size_t len) const;
+  void read_or_throw(Cursor at, size_t len) const;  // read_window, or say the file changed
 
   int fd_ = -1;                 // the open file; -1 for a script made from text
   size_t size_ = 0;             // bytes in the file (or text)
+  timespec mtime_{};            // the file's modification time when loaded
+  mutable std::vector<std::uint64_t> block_hashes_;  // 0: not read yet
   size_t text_start_ = 0;       // past a UTF-8 byte-order mark
   mutable std::string window_;  // bytes [window_start_, window_start_ + size())
   mutable size_t window_start_ = 0;
@@ -85,6 +108,8 @@ class Script {
   };
   mutable std::vector<CachedParse> cache_;  // kCacheSlots entries once the first line is parsed
   std::unordered_map<std::string, Cursor> labels_;
+  mutable std::mutex called_m_;
+  mutable std::map<std::string, std::shared_ptr<const Script>> called_;
   std::vector<Diagnostic> errors_;
   int lines_ = 0;
   bool gcode_ = false;
