@@ -543,12 +543,21 @@ void read_profile(TableReader root, Settings& s) {
 
 }  // namespace
 
-// Rules that tie keys together; reported at the file, naming the keys.
+// Rules that tie keys together; each is reported at the first key it names, in the file that
+// key came from (a values file's key is in the values file), or at `origin`'s top when the
+// table does not hold that key.
 static void check_consistency(const Settings& s, const std::string& origin,
-                              std::vector<Diagnostic>& errors) {
-  auto err = [&](std::string msg) {
-    errors.push_back({file_loc(origin), Severity::Error, std::move(msg)});
+                              std::vector<Diagnostic>& errors, const toml::table* table = nullptr) {
+  auto err_at = [&](std::string_view key, std::string msg) {
+    const toml::node* node = table ? table->at_path(key).node() : nullptr;
+    if (!node) return errors.push_back({file_loc(origin), Severity::Error, std::move(msg)});
+    const toml::source_region& where = node->source();
+    const std::string file = where.path ? std::string(*where.path) : origin;
+    errors.push_back({file_loc(file, static_cast<int>(where.begin.line),
+                               static_cast<int>(where.begin.column)),
+                      Severity::Error, std::move(msg)});
   };
+  auto err = [&](std::string msg) { err_at(msg.substr(0, msg.find_first_of(" :")), msg); };
   const double pacer = s.card.pacer_hz();
   const double tick_us = 1e6 / pacer;
   const int pulse_ticks = static_cast<int>(std::ceil(s.card.step_pulse_us / tick_us - 1e-9));
@@ -567,9 +576,10 @@ static void check_consistency(const Settings& s, const std::string& origin,
           "steps/s (pacer {:.0f} Hz, {}-tick pulse plus one idle tick); lower max_speed or "
           "raise the pacer",
           L, a.max_speed, a.steps_per_unit, rate, max_rate, pacer, pulse_ticks));
-    for (int bit : {s.pins[i].step_bit, s.pins[i].dir_bit}) {
+    for (const auto& [key, bit] : {std::pair{"step_bit", s.pins[i].step_bit},
+                                   std::pair{"dir_bit", s.pins[i].dir_bit}}) {
       if (used & (1u << bit))
-        err(fmt::format("pins.{}: output bit {} is already used by another pin", L, bit));
+        err(fmt::format("pins.{}.{}: output bit {} is already used by another pin", L, key, bit));
       used |= 1u << bit;
     }
   }
@@ -656,7 +666,7 @@ SettingsLoad parse_settings(const std::string& text, const std::string& origin) 
 SettingsLoad parse_settings_table(const toml::table& table, const std::string& origin) {
   SettingsLoad out;
   read_profile(TableReader(table, "", origin, out.errors), out.settings);
-  if (out.errors.empty()) check_consistency(out.settings, origin, out.errors);
+  if (out.errors.empty()) check_consistency(out.settings, origin, out.errors, &table);
   return out;
 }
 

@@ -7,6 +7,7 @@
 
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/settings/settings.hpp"
+#include "gantry/settings/values_file.hpp"  // parse_settings with values
 
 namespace gantry {
 namespace {
@@ -486,12 +487,25 @@ TEST(SettingsLoad, UnclosedTableHeaderIsInvalidToml) {
 
 // ---- errors across keys
 
-TEST(SettingsLoad, MinEqualToMaxIsAnError) {
-  const SettingsLoad l = load(set_key("axes.x", "min", "24.0").text);
+// A rule across keys is located at the first key it names (it was at the file's top).
+TEST(SettingsLoad, MinEqualToMaxIsAnErrorAtTheMinKey) {
+  const Edited e = set_key("axes.x", "min", "24.0");
+  const SettingsLoad l = load(e.text);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
   EXPECT_EQ(l.errors[0].message, "axes.x.min (24) must be below axes.x.max (24)");
-  EXPECT_EQ(where(l.errors[0].loc), loc_at(0, 0));
-  EXPECT_EQ(format(l.errors[0]), "test.toml: error: axes.x.min (24) must be below axes.x.max (24)");
+  EXPECT_EQ(format(l.errors[0]),
+            loc_at(e.line, 7) + ": error: axes.x.min (24) must be below axes.x.max (24)");
+}
+
+// The same rule broken by a values file's key is that file's, at its line (it was blamed on
+// the profile, settings/default.toml, with no line).
+TEST(SettingsLoad, ARuleBrokenByAValuesFileKeyIsLocatedInTheValuesFile) {
+  const SettingsLoad l = parse_settings(default_profile_text(), "settings/default.toml",
+                                        std::string("# V commands\n[axes.x]\nmin = 30.0\n"),
+                                        "values.toml");
+  ASSERT_EQ(l.errors.size(), 1u) << messages(l);
+  EXPECT_EQ(format(l.errors[0]),
+            "values.toml:3:7: error: axes.x.min (30) must be below axes.x.max (24)");
 }
 
 TEST(SettingsLoad, MinAboveMaxIsAnError) {
@@ -501,13 +515,14 @@ TEST(SettingsLoad, MinAboveMaxIsAnError) {
 }
 
 TEST(SettingsLoad, StepRateAboveTheCardLimitIsAnError) {
-  const SettingsLoad l = load(set_key("axes.x", "max_speed", "200.0").text);
+  const Edited e = set_key("axes.x", "max_speed", "200.0");
+  const SettingsLoad l = load(e.text);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
   EXPECT_EQ(l.errors[0].message,
             "axes.x.max_speed 200 x steps_per_unit 916.7324 = 183346 steps/s exceeds the card's "
             "100000 steps/s (pacer 200000 Hz, 1-tick pulse plus one idle tick); lower max_speed "
             "or raise the pacer");
-  EXPECT_EQ(where(l.errors[0].loc), loc_at(0, 0));
+  EXPECT_EQ(where(l.errors[0].loc), loc_at(e.line, 13));
 }
 
 TEST(SettingsLoad, StepRateExactlyAtTheCardLimitIsAllowed) {
@@ -554,29 +569,31 @@ TEST(SettingsLoad, SlowerPacerLowersTheCardLimit) {
 }
 
 TEST(SettingsLoad, DuplicateOutputBitAcrossAxesIsAnError) {
-  const SettingsLoad l = load(set_key("pins.y", "step_bit", "0").text);
+  const Edited e = set_key("pins.y", "step_bit", "0");
+  const SettingsLoad l = load(e.text);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
-  EXPECT_EQ(l.errors[0].message, "pins.y: output bit 0 is already used by another pin");
-  EXPECT_EQ(where(l.errors[0].loc), loc_at(0, 0));
+  EXPECT_EQ(l.errors[0].message, "pins.y.step_bit: output bit 0 is already used by another pin");
+  EXPECT_EQ(where(l.errors[0].loc), loc_at(e.line, 12));
 }
 
 TEST(SettingsLoad, StepAndDirectionOnTheSameBitIsAnError) {
   const SettingsLoad l = load(set_key("pins.z", "dir_bit", "2").text);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
-  EXPECT_EQ(l.errors[0].message, "pins.z: output bit 2 is already used by another pin");
+  EXPECT_EQ(l.errors[0].message, "pins.z.dir_bit: output bit 2 is already used by another pin");
 }
 
 TEST(SettingsLoad, DirectionBitReusedAsALaterStepBitIsAnError) {
   const SettingsLoad l = load(set_key("pins.c", "step_bit", "8").text);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
-  EXPECT_EQ(l.errors[0].message, "pins.c: output bit 8 is already used by another pin");
+  EXPECT_EQ(l.errors[0].message, "pins.c.step_bit: output bit 8 is already used by another pin");
 }
 
 TEST(SettingsLoad, MoveSpeedAboveMaxSpeedIsAnError) {
-  const SettingsLoad l = load(set_key("speeds.move", "xy", "9.0").text);
+  const Edited e = set_key("speeds.move", "xy", "9.0");
+  const SettingsLoad l = load(e.text);
   ASSERT_EQ(l.errors.size(), 1u) << messages(l);
   EXPECT_EQ(l.errors[0].message, "speeds.move.xy = 9 exceeds the axis max_speed 8");
-  EXPECT_EQ(where(l.errors[0].loc), loc_at(0, 0));
+  EXPECT_EQ(where(l.errors[0].loc), loc_at(e.line, 6));
 }
 
 TEST(SettingsLoad, XySpeedLimitIsTheSlowerOfXAndY) {
@@ -633,7 +650,7 @@ TEST(SettingsLoad, EveryCrossKeyErrorIsReported) {
                                       0),
             0u)
       << l.errors[1].message;
-  EXPECT_EQ(l.errors[2].message, "pins.b: output bit 0 is already used by another pin");
+  EXPECT_EQ(l.errors[2].message, "pins.b.dir_bit: output bit 0 is already used by another pin");
   EXPECT_EQ(l.errors[3].message, "speeds.move.a = 95 exceeds the axis max_speed 90");
 }
 
