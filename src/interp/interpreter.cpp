@@ -11,6 +11,7 @@
 #include <utility>     // exchange
 
 #include "../lang/scan.hpp"                  // looks_like_expression
+#include "gantry/core/bounded.hpp"           // kMaxCoordinate
 #include "gantry/core/diagnostic_log.hpp"    // DiagnosticLog
 #include "gantry/core/text_file.hpp"         // write_file_atomically
 #include "gantry/cuts/passes.hpp"            // tabs on plain moves
@@ -71,6 +72,13 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
   }
   if (!std::isfinite(table.sum()))
     fail(loc, "a move target is not a finite number; nothing was moved");
+  for (int i = 0; i < kAxisCount; ++i)  // soft limits or not: a sane bound
+    if (std::abs(table[i]) > kMaxCoordinate && table[i] != now[i])
+      fail(loc,
+           fmt::format("move to {}={} is out of range: no axis may go beyond {} {} from "
+                       "the table base; nothing was moved",
+                       static_cast<char>(std::toupper(kAxisLetters[i])), format_number(target[i]),
+                       format_number(kMaxCoordinate), units_name(settings_.units)));
 }
 
 void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
@@ -274,14 +282,23 @@ void CommandContext::end_tab_path() {
 }
 
 void CommandContext::dwell(double seconds, const SourceLoc& loc) {
-  if (!(seconds > 0) || state_.preview) return;
+  // Checked before anything runs (the check makes the same call): a wait beyond the
+  // profile's maximum is a mistake (PAUSE 1e12 would never end), as is a negative one.
+  const double most = settings_.machine.max_dwell_s;
+  if (!(seconds >= 0 && seconds <= most))
+    fail(loc, fmt::format("a wait of {} s is out of range: a part file may wait 0 to {} s "
+                          "(machine.max_dwell_s in the profile); give a shorter time, or raise "
+                          "the profile's maximum",
+                          format_number(seconds), format_number(most)));
+  if (seconds == 0 || state_.preview) return;
   CanonMove m = here(MoveKind::Dwell, loc);
   m.dwell_s = seconds;
   emit(m);
   ++moves_;
 }
 
-void CommandContext::emit(const CanonMove& m) {
+void CommandContext::emit(CanonMove& m) {
+  m.count = {interp_ ? interp_->statements_executed() : 0, moves_ + 1};
   if (!warned_ && m.kind != MoveKind::Dwell) warn_before_motion(m.loc);
   if (const std::optional<IndependentMotion>& mi = state_.independent) {
     const int i = mi->axis;

@@ -377,8 +377,9 @@ Controller::Summary Controller::summary() const {
   s.error = error_;
   if (!s.error && !message_.empty()) s.error = Diagnostic{stopped_at_, Severity::Error, message_};
   s.fault = fault_;
-  s.lines = interp_->statements_executed();
-  s.moves = interp_->moves_emitted();
+  s.cut = interrupted_;
+  s.lines = s.cut ? steps_.ran().statements : interp_->statements_executed();
+  s.moves = s.cut ? steps_.ran().moves : interp_->moves_emitted();
   s.commanded = fault_ == CardFault::None ? steps_.position() : fault_commanded_;
   s.planned_time_s = planner_->planned_time();
   return s;
@@ -560,6 +561,7 @@ void Controller::start_activity(std::function<void()> work) {
   jog_target_.reset();
   error_.reset();
   fault_ = CardFault::None;
+  steps_.new_run();
   start_tick_ = tick_.load();
   work_ = std::move(work);
   // Scheduled requests become ticks of this activity (the feeder is idle: tick_ is settled).

@@ -137,6 +137,56 @@ TEST(Controller, AStopEndsTheFileWithThePositionOfThePulsesPlayed) {
   EXPECT_EQ(m.c.state(), MachineState::Idle);
 }
 
+// Issue 22 (and 25): after a stop the report said "executed 6 statements, 5 moves", the whole
+// file the interpreter had read ahead. The summary counts what reached the card.
+TEST(Controller, AfterAStopOrEStopTheSummaryCountsWhatReachedTheCard) {
+  for (const Request r : {Request::Stop, Request::EStop}) {
+    Machine m;
+    ASSERT_TRUE(m.run(kSquare));  // read ahead whole: 6 statements, 5 moves
+    m.c.wait();
+    Controller::Summary s = m.c.summary();
+    EXPECT_FALSE(s.cut);
+    EXPECT_EQ(s.lines, 6u);
+    EXPECT_EQ(s.moves, 5u);
+    m.c.schedule(r, 1.0);  // in M2, 4, 0: statement 2, move 1
+    ASSERT_TRUE(m.run(kSquare));
+    m.c.wait();
+    s = m.c.summary();
+    EXPECT_TRUE(s.cut);
+    EXPECT_EQ(s.lines, 2u);
+    EXPECT_EQ(s.moves, 1u);
+    ASSERT_TRUE(s.error.has_value());
+    EXPECT_EQ(s.error->message, r == Request::Stop ? "stopped by the operator" : "E-stop");
+  }
+}
+
+// --realtime: moves the planner released play out under a moving tool while the file loops
+// with no motion; the card's queue runs dry while words are due. A real card underruns
+// there, and so does the simulated one, saying how late the producer was (issue 22: it moved
+// its clock forward, and the run was "done").
+TEST(Controller, InRealTimeALateProducerIsAnUnderrunFaultWithItsLateness) {
+  Settings settings = default_settings();
+  settings.planner.lookahead = 4;  // some of the moves are released before the loop
+  SimCard card{settings, true};
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  std::string text = "MS, 2\n";
+  for (int k = 1; k <= 10; ++k) text += "MX, " + std::to_string(0.05 * k) + "\n";
+  text += "&i = 0\nL:\n&i = &i + 1\nIF &i < 3000000 THEN GOTO L\nMX, 1\n";
+  ASSERT_TRUE(c.run(Script::from_text(text, "part.sbp")));
+  c.wait();
+  const Controller::Summary s = c.summary();
+  EXPECT_EQ(s.fault, CardFault::Underrun);
+  EXPECT_TRUE(s.cut);
+  ASSERT_TRUE(s.error.has_value());
+  EXPECT_NE(s.error->message.find("underrun (the producer was "), std::string::npos)
+      << s.error->message;
+  ASSERT_TRUE(card.late_s().has_value());
+  EXPECT_GT(*card.late_s(), 0);
+  EXPECT_LT(card.steps()[0], std::llround(1.0 * settings.axes[0].steps_per_unit));
+}
+
 TEST(Controller, EStopStopsThePulsesAtOnceAndNeedsAcknowledging) {
   Machine m;
   m.c.schedule(Request::EStop, 1.0);
