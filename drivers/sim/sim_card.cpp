@@ -9,6 +9,8 @@
 #include <limits>     // numeric_limits
 #include <thread>     // sleep_until for --realtime
 
+#include "gantry/core/bounded.hpp"  // checked_llround
+
 namespace gantry {
 namespace {
 
@@ -139,8 +141,10 @@ void SimCard::start(double pacer_hz) {
   late_s_.reset();
   wall_start_ = std::chrono::steady_clock::now();
   wall_start_ -= wall_at(tick_) - wall_start_;
-  auto tick_of = [&](const std::optional<double>& s) {
-    return s ? static_cast<std::uint64_t>(std::llround(*s * pacer_hz)) : UINT64_MAX;
+  auto tick_of = [&](const std::optional<double>& s) {  // beyond any run's ticks: never
+    const std::optional<std::int64_t> t =
+        s ? checked_llround(std::max(0.0, *s) * pacer_hz) : std::nullopt;
+    return t ? static_cast<std::uint64_t>(*t) : UINT64_MAX;
   };
   // Started again after a fault: the E-stop is still pressed, but a stall has passed and so
   // have the switch events before now.

@@ -43,6 +43,16 @@ std::string other_tables(const std::string& profile, const Settings& s, const Ve
                                   : "it fits: " + fits + " (--profile NAME)");
 }
 
+// An arc runs as chords within the profile's chord tolerance: an absurd one (G2 ... P1e12, a
+// circle beyond any table) would need more than memory holds, or time allows.
+void check_chords(const CanonMove& arc, double tolerance, const SourceLoc& loc) {
+  const double n = arc_chord_count(arc, tolerance);
+  if (n > kMaxArcChords)
+    fail(loc, fmt::format("this arc would run as {} chords within planner.chord_tolerance; an arc "
+                          "may have at most {}: give fewer turns or a smaller radius",
+                          format_number(n), format_number(kMaxArcChords)));
+}
+
 }  // namespace
 
 void CommandContext::check_reach(const Vec6& point, const SourceLoc& loc) const {
@@ -144,6 +154,7 @@ void CommandContext::make_arc(const Vec6& file_target, double cx, double cy, dou
   arc.center_x = cx;
   arc.center_y = cy;
   arc.sweep = sweep;
+  check_chords(arc, settings_.planner.chord_tolerance, loc);
   if (transform_.scale[u] != transform_.scale[v] ||
       (plane != ArcPlane::XY && (state_.tabs_on || file_tabs_))) {
     // Scaling maps a chord of the circle to the chord of its image, and the chord's gap to
@@ -189,6 +200,7 @@ void CommandContext::send_arc(const Vec6& target, double cx, double cy, double s
   if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15, as line_to
     for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c}) *v /= n;
   m.loc = loc;
+  check_chords(m, settings_.planner.chord_tolerance, loc);
   if (!state_.preview) emit(m);
   // MD's R and L turn from the direction of travel at the end: the tangent there.
   const double ex = m.to[0] - m.center_x, ey = m.to[1] - m.center_y;

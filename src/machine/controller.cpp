@@ -3,10 +3,10 @@
 
 #include <fmt/format.h>  // messages
 
-#include <bit>    // countr_zero
-#include <cmath>  // llround
+#include <bit>  // countr_zero
 
-#include "gantry/machine/job.hpp"  // check_program
+#include "gantry/core/bounded.hpp"  // checked_llround
+#include "gantry/machine/job.hpp"   // check_program
 
 namespace gantry {
 namespace {
@@ -567,7 +567,8 @@ void Controller::start_activity(std::function<void()> work) {
   // Scheduled requests become ticks of this activity (the feeder is idle: tick_ is settled).
   const double hz = settings_.card.pacer_hz();
   for (const auto& [r, at] : scheduled_) {
-    const std::int64_t tick = tick_.load() + std::llround(at * hz);
+    const std::int64_t tick =
+        tick_.load() + checked_llround(at * hz).value_or(StepGenerator::kNever / 2);
     switch (r) {
       case Request::Pause:
         on_hold_ = OnHold::Wait;

@@ -1030,7 +1030,16 @@ TEST(Signals, AStopAndADoubleSigintAreReportedByNameWithWhatRan) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     int status = 0;
-    waitpid(pid, &status, 0);
+    bool ended = false;
+    for (int i = 0; i < 1000 && !ended; ++i) {
+      ended = waitpid(pid, &status, WNOHANG) == pid;
+      if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (!ended) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+    }
+    EXPECT_TRUE(ended) << signals << " SIGINT: the run did not end within 10 s";
     std::stringstream text;
     text << std::ifstream(out).rdbuf();
     fs::remove(out);

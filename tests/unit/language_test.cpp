@@ -1417,6 +1417,18 @@ TEST_F(LanguageTest, AMoveBeyondAnyTableIsRefusedWithSoftLimitsOff) {
   EXPECT_EQ(moves().size(), 1u);
 }
 
+// A circle beyond any table would run as more chords than memory holds (soft limits or not).
+TEST_F(LanguageTest, AnArcOfTooManyChordsIsRefused) {
+  settings.machine.limit_checking = false;
+  const Diagnostic d = run_error("MX, 1\nCC, 1e11, T\n");
+  EXPECT_EQ(d.loc.line, 2);
+  EXPECT_NE(d.message.find("chords within planner.chord_tolerance; an arc may have at most "
+                           "1000000: give fewer turns or a smaller radius"),
+            std::string::npos)
+      << d.message;
+  EXPECT_EQ(moves().size(), 1u);
+}
+
 TEST_F(LanguageTest, JoinedTextIsBounded) {
   const Diagnostic d = run_error("&s = \"0123456789abcdef\"\nL:\n&s = &s & &s\nGOTO L\n");
   EXPECT_EQ(d.loc.line, 3);
