@@ -198,7 +198,10 @@ INSTANTIATE_TEST_SUITE_P(
     HoldBoundaries, ReversalAtRest,
     ::testing::Values(ReversalCase{"pause", "MZ, 1\nPAUSE\nMZ, 0.5\n", 0.5},
                       ReversalCase{"probe_miss", "PZ, -1, 0.5, 1\nJZ, 0.5\n", 0.5},
-                      ReversalCase{"probe_start", "MZ, 1\nPZ, -1, 0.5, 1\n", -1}),
+                      ReversalCase{"probe_start", "MZ, 1\nPZ, -1, 0.5, 1\n", -1},
+                      // Issue 22 again: the probe touches the profile's plate (Z -2), stops,
+                      // and the move after it reverses from rest.
+                      ReversalCase{"probe_touch", "MZ, 1\nPZ, -3, 0.5, 1\nMZ, 1\n", 1}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // A job in the shape of Fusion 360's OpenSBP post (tests/data/fusion_post.sbp: &Tool, C9,
@@ -1070,7 +1073,8 @@ TEST(BadInput, HugeWaitsAreRefusedBeforeAnythingMoves) {
       {"pause_1e20.sbp", "MX, 0.5\nPAUSE 1e20\nMX, 1\n", ":2:1: error: a wait of 1e+20 s"},
       {"pause_1e12.sbp", "MX, 0.5\nPAUSE 1e12\n", ":2:1: error: a wait of 1000000000000 s"},
       {"pause_minus.sbp", "MX, 0.5\nPAUSE -1\n", ":2:1: error: a wait of -1 s"},
-      {"g4.nc", "G20 G1 X0.5 F60\nG4 P1e14\nG1 X1\n", ":2:1: error: a wait of 100000000000000 s"},
+      {"g4.nc", "G20 G1 X0.5 F60\nG4 P100000000000000\nG1 X1\n",
+       ":2:1: error: a wait of 100000000000000 s"},
   };
   for (const Case& c : cases) {
     const fs::path p = fs::temp_directory_path() / fmt::format("{}_{}", getpid(), c.name);
@@ -1103,8 +1107,8 @@ TEST(Realtime, ALateProducerIsAReportedUnderrunNeverASilentClockShift) {
   const fs::path settings = fs::temp_directory_path() / fmt::format("gantry_rt_{}.toml", getpid());
   std::ofstream(settings) << toml;
   std::string starving = "MS, 2\n";
-  for (int k = 1; k <= 10; ++k) starving += fmt::format("MX, {}\n", 0.05 * k);
-  starving += "&i = 0\nL:\n&i = &i + 1\nIF &i < 3000000 THEN GOTO L\nMX, 1\n";
+  for (int k = 1; k <= 40; ++k) starving += fmt::format("MX, {}\n", 0.05 * k);
+  starving += "&i = 0\nL:\n&i = &i + 1\nIF &i < 3000000 THEN GOTO L\nMX, 3\n";
   const std::string starve = part_file("starve", starving);
   const std::string plain = part_file("plain", "MS, 2\nMX, 0.5\nMY, 0.5\nMX, 0\nMY, 0\n");
   for (const std::string& file : {starve, plain}) {
