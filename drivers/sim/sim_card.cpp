@@ -181,12 +181,10 @@ void SimCard::drain() {
   end_stream();
 }
 
-std::string SimCard::fault_detail() const {
-  if (fault_ != CardFault::Underrun) return {};
-  if (late_s_)
-    return fmt::format("the producer was {:.1f} ms late: the card's queue ran dry at {:.4f} s",
-                       *late_s_ * 1e3, time_s());
-  return "the producer stalled (the simulated stall)";
+std::string SimCard::fault_detail() const {  // a simulated stall (--sim-stall-at) needs none
+  if (fault_ != CardFault::Underrun || !late_s_) return {};
+  return fmt::format("the producer was {:.1f} ms late: the card's queue ran dry at {:.4f} s",
+                     *late_s_ * 1e3, time_s());
 }
 
 void SimCard::write(std::span<const std::uint32_t> words) {

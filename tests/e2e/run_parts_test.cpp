@@ -1107,8 +1107,9 @@ TEST(Realtime, ALateProducerIsAReportedUnderrunNeverASilentClockShift) {
   const fs::path settings = fs::temp_directory_path() / fmt::format("gantry_rt_{}.toml", getpid());
   std::ofstream(settings) << toml;
   std::string starving = "MS, 2\n";
-  for (int k = 1; k <= 40; ++k) starving += fmt::format("MX, {}\n", 0.05 * k);
-  starving += "&i = 0\nL:\n&i = &i + 1\nIF &i < 3000000 THEN GOTO L\nMX, 3\n";
+  // The planner releases 4 of the 15 moves (0.1 s of motion); the loop takes far longer.
+  for (int k = 1; k <= 15; ++k) starving += fmt::format("MX, {}\n", 0.05 * k);
+  starving += "&i = 0\nL:\n&i = &i + 1\nIF &i < 5000000 THEN GOTO L\nMX, 3\n";
   const std::string starve = part_file("starve", starving);
   const std::string plain = part_file("plain", "MS, 2\nMX, 0.5\nMY, 0.5\nMX, 0\nMY, 0\n");
   for (const std::string& file : {starve, plain}) {
