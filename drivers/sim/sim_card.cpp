@@ -1,11 +1,15 @@
 // Pulse decoding and timing checks of the simulated card.
 #include "sim/sim_card.hpp"
 
+#include <fmt/format.h>  // fault_detail
+
 #include <algorithm>  // min
 #include <cmath>      // llround
 #include <iomanip>    // the trace's hex words
 #include <limits>     // numeric_limits
 #include <thread>     // sleep_until for --realtime
+
+#include "gantry/core/bounded.hpp"  // checked_llround
 
 namespace gantry {
 namespace {
@@ -131,9 +135,16 @@ void SimCard::start(double pacer_hz) {
   fault_ = CardFault::None;
   tick_s_ = 1.0 / pacer_hz;
   monitor_ = KinematicsMonitor(limits_, tick_s_);
+  // The tick count goes on from where it stopped: the wall clock's origin follows it, so a
+  // restart neither waits for the ticks before it nor finds itself late.
+  streaming_ = false;
+  late_s_.reset();
   wall_start_ = std::chrono::steady_clock::now();
-  auto tick_of = [&](const std::optional<double>& s) {
-    return s ? static_cast<std::uint64_t>(std::llround(*s * pacer_hz)) : UINT64_MAX;
+  wall_start_ -= wall_at(tick_) - wall_start_;
+  auto tick_of = [&](const std::optional<double>& s) {  // beyond any run's ticks: never
+    const std::optional<std::int64_t> t =
+        s ? checked_llround(std::max(0.0, *s) * pacer_hz) : std::nullopt;
+    return t ? static_cast<std::uint64_t>(*t) : UINT64_MAX;
   };
   // Started again after a fault: the E-stop is still pressed, but a stall has passed and so
   // have the switch events before now.
@@ -159,16 +170,39 @@ void SimCard::stop(std::uint32_t idle_word) {
   if (idle_word != prev_) decode(idle_word);
 }
 
+std::chrono::steady_clock::time_point SimCard::wall_at(std::uint64_t tick) const {
+  return wall_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(static_cast<double>(tick) * tick_s_));
+}
+
+void SimCard::drain() {
+  if (realtime_ && !stopped_ && fault_ == CardFault::None)
+    std::this_thread::sleep_until(wall_at(tick_));
+  end_stream();
+}
+
+std::string SimCard::fault_detail() const {  // a simulated stall (--sim-stall-at) needs none
+  if (fault_ != CardFault::Underrun || !late_s_) return {};
+  return fmt::format("the producer was {:.1f} ms late: the card's queue ran dry at {:.4f} s",
+                     *late_s_ * 1e3, time_s());
+}
+
 void SimCard::write(std::span<const std::uint32_t> words) {
   if (stopped_ || fault_ != CardFault::None) return;
   if (realtime_) {
-    // Idle (nothing queued) the card's clock does not run: words written after a wait play
-    // from now, not all at once to catch up with the wall clock.
+    // The queue ran dry at wall_at(tick_). Between stretches of output that is rest, and the
+    // new words play from now; within one, the word at tick_ was due and missing: a real
+    // card underruns there, and so does this one (the clock is never moved to hide it).
     const auto now = std::chrono::steady_clock::now();
-    const auto card_now =
-        wall_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                          std::chrono::duration<double>(time_s()));
-    if (now > card_now) wall_start_ += now - card_now;
+    const auto dry = wall_at(tick_);
+    if (!streaming_) {
+      if (now > dry) wall_start_ += now - dry;
+      streaming_ = true;
+    } else if (now > dry) {
+      late_s_ = std::chrono::duration<double>(now - dry).count();
+      fault_ = CardFault::Underrun;
+      return;
+    }
   }
   std::uint64_t event_tick = next_event_tick();
   for (std::uint32_t w : words) {
@@ -200,11 +234,10 @@ void SimCard::write(std::span<const std::uint32_t> words) {
     }
     ++tick_;
   }
-  if (realtime_) {
-    std::this_thread::sleep_until(wall_start_ +
+  if (realtime_)  // the queue holds up to queue_s_ of words not yet played
+    std::this_thread::sleep_until(wall_at(tick_) -
                                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                      std::chrono::duration<double>(time_s())));
-  }
+                                      std::chrono::duration<double>(queue_s_)));
 }
 
 void SimCard::decode(std::uint32_t w) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,9 @@ class SimCard : public Card {
 
   void start(double pacer_hz) override;
   void write(std::span<const std::uint32_t> words) override;
-  void drain() override {}  // virtual time: every word has played when write returns
+  // Virtual time: every word has played when write returns; real time: it waits for them.
+  void drain() override;
+  void end_stream() override { streaming_ = false; }
   void stop(std::uint32_t idle_word) override;
   std::uint64_t ticks_played() const override { return tick_; }
   std::uint32_t inputs() const override { return inputs_; }
@@ -51,6 +54,13 @@ class SimCard : public Card {
   // `bit` reads `high` from the next word on.
   void set_switch(int bit, bool high) { set_input(bit, high, false); }
   CardFault fault() const override { return fault_; }
+  std::string fault_detail() const override;
+  // Real time: how far the card's queue may run ahead of the wall clock (a real card's
+  // FIFO). A producer that leaves it empty while a word is due underruns the card, and the
+  // fault says how late it was.
+  static constexpr double kRealtimeQueueS = 0.05;
+  void set_realtime_queue(double seconds) { queue_s_ = seconds; }
+  std::optional<double> late_s() const { return late_s_; }  // an underrun's lateness
   void calibration_changed(const Settings& s) override;
   void set_trips(const InputTrip& estop, const InputTrip& limits) override;
   // Exact: every word's inputs are compared, and a `stop` bit stops the card at its word.
@@ -110,7 +120,14 @@ class SimCard : public Card {
   bool monitor_finished_ = false;
   std::uint64_t violation_count_ = 0;
   std::vector<TimingViolation> violations_;  // the first few, for messages
+  // Real time: the wall-clock instant of tick 0 while words stream (tick t plays at
+  // wall_start_ + t ticks); a new stretch of output (after start or end_stream) begins when
+  // its first word is written, or when the words before it have played.
   std::chrono::steady_clock::time_point wall_start_;
+  std::chrono::steady_clock::time_point wall_at(std::uint64_t tick) const;
+  bool streaming_ = false;
+  double queue_s_ = kRealtimeQueueS;
+  std::optional<double> late_s_;
 };
 
 const char* rule_name(TimingRule r);

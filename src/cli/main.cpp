@@ -292,6 +292,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
     fmt::print(stderr, "gantry: running {} on the {} card, profile \"{}\"\n", a.file,
                sim ? "simulated" : choice.type, settings.name);
   JobResult job;
+  int stops = 0;  // the operator's: 1 a stop, 2 or more an E-stop
   {
     ProgressBar bar;
     if (bar.enabled() && !a.json && !interactive)
@@ -315,6 +316,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
     } stop_first{signals};
     opt.control = &control;
     job = run_job(script, settings, *card, io, store, opt);
+    stops = control.stops();
   }
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));
   for (const Diagnostic& w : scripted.warnings()) fmt::print(stderr, "{}\n", format(w));
@@ -323,9 +325,13 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.check_stopped = job.check_stopped;
   report.lines = job.lines;
   report.moves = job.moves;
+  report.cut = job.cut;
+  report.stopped_by = stops == 0 ? "none" : stops == 1 ? "stop" : "E-stop";
   report.commanded_steps = job.commanded_steps;
   report.played_steps = job.played_steps;
   report.fault = job.fault == CardFault::None ? "none" : fault_name(job.fault);
+  // The operator's E-stop stopped the pulses at once, as the card's own would.
+  if (stops > 1 && job.cut && job.fault == CardFault::None) report.fault = "E-stop";
   report.planned_time_s = job.planned_time_s;
   report.estimated_time_s = job.estimated_time_s;
   // A real card counts nothing itself: its steps are the generator's count of those played.

@@ -36,6 +36,8 @@ bool limits_exceeded(const RunReport& r) {
 // the whole file.
 std::string status_text(const RunReport& r) {
   std::string out = run_status(r);
+  if (r.stopped_by != "none")
+    out += r.stopped_by == "stop" ? ": stopped by the operator" : ": E-stop by the operator";
   if (r.errors.empty() && limits_exceeded(r)) out += ": the card saw the machine's limits exceeded";
   if (r.errors.empty() && r.check_stopped)
     out += fmt::format(
@@ -91,6 +93,8 @@ nlohmann::ordered_json to_json(const RunReport& r) {
   j["estimated_time_s"] = r.estimated_time_s;
   j["lines"] = r.lines;
   j["moves"] = r.moves;
+  j["cut"] = r.cut;
+  j["stopped_by"] = r.stopped_by;
   j["timing_violations"] = r.timing_violations;
   j["kinematic_violations"] = r.kinematic_violations;
   j["max_velocity_ratio"] = r.max_velocity_ratio;
@@ -124,7 +128,8 @@ std::string to_text(const RunReport& r) {
   }
   out += fmt::format("time       {:.3f} s on the card ({:.3f} s planned, {:.3f} s estimated)\n",
                      r.time_s, r.planned_time_s, r.estimated_time_s);
-  out += fmt::format("executed   {} statements, {} moves\n", r.lines, r.moves);
+  out += fmt::format("executed   {} statements, {} moves{}\n", r.lines, r.moves,
+                     r.cut ? " before the motion was cut; the rest did not run" : "");
   out += fmt::format("timing     {} violations\n", r.timing_violations);
   out += fmt::format(
       "limits     peak velocity {:.1f} %, peak acceleration {:.1f} % of the "

@@ -33,6 +33,8 @@ struct RunReport {
   double planned_time_s = 0;
   double estimated_time_s = 0;  // predicted by the check, before the run
   std::size_t lines = 0, moves = 0;
+  bool cut = false;  // the motion was cut short: lines and moves are what reached the card
+  std::string stopped_by = "none";  // the operator's "stop" or "E-stop" (Ctrl-C, twice)
   std::uint64_t timing_violations = 0;
   std::uint64_t kinematic_violations = 0;  // speeds or accelerations beyond the axis limits
   std::vector<std::string> violation_notes;

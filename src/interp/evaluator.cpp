@@ -8,8 +8,9 @@
 #include <cmath>
 
 #include "../lang/expr_node.hpp"
-#include "builtin_functions.hpp"  // apply_function
-#include "persistent_path.hpp"    // describe_path
+#include "builtin_functions.hpp"    // apply_function
+#include "gantry/core/bounded.hpp"  // kMaxTextBytes
+#include "persistent_path.hpp"      // describe_path
 
 #include "../lang/scan.hpp"  // upper
 
@@ -221,7 +222,7 @@ class Evaluator {
       case ExprOp::Join: {
         std::string s;
         append(n, s);
-        return Value::string(std::move(s));
+        return Value::string(bounded_text(std::move(s), n));
       }
       case ExprOp::Add:
         if (env_.plus_joins_text()) return plus(n);
@@ -237,7 +238,7 @@ class Evaluator {
     const Value a = val(*n.a);
     const Value b = val(*n.b);
     const auto text = [](const Value& v) { return v.is_string() && !parse_number_literal(v.str()); };
-    if (text(a) || text(b)) return Value::string(a.to_string() + b.to_string());
+    if (text(a) || text(b)) return Value::string(bounded_text(a.to_string() + b.to_string(), n));
     const auto number = [](const Value& v) {
       return v.is_number() ? v.num() : *parse_number_literal(v.str());
     };
@@ -289,6 +290,15 @@ class Evaluator {
   }
 
   bool truth(const ExprNode& n) { return num(n) != 0; }
+
+  // Joined text is bounded, as numbers are: `&s = &s & &s` in a loop doubles it each pass.
+  std::string bounded_text(std::string s, const ExprNode& n) {
+    if (s.size() > kMaxTextBytes)
+      fail(n.token_loc(), fmt::format("this text would be {} bytes long; a value holds at most "
+                                      "{} bytes (1 MiB)",
+                                      s.size(), kMaxTextBytes));
+    return s;
+  }
 
   double finite(double r, const ExprNode& n) {
     if (!std::isfinite(r))

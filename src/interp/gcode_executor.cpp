@@ -339,6 +339,10 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     fail(loc, "G53 takes machine coordinates: it cannot be incremental (G91)");
   if (w.m[5] >= 0 && !w.has('P'))
     fail(loc, fmt::format("{} needs P, the output switch number", code_name('M', w.m[5])));
+  if (w.has('F') && w.get('F') < 0)  // a value out of range, not a missing one
+    fail(w.at('F', loc), fmt::format("F{} is out of range: a feed rate cannot be negative; give "
+                                     "F above 0 (units per minute)",
+                                     format_number(w.get('F'))));
   // A feed rate for every feeding move: G1 G2 G3, probes, canned cycles.
   if (moving && motion > 0) {
     const bool inverse = w.g[5] == 930 || (w.g[5] < 0 && modes_.inverse_time);
@@ -473,7 +477,6 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   GcodeOffsets& o = st.gcode;
   if (w.g[5] >= 0) modes_.inverse_time = w.g[5] == 930;
   if (w.has('F') && !modes_.inverse_time) {
-    if (w.get('F') < 0) fail(w.at('F', loc), "F, the feed rate, cannot be negative");
     modes_.feed = w.get('F') * length_scale() / 60;
   }
   if (w.has('S') && w.get('S') < 0)

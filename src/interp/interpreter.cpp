@@ -11,6 +11,7 @@
 #include <utility>     // exchange
 
 #include "../lang/scan.hpp"                  // looks_like_expression
+#include "gantry/core/bounded.hpp"           // kMaxCoordinate
 #include "gantry/core/diagnostic_log.hpp"    // DiagnosticLog
 #include "gantry/core/text_file.hpp"         // write_file_atomically
 #include "gantry/cuts/passes.hpp"            // tabs on plain moves
@@ -42,6 +43,16 @@ std::string other_tables(const std::string& profile, const Settings& s, const Ve
                                   : "it fits: " + fits + " (--profile NAME)");
 }
 
+// An arc runs as chords within the profile's chord tolerance: an absurd one (G2 ... P1e12, a
+// circle beyond any table) would need more than memory holds, or time allows.
+void check_chords(const CanonMove& arc, double tolerance, const SourceLoc& loc) {
+  const double n = arc_chord_count(arc, tolerance);
+  if (n > kMaxArcChords)
+    fail(loc, fmt::format("this arc would run as {} chords within planner.chord_tolerance; an arc "
+                          "may have at most {}: give fewer turns or a smaller radius",
+                          format_number(n), format_number(kMaxArcChords)));
+}
+
 }  // namespace
 
 void CommandContext::check_reach(const Vec6& point, const SourceLoc& loc) const {
@@ -71,6 +82,13 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
   }
   if (!std::isfinite(table.sum()))
     fail(loc, "a move target is not a finite number; nothing was moved");
+  for (int i = 0; i < kAxisCount; ++i)  // soft limits or not: a sane bound
+    if (std::abs(table[i]) > kMaxCoordinate && table[i] != now[i])
+      fail(loc,
+           fmt::format("move to {}={} is out of range: no axis may go beyond {} {} from "
+                       "the table base; nothing was moved",
+                       static_cast<char>(std::toupper(kAxisLetters[i])), format_number(target[i]),
+                       format_number(kMaxCoordinate), units_name(settings_.units)));
 }
 
 void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
@@ -136,6 +154,7 @@ void CommandContext::make_arc(const Vec6& file_target, double cx, double cy, dou
   arc.center_x = cx;
   arc.center_y = cy;
   arc.sweep = sweep;
+  check_chords(arc, settings_.planner.chord_tolerance, loc);
   if (transform_.scale[u] != transform_.scale[v] ||
       (plane != ArcPlane::XY && (state_.tabs_on || file_tabs_))) {
     // Scaling maps a chord of the circle to the chord of its image, and the chord's gap to
@@ -181,6 +200,7 @@ void CommandContext::send_arc(const Vec6& target, double cx, double cy, double s
   if (const int n = settings_.calibration.step_divider; n > 1)  // VU 15, as line_to
     for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c}) *v /= n;
   m.loc = loc;
+  check_chords(m, settings_.planner.chord_tolerance, loc);
   if (!state_.preview) emit(m);
   // MD's R and L turn from the direction of travel at the end: the tangent there.
   const double ex = m.to[0] - m.center_x, ey = m.to[1] - m.center_y;
@@ -274,14 +294,23 @@ void CommandContext::end_tab_path() {
 }
 
 void CommandContext::dwell(double seconds, const SourceLoc& loc) {
-  if (!(seconds > 0) || state_.preview) return;
+  // Checked before anything runs (the check makes the same call): a wait beyond the
+  // profile's maximum is a mistake (PAUSE 1e12 would never end), as is a negative one.
+  const double most = settings_.machine.max_dwell_s;
+  if (!(seconds >= 0 && seconds <= most))
+    fail(loc, fmt::format("a wait of {} s is out of range: a part file may wait 0 to {} s "
+                          "(machine.max_dwell_s in the profile); give a shorter time, or raise "
+                          "the profile's maximum",
+                          format_number(seconds), format_number(most)));
+  if (seconds == 0 || state_.preview) return;
   CanonMove m = here(MoveKind::Dwell, loc);
   m.dwell_s = seconds;
   emit(m);
   ++moves_;
 }
 
-void CommandContext::emit(const CanonMove& m) {
+void CommandContext::emit(CanonMove& m) {
+  m.count = {interp_ ? interp_->statements_executed() : 0, moves_ + 1};
   if (!warned_ && m.kind != MoveKind::Dwell) warn_before_motion(m.loc);
   if (const std::optional<IndependentMotion>& mi = state_.independent) {
     const int i = mi->axis;

@@ -3,10 +3,10 @@
 
 #include <fmt/format.h>  // messages
 
-#include <bit>    // countr_zero
-#include <cmath>  // llround
+#include <bit>  // countr_zero
 
-#include "gantry/machine/job.hpp"  // check_program
+#include "gantry/core/bounded.hpp"  // checked_llround
+#include "gantry/machine/job.hpp"   // check_program
 
 namespace gantry {
 namespace {
@@ -378,8 +378,9 @@ Controller::Summary Controller::summary() const {
   s.error = error_;
   if (!s.error && !message_.empty()) s.error = Diagnostic{stopped_at_, Severity::Error, message_};
   s.fault = fault_;
-  s.lines = interp_->statements_executed();
-  s.moves = interp_->moves_emitted();
+  s.cut = interrupted_;
+  s.lines = s.cut ? steps_.ran().statements : interp_->statements_executed();
+  s.moves = s.cut ? steps_.ran().moves : interp_->moves_emitted();
   s.commanded = fault_ == CardFault::None ? steps_.position() : fault_commanded_;
   s.planned_time_s = planner_->planned_time();
   return s;
@@ -561,12 +562,14 @@ void Controller::start_activity(std::function<void()> work) {
   jog_target_.reset();
   error_.reset();
   fault_ = CardFault::None;
+  steps_.new_run();
   start_tick_ = tick_.load();
   work_ = std::move(work);
   // Scheduled requests become ticks of this activity (the feeder is idle: tick_ is settled).
   const double hz = settings_.card.pacer_hz();
   for (const auto& [r, at] : scheduled_) {
-    const std::int64_t tick = tick_.load() + std::llround(at * hz);
+    const std::int64_t tick =
+        tick_.load() + checked_llround(at * hz).value_or(StepGenerator::kNever / 2);
     switch (r) {
       case Request::Pause:
         on_hold_ = OnHold::Wait;

@@ -156,6 +156,7 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   if (s.error) result.errors.push_back(*s.error);
   result.lines = s.lines;
   result.moves = s.moves;
+  result.cut = s.cut;
   result.commanded_steps = s.commanded;
   result.played_steps = machine.status().steps;
   result.fault = s.fault;

@@ -23,14 +23,19 @@ double arc_radius(const CanonMove& arc) {
   return std::hypot(arc.from[ax[0]] - arc.center_x, arc.from[ax[1]] - arc.center_y);
 }
 
+double arc_chord_count(const CanonMove& arc, double tolerance) {
+  const double r = arc_radius(arc);
+  double max_step = M_PI / 2;
+  if (r > tolerance) max_step = std::min(max_step, 2 * std::acos(1 - tolerance / r));
+  return std::max(1.0, std::ceil(std::abs(arc.sweep) / max_step - 1e-9));  // 1 for nan
+}
+
 std::vector<Vec6> arc_chords(const CanonMove& arc, double tolerance) {
   const std::array<int, 3> ax = plane_axes(arc.plane);
   const int u = ax[0], v = ax[1];
   const double r = arc_radius(arc);
-  const double sweep = std::abs(arc.sweep);
-  double max_step = M_PI / 2;
-  if (r > tolerance) max_step = std::min(max_step, 2 * std::acos(1 - tolerance / r));
-  const int n = std::max(1, static_cast<int>(std::ceil(sweep / max_step - 1e-9)));
+  // The interpreter refuses an arc of more chords; the bound keeps the conversion defined.
+  const int n = static_cast<int>(std::min(arc_chord_count(arc, tolerance), kMaxArcChords));
   const double a0 = std::atan2(arc.from[v] - arc.center_y, arc.from[u] - arc.center_x);
   std::vector<Vec6> out;
   out.reserve(static_cast<size_t>(n));

@@ -68,6 +68,7 @@ void LookAheadPlanner::move(const CanonMove& m) {
     if (m.kind == MoveKind::Independent) seg.independent = m.independent;
     if (m.kind == MoveKind::SpindleSpeed) seg.spindle_rpm = m.spindle_rpm;
     seg.loc = m.loc;
+    seg.count = m.count;
     planned_time_ += m.dwell_s;
     out_.segment(seg);
     return;
@@ -85,6 +86,7 @@ void LookAheadPlanner::move(const CanonMove& m) {
   b.accel = lim.accel;
   b.speed_class = m.speed_class;
   b.loc = m.loc;
+  b.count = m.count;
   b.punctuated = punctuated_;
   punctuated_ = false;
   b.u_in_long = q_.empty() ? b.unit : incoming_direction(b.from, q_.back().unit);
@@ -273,6 +275,7 @@ void LookAheadPlanner::emit_front(double exit, double jerk) {
   seg.profile = Trapezoid::plan(b.length, b.entry, cruise, exit, b.accel, jerk);
   seg.speed_class = b.speed_class;
   seg.loc = b.loc;
+  seg.count = b.count;
   planned_time_ += seg.profile.duration();
   stop_velocity_ = b.unit * exit;
   rested_s_ = 0;

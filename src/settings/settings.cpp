@@ -397,6 +397,9 @@ void read_values(TableReader& root, Settings& s) {
   TableReader machine = root.table("machine");
   s.machine.limit_checking = machine.boolean("limit_checking", true);
   s.machine.warning_s = machine.number("warning_s", {0, 3600}, 2);
+  // A key added after profiles were written: a profile may leave it out (24 h).
+  s.machine.max_dwell_s =
+      machine.optional_number("max_dwell_s", {0, 2592000, true}).value_or(86400);
   s.machine.switch4_mode = machine.integer("switch4_mode", -4, -1, -1);
   s.machine.editor = machine.optional_text("editor", "");
   machine.finish();

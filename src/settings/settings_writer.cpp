@@ -172,6 +172,7 @@ toml::table settings_table(const Settings& s) {
                           {"no_resolution_shift", cal.no_resolution_shift}});
   root.insert("machine", toml::table{{"limit_checking", s.machine.limit_checking},
                                      {"warning_s", s.machine.warning_s},
+                                     {"max_dwell_s", s.machine.max_dwell_s},
                                      {"switch4_mode", s.machine.switch4_mode},
                                      {"editor", s.machine.editor}});
   return root;

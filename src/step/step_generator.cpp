@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>  // the fault message
 
+#include "gantry/core/bounded.hpp"  // checked_llround
+
 namespace gantry {
 
 StepTiming StepTiming::from(const CardSettings& card) {
@@ -164,10 +166,12 @@ void StepGenerator::check_card() {
     if (at[i] != 0 || i < 3)
       where += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'),
                            static_cast<double>(at[i]) / steps_per_unit_[i]);
+  const std::string detail = card_.fault_detail();
   throw GantryError(Diagnostic{
       current_loc_, Severity::Error,
-      fmt::format("{}: the card stopped at {:.4f} s; the tool is at{} (the pulses played)",
-                  fault_name(f), static_cast<double>(played) * timing_.tick_s, where)});
+      fmt::format("{}{}: the card stopped at {:.4f} s; the tool is at{} (the pulses played)",
+                  fault_name(f), detail.empty() ? "" : " (" + detail + ")",
+                  static_cast<double>(played) * timing_.tick_s, where)});
 }
 
 void StepGenerator::segment(const PlannedSegment& seg) {
@@ -179,6 +183,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
   current_loc_ = seg.loc;
   warning_ = seg.warning;
   const std::int64_t t0 = segment_end_;
+  if (seg.count.moves > 0 && stops.now() > t0) ran_ = seg.count;  // some of it plays
   if (seg.independent) {  // at rest, like an output
     if (stops.now() <= t0) return 0.0;
     emit_until(segment_end_);
@@ -200,7 +205,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
     return std::nullopt;
   }
   const Trapezoid& p = seg.profile;
-  std::int64_t end = t0 + std::llround((p.duration() + seg.dwell_s) / timing_.tick_s);
+  std::int64_t end = t0 + whole((p.duration() + seg.dwell_s) / timing_.tick_s, "ticks");
   events_.clear();
   std::array<std::size_t, kAxisCount> next{}, stop{};  // each axis's run of events
   const std::array<std::int64_t, kAxisCount> last_before = last_step_;
@@ -208,7 +213,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
   for (int i = 0; i < kAxisCount; ++i) {
     next[i] = stop[i] = events_.size();
     if (independent_ && independent_->axis() == i) continue;  // it moves on its own
-    const std::int64_t target = std::llround(seg.to[i] * steps_per_unit_[i]);
+    const std::int64_t target = whole(seg.to[i] * steps_per_unit_[i], "steps");
     const std::int64_t delta = target - position_[i];
     if (delta == 0) continue;
     const bool positive = delta > 0;
@@ -276,6 +281,18 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
   return static_cast<double>(stop_tick - t0) * timing_.tick_s;
 }
 
+// The interpreter bounds every time and distance a file gives (docs/reliability.md); this
+// is the last guard: a count that does not fit ends the run here, located, before a word of
+// the segment is sent, rather than wrapping into garbled steps.
+std::int64_t StepGenerator::whole(double x, const char* what) const {
+  if (const std::optional<std::int64_t> n = checked_llround(x)) return *n;
+  throw GantryError(Diagnostic{
+      current_loc_, Severity::Error,
+      fmt::format("this segment needs {} {}, beyond what the step generator can place (at most "
+                  "2^53); nothing of it was sent",
+                  x, what)});
+}
+
 void StepGenerator::flush() {
   if (faulted_) return;
   rest_independent();
@@ -294,6 +311,7 @@ void StepGenerator::flush() {
     block_.clear();
     check_card();
   }
+  card_.end_stream();  // at rest: the card may run dry now
 }
 
 std::optional<IndependentMotion> StepGenerator::rest_independent() {

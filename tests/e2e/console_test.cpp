@@ -622,6 +622,12 @@ TEST(RunAtATerminal, CtrlCRampsTheMoveDownAndTheReportSaysWhereTheToolIs) {
   const std::string text = t.text();
   EXPECT_NE(text.find("stopping the run (again: E-stop)"), std::string::npos) << text;
   EXPECT_NE(text.find("long.sbp:2:1: error: stopped by the operator"), std::string::npos) << text;
+  EXPECT_NE(text.find("status     error: stopped by the operator"), std::string::npos) << text;
+  // What ran, not how far the file was read ahead (it said 3 statements, 2 moves: all of it).
+  EXPECT_NE(text.find("executed   2 statements, 1 moves before the motion was cut; the rest did "
+                      "not run"),
+            std::string::npos)
+      << text;
   // Ramped down part-way along X: the report's position is the pulses played.
   const std::size_t at = text.find("position   X=");
   ASSERT_NE(at, std::string::npos) << text;

@@ -198,7 +198,10 @@ INSTANTIATE_TEST_SUITE_P(
     HoldBoundaries, ReversalAtRest,
     ::testing::Values(ReversalCase{"pause", "MZ, 1\nPAUSE\nMZ, 0.5\n", 0.5},
                       ReversalCase{"probe_miss", "PZ, -1, 0.5, 1\nJZ, 0.5\n", 0.5},
-                      ReversalCase{"probe_start", "MZ, 1\nPZ, -1, 0.5, 1\n", -1}),
+                      ReversalCase{"probe_start", "MZ, 1\nPZ, -1, 0.5, 1\n", -1},
+                      // Issue 22 again: the probe touches the profile's plate (Z -2), stops,
+                      // and the move after it reverses from rest.
+                      ReversalCase{"probe_touch", "MZ, 1\nPZ, -3, 0.5, 1\nMZ, 1\n", 1}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // A job in the shape of Fusion 360's OpenSBP post (tests/data/fusion_post.sbp: &Tool, C9,
@@ -1011,6 +1014,126 @@ TEST(Signals, SigtermStopsACheckThatLoops) {
     fs::remove(err);
   }
   fs::remove(file);
+}
+
+// Issue 22: a double Ctrl-C (an E-stop) reported fault "none", and a stopped run said it had
+// executed the whole file. Each signal count is reported by name, with what ran.
+TEST(Signals, AStopAndADoubleSigintAreReportedByNameWithWhatRan) {
+  const std::string file = part_file("long_x", "MS, 2\nMX, 10\nMY, 5\n");
+  for (const int signals : {1, 2}) {
+    const fs::path out = fs::temp_directory_path() / fmt::format("gantry_e2e_int_{}.out", getpid());
+    const std::string cmd = fmt::format("exec '{}' run '{}' --realtime --json 2>/dev/null >'{}'",
+                                        GANTRY_BIN, file, out.string());
+    pid_t pid = 0;
+    const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+    ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+    // After SW's 2 s warning X moves at 2 in/s for 5 s.
+    std::this_thread::sleep_for(std::chrono::milliseconds(3000));
+    for (int i = 0; i < signals; ++i) {
+      kill(pid, SIGINT);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    int status = 0;
+    bool ended = false;
+    for (int i = 0; i < 1000 && !ended; ++i) {
+      ended = waitpid(pid, &status, WNOHANG) == pid;
+      if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (!ended) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+    }
+    EXPECT_TRUE(ended) << signals << " SIGINT: the run did not end within 10 s";
+    std::stringstream text;
+    text << std::ifstream(out).rdbuf();
+    fs::remove(out);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    const json j = json::parse(text.str());
+    EXPECT_EQ(j["status"], "error");
+    EXPECT_EQ(j["stopped_by"], signals == 1 ? "stop" : "E-stop") << text.str();
+    EXPECT_EQ(j["fault"], signals == 1 ? "none" : "E-stop") << text.str();
+    EXPECT_EQ(j["cut"], true);
+    EXPECT_EQ(j["lines"], 2);  // in MX, 10: MY never ran
+    EXPECT_EQ(j["moves"], 1);
+    EXPECT_GT(steps_of(j, 0), 0);
+    EXPECT_EQ(steps_of(j, 1), 0);
+  }
+  fs::remove(file);
+}
+
+// Issue 22: PAUSE 1e20 garbled the steps and said "done"; PAUSE 1e12 ran for ever; PAUSE -1
+// was skipped. `check` and `run` refuse each, located, and nothing moves.
+TEST(BadInput, HugeWaitsAreRefusedBeforeAnythingMoves) {
+  struct Case {
+    const char* name;
+    const char* text;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"pause_1e20.sbp", "MX, 0.5\nPAUSE 1e20\nMX, 1\n", ":2:1: error: a wait of 1e+20 s"},
+      {"pause_1e12.sbp", "MX, 0.5\nPAUSE 1e12\n", ":2:1: error: a wait of 1000000000000 s"},
+      {"pause_minus.sbp", "MX, 0.5\nPAUSE -1\n", ":2:1: error: a wait of -1 s"},
+      {"g4.nc", "G20 G1 X0.5 F60\nG4 P100000000000000\nG1 X1\n",
+       ":2:1: error: a wait of 100000000000000 s"},
+  };
+  for (const Case& c : cases) {
+    const fs::path p = fs::temp_directory_path() / fmt::format("{}_{}", getpid(), c.name);
+    std::ofstream(p) << c.text;
+    const Result checked = gantry("check '" + p.string() + "'");
+    expect_rejected(checked, p.string() + c.says);
+    const Result ran = gantry("run '" + p.string() + "' --json");
+    expect_rejected(ran, p.string() + c.says);
+    expect_no_motion(ran.out);
+    fs::remove(p);
+  }
+}
+
+// --realtime: a producer that falls behind while the tool moves underruns the card, and the
+// report says how late it was (issue 22: the simulated card moved its clock forward instead;
+// 2,749 late blocks, the worst 56 ms, ran as "done"). The file starves the card on purpose:
+// a loop with no motion while the moves the planner released play out under a moving tool
+// (a profile with a short look-ahead, so some are released). An ordinary file under load
+// runs "done" or reports its underrun the same way, never a silent clock shift.
+TEST(Realtime, ALateProducerIsAReportedUnderrunNeverASilentClockShift) {
+  std::stringstream profile;
+  profile << std::ifstream(fs::path(GANTRY_SOURCE_DIR) / "settings/default.toml").rdbuf();
+  std::string toml = profile.str();
+  for (auto [from, to] : {std::pair<std::string, std::string>{"lookahead = 1024", "lookahead = 4"},
+                          {"warning_s = 2.0", "warning_s = 0.0"}}) {
+    const std::size_t at = toml.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    toml.replace(at, from.size(), to);
+  }
+  const fs::path settings = fs::temp_directory_path() / fmt::format("gantry_rt_{}.toml", getpid());
+  std::ofstream(settings) << toml;
+  std::string starving = "MS, 2\n";
+  // The planner releases 4 of the 15 moves (0.1 s of motion); the loop takes far longer.
+  for (int k = 1; k <= 15; ++k) starving += fmt::format("MX, {}\n", 0.05 * k);
+  starving += "&i = 0\nL:\n&i = &i + 1\nIF &i < 5000000 THEN GOTO L\nMX, 3\n";
+  const std::string starve = part_file("starve", starving);
+  const std::string plain = part_file("plain", "MS, 2\nMX, 0.5\nMY, 0.5\nMX, 0\nMY, 0\n");
+  for (const std::string& file : {starve, plain}) {
+    const Result r = gantry(fmt::format("run '{}' --realtime --budget 0 --settings '{}' --json",
+                                        file, settings.string()));
+    const json j = json::parse(r.out);
+    if (file == starve || j["fault"] == "underrun") {
+      EXPECT_EQ(r.exit_code, 1) << file;
+      EXPECT_EQ(j["status"], "error") << r.out;
+      EXPECT_EQ(j["fault"], "underrun") << r.out;
+      ASSERT_FALSE(j["errors"].empty()) << r.out;
+      const std::string m = j["errors"][0]["message"];
+      EXPECT_NE(m.find("underrun (the producer was "), std::string::npos) << m;
+      EXPECT_NE(m.find(" ms late: the card's queue ran dry at "), std::string::npos) << m;
+    } else {
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_EQ(j["status"], "done") << r.out;
+      EXPECT_EQ(j["fault"], "none") << r.out;
+    }
+  }
+  fs::remove(starve);
+  fs::remove(plain);
+  fs::remove(settings);
 }
 
 TEST(Cli, VersionAndHelp) {

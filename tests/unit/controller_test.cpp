@@ -158,6 +158,60 @@ TEST(Controller, StopAndEStopEndALoopThatMovesNothing) {
   }
 }
 
+// Issue 22 (and 25): after a stop the report said "executed 6 statements, 5 moves", the whole
+// file the interpreter had read ahead. The summary counts what reached the card.
+TEST(Controller, AfterAStopOrEStopTheSummaryCountsWhatReachedTheCard) {
+  for (const Request r : {Request::Stop, Request::EStop}) {
+    Machine m;
+    ASSERT_TRUE(m.run(kSquare));  // read ahead whole: 6 statements, 5 moves
+    m.c.wait();
+    const Controller::Summary whole = m.c.summary();
+    EXPECT_FALSE(whole.cut);
+    EXPECT_EQ(whole.lines, 6u);
+    EXPECT_EQ(whole.moves, 5u);
+    m.c.schedule(r, 1.0);  // in M2, 4, 0: statement 2, move 1 (the counts go on from the last)
+    ASSERT_TRUE(m.run(kSquare));
+    m.c.wait();
+    const Controller::Summary s = m.c.summary();
+    EXPECT_TRUE(s.cut);
+    EXPECT_EQ(s.lines, whole.lines + 2);
+    EXPECT_EQ(s.moves, whole.moves + 1);
+    ASSERT_TRUE(s.error.has_value());
+    EXPECT_EQ(s.error->message, r == Request::Stop ? "stopped by the operator" : "E-stop");
+  }
+}
+
+// --realtime: moves the planner released play out under a moving tool while the file loops
+// with no motion; the card's queue runs dry while words are due. A real card underruns
+// there, and so does the simulated one, saying how late the producer was (issue 22: it moved
+// its clock forward, and the run was "done").
+TEST(Controller, InRealTimeALateProducerIsAnUnderrunFaultWithItsLateness) {
+  Settings settings = default_settings();
+  settings.planner.lookahead = 4;  // some of the moves are released before the loop
+  SimCard card{settings, true};
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  std::string text = "MS, 2\n";
+  // The planner holds the last 11 (its stopping distance) and releases 4, which play in
+  // 0.1 s; the loop's 10 M statements take far longer (1.4 s on the 2-core CI machine).
+  for (int k = 1; k <= 15; ++k) text += "MX, " + std::to_string(0.05 * k) + "\n";
+  text += "&i = 0\nL:\n&i = &i + 1\nIF &i < 5000000 THEN GOTO L\nMX, 3\n";
+  ASSERT_TRUE(c.run(Script::from_text(text, "part.sbp")));
+  c.wait();
+  const Controller::Summary s = c.summary();
+  EXPECT_EQ(s.fault, CardFault::Underrun);
+  EXPECT_TRUE(s.cut);
+  ASSERT_TRUE(s.error.has_value());
+  EXPECT_NE(s.error->message.find("underrun (the producer was "), std::string::npos)
+      << s.error->message;
+  const std::size_t late = s.error->message.find("was ");
+  ASSERT_NE(late, std::string::npos);
+  EXPECT_GT(std::stod(s.error->message.substr(late + 4)), 0) << s.error->message;  // ms
+  EXPECT_LT(card.steps()[0], std::llround(0.75 * settings.axes[0].steps_per_unit));
+  EXPECT_EQ(s.moves, s.lines - 1);  // MS, then the moves that reached the card: not the loop
+}
+
 TEST(Controller, EStopStopsThePulsesAtOnceAndNeedsAcknowledging) {
   Machine m;
   m.c.schedule(Request::EStop, 1.0);

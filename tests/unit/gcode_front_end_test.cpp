@@ -287,6 +287,13 @@ TEST_F(GcodeTest, RejectionsAreLocatedErrors) {
       {"G0 X1 (note\n", 1, 7, "not closed"},
       {"X1\n", 1, 1, "without a motion mode"},
       {"G1 X1 I1 F10\n", 1, 7, "centre offset"},
+      // Issue 22: a value out of range says so, where it is (F-10 said "needs a feed rate").
+      {"G1 X1 F-10\n", 1, 7, "F-10 is out of range: a feed rate cannot be negative"},
+      {"F-10\nG1 X1\n", 1, 1, "F-10 is out of range"},
+      {"G4 P100000000000000\n", 1, 1, "a wait of 100000000000000 s is out of range"},
+      {"G4 P100000000000000000000\n", 1, 1, "a wait of 1e+20 s is out of range"},
+      {"G20 F10\nG2 X0 Y0 I1 J0 P1000000000000\n", 2, 1,
+       "chords within planner.chord_tolerance; an arc may have at most 1000000"},
   };
   for (const Case& c : cases) {
     const Diagnostic d = error(c.text);

@@ -1357,7 +1357,7 @@ TEST_F(LanguageTest, OnInputErrors) {
 // ---- PAUSE
 
 TEST_F(LanguageTest, TimedPauseIsADwell) {
-  run("MX, 1\nPAUSE 2.5\n&t = 1.25\n  PAUSE &t\nPAUSE &t * 2\nPAUSE 0\nPAUSE -1\n");
+  run("MX, 1\nPAUSE 2.5\n&t = 1.25\n  PAUSE &t\nPAUSE &t * 2\nPAUSE 0\n");
   ASSERT_EQ(moves().size(), 4u);
   const double expected[] = {2.5, 1.25, 2.5};
   const char* lines[] = {"part.sbp:2:1", "part.sbp:4:3", "part.sbp:5:1"};
@@ -1370,6 +1370,73 @@ TEST_F(LanguageTest, TimedPauseIsADwell) {
     EXPECT_EQ(where(m.loc), lines[i]);
   }
   EXPECT_EQ(interp().moves_emitted(), 4u);
+}
+
+// Issue 22: PAUSE 1e20 overflowed the step generator's ticks (garbled steps, status "done");
+// PAUSE 1e12 ran for ever; PAUSE -1 was skipped without a word. Each is now refused by the
+// check, located, before anything moves; the longest wait is the profile's max_dwell_s.
+TEST_F(LanguageTest, AWaitOutOfRangeIsALocatedErrorOfTheCheck) {
+  const std::string range =
+      " s is out of range: a part file may wait 0 to 86400 s "
+      "(machine.max_dwell_s in the profile)";
+  const std::pair<const char*, std::string> cases[] = {
+      {"MX, 0.5\nPAUSE 1e20\nMX, 1\n", "part.sbp:2:1: error: a wait of 1e+20" + range},
+      {"MX, 0.5\nPAUSE 1e12\n", "part.sbp:2:1: error: a wait of 1000000000000" + range},
+      {"PAUSE -1\n", "part.sbp:1:1: error: a wait of -1" + range},
+      {"&t = 86400\nPAUSE &t + 0.5\n", "part.sbp:2:1: error: a wait of 86400.5" + range},
+      {"&d = 0\nPAUSE 0/&d\n", "part.sbp:2:9: error: division by zero"},  // no NaN gets this far
+  };
+  for (const auto& [text, says] : cases) {
+    const std::vector<Diagnostic> found = check(text);
+    ASSERT_FALSE(found.empty()) << text;
+    EXPECT_EQ(format(found[0]).substr(0, says.size()), says) << text;
+  }
+  run("PAUSE 86400\n");  // the longest is allowed
+  ASSERT_FALSE(moves().empty());
+  EXPECT_EQ(moves().back().kind, MoveKind::Dwell);
+  EXPECT_EQ(moves().back().dwell_s, 86400);
+}
+
+TEST_F(LanguageTest, TheLongestWaitIsTheProfilesMaxDwell) {
+  settings.machine.max_dwell_s = 60;
+  EXPECT_EQ(format(run_error("PAUSE 61\n")),
+            "part.sbp:1:1: error: a wait of 61 s is out of range: a part file may wait 0 to 60 s "
+            "(machine.max_dwell_s in the profile); give a shorter time, or raise the profile's "
+            "maximum");
+  EXPECT_TRUE(moves().empty());
+}
+
+// A distance past any table is refused even with the soft limits off (SF, 0): its step count
+// would near a double's precision (docs/reliability.md).
+TEST_F(LanguageTest, AMoveBeyondAnyTableIsRefusedWithSoftLimitsOff) {
+  settings.machine.limit_checking = false;
+  run("MX, 500000\n");
+  EXPECT_EQ(format(run_error("MX, 2e6\n")),
+            "part.sbp:1:1: error: move to X=2000000 is out of range: no axis may go beyond "
+            "1000000 in from the table base; nothing was moved");
+  EXPECT_EQ(moves().size(), 1u);
+}
+
+// A circle beyond any table, soft limits or not: its points are out of range (its chords
+// would outgrow memory; G2's turns are bounded by their chord count, GcodeTest).
+TEST_F(LanguageTest, ACircleBeyondAnyTableIsRefusedWithSoftLimitsOff) {
+  settings.machine.limit_checking = false;
+  const Diagnostic d = run_error("MX, 1\nCC, 1e11, T\n");
+  EXPECT_EQ(d.loc.line, 2);
+  EXPECT_NE(d.message.find("is out of range: no axis may go beyond 1000000 in from the table "
+                           "base; nothing was moved"),
+            std::string::npos)
+      << d.message;
+  EXPECT_EQ(moves().size(), 1u);
+}
+
+TEST_F(LanguageTest, JoinedTextIsBounded) {
+  const Diagnostic d = run_error("&s = \"0123456789abcdef\"\nL:\n&s = &s & &s\nGOTO L\n");
+  EXPECT_EQ(d.loc.line, 3);
+  EXPECT_NE(d.message.find("this text would be 2097152 bytes long; a value holds at most "
+                           "1048576 bytes"),
+            std::string::npos)
+      << d.message;
 }
 
 // Values from INPUT are text; a number in a text is still a number of seconds (§3.2, §2.8).

@@ -5,8 +5,10 @@
 #include "segment_builders.hpp"
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 #include "gantry/motion/planned_segment.hpp"
@@ -149,6 +151,68 @@ TEST(SimCardInputs, StopDropsWhatFollowsAndIdlesTheLines) {
   EXPECT_EQ(card.ticks_played(), 1u);
   EXPECT_EQ(card.steps()[0], 1);
   EXPECT_EQ(card.fault(), CardFault::None);
+}
+
+// ---------------------------------------------------------------------------------------
+// Real time (--realtime): a late producer is an underrun, as on a real card (issue 22: the
+// card moved its clock forward instead, and 2,749 late blocks ran as "done").
+
+// `seconds` of idle words at the default 200 kHz.
+std::vector<std::uint32_t> idle_for(double seconds) {
+  return std::vector<std::uint32_t>(static_cast<std::size_t>(seconds * 200000), 0u);
+}
+
+TEST(SimCardRealtime, AProducerLateWhileWordsAreDueIsAnUnderrunWithItsLateness) {
+  SimCard card(default_settings(), true);
+  card.set_realtime_queue(0.001);
+  card.start(200000);
+  play(card, idle_for(0.002));
+  EXPECT_EQ(card.fault(), CardFault::None);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));  // the producer starves it
+  play(card, idle_for(0.002));
+  EXPECT_EQ(card.fault(), CardFault::Underrun);
+  EXPECT_EQ(card.ticks_played(), 400u);  // the late words never played
+  ASSERT_TRUE(card.late_s().has_value());
+  EXPECT_GE(*card.late_s(), 0.028);  // at least the sleep, less the 2 ms of words queued
+  EXPECT_NE(card.fault_detail().find("ms late: the card's queue ran dry at 0.0020 s"),
+            std::string::npos)
+      << card.fault_detail();
+}
+
+TEST(SimCardRealtime, RestBetweenStretchesOfOutputIsNoUnderrun) {
+  SimCard card(default_settings(), true);
+  card.set_realtime_queue(0.001);
+  card.start(200000);
+  play(card, idle_for(0.002));
+  card.end_stream();  // at rest (a hold, the end of a move)
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  play(card, idle_for(0.002));
+  card.drain();
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  play(card, idle_for(0.002));
+  EXPECT_EQ(card.fault(), CardFault::None);
+  EXPECT_EQ(card.ticks_played(), 1200u);
+  EXPECT_EQ(card.fault_detail(), "");
+}
+
+// Started again after a stop (an E-stop acknowledged), the tick count goes on: the wall
+// clock's origin must follow it, or the card waits for ticks that have already played (a
+// wedge) and a late producer goes unseen.
+TEST(SimCardRealtime, ARestartNeitherWaitsForTheTicksBeforeItNorHidesALateProducer) {
+  SimCard card(default_settings(), true);
+  card.set_realtime_queue(0.001);
+  card.start(200000);
+  play(card, idle_for(0.3));
+  card.stop(0);
+  card.start(200000);
+  const auto before = std::chrono::steady_clock::now();
+  play(card, idle_for(0.002));
+  EXPECT_LT(std::chrono::steady_clock::now() - before, std::chrono::milliseconds(150));
+  EXPECT_EQ(card.fault(), CardFault::None);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  play(card, idle_for(0.002));
+  EXPECT_EQ(card.fault(), CardFault::Underrun);
+  EXPECT_EQ(card.ticks_played(), 60400u);
 }
 
 // ---------------------------------------------------------------------------------------

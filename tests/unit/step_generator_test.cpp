@@ -635,6 +635,76 @@ TEST_F(StepGeneratorTest, SubStepMoveEmitsNothing) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Extreme durations and distances (issue 22: `PAUSE 1e20` overflowed std::llround and the
+// card played garbled steps with status "done").
+
+PlannedSegment dwell_at(const Vec6& at, double seconds) {
+  PlannedSegment d;
+  d.from = d.to = at;
+  d.dwell_s = seconds;
+  d.loc = SourceLoc{std::make_shared<const std::string>("part.sbp"), 2, 1};
+  return d;
+}
+
+std::string fault_of(StepGenerator& gen, const PlannedSegment& s) {
+  try {
+    gen.segment(s);
+  } catch (const GantryError& e) {
+    return format(e.diagnostic());
+  }
+  return "";
+}
+
+TEST_F(StepGeneratorTest, ADwellBeyondTheTickRangeIsALocatedFaultAndNothingGarbledIsSent) {
+  for (const double seconds : {1e20, 1e14 * 1e3, std::nan(""), HUGE_VAL}) {
+    RecordingCard card;
+    StepGenerator gen(settings_, card);
+    gen.segment(rest_to_rest(Vec6::Zero(), vec(0.5), 2.0));
+    const std::int64_t before = gen.tick();
+    const std::string fault = fault_of(gen, dwell_at(vec(0.5), seconds));
+    EXPECT_NE(fault.find("part.sbp:2:1: error: this segment needs"), std::string::npos)
+        << seconds << ": " << fault;
+    EXPECT_NE(fault.find("nothing of it was sent"), std::string::npos) << fault;
+    EXPECT_EQ(gen.tick(), before) << seconds;  // the clock did not wrap
+    // What was sent before it is whole and exact: the next move goes on from there.
+    gen.segment(rest_to_rest(vec(0.5), vec(1.0), 2.0));
+    gen.flush();
+    const Trace tr = decode(card.words(), PinMap::from(settings_.pins));
+    EXPECT_EQ(tr.axes[0].net, target_steps(1.0, spu(0))) << seconds;
+    EXPECT_EQ(timing_problem(tr.axes[0], gen.timing()), "") << seconds;
+  }
+}
+
+TEST_F(StepGeneratorTest, ATargetBeyondTheStepRangeIsALocatedFault) {
+  StepGenerator gen(settings_, card_);
+  PlannedSegment s = rest_to_rest(Vec6::Zero(), vec(0.5), 2.0);
+  s.to[1] = 1e300;  // a Y the profile's length does not know about
+  s.loc = SourceLoc{std::make_shared<const std::string>("part.sbp"), 2, 1};
+  EXPECT_NE(fault_of(gen, s).find("steps, beyond what the step generator can place"),
+            std::string::npos);
+  EXPECT_EQ(gen.tick(), 0);
+  EXPECT_EQ(gen.position()[1], 0);
+}
+
+// The longest dwell a profile allows (30 days) and far beyond it are placed on the tick clock
+// without overflow: a stop cuts them at the tick asked for, and the remaining time is exact.
+TEST_F(StepGeneratorTest, AnExtremelyLongDwellIsCutByAStopAtTheTickAskedFor) {
+  for (const double seconds : {30 * 86400.0, 1e9}) {
+    RecordingCard card;
+    StepGenerator gen(settings_, card, 64);
+    gen.segment(rest_to_rest(Vec6::Zero(), vec(0.5), 2.0));
+    const std::int64_t t0 = gen.tick();
+    std::atomic<std::int64_t> stop{t0 + 1000};
+    const std::optional<double> cut = gen.segment_until(dwell_at(vec(0.5), seconds), {&stop});
+    ASSERT_TRUE(cut.has_value()) << seconds;
+    EXPECT_DOUBLE_EQ(*cut, 1000 * gen.timing().tick_s);
+    EXPECT_EQ(gen.tick(), t0 + 1000);
+    gen.flush();
+    EXPECT_EQ(static_cast<std::int64_t>(card.words().size()), t0 + 1000);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
 // Pin options.
 
 TEST_F(StepGeneratorTest, InvertDirDrivesTheDirectionLineTheOtherWay) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "gantry/hal/input_roles.hpp"  // InputTrip
 
@@ -82,6 +83,10 @@ class Card {
   virtual void write(std::span<const std::uint32_t> words) = 0;
   // Returns when every queued word has played, or the card has faulted.
   virtual void drain() = 0;
+  // The words written so far end at rest (a hold, new values, the end of the motion): the
+  // queue may run dry after them without an underrun, and the next word starts a new stretch
+  // of output. Never blocks. drain() implies it.
+  virtual void end_stream() {}
   // Stops the pacer at once (stop, E-stop, end of job): queued words that have not played
   // are dropped, and the output word returns to `idle_word`.
   virtual void stop(std::uint32_t idle_word) = 0;
@@ -94,6 +99,8 @@ class Card {
   virtual InputSample sample_inputs() const { return {ticks_played(), inputs()}; }
   // Why the card stopped by itself; None while it plays or after a clean stop.
   virtual CardFault fault() const = 0;
+  // More about the fault where the card knows it ("the producer was 12.3 ms late"), or "".
+  virtual std::string fault_detail() const { return {}; }
   // The calibration changed (VU, VD's units) for the words written from now on. A real card
   // plays words and cares not; the simulator, which checks the machine's limits, follows.
   virtual void calibration_changed(const Settings&) {}

@@ -291,7 +291,7 @@ class CommandContext {
   void assume_reached(const Vec6& file_target);
   // Every line, arc and dwell goes to the sink through here: a move of the axis MI moves is
   // refused, and an axis MI rested starts again first; the run's first motion is warned of.
-  void emit(const CanonMove& m);
+  void emit(CanonMove& m);
   // SW and SO 4,-1..-3: before the run's first motion, switch 4 comes on and the machine
   // waits the warning time. end_motion_warning, at the run's end, switches it off again.
   void warn_before_motion(const SourceLoc& loc);

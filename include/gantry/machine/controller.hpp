@@ -95,6 +95,9 @@ class Controller {
     std::optional<Diagnostic> error;  // why it stopped short, located
     CardFault fault = CardFault::None;
     std::size_t lines = 0, moves = 0;  // statements executed, canonical moves issued
+    // The motion was cut (a stop, an E-stop, a card fault): lines and moves count only what reached
+    // the card, not what the interpreter had read ahead.
+    bool cut = false;
     Steps6 commanded{};                // steps the generator emitted
     double planned_time_s = 0;         // the planner's sum of segment durations
   };

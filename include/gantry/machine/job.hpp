@@ -33,13 +33,18 @@ class RunControl {
   bool stop();
   // Set by the first stop: what a check polls (InterpreterOptions::stop_check).
   const std::atomic<bool>& stopped() const { return stopped_; }
+  // What the operator asked for: 0 nothing, 1 a stop, 2 or more an E-stop.
+  int stops() const {
+    std::lock_guard lock(m_);
+    return stops_;
+  }
   // run_job: starts the run with `start` unless a stop came first (false), and keeps the
   // machine until detach(). A stop waits while the run starts, so it always reaches it.
   bool start(Controller& machine, const std::function<void()>& start);
   void detach();
 
  private:
-  std::mutex m_;
+  mutable std::mutex m_;
   Controller* machine_ = nullptr;
   int stops_ = 0;
   std::atomic<bool> stopped_{false};
@@ -78,6 +83,7 @@ struct JobResult {
   std::vector<Diagnostic> warnings;   // from the check and the run
   std::size_t lines = 0;              // statements executed
   std::size_t moves = 0;              // canonical moves issued
+  bool cut = false;  // the motion was cut short: lines and moves count what reached the card
   Steps6 commanded_steps{};           // steps the generator emitted
   Steps6 played_steps{};              // steps the card played: where the tool is
   CardFault fault = CardFault::None;  // why the card stopped by itself, if it did

@@ -18,6 +18,11 @@ std::array<int, 3> plane_axes(ArcPlane plane);
 // into equal chords no longer than that (at least one; four per full turn at the least, so
 // a coarse tolerance still gives a shape).
 std::vector<Vec6> arc_chords(const CanonMove& arc, double tolerance);
+// How many chords that is (a double: an absurd arc's count does not fit an int). The
+// interpreter refuses an arc of more than kMaxArcChords (a 1e12-turn helix, a circle a
+// million miles wide), before it is planned.
+double arc_chord_count(const CanonMove& arc, double tolerance);
+inline constexpr double kMaxArcChords = 1e6;
 
 // The arc's radius (from its centre to its start, in its plane).
 double arc_radius(const CanonMove& arc);

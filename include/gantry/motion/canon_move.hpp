@@ -37,6 +37,13 @@ struct IndependentMotion {
   bool running() const { return speed != 0 || frequency != 0; }
 };
 
+// How far the file had run when a move was issued: statements executed and moves issued,
+// this one counted. It rides with the move down to the step generator, so a run cut short
+// reports what reached the card, not how far the interpreter had read ahead.
+struct RunCount {
+  std::size_t statements = 0, moves = 0;
+};
+
 struct CanonMove {
   MoveKind kind = MoveKind::Line;
   SpeedClass speed_class = SpeedClass::Move;
@@ -56,6 +63,7 @@ struct CanonMove {
   double spindle_rpm = 0;         // SpindleSpeed: the RPM TR asked for
   IndependentMotion independent;  // Independent: what the axis does from here on
   SourceLoc loc;                  // the statement that asked for it
+  RunCount count;                 // set by the interpreter as it issues the move
 };
 
 const char* kind_name(MoveKind k);

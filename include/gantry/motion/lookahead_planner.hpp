@@ -51,6 +51,7 @@ class LookAheadPlanner : public MotionSink {
     double entry = 0;         // planned entry speed
     SpeedClass speed_class = SpeedClass::Move;
     SourceLoc loc;
+    RunCount count;
   };
   void arc(const CanonMove& m);
   void add(Block b);

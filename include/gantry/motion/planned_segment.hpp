@@ -22,6 +22,7 @@ struct PlannedSegment {
   std::optional<IndependentMotion> independent;
   SpeedClass speed_class = SpeedClass::Move;
   SourceLoc loc;
+  RunCount count;  // its move's (CanonMove::count)
 };
 
 class SegmentSink {

@@ -208,6 +208,7 @@ struct CalibrationSettings {                                   // VU beyond step
 struct MachineSettings {
   bool limit_checking = true;  // SF, VL 9: moves checked against the soft limits
   double warning_s = 2;        // SW: warning before movement starts, s; 0 none
+  double max_dwell_s = 86400;  // the longest wait a file may ask for (PAUSE n, G4), s
   // SO 4,-1..-4: -1 to -3 switch 4 comes on with the warning and goes off when the run's
   // motion ends (it drives a "machine moving" light); -4 it is an ordinary switch.
   int switch4_mode = -1;

@@ -111,6 +111,9 @@ class StepGenerator : public SegmentSink {
   void check_card();
   std::int64_t tick() const { return cursor_; }          // words emitted so far
   const SourceLoc& loc() const { return current_loc_; }  // the segment being generated
+  // The count of the last move whose words (some at least) went to the card.
+  const RunCount& ran() const { return ran_; }
+  void new_run() { ran_ = {}; }                          // at rest, before a run's first move
   bool warning() const { return warning_; }              // ... is SW's warning
   const StepTiming& timing() const { return timing_; }
 
@@ -171,6 +174,10 @@ class StepGenerator : public SegmentSink {
   std::function<void()> on_block_;
   bool faulted_ = false;
   SourceLoc current_loc_;  // the segment being generated, for the fault message
+  RunCount ran_;
+  // `x` rounded to whole ticks or steps (`what`); a located error when it is not finite or
+  // does not fit.
+  std::int64_t whole(double x, const char* what) const;
   bool warning_ = false;
   std::optional<IndependentAxis> independent_;
   std::int64_t independent_dir_tick_ = 0;  // when its direction level last changed
