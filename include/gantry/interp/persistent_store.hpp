@@ -3,7 +3,6 @@
 
 #include <nlohmann/json.hpp>  // the stored values
 
-#include <optional>
 #include <string>
 
 #include "gantry/core/diagnostic.hpp"  // load errors
@@ -15,16 +14,10 @@ class PersistentStore {
   // An in-memory store that is never saved (check, preview, tests).
   PersistentStore() = default;
   // Backed by `path`: loaded now (a missing file is empty; a corrupt one is an error and is
-  // kept: renamed aside and reported), saved atomically by save().
+  // left untouched), saved atomically by save().
   explicit PersistentStore(std::string path);
 
   static std::string default_path();  // $XDG_CONFIG_HOME/gantry/persistent.json
-
-  // The store a file's text holds (no path: never saved), or nullopt with what is wrong
-  // in `why` and, where JSON says, its line in `line`.
-  static std::optional<PersistentStore> parse(const std::string& text, std::string* why, int* line);
-  // The file's text, as save() writes it.
-  std::string text() const;
 
   // The same values, never saved: for checks and previews.
   PersistentStore scratch_copy() const {
