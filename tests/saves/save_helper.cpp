@@ -1,10 +1,13 @@
 // Saves one kind of file, once or for ever, for the kill-during-save test: the test starts
 // it, SIGKILLs it at a random moment and looks at what is on disk.
 //   gantry_save_helper KIND FOLDER VARIANT         save variant 0 or 1 once
-//   gantry_save_helper KIND FOLDER VARIANT loop    save variants VARIANT, 1-VARIANT, ... for ever
+//   gantry_save_helper KIND FOLDER VARIANT loop    save variants VARIANT, 1-VARIANT, ... for ever,
+//                                                  writing a byte to fd 3 after each save
 // KIND: writer (write_file_atomically itself, 200 KB), settings (US in a run), values (a
 // run's MS, saved in the values file), variables (a run's $variable, saved in the persistent
 // file). Each save goes through the same code as `gantry run`'s: run_job on the simulated card.
+#include <unistd.h>  // write
+
 #include <cstdio>
 #include <string>
 
@@ -58,6 +61,7 @@ int main(int argc, char** argv) {
   const bool loop = argc > 4 && std::string(argv[4]) == "loop";
   do {
     if (!save(kind, folder, variant)) return 1;
+    if (loop && ::write(3, "s", 1) != 1) return 1;  // tells the test (fd 3: its pipe)
     variant = 1 - variant;
   } while (loop);
   return 0;
