@@ -26,8 +26,9 @@ class NullSink : public gantry::MotionSink {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const gantry::Settings settings = gantry::default_settings();
   std::string text(reinterpret_cast<const char*>(data), size);
-  int lines = 1;
-  for (char c : text) lines += c == '\n';
+  int lines = 1;  // line breaks as a Script reads them: \n, \r\n or a lone \r
+  for (std::size_t i = 0; i < text.size(); ++i)
+    lines += text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'));
   auto script = gantry::Script::from_text(std::move(text), "/nonexistent/fuzz.nc");
   NullSink sink;
   std::string printed;
