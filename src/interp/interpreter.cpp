@@ -607,7 +607,8 @@ void CommandContext::warn(const SourceLoc& loc, std::string message) {
 }
 
 std::string CommandContext::write_file(const std::string& name, std::string_view text,
-                                       const SourceLoc& loc, bool /*atomic: every disk write is*/) {
+                                       const SourceLoc& loc,
+                                       bool /*atomic: every disk write is now*/) {
   const std::string path = interp_->file_path(name, loc);
   auto canonical = [](const std::string& p) {  // "" when it cannot be resolved
     std::error_code ec;
