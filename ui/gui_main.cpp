@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "app.hpp"
+#include "gantry/core/any_bytes.hpp"  // json_text
 #include "gui.hpp"
 #include "test_script.hpp"
 
@@ -132,7 +133,7 @@ class ScriptRunner {
         break;
       case Action::Kind::Dump: {
         std::ofstream out(a.text);
-        out << app_.state().dump(2) << "\n";
+        out << json_text(app_.state(), 2) << "\n";  // any bytes a file showed, escaped
         if (!out) return fail("cannot write " + a.text);
         over = true;
         break;

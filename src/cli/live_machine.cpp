@@ -29,9 +29,11 @@ void ValuesKeeper::ran(const Settings& s) {
   }
   const std::string text = values_text(s, profile_.bare);
   if (read_text_file(profile_.values_path) == text) return;
-  if (!write_file_atomically(profile_.values_path, text))
+  if (std::string why; !write_file_atomically(profile_.values_path, text, &why))
     io_.warn({file_loc(profile_.values_path), Severity::Warning,
-              "cannot save the values this line changed; the previous values file is kept"});
+              fmt::format("cannot save the values this line changed ({}); the previous values "
+                          "file is kept",
+                          why)});
 }
 
 Settings ValuesKeeper::settings() const {

@@ -16,6 +16,7 @@
 #include "gui_command.hpp"  // the gui subcommand (ui/)
 #endif
 #include "gantry/commands/command_docs.hpp"  // help text
+#include "gantry/core/any_bytes.hpp"         // json_text
 #include "gantry/core/text_file.hpp"         // read_text_file
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
@@ -346,7 +347,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   print_errors(report.errors);
   if (!report.error_summary.empty()) fmt::print(stderr, "gantry: {}\n", report.error_summary);
   if (a.json) {
-    std::cout << to_json(report).dump() << "\n";
+    std::cout << json_text(to_json(report)) << "\n";
   } else {
     fmt::print("{}", to_text(report));
   }
@@ -394,7 +395,7 @@ int cmd_estimate(const std::string& file, const std::string& settings_path, bool
     j["file"] = file;
     j["planner"] = mode;
     j["estimated_time_s"] = seconds;
-    std::cout << j.dump() << "\n";
+    std::cout << json_text(j) << "\n";
   } else {
     const long whole = static_cast<long>(seconds);
     fmt::print("{}: {}:{:02}:{:06.3f} ({:.3f} s) with the {} planner\n", file, whole / 3600,
@@ -408,7 +409,7 @@ class PrintingSink : public MotionSink {
   explicit PrintingSink(bool jsonl) : jsonl_(jsonl) {}
   void move(const CanonMove& m) override {
     if (jsonl_)
-      std::cout << to_json(m).dump() << "\n";
+      std::cout << json_text(to_json(m)) << "\n";
     else
       std::cout << to_text(m) << "\n";
   }
@@ -520,7 +521,7 @@ int cmd_commands(const std::string& group, bool json) {
   }
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const CommandSpec* s : chosen) out.push_back(to_json(*s));
-  std::cout << out.dump() << "\n";
+  std::cout << json_text(out) << "\n";
   return 0;
 }
 

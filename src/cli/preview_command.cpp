@@ -9,6 +9,7 @@
 #include <charconv>   // from_chars
 #include <iostream>   // JSON to stdout
 
+#include "gantry/core/any_bytes.hpp"    // json_text
 #include "gantry/core/text_file.hpp"    // write_file_atomically
 #include "gantry/preview/material.hpp"  // carve, render_material
 #include "gantry/preview/render.hpp"    // render_lines, render_svg
@@ -130,7 +131,7 @@ int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions
     j["estimated_time_s"] = path.estimated_time_s;
     j["violations"] = nlohmann::ordered_json::array();
     for (const Diagnostic& d : path.violations) j["violations"].push_back(to_json(d));
-    std::cout << j.dump() << "\n";
+    std::cout << json_text(j) << "\n";
   } else {
     for (const Diagnostic& d : path.violations) fmt::print(stderr, "{}\n", format(d));
     if (!draw) return 1;

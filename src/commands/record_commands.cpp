@@ -139,7 +139,7 @@ void record_save(CommandContext& ctx, const CommandCall& call) {
   const std::string text =
       fmt::format("' {} typed at the Gantry console, oldest first (saved by RS)\n{}", commands(n),
                   joined(rec.last(n)));
-  const std::string path = ctx.write_file(save_name(call), text, call.param_loc(0), true);
+  const std::string path = ctx.write_file(save_name(call), text, call.param_loc(0));
   ctx.set_last_file(path);
   ctx.print(
       fmt::format("RS saved {} in {}; FE opens it in the editor, FP runs it\n", commands(n), path));
@@ -170,7 +170,7 @@ void send_lines(CommandContext& ctx, const CommandCall& call) {
                     path, *last, kSendFile));
     return;
   }
-  const std::string path = ctx.write_file(kSendFile, text, call.loc, true);
+  const std::string path = ctx.write_file(kSendFile, text, call.loc);
   ctx.run_typed(Script::from_text(text, path), 1, call.loc);
 }
 

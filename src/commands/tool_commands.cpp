@@ -677,7 +677,7 @@ void copy_machine(CommandContext& ctx, const CommandCall& call) {
     f.jog_z(safe);
     text = f.text();
   }
-  const std::string path = ctx.write_file(name, text, call.param_loc(kTcFile), true);
+  const std::string path = ctx.write_file(name, text, call.param_loc(kTcFile));
   ctx.print(fmt::format("TC probed {} and wrote {}{}\n", about, path,
                         csv ? "" : fmt::format("; run it with FP, {}", name)));
 }

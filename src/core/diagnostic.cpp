@@ -3,20 +3,22 @@
 
 #include <fmt/format.h>  // message formatting
 
+#include "gantry/core/any_bytes.hpp"  // escaped_bytes: a message may quote any bytes
+
 namespace gantry {
 
 std::string format(const Diagnostic& d) {
   std::string out;
   for (const SourceLoc& c : d.via)
-    if (c.file) out += fmt::format("{}:{} -> ", *c.file, c.line);
+    if (c.file) out += fmt::format("{}:{} -> ", escaped_bytes(*c.file), c.line);
   if (d.loc.file) {
-    out += *d.loc.file;
+    out += escaped_bytes(*d.loc.file);
     if (d.loc.line > 0) out += fmt::format(":{}", d.loc.line);
     if (d.loc.line > 0 && d.loc.column > 0) out += fmt::format(":{}", d.loc.column);
     out += ": ";
   }
   out += d.severity == Severity::Error ? "error: " : "warning: ";
-  out += d.message;
+  out += escaped_bytes(d.message);
   return out;
 }
 

@@ -636,7 +636,8 @@ void CommandContext::warn(const SourceLoc& loc, std::string message) {
 }
 
 std::string CommandContext::write_file(const std::string& name, std::string_view text,
-                                       const SourceLoc& loc, bool atomic) {
+                                       const SourceLoc& loc,
+                                       bool /*atomic: every disk write is now*/) {
   const std::string path = interp_->file_path(name, loc);
   auto canonical = [](const std::string& p) {  // "" when it cannot be resolved
     std::error_code ec;
@@ -648,13 +649,13 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
     if (f.script->name() && !target.empty() && canonical(*f.script->name()) == target)
       fail(loc, fmt::format("{} is running; a command cannot rewrite a running part file", path));
   interp_->forget_called(path);
-  if (atomic && dynamic_cast<DiskFileSystem*>(interp_->files_system_)) {
+  if (dynamic_cast<DiskFileSystem*>(interp_->files_system_)) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     std::error_code ec;
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
       fail(loc, fmt::format("cannot write {}: there is no folder {}", path, folder.string()));
-    if (!write_file_atomically(path, std::string(text)))
-      fail(loc, fmt::format("could not write {}", path));
+    if (std::string why; !write_file_atomically(path, text, &why))
+      fail(loc, fmt::format("could not write {} ({}); the previous file is kept", path, why));
     return path;
   }
   std::shared_ptr<std::ostream> out = interp_->files_system_->open_write(path, false);

@@ -6,6 +6,7 @@
 #include <cmath>  // isfinite, trunc, fabs
 
 #include "../lang/number_literal.hpp"  // literal::scan, literal::value
+#include "gantry/core/any_bytes.hpp"   // echoed: long texts are cut in messages
 
 namespace gantry {
 
@@ -17,8 +18,7 @@ bool is_space(char c) {
 
 // Long texts are cut in messages so the error line stays readable.
 std::string quoted_excerpt(std::string_view s) {
-  if (s.size() > 40) return fmt::format("\"{}...\"", s.substr(0, 40));
-  return fmt::format("\"{}\"", s);
+  return fmt::format("\"{}\"", echoed(s, 40));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <algorithm>  // max
 
 #include "expr_node.hpp"
+#include "gantry/core/any_bytes.hpp"  // echoed: a token quoted in a message is capped
 #include "number_literal.hpp"  // literal::scan, literal::value
 
 namespace gantry {
@@ -176,9 +177,7 @@ class Parser {
 
   std::string describe(const Token& t) const {
     if (t.kind == Tok::End) return "the end of the text";
-    std::string_view s = source(t);
-    if (s.size() > 30) return fmt::format("'{}...'", s.substr(0, 30));
-    return fmt::format("'{}'", s);
+    return fmt::format("'{}'", echoed(source(t), 30));
   }
 
   bool is_keyword(const Token& t, std::string_view kw) const {
@@ -355,7 +354,7 @@ class Parser {
   void lex_number(size_t i) {
     const size_t j = literal::scan(text_, i);
     const std::optional<double> d = literal::value(text_.substr(i, j - i));
-    if (!d) fail(loc(i), fmt::format("the number {} is too large", text_.substr(i, j - i)));
+    if (!d) fail(loc(i), fmt::format("the number {} is too large", echoed(text_.substr(i, j - i))));
     tok_.kind = Tok::Number;
     tok_.len = j - i;
     tok_.number = *d;

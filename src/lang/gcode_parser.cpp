@@ -53,6 +53,10 @@ std::string_view function_at(std::string_view s, size_t i) {
 
 // ---- expressions ----------------------------------------------------------------------
 
+// Brackets, signs, parameters and functions nested deeper than this are refused rather than
+// risking the parser's stack (about 33,000 `[` overflowed it), as OpenSBP expressions are.
+constexpr int kMaxNesting = 200;
+
 class Expression {
  public:
   Expression(std::string_view s, const SourceLoc& at, const GcodeParameters* p)
@@ -86,9 +90,11 @@ class Expression {
   }
 
   // A value: a number, [expression], #parameter, a function, each with an optional sign.
+  // Every recursion passes through here, so one depth guard bounds the parser's stack.
   double value() {
     skip();
     if (i_ >= s_.size()) error(i_, "expected a value: a number, [expression] or #parameter");
+    const Nest nest(*this);
     const char c = s_[i_];
     if (c == '-' || c == '+') {
       ++i_;
@@ -239,8 +245,20 @@ class Expression {
     return (a != 0) != (b != 0);  // XOR
   }
 
+  struct Nest {
+    explicit Nest(Expression& e) : e_(e) {
+      if (++e_.nesting_ > kMaxNesting)
+        e_.error(e_.i_, fmt::format("this expression is nested more than {} deep; split it using "
+                                    "parameters (#1 = [...])",
+                                    kMaxNesting));
+    }
+    ~Nest() { --e_.nesting_; }
+    Expression& e_;
+  };
+
   std::string_view s_;
   size_t i_ = 0;
+  int nesting_ = 0;
   SourceLoc at_;
   const GcodeParameters* params_;
 };

@@ -7,7 +7,8 @@
 #include <algorithm>  // count
 #include <cmath>      // floor
 
-#include "gantry/interp/value.hpp"  // parse_number_literal
+#include "gantry/core/any_bytes.hpp"  // echoed: quoted source text is capped
+#include "gantry/interp/value.hpp"    // parse_number_literal
 #include "line_parser.hpp"          // LineParser
 #include "scan.hpp"                 // character helpers
 
@@ -160,9 +161,9 @@ Statement LineParser::command(const std::string& word, size_t b, size_t w, size_
   if (word.size() > 2 && letters_only)
     error(b, fmt::format("unknown statement '{}'; commands are two characters, such as MX or "
                          "J3, and statements are words such as IF, GOTO or PAUSE",
-                         line_.substr(b, w - b)));
+                         echoed(line_.substr(b, w - b))));
   if (!std::isalpha(static_cast<unsigned char>(word[0])) || word.size() < 2)
-    error(b, fmt::format("unknown statement '{}'", line_.substr(b, w - b)));
+    error(b, fmt::format("unknown statement '{}'", echoed(line_.substr(b, w - b))));
   CommandStmt cmd{word.substr(0, 2), {}};
   size_t p = b + 2;  // just after the two-letter code
   // The handbook's rule: one comma, or a run of spaces, separates the code from its first
@@ -220,7 +221,7 @@ Statement LineParser::computed_custom_cut(size_t b, size_t p, size_t e) const {
   } else {
     error(number.loc.column - 1,
           fmt::format("C# needs a number or a variable, not '{}': write `C#, 90` or `C#, &n`",
-                      number.text));
+                      echoed(number.text)));
   }
   for (size_t i = 1; i < fields.size(); ++i)
     st.args.push_back(arg(fields[i].first, fields[i].second));

@@ -2,6 +2,8 @@
 // motion feeder -> step generator -> card).
 #include "gantry/machine/job.hpp"
 
+#include <fmt/format.h>  // the warning
+
 #include <algorithm>  // stable_sort
 #include <climits>    // INT_MAX
 
@@ -123,10 +125,12 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
     if (options.values_path.empty() || !options.profile) return;
     const std::string text = values_text(s, *options.profile);
     if (read_text_file(options.values_path) == text) return;  // unchanged: no write
-    if (!write_file_atomically(options.values_path, text))
-      result.warnings.push_back({file_loc(options.values_path), Severity::Warning,
-                                 "cannot save the values this run changed; the previous values "
-                                 "file is kept"});
+    if (std::string why; !write_file_atomically(options.values_path, text, &why))
+      result.warnings.push_back(
+          {file_loc(options.values_path), Severity::Warning,
+           fmt::format("cannot save the values this run changed ({}); the previous values file "
+                       "is kept",
+                       why)});
   };
   Controller machine(settings, card, io, store, interp_options);
   machine.set_feed_override(options.feed_override);

@@ -4,7 +4,8 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <cctype>   // isalnum
+#include <algorithm>  // all_of
+#include <cctype>     // isalnum
 #include <sstream>  // the formatter writes to a stream
 
 #include "gantry/core/text_file.hpp"  // user_config_dir
@@ -54,10 +55,50 @@ toml::table difference(const toml::table& was, const toml::table& now) {
   return out;
 }
 
+// A number as the shortest text that reads back as the same double (0.3, not
+// 0.29999999999999999 as toml++'s own formatter writes it), always with a point or exponent.
+std::string toml_number(double d) {
+  std::string s = fmt::format("{}", d);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // n: inf, nan
+  return s;
+}
+
+std::string toml_key(const std::string& k) {
+  const bool bare = !k.empty() && std::all_of(k.begin(), k.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+  if (bare) return k;
+  std::ostringstream quoted;
+  quoted << toml::toml_formatter(toml::value<std::string>(k));
+  return quoted.str();
+}
+
+// `t` as TOML: its own keys, then each table under a [dotted.header] (a table with only
+// tables in it gets none), as toml++'s formatter lays them out, numbers by toml_number.
+void format_table(const toml::table& t, const std::string& header, std::string& out) {
+  bool leaves = false;
+  for (auto&& [key, node] : t) {
+    if (node.is_table()) continue;
+    if (!leaves && !header.empty()) out += fmt::format("{}[{}]\n", out.empty() ? "" : "\n", header);
+    leaves = true;
+    std::ostringstream value;
+    if (node.is_floating_point())
+      value << toml_number(*node.value<double>());
+    else
+      node.visit([&](const auto& n) { value << toml::toml_formatter(n); });
+    out += fmt::format("{} = {}\n", toml_key(std::string(key.str())), value.str());
+  }
+  for (auto&& [key, node] : t)
+    if (const toml::table* sub = node.as_table()) {
+      const std::string k = toml_key(std::string(key.str()));
+      format_table(*sub, header.empty() ? k : header + "." + k, out);
+    }
+}
+
 std::string format_table(const toml::table& t) {
-  std::ostringstream text;
-  text << toml::toml_formatter(t);
-  return text.str();
+  std::string out;
+  format_table(t, "", out);
+  return out;
 }
 
 }  // namespace

@@ -218,8 +218,8 @@ class CommandContext {
   void warn(const SourceLoc& loc, std::string message);
   // A file a command writes (TD, TU, TH): a relative name is found beside the top-level
   // file, as FP finds it; a check or a preview writes into its sandbox, never the disk. A
-  // file that is running is refused. `atomic`: on disk, written beside and renamed over the
-  // old file (a crash leaves one or the other), into an existing folder. Returns the path.
+  // file that is running is refused. On disk, into an existing folder, every write is atomic
+  // (`atomic` no longer matters): a crash leaves the old file or the new one. Returns the path.
   std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc,
                          bool atomic = false);
   // The text of a file found as write_file finds it (a check sees its own writes); nullopt

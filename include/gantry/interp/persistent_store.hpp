@@ -13,8 +13,8 @@ class PersistentStore {
  public:
   // An in-memory store that is never saved (check, preview, tests).
   PersistentStore() = default;
-  // Backed by `path`: loaded now (a missing file is empty; a corrupt one is an error and is
-  // left untouched), saved atomically by save().
+  // Backed by `path`: loaded now (a missing file is empty; a damaged one is an error, and is
+  // kept: renamed aside, docs/reliability.md), saved atomically by save().
   explicit PersistentStore(std::string path);
 
   static std::string default_path();  // $XDG_CONFIG_HOME/gantry/persistent.json
