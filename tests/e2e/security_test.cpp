@@ -135,7 +135,8 @@ TEST_F(Reach, HostileWritesOutsideTheJobFolderAreRefusedByCheckAndRun) {
 TEST_F(Reach, TheLinkAMessageFollowsIsNamed) {
   fs::create_directory_symlink(outside(), job() / "escape");
   const std::string said = refused(R"(OPEN "escape/notes.txt" FOR APPEND AS #1)");
-  EXPECT_NE(said.find("hostile.sbp:2:6: error: escape/notes.txt is outside the job's folder " +
+  EXPECT_NE(said.find("hostile.sbp:2:6: error: " + (job() / "escape/notes.txt").string() +
+                      " is outside the job's folder " +
                       job().string() + " (it leads to " + (outside() / "notes.txt").string() +
                       "): a part file writes files only there"),
             std::string::npos)
@@ -159,7 +160,7 @@ TEST_F(Reach, UnCannotNameAnEditorSoFeRunsNothingInjected) {
       fmt::format("run '{}' --yes --values '{}'", (job() / "edit.sbp").string(), values.string()));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("FE would open " + (job() / "notes.txt").string() +
-                       " in gantry-test-visual; nobody is at a terminal"),
+                       " in gantry-test-visual;"),
             std::string::npos)
       << r.out << r.err;
   EXPECT_FALSE(fs::exists(pwned));
@@ -209,6 +210,7 @@ CLOSE #1)";
 TEST_F(Reach, EveryFileErrorIsRaisedByCheckAsByRunAtItsLine) {
   fs::create_directory(job() / "folder");
   ASSERT_EQ(::mkfifo((job() / "pipe").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((job() / "fifo.sbp").c_str(), 0600), 0);
   const std::string long_path(6000, 'a');
   const std::string long_name(300, 'n');
   const std::map<std::string, std::string> cases = {
@@ -230,8 +232,8 @@ TEST_F(Reach, EveryFileErrorIsRaisedByCheckAsByRunAtItsLine) {
       {R"(OPEN "pipe" FOR APPEND AS #1)",
        "hostile.sbp:2:6: error: cannot write " + (job() / "pipe").string() +
            ": it is a named pipe (FIFO), not a file; Gantry opens only regular files"},
-      {"FP, pipe", "hostile.sbp:2:1: error: cannot read " + (job() / "pipe").string() +
-                       ": it is a named pipe (FIFO), not a file"},
+      {"FP, fifo.sbp", "hostile.sbp:2:1: error: cannot read " + (job() / "fifo.sbp").string() +
+                           ": it is a named pipe (FIFO), not a file"},
       {"FP, absent.sbp", "hostile.sbp:2:1: error: cannot read " + (job() / "absent.sbp").string() +
                              ": there is no such file"},
       {"US, nofolder/settings.toml", "hostile.sbp:2:5: error: cannot write " +
