@@ -61,14 +61,12 @@ std::string reach_refusal(const std::string& path, FileAccess access, const std:
     for (const std::string& folder : reach.read_only)
       if (!folder.empty() && inside(target, resolved_path(folder))) return "";
   const fs::path folder = target.parent_path();
-  std::error_code ec;
-  const fs::path plain = fs::absolute(path, ec).lexically_normal();
   return fmt::format(
       "{} is outside the job's folder {}{}: a part file {} files only there, in the Gantry "
       "data folder and in the folders the operator allows; to allow it, add \"{}\" to "
       "[files] allow in the machine profile or run with --allow-path {}",
       shown_path(path), job.string(),
-      target == plain ? "" : fmt::format(" (it leads to {})", shown_path(target.string())),
+      target == fs::path(path) ? "" : fmt::format(" (it leads to {})", shown_path(target.string())),
       access == FileAccess::Read ? "reads" : "writes", shown_path(folder.string()),
       shown_path(folder.string()));
 }
