@@ -20,6 +20,7 @@ void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::stri
   cmd->add_option("--persistent", a.persistent, "File of persistent $variables (JSON)");
   cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
   cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
+  add_allow_path_option(cmd, a.allow_paths);
 }
 
 void ValuesKeeper::ran(const Settings& s) {
@@ -46,6 +47,7 @@ InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeepe
   InterpreterOptions opt;
   opt.allow_shell = a.allow_shell;
   opt.macro_dir = a.macros;
+  opt.allowed_folders = allowed_folders(p, a.allow_paths);
   opt.warn_before_motion = real_time;
   opt.trig_in_degrees = opt.plus_joins_text = p.settings.dialect == Dialect::FabMo;
   opt.profile = &p.bare;

@@ -21,6 +21,7 @@ struct LiveMachineArgs {
   std::string values, persistent, macros;
   bool realtime = false;
   bool allow_shell = false;
+  std::vector<std::string> allow_paths;  // --allow-path
 };
 
 // Adds them to `cmd` (`realtime_help`: what real time is needed for there).

@@ -4,6 +4,7 @@
 #include <fmt/format.h>  // errors
 
 #include <cstdio>      // stderr
+#include <cstdlib>     // getenv
 #include <filesystem>  // exists
 #include <optional>
 
@@ -19,6 +20,22 @@ void add_profile_option(CLI::App* cmd, std::string& profile) {
   cmd->add_option("--profile,--settings", profile,
                   "Machine profile: a shipped one by name (" + names +
                       "; docs/settings.md) or a TOML file; default: built in");
+}
+
+void add_allow_path_option(CLI::App* cmd, std::vector<std::string>& folders) {
+  cmd->add_option("--allow-path", folders,
+                  "A folder part files may read and write in besides their own and Gantry's "
+                  "data folder (repeatable; docs/security.md)");
+}
+
+std::vector<std::string> allowed_folders(const MachineProfile& p,
+                                         const std::vector<std::string>& allow_paths) {
+  std::vector<std::string> out;
+  const char* home = std::getenv("HOME");
+  for (const auto* list : {&p.bare.files.allow, &allow_paths})
+    for (const std::string& folder : *list)
+      out.push_back(folder.starts_with("~/") && home ? home + folder.substr(1) : folder);
+  return out;
 }
 
 bool load_machine_profile(const std::string& profile_arg, const std::string& values_path,

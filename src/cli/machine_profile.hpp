@@ -28,4 +28,12 @@ void add_profile_option(CLI::App* cmd, std::string& profile);
 bool load_machine_profile(const std::string& profile_path, const std::string& values_path,
                           MachineProfile& out);
 
+// --allow-path DIR (repeatable): a folder part files may read and write in, besides theirs.
+void add_allow_path_option(CLI::App* cmd, std::vector<std::string>& folders);
+// The folders part files may reach besides their own and the data folder: the profile's
+// [files] allow (the profile alone: a values file cannot widen it) and `allow_paths`, with
+// `~/` as $HOME (docs/security.md).
+std::vector<std::string> allowed_folders(const MachineProfile& p,
+                                         const std::vector<std::string>& allow_paths);
+
 }  // namespace gantry

@@ -51,8 +51,11 @@ int top_line(const Diagnostic& d) {
   return d.via.empty() ? d.loc.line : d.via.front().line;
 }
 
-// UV, UD and UR show or load the profile and say where it and the values live.
-void describe(const MachineProfile& p, InterpreterOptions& o) {
+// UV, UD and UR show or load the profile and say where it and the values live; the folders
+// part files may reach besides their own are the profile's and --allow-path's.
+void describe(const MachineProfile& p, const std::vector<std::string>& allow_paths,
+              InterpreterOptions& o) {
+  o.allowed_folders = allowed_folders(p, allow_paths);
   o.profile = &p.bare;
   o.profile_path = p.path;
   o.values_path = p.values_path;
@@ -159,6 +162,7 @@ struct LanguageArgs {
   bool allow_shell = false;
   std::vector<std::string> inputs;  // NAME=VALUE
   std::string macros;
+  std::vector<std::string> allow_paths;  // --allow-path: folders part files may reach
   std::string persistent;  // file of $variables; default in the user's config directory
   std::string values;      // the values file; default in the user's config directory
   std::size_t budget = 10'000'000;
@@ -173,6 +177,7 @@ struct LanguageArgs {
     cmd->add_option("--macros", macros,
                     "Folder C<n> looks in first for C<n>.sbp / macro_<n>.sbp (then the shipped "
                     "macros)");
+    add_allow_path_option(cmd, allow_paths);
     cmd->add_option("--persistent", persistent, "File of persistent $variables (JSON)");
     cmd->add_option("--values", values,
                     "File of the V commands' values (TOML); default: the profile's in "
@@ -240,7 +245,7 @@ bool load_and_check(const std::string& file, const std::string& settings_path,
                     RunControl* control = nullptr) {
   if (!load_machine_profile(settings_path, lang.values, out.profile)) return false;
   if (!lang.job_options(out.profile.settings, out.opt)) return false;
-  describe(out.profile, out.opt.interpreter);
+  describe(out.profile, lang.allow_paths, out.opt.interpreter);
   const Settings& settings = out.profile.settings;
   if (settings.card.type == "sim")
     out.opt.interpreter.unattended_inputs =
@@ -260,7 +265,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
-  describe(profile, opt.interpreter);
+  describe(profile, lang.allow_paths, opt.interpreter);
   PersistentStore store = lang.store();
   report.units = settings.units;
   std::shared_ptr<const Script> script = load_part_file(a.file);
@@ -490,7 +495,7 @@ int cmd_preview(const PreviewArgs& args, const LanguageArgs& lang) {
   if (!load_machine_profile(args.settings, lang.values, profile)) return 1;
   JobOptions opt;
   if (!lang.job_options(profile.settings, opt)) return 1;
-  describe(profile, opt.interpreter);
+  describe(profile, lang.allow_paths, opt.interpreter);
   return run_preview(args, profile.settings, opt, lang.store());
 }
 

@@ -5,8 +5,8 @@
 
 #include <algorithm>  // replace
 #include <cctype>      // tolower
+#include <cerrno>      // EINTR
 #include <cmath>       // round
-#include <cstdlib>     // getenv, system
 #include <filesystem>  // FS's folder, FC's names
 
 #include "gantry/commands/command_table.hpp"
@@ -14,8 +14,11 @@
 #include "gantry/interp/interpreter.hpp"
 #include "../lang/scan.hpp"  // upper, is_word
 
-#include <sys/wait.h>  // WEXITSTATUS
+#include <spawn.h>     // posix_spawnp: FE's editor, without a shell
+#include <sys/wait.h>  // waitpid, WEXITSTATUS
 #include <unistd.h>    // isatty
+
+extern char** environ;  // the editor's environment: Gantry's own
 
 namespace gantry {
 namespace {
@@ -123,7 +126,8 @@ void file_set_folder(CommandContext& ctx, const CommandCall& call) {
   std::string folder = ctx.top_folder();
   if (const std::optional<std::string> name = file_name(ctx, call, 0)) {
     std::filesystem::path p =
-        std::filesystem::path(ctx.file_path(*name, call.param_loc(0))).lexically_normal();
+        std::filesystem::path(ctx.reachable_path(*name, call.param_loc(0), FileAccess::Read))
+            .lexically_normal();
     folder = p.string();
     while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
     std::error_code ec;
@@ -137,26 +141,27 @@ void file_set_folder(CommandContext& ctx, const CommandCall& call) {
 
 // ---- FE -------------------------------------------------------------------------------------
 
-// The editor FE starts: UN's, else $VISUAL, else $EDITOR, else vi.
-std::string editor(const CommandContext& ctx) {
-  if (!ctx.settings().machine.editor.empty()) return ctx.settings().machine.editor;
-  for (const char* var : {"VISUAL", "EDITOR"})
-    if (const char* e = std::getenv(var); e && *e) return e;
-  return "vi";
-}
-
-// `path` for a shell command line, in single quotes.
-std::string quoted(const std::string& path) {
-  std::string out = "'";
-  for (char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+// Runs `words` (a program found on PATH and its arguments) with no shell between, and waits:
+// its exit status, 127 when it could not be started, -1 when it did not exit.
+int run_program(const std::vector<std::string>& words) {
+  std::vector<char*> argv;
+  for (const std::string& w : words) argv.push_back(const_cast<char*>(w.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (::posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return 127;
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 void file_edit(CommandContext& ctx, const CommandCall& call) {
   const std::optional<std::string> name = file_name(ctx, call, 0);
-  const std::string path = name ? ctx.file_path(*name, call.param_loc(0)) : ctx.last_file();
+  const std::string path =
+      name ? ctx.reachable_path(*name, call.param_loc(0), FileAccess::Write) : ctx.last_file();
   if (name) ctx.set_last_file(path);
-  const std::string program = editor(ctx);
+  const EditorChoice editor = editor_choice(ctx);
+  const std::string& program = editor.text;
   const InterpreterOptions& o = ctx.options();
   // An editor needs a person at a terminal; a check or a preview starts nothing.
   const char* why = o.dry_run             ? "a check or a preview starts no program"
@@ -170,13 +175,13 @@ void file_edit(CommandContext& ctx, const CommandCall& call) {
     return;
   }
   ctx.come_to_rest(call.loc);  // the machine waits while the operator edits
-  const std::string command = path.empty() ? program : program + " " + quoted(path);
-  const int status = std::system(command.c_str());
-  const int rc = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::vector<std::string> words = editor.words;
+  if (!path.empty()) words.push_back(path);  // one argument, whatever its characters
+  const int rc = words.empty() ? 127 : run_program(words);
   if (rc != 0)
-    ctx.warn(call.loc, fmt::format("FE: `{}` {}; the part file continues", command,
-                                   rc == 127 ? "could not be started (is the editor installed? UN "
-                                               "names another)"
+    ctx.warn(call.loc, fmt::format("FE: {} {}; the part file continues", program,
+                                   rc == 127 ? "could not be started (is it installed? the machine "
+                                               "profile's [machine] editor names the editor)"
                                              : fmt::format("exited with status {}", rc)));
 }
 
@@ -297,8 +302,9 @@ void add_file_commands(std::vector<CommandSpec>& out) {
       {"FE",
        "File edit",
        F,
-       "Opens a file in the editor UN names (else $VISUAL, $EDITOR, or vi) and waits for it to "
-       "close; a part file then continues. Blank: the last file loaded (the running file, FP's "
+       "Opens a file in the editor the machine profile names ([machine] editor; else $VISUAL, "
+       "$EDITOR, or vi), started without a shell, and waits for it to close; a part file then "
+       "continues. Blank: the last file loaded (the running file, FP's "
        "or FE's). A check or a preview, or a run with nobody at a terminal, starts nothing and "
        "prints what FE would open.",
        {text("file name", "The file to edit (blank: the last one loaded).")},

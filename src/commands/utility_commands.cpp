@@ -1,9 +1,9 @@
 // Utilities, UD to UV. SB3 opens a screen for most of them; Gantry prints the console
 // equivalent where the command runs: the diagnostics (UD), the values and settings the
-// location readout does not show (UV), the variables (UL), a calculation (UU). UN names the
-// editor FE uses; US saves the settings to a file and UR loads them back (or the profile's).
-// UI installs control-box firmware, and Gantry has no control box: it says so by name.
-// UZ is with the zero commands.
+// location readout does not show (UV), the variables (UL), a calculation (UU). UN shows the
+// editor FE uses, which only the machine profile sets; US saves the settings to a file and
+// UR loads them back (or the profile's). UI installs control-box firmware, and Gantry has no
+// control box: it says so by name. UZ is with the zero commands.
 #include <fmt/format.h>   // reports, messages
 #include <toml++/toml.h>  // comparing the machine's own keys (UR)
 
@@ -64,14 +64,9 @@ std::string values_line(const CommandContext& ctx) {
   return fmt::format("Values file: {}\n", path.empty() ? "none (this run saves no values)" : path);
 }
 
-// The editor FE starts, and where that choice comes from.
 std::string editor_line(const CommandContext& ctx) {
-  if (!ctx.settings().machine.editor.empty())
-    return fmt::format("Editor (UN): {}\n", ctx.settings().machine.editor);
-  for (const char* var : {"VISUAL", "EDITOR"})
-    if (const char* e = std::getenv(var); e && *e)
-      return fmt::format("Editor: {} (from ${}; UN sets one)\n", e, var);
-  return "Editor: vi (neither UN, $VISUAL nor $EDITOR names one)\n";
+  const EditorChoice e = editor_choice(ctx);
+  return fmt::format("Editor (FE): {} ({})\n", e.text, e.from);
 }
 
 // Saves a report when the command names a file (SB3 keeps UD's and UV's in PROBLEM.LOG).
@@ -205,9 +200,8 @@ void calculator(CommandContext& ctx, const CommandCall& call) {
 
 // ---- UN: the editor ------------------------------------------------------------------------
 
-// Whether `program` (its first word) can be started: a path to a file, or a name on PATH.
-bool startable(const std::string& program) {
-  const std::string first = program.substr(0, program.find(' '));
+// Whether `first` can be started: a path to a file, or a name on PATH.
+bool startable(const std::string& first) {
   std::error_code ec;
   if (first.find('/') != std::string::npos) return std::filesystem::is_regular_file(first, ec);
   const char* path = std::getenv("PATH");
@@ -223,14 +217,20 @@ bool startable(const std::string& program) {
   }
 }
 
+// UN shows the editor; it never changes it. A part file that could name the program FE
+// starts could run any program (docs/security.md), and a value UN kept would live in the
+// values file, which part files can write: the machine profile alone sets it.
 void name_editor(CommandContext& ctx, const CommandCall& call) {
-  const std::string editor = call.text(0).value_or("");
-  if (!editor.empty() && !startable(editor))
-    ctx.warn(call.param_loc(0),
-             fmt::format("UN: no program {} was found (PATH is searched for a bare name); FE "
-                         "will fail to start it until it is installed",
-                         editor.substr(0, editor.find(' '))));
-  ctx.change_values(ValueScope::Permanent).machine.editor = editor;
+  const EditorChoice e = editor_choice(ctx);
+  if (const std::optional<std::string> program = call.text(0))
+    fail(call.param_loc(0),
+         fmt::format("UN cannot change the editor{}: set it in the machine profile, [machine] "
+                     "editor = \"{}\" (docs/security.md); FE uses {} ({})",
+                     ctx.part_file_running() ? " from a part file" : "", *program, e.text, e.from));
+  ctx.print(fmt::format("FE opens files in {} ({}){}\n", e.text, e.from,
+                        e.words.empty() || startable(e.words.front())
+                            ? ""
+                            : "; no such program was found (PATH is searched for a bare name)"));
 }
 
 // ---- US, UR: settings files ----------------------------------------------------------------
@@ -344,6 +344,17 @@ ParamSpec text(std::string_view name, std::string_view help, bool required = fal
 
 }  // namespace
 
+EditorChoice editor_choice(const CommandContext& ctx) {
+  EditorChoice e{{}, profile_of(ctx).machine.editor, "the machine profile's [machine] editor"};
+  for (const char* var : {"VISUAL", "EDITOR"})
+    if (const char* set = std::getenv(var); e.text.empty() && set && *set)
+      e = {{}, set, fmt::format("${}", var)};
+  if (e.text.empty()) e = {{}, "vi", "neither the machine profile, $VISUAL nor $EDITOR names one"};
+  std::istringstream words(e.text);
+  for (std::string w; words >> w;) e.words.push_back(w);
+  return e;
+}
+
 void add_utility_commands(std::vector<CommandSpec>& out) {
   const auto U = CommandGroup::Utilities;
   out.push_back({"UD",
@@ -375,13 +386,13 @@ void add_utility_commands(std::vector<CommandSpec>& out) {
   out.push_back({"UN",
                  "Utilities: name of editor program",
                  U,
-                 "Sets the program FE opens files in (kept in the values file, key "
-                 "machine.editor). Blank returns to $VISUAL, then $EDITOR, then vi.",
-                 {text("program",
-                       "The editor: a name found on PATH or a path, with any options "
-                       "(e.g. nano, or code --wait).")},
+                 "Shows the program FE opens files in and where it is set: the machine "
+                 "profile's [machine] editor, else $VISUAL, $EDITOR, vi. Only the profile "
+                 "changes it: UN with a program is refused, from a part file and from the "
+                 "console alike (docs/security.md).",
+                 {text("program", "Refused: set [machine] editor in the machine profile instead.")},
                  name_editor,
-                 "",
+                 "naming the editor: the machine profile sets it (docs/security.md)",
                  {},
                  false});
   out.push_back({"UR",

@@ -8,9 +8,14 @@
 #include <filesystem>  // is_regular_file, directory_iterator
 #include <fstream>     // ifstream, ofstream
 
-#include "gantry/core/text_file.hpp"  // user_config_dir
+#include "gantry/core/file_problem.hpp"  // read_problem, write_problem
+#include "gantry/core/text_file.hpp"     // user_config_dir
 
 namespace gantry {
+
+std::string FileSystem::read_problem(const std::string& path) {
+  return is_file(path) ? "" : kNoSuchFile;
+}
 
 std::shared_ptr<const Script> DiskFileSystem::load_script(const std::string& path,
                                                           const IsCommand& is_command) {
@@ -22,13 +27,23 @@ bool DiskFileSystem::is_file(const std::string& path) {
   return std::filesystem::is_regular_file(path, ec);
 }
 
+std::string DiskFileSystem::read_problem(const std::string& path) {
+  return gantry::read_problem(path);
+}
+
+std::string DiskFileSystem::write_problem(const std::string& path) {
+  return gantry::write_problem(path);
+}
+
+// Neither opens what is not a regular file: opening a FIFO would wait for its other end.
 std::shared_ptr<std::istream> DiskFileSystem::open_read(const std::string& path) {
-  if (!is_file(path)) return nullptr;
+  if (!gantry::read_problem(path).empty()) return nullptr;
   auto in = std::make_shared<std::ifstream>(path, std::ios::binary);
   return *in ? in : nullptr;
 }
 
 std::shared_ptr<std::ostream> DiskFileSystem::open_write(const std::string& path, bool append) {
+  if (!gantry::write_problem(path).empty()) return nullptr;
   auto out = std::make_shared<std::ofstream>(path, append ? std::ios::app : std::ios::trunc);
   return *out ? out : nullptr;
 }
@@ -57,6 +72,14 @@ std::shared_ptr<std::istream> SandboxFileSystem::open_read(const std::string& pa
   auto it = written_.find(path);
   if (it != written_.end()) return std::make_shared<std::istringstream>(it->second->str());
   return base_->open_read(path);
+}
+
+std::string SandboxFileSystem::read_problem(const std::string& path) {
+  return written_.count(path) ? "" : base_->read_problem(path);
+}
+
+std::string SandboxFileSystem::write_problem(const std::string& path) {
+  return written_.count(path) ? "" : base_->write_problem(path);
 }
 
 std::vector<std::string> SandboxFileSystem::list(const std::string& folder) {

@@ -13,6 +13,7 @@
 #include "../lang/scan.hpp"                  // looks_like_expression
 #include "gantry/core/bounded.hpp"           // kMaxCoordinate
 #include "gantry/core/diagnostic_log.hpp"    // DiagnosticLog
+#include "gantry/core/file_problem.hpp"      // shown_path
 #include "gantry/core/text_file.hpp"         // write_file_atomically
 #include "gantry/cuts/passes.hpp"            // tabs on plain moves
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
@@ -636,9 +637,8 @@ void CommandContext::warn(const SourceLoc& loc, std::string message) {
 }
 
 std::string CommandContext::write_file(const std::string& name, std::string_view text,
-                                       const SourceLoc& loc,
-                                       bool /*atomic: every disk write is now*/) {
-  const std::string path = interp_->file_path(name, loc);
+                                       const SourceLoc& loc) {
+  const std::string path = interp_->writable_path(name, loc);
   auto canonical = [](const std::string& p) {  // "" when it cannot be resolved
     std::error_code ec;
     std::filesystem::path c = std::filesystem::weakly_canonical(p, ec);
@@ -650,10 +650,6 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
       fail(loc, fmt::format("{} is running; a command cannot rewrite a running part file", path));
   interp_->forget_called(path);
   if (dynamic_cast<DiskFileSystem*>(interp_->files_system_)) {
-    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-    std::error_code ec;
-    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
-      fail(loc, fmt::format("cannot write {}: there is no folder {}", path, folder.string()));
     if (std::string why; !write_file_atomically(path, text, &why))
       fail(loc, fmt::format("could not write {} ({}); the previous file is kept", path, why));
     return path;
@@ -670,6 +666,11 @@ std::optional<std::string> CommandContext::read_file(const std::string& name, co
                                                      std::string* path) {
   const std::string p = interp_->existing_file(name, loc);
   if (path) *path = p;
+  // A missing file is the caller's to explain; a folder, a FIFO, a path too long are not.
+  if (const std::string why = interp_->files_system_->read_problem(p); why == kNoSuchFile)
+    return std::nullopt;
+  else if (!why.empty())
+    fail(loc, fmt::format("cannot read {}: {}", shown_path(p), why));
   std::shared_ptr<std::istream> in = interp_->files_system_->open_read(p);
   if (!in) return std::nullopt;
   std::ostringstream text;
@@ -708,6 +709,18 @@ std::string CommandContext::top_folder() const {
 
 std::string CommandContext::file_path(const std::string& name, const SourceLoc& loc) const {
   return interp_->file_path(name, loc);
+}
+
+std::string CommandContext::reachable_path(const std::string& name, const SourceLoc& loc,
+                                           FileAccess access) const {
+  const std::string path = interp_->file_path(name, loc);
+  interp_->check_reach(path, access, loc);
+  return path;
+}
+
+bool CommandContext::part_file_running() const {
+  const auto& frames = interp_->frames_;
+  return std::any_of(frames.begin(), frames.end(), [](const auto& f) { return !f.call.lines; });
 }
 
 const std::string& CommandContext::last_file() const {
@@ -811,10 +824,47 @@ std::string Interpreter::file_path(const std::string& name, const SourceLoc& loc
   return p.string();
 }
 
+// Every file name a part file gives goes through file_path and then one of these two, in a
+// check as in a run: the reach and the file's state are refused here, located.
 std::string Interpreter::existing_file(const std::string& name, const SourceLoc& loc) const {
-  const PartFileLookup found = find_part_file(*files_system_, file_path(name, loc));
+  const std::string wanted = file_path(name, loc);
+  check_reach(wanted, FileAccess::Read, loc);  // before looking: outside, nothing is probed
+  const PartFileLookup found = find_part_file(*files_system_, wanted);
   if (!found.error.empty()) fail(loc, found.error);
+  check_reach(found.path, FileAccess::Read, loc);  // a name in another case may be a link
   return found.path;
+}
+
+std::string Interpreter::readable_file(const std::string& name, const SourceLoc& loc) const {
+  const std::string path = existing_file(name, loc);
+  if (const std::string why = files_system_->read_problem(path); !why.empty())
+    fail(loc, fmt::format("cannot read {}: {}", shown_path(path), why));
+  return path;
+}
+
+std::string Interpreter::writable_path(const std::string& name, const SourceLoc& loc) const {
+  const std::string path = file_path(name, loc);
+  check_reach(path, FileAccess::Write, loc);
+  if (const std::string why = files_system_->write_problem(path); !why.empty())
+    fail(loc, fmt::format("cannot write {}: {}", shown_path(path), why));
+  return path;
+}
+
+std::string Interpreter::job_folder() const {
+  for (const Frame& f : frames_)
+    if (!f.call.lines && f.script->name())
+      return std::filesystem::path(*f.script->name()).parent_path().string();
+  return "";
+}
+
+void Interpreter::check_reach(const std::string& path, FileAccess access,
+                              const SourceLoc& loc) const {
+  FileReach reach;
+  reach.read_write = options_.allowed_folders;
+  reach.read_write.push_back(options_.data_dir);
+  reach.read_only = {options_.macro_dir, options_.user_macro_dir, options_.shipped_macro_dir};
+  if (const std::string why = reach_refusal(path, access, job_folder(), reach); !why.empty())
+    fail(loc, why);
 }
 
 void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall& call,
@@ -1237,7 +1287,7 @@ void Interpreter::loop(DiagnosticLog* collect) {
         FileCall call = *pending_call_;
         pending_call_.reset();
         const std::string path =
-            call.resolved ? call.path : existing_file(call.path, pending_call_loc_);
+            call.resolved ? call.path : readable_file(call.path, pending_call_loc_);
         push_file(call.lines ? call.lines : frames_.front().script->called(path, [&] {
           return files_system_->load_script(path, table_.is_command());
         }),
@@ -1665,6 +1715,7 @@ void Interpreter::call_macro(int number, const SourceLoc& loc) {
           find_part_file(*files_system_, (std::filesystem::path(dir) / name).string());
       if (!found.error.empty()) fail(loc, found.error);
       if (files_system_->is_file(found.path)) {
+        check_reach(found.path, FileAccess::Read, loc);  // a macro may be a link out
         FileCall call;
         call.path = found.path;
         call.resolved = true;

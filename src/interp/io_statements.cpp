@@ -279,8 +279,8 @@ Interpreter::UserFile& Interpreter::user_file(const Expr& number, const SourceLo
   const double n = evaluate(number, *this).to_number(loc, "the file number");
   if (n != std::round(n) || n < 1 || n > 9)
     fail(loc, fmt::format("file number {} is not 1 to 9", n));
-  for (auto& f : files_)
-    if (f->number == static_cast<int>(n)) return *f;
+  for (auto& f : files_)  // a number whose OPEN failed (no path) is not open
+    if (f->number == static_cast<int>(n) && (!must_be_open || !f->path.empty())) return *f;
   if (must_be_open) fail(loc, fmt::format("file #{} is not open; OPEN it first", n));
   files_.push_back(std::make_unique<UserFile>());
   files_.back()->number = static_cast<int>(n);
@@ -292,8 +292,8 @@ void Interpreter::exec(const OpenStmt& s, const SourceLoc& loc) {
   UserFile& f = user_file(s.number, loc, false);
   if (!f.path.empty())
     fail(loc, fmt::format("file #{} is already open ({}); CLOSE it first", f.number, f.path));
-  const std::string path = s.mode == OpenStmt::Mode::Input ? existing_file(name, s.path.loc)
-                                                           : file_path(name, s.path.loc);
+  const std::string path = s.mode == OpenStmt::Mode::Input ? readable_file(name, s.path.loc)
+                                                           : writable_path(name, s.path.loc);
   if (s.mode == OpenStmt::Mode::Input) {
     f.in = files_system_->open_read(path);
     if (!f.in) fail(s.path.loc, fmt::format("cannot open {} for reading", path));

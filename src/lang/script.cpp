@@ -11,6 +11,8 @@
 #include <unistd.h>    // pread, close
 #include <xxhash.h>    // XXH3_64bits: the blocks' hashes
 
+#include "gantry/core/file_problem.hpp"  // read_problem: why a part file cannot be opened
+
 namespace gantry {
 namespace {
 
@@ -70,12 +72,15 @@ Script::~Script() {
 
 std::shared_ptr<const Script> Script::load(const std::string& path, const IsCommand& is_command) {
   std::shared_ptr<Script> s(new Script(std::string(), path));
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: a FIFO opens at once (and is refused below) instead of waiting for a writer.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   struct stat st {};
   if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     if (fd >= 0) ::close(fd);
+    const std::string why = read_problem(path);
     s->errors_.push_back({SourceLoc{s->name_, 0, 0}, Severity::Error,
-                          "cannot open the part file; check the name and that it exists"});
+                          fmt::format("cannot open the part file: {}",
+                                      why.empty() ? "it is not a regular file" : why)});
     return s;
   }
   s->fd_ = fd;

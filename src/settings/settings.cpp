@@ -223,6 +223,27 @@ class TableReader {
     return *node->value<std::string>();
   }
 
+  // An array of strings that profiles may leave out (empty then).
+  std::vector<std::string> optional_texts(std::string_view key) {
+    seen_.insert(std::string(key));
+    std::vector<std::string> out;
+    const toml::node* node = table_.get(key);
+    if (!node) return out;
+    const toml::array* items = node->as_array();
+    if (!items) {
+      error(*node, fmt::format("{} must be an array of strings, such as [\"~/jobs\"]", full(key)));
+      return out;
+    }
+    for (const toml::node& item : *items) {
+      if (!item.is_string()) {
+        error(item, fmt::format("{} must hold only strings", full(key)));
+        return {};
+      }
+      out.push_back(*item.value<std::string>());
+    }
+    return out;
+  }
+
   // A sub-table; a missing or mistyped one is reported once, and its keys are not.
   TableReader table(std::string_view key) {
     static const toml::table empty;
@@ -403,6 +424,14 @@ void read_values(TableReader& root, Settings& s) {
   s.machine.switch4_mode = machine.integer("switch4_mode", -4, -1, -1);
   s.machine.editor = machine.optional_text("editor", "");
   machine.finish();
+
+  TableReader files = root.optional_table("files");  // profiles before it have none
+  s.files.allow = files.optional_texts("allow");
+  for (const std::string& folder : s.files.allow)
+    if (!(folder.starts_with("/") || folder.starts_with("~/")))
+      files.fail("allow",
+                 fmt::format("must list folders as absolute paths or ~/..., not \"{}\"", folder));
+  files.finish();
 }
 
 void read_profile(TableReader root, Settings& s) {

@@ -175,6 +175,9 @@ toml::table settings_table(const Settings& s) {
                                      {"max_dwell_s", s.machine.max_dwell_s},
                                      {"switch4_mode", s.machine.switch4_mode},
                                      {"editor", s.machine.editor}});
+  toml::array allow;
+  for (const std::string& folder : s.files.allow) allow.push_back(folder);
+  root.insert("files", toml::table{{"allow", allow}});
   return root;
 }
 

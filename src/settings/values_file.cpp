@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <algorithm>  // all_of
+#include <algorithm>  // all_of, equal
 #include <cctype>     // isalnum
 #include <sstream>  // the formatter writes to a stream
 
@@ -35,6 +35,10 @@ bool same_leaf(const toml::node& a, const toml::node& b) {
   if (a.is_integer()) return *a.value<std::int64_t>() == *b.value<std::int64_t>();
   if (a.is_boolean()) return *a.value<bool>() == *b.value<bool>();
   if (a.is_string()) return *a.value<std::string>() == *b.value<std::string>();
+  if (const toml::array* x = a.as_array(), *y = b.as_array(); x && y)  // [files] allow
+    return x->size() == y->size() &&
+           std::equal(x->begin(), x->end(), y->begin(),
+                      [](const toml::node& i, const toml::node& j) { return same_leaf(i, j); });
   return false;
 }
 

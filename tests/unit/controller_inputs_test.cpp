@@ -35,8 +35,10 @@ struct Machine {
   std::int64_t first_step_above(double units, int axis) const {
     return static_cast<std::int64_t>(std::ceil(units * spu(axis)));
   }
-  void run_to_end(const std::string& text) {
-    const Outcome o = c.run(Script::from_text(text, "part.sbp"));
+  // As part.sbp in `folder` ("": the working directory), the folder its files are written in.
+  void run_to_end(const std::string& text, const std::string& folder = "") {
+    const Outcome o =
+        c.run(Script::from_text(text, folder.empty() ? "part.sbp" : folder + "/part.sbp"));
     ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : " " + o.errors[0].message);
     c.wait();
   }
@@ -74,7 +76,7 @@ TEST(Probe, TcDigitizesAShapedPartIntoAFileThatFollowsIt) {
   const std::string csv = dir + "/gantry_tc_points.csv", sbp = dir + "/gantry_tc_copy.sbp";
   std::remove(csv.c_str());
   std::remove(sbp.c_str());
-  m.run_to_end("TC, " + csv + ", 0, 0, 3, 1, 1, -1, 0.5, 1\n");
+  m.run_to_end("TC, " + csv + ", 0, 0, 3, 1, 1, -1, 0.5, 1\n", dir);
   EXPECT_EQ(m.c.state(), MachineState::Idle) << m.c.status().message;
   std::ifstream in(csv);
   std::string header, line;
@@ -93,7 +95,7 @@ TEST(Probe, TcDigitizesAShapedPartIntoAFileThatFollowsIt) {
   EXPECT_EQ(n, 8);                                  // 4 x 2 points
   EXPECT_DOUBLE_EQ(m.c.modal().position[kZ], 0.5);  // back at safe Z
   // The same grid as a part file: the M3 moves pass through the points.
-  m.run_to_end("TC, " + sbp + ", 0, 0, 3, 1, 1, -1, 0.5, 1\n");
+  m.run_to_end("TC, " + sbp + ", 0, 0, 3, 1, 1, -1, 0.5, 1\n", dir);
   std::ifstream part(sbp);
   std::stringstream text;
   text << part.rdbuf();

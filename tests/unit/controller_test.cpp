@@ -682,7 +682,9 @@ TEST(Controller, FgWithoutAStartLineResumesOnceWhereTheLastRunStopped) {
   std::string printed;
   ScriptedIO io{true, {}, &printed};
   PersistentStore store;
-  Controller c{settings, card, io, store};
+  InterpreterOptions options;
+  options.allowed_folders = {testing::TempDir()};  // typed lines reach the working directory
+  Controller c{settings, card, io, store, options};
   c.schedule(Request::Stop, 3.0);  // in MY, 3 (line 3)
   ASSERT_TRUE(c.run_typed(Script::from_text("FP, " + path + "\n", "console")));
   c.wait();

@@ -585,9 +585,9 @@ TEST(ParseFile, MissingFileIsOneErrorNamingIt) {
   EXPECT_TRUE(p.statements.empty());
   ASSERT_EQ(p.errors.size(), 1u);
   EXPECT_EQ(where(p.errors[0].loc), path + ":0:0");
-  EXPECT_EQ(p.errors[0].message, "cannot open the part file; check the name and that it exists");
+  EXPECT_EQ(p.errors[0].message, "cannot open the part file: there is no such file");
   EXPECT_EQ(format(p.errors[0]),
-            path + ": error: cannot open the part file; check the name and that it exists");
+            path + ": error: cannot open the part file: there is no such file");
 }
 
 TEST(ParseFile, DirectoryIsAnUnreadableFile) {
@@ -595,7 +595,7 @@ TEST(ParseFile, DirectoryIsAnUnreadableFile) {
   const Program p = parse_file(path);
   ASSERT_EQ(p.errors.size(), 1u);
   EXPECT_EQ(where(p.errors[0].loc), path + ":0:0");
-  EXPECT_EQ(p.errors[0].message, "cannot open the part file; check the name and that it exists");
+  EXPECT_EQ(p.errors[0].message, "cannot open the part file: it is a folder, not a file");
 }
 
 TEST(ParseFile, ReadsAndLocatesAFile) {

@@ -164,9 +164,8 @@ TEST_F(PartFilesTest, FpWithADefinedVariableRunsItsFile) {
 
 TEST_F(PartFilesTest, AMissingFpFileNamesThePathTriedAndTheCallingLine) {
   write("main.sbp", "FP, nothere\n");
-  EXPECT_EQ(run_error("main.sbp"), path("main.sbp") + ":1 -> " + path("nothere.sbp") +
-                                       ": error: cannot open the part file; check the name and "
-                                       "that it exists");
+  EXPECT_EQ(run_error("main.sbp"), path("main.sbp") + ":1:1: error: cannot read " +
+                                       path("nothere.sbp") + ": there is no such file");
 }
 
 // ---- C<n>

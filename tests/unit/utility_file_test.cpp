@@ -167,28 +167,39 @@ TEST_F(UtilityFileTest, Fact182_UuPrintsTheValueOfItsExpression) {
 
 // ---- UN, FE ---------------------------------------------------------------------------------
 
-TEST_F(UtilityFileTest, Fact180_UnSetsTheEditorAndTheValuesFileKeepsIt) {
-  run("UN, sh\n");
-  EXPECT_EQ(interp->settings().machine.editor, "sh");
-  EXPECT_EQ(warnings(), "");
-  const std::string values = values_text(interp->settings(), profile);
-  EXPECT_TRUE(contains(values, "[machine]\neditor = 'sh'")) << values;
-  // Read back over the profile, as the next run loads it.
-  const SettingsLoad load =
-      parse_settings(settings_text(profile), "profile", values, "values.toml");
-  ASSERT_TRUE(load.ok());
-  EXPECT_EQ(load.settings.machine.editor, "sh");
-  // Blank: back to $VISUAL / $EDITOR.
-  settings = interp->settings();
-  run("UN\n");
+// Only the machine profile names the editor (docs/security.md): a part file that could
+// name it could run any program at the next FE, and UN's value would outlive the run.
+TEST_F(UtilityFileTest, UnCannotChangeTheEditorFromAPartFile) {
+  ::unsetenv("VISUAL");
+  ::unsetenv("EDITOR");
+  const Diagnostic d = run_error("UN, touch /tmp/gantry-pwned ;\n");
+  EXPECT_EQ(format(d), path("part.sbp") +
+                           ":1:5: error: UN cannot change the editor from a part file: set it in "
+                           "the machine profile, [machine] editor = \"touch /tmp/gantry-pwned ;\" "
+                           "(docs/security.md); FE uses vi (neither the machine profile, $VISUAL "
+                           "nor $EDITOR names one)");
   EXPECT_EQ(interp->settings().machine.editor, "");
+  // Sent as typed lines from a part file (SI), it is still the part file's.
+  EXPECT_TRUE(contains(run_error("SI, \"UN, sh\"\n").message, "from a part file"));
 }
 
-TEST_F(UtilityFileTest, UnWarnsWhenTheEditorCannotBeFound) {
-  run("UN, no-such-editor-gantry --wait\n");
-  EXPECT_EQ(interp->settings().machine.editor, "no-such-editor-gantry --wait");
-  EXPECT_TRUE(contains(warnings(), "part.sbp:1:5: warning: UN: no program no-such-editor-gantry"))
-      << warnings();
+TEST_F(UtilityFileTest, UnShowsTheProfilesEditorAndWhetherItCanBeFound) {
+  profile.machine.editor = "no-such-editor-gantry --wait";
+  run("UN\n");
+  EXPECT_EQ(printed,
+            "FE opens files in no-such-editor-gantry --wait (the machine profile's [machine] "
+            "editor); no such program was found (PATH is searched for a bare name)\n");
+}
+
+// A values file (an older Gantry's UN saved one there) or UR may hold an editor: FE ignores it.
+TEST_F(UtilityFileTest, FeStartsOnlyTheProfilesEditor) {
+  ::unsetenv("VISUAL");
+  ::unsetenv("EDITOR");
+  options.dry_run = true;
+  settings.machine.editor = "touch /tmp/gantry-pwned";
+  run("FE, notes.txt\n");
+  EXPECT_EQ(printed, "FE would open " + path("notes.txt") +
+                         " in vi; a check or a preview starts no program\n");
 }
 
 TEST_F(UtilityFileTest, Fact93_FeBlankOpensTheLastFileLoadedWithFpOrFe) {
@@ -196,7 +207,7 @@ TEST_F(UtilityFileTest, Fact93_FeBlankOpensTheLastFileLoadedWithFpOrFe) {
   ::unsetenv("VISUAL");  // FE's editor is then vi until UN names one
   ::unsetenv("EDITOR");
   options.dry_run = true;
-  run("FE\nFP, sub.sbp\nFE\nFE, notes.txt\nFE\nUN, myeditor --flag\nFE\n");
+  run("FE\nFP, sub.sbp\nFE\nFE, notes.txt\nFE\n");
   EXPECT_EQ(printed, "FE would open " + path("part.sbp") +
                          " in vi; a check or a preview starts no program\n"
                          "FE would open " +
@@ -206,16 +217,12 @@ TEST_F(UtilityFileTest, Fact93_FeBlankOpensTheLastFileLoadedWithFpOrFe) {
                          path("notes.txt") +
                          " in vi; a check or a preview starts no program\n"
                          "FE would open " +
-                         path("notes.txt") +
-                         " in vi; a check or a preview starts no program\n"
-                         "FE would open " +
-                         path("notes.txt") +
-                         " in myeditor --flag; a check or a preview starts no program\n");
+                         path("notes.txt") + " in vi; a check or a preview starts no program\n");
 }
 
 TEST_F(UtilityFileTest, Fact94_FeInAPartFileLetsTheFileContinue) {
   options.operator_present = false;  // nobody at a terminal: nothing is started
-  settings.machine.editor = "false";
+  profile.machine.editor = "false";
   run("FE, part.sbp\nMX, 1\n");
   EXPECT_EQ(printed, "FE would open " + path("part.sbp") +
                          " in false; nobody is at a terminal "
@@ -258,9 +265,11 @@ TEST_F(UtilityFileTest, FsRefusesAFolderThatIsNotThere) {
 // ---- UV, UD ---------------------------------------------------------------------------------
 
 TEST_F(UtilityFileTest, UvShowsWhatTheLocationReadoutDoesNot) {
-  run("MS, 1.5, 0.75\nVC, 0.375\nUN, sh\nUV\n");
+  profile.machine.editor = "sh";
+  run("MS, 1.5, 0.75\nVC, 0.375\nUV\n");
   for (const std::string& line : std::vector<std::string>{
-           "Values and settings (UV):\n", "Editor (UN): sh\n",
+           "Values and settings (UV):\n",
+           "Editor (FE): sh (the machine profile's [machine] editor)\n",
            "Units: in; dialect: sb3; axes in use: 3\n", "Coordinate system (SC): 1, user\n",
            "Move speeds (in/s): XY 1.5, Z 0.75,", "Cutter (VC): diameter 0.375,",
            "Steps per unit (VU): X " + fmt::format("{}", profile.axes[0].steps_per_unit),

@@ -155,6 +155,14 @@ void add_settings_commands(std::vector<CommandSpec>& out);
 void add_help_commands(std::vector<CommandSpec>& out);
 void add_tool_commands(std::vector<CommandSpec>& out);
 void add_utility_commands(std::vector<CommandSpec>& out);
+// The editor FE starts: the machine profile's [machine] editor, else $VISUAL, $EDITOR, vi;
+// never a value a part file could set (UN, UR, the values file: docs/security.md). `words`:
+// its program and options, split at spaces and run without a shell; `from`: where it is set.
+struct EditorChoice {
+  std::vector<std::string> words;
+  std::string text, from;
+};
+EditorChoice editor_choice(const CommandContext& ctx);
 void add_cut_commands(std::vector<CommandSpec>& out);
 void add_record_commands(std::vector<CommandSpec>& out);  // and SI
 void add_nudge_commands(std::vector<CommandSpec>& out);   // MN, MI

@@ -23,6 +23,10 @@ class FileSystem {
   // A user file to read (null if it cannot be read) or to write (null if it cannot be made).
   virtual std::shared_ptr<std::istream> open_read(const std::string& path) = 0;
   virtual std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) = 0;
+  // Why `path` cannot be read or written as a file, "" when it can (core/file_problem.hpp):
+  // asked before opening, so a check and a run refuse the same files with the same words.
+  virtual std::string read_problem(const std::string& path);
+  virtual std::string write_problem(const std::string& /*path*/) { return ""; }
   // The names of the files and folders in `folder` ("": the working directory); none when
   // it cannot be listed.
   virtual std::vector<std::string> list(const std::string& /*folder*/) { return {}; }
@@ -51,6 +55,8 @@ class DiskFileSystem : public FileSystem {
   bool is_file(const std::string& path) override;
   std::shared_ptr<std::istream> open_read(const std::string& path) override;
   std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
+  std::string read_problem(const std::string& path) override;
+  std::string write_problem(const std::string& path) override;
   std::vector<std::string> list(const std::string& folder) override;
 };
 
@@ -65,6 +71,8 @@ class SandboxFileSystem : public FileSystem {
   bool is_file(const std::string& path) override;
   std::shared_ptr<std::istream> open_read(const std::string& path) override;
   std::shared_ptr<std::ostream> open_write(const std::string& path, bool append) override;
+  std::string read_problem(const std::string& path) override;
+  std::string write_problem(const std::string& path) override;
   std::vector<std::string> list(const std::string& folder) override;
 
  private:

@@ -13,7 +13,9 @@
 
 #include "gantry/commands/command_recorder.hpp"  // CommandRecorder
 #include "gantry/commands/command_table.hpp"     // CommandTable, CommandCall
+#include "gantry/core/text_file.hpp"             // user_config_dir
 #include "gantry/interp/evaluator.hpp"           // EvalEnv
+#include "gantry/interp/file_reach.hpp"          // FileAccess
 #include "gantry/interp/file_system.hpp"         // FileSystem
 #include "gantry/interp/gcode_state.hpp"         // GcodeOffsets
 #include "gantry/interp/operator_io.hpp"         // OperatorIO
@@ -218,10 +220,10 @@ class CommandContext {
   void warn(const SourceLoc& loc, std::string message);
   // A file a command writes (TD, TU, TH): a relative name is found beside the top-level
   // file, as FP finds it; a check or a preview writes into its sandbox, never the disk. A
-  // file that is running is refused. On disk, into an existing folder, every write is atomic
-  // (`atomic` no longer matters): a crash leaves the old file or the new one. Returns the path.
-  std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc,
-                         bool atomic = false);
+  // file that is running, out of the part file's reach (docs/security.md) or that cannot be
+  // written (no folder, a folder, too long) is refused. On disk every write is atomic: a
+  // crash leaves the old file or the new one. Returns the path.
+  std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc);
   // The text of a file found as write_file finds it (a check sees its own writes); nullopt
   // when it cannot be read. `path` receives where it looked.
   std::optional<std::string> read_file(const std::string& name, const SourceLoc& loc,
@@ -261,6 +263,12 @@ class CommandContext {
   std::string top_folder() const;
   // The path a relative `name` stands for (the parts folder's), as write_file finds it.
   std::string file_path(const std::string& name, const SourceLoc& loc) const;
+  // file_path's path, refused at `loc` when a part file may not reach it (docs/security.md).
+  std::string reachable_path(const std::string& name, const SourceLoc& loc,
+                             FileAccess access) const;
+  // Whether a part file is running, typed lines aside (SI and RP from a part file count):
+  // what only the operator may do (UN) is refused then.
+  bool part_file_running() const;
   // The last part file loaded (the run's own, FP's) or opened with FE; "" none.
   const std::string& last_file() const;
   void set_last_file(std::string path);
@@ -336,6 +344,11 @@ struct InterpreterOptions {
   std::string macro_dir;
   std::string user_macro_dir = user_macro_folder();
   std::string shipped_macro_dir = shipped_macro_folder();
+  // A part file's reach (docs/security.md): besides its job's folder, it reads and writes in
+  // `data_dir` (Gantry's data folder) and `allowed_folders` (the profile's [files] allow and
+  // --allow-path), and reads the macro folders above.
+  std::string data_dir = user_config_dir();
+  std::vector<std::string> allowed_folders;
   int max_file_depth = 8;            // FP nesting, the top-level file included
   // The top-level file's first line to run (0 or 1: all of it): the lines before it run
   // without motion, output or questions, then the tool approaches where they leave it
@@ -483,7 +496,17 @@ class Interpreter : private EvalEnv {
   void forget_called(const std::string& path) const;
   // file_path's file as it is on the disk (case-insensitive where the exact name is missing).
   std::string existing_file(const std::string& name, const SourceLoc& loc) const;
+  // existing_file's, refused at `loc` when it cannot be read (FileSystem::read_problem).
+  std::string readable_file(const std::string& name, const SourceLoc& loc) const;
   std::vector<std::string> macro_folders() const;  // where C<n> looks, in order
+  // The folder part files reach files from: the outermost running part file's; with only
+  // typed lines running, the working directory ("").
+  std::string job_folder() const;
+  // Refuses (at `loc`) a path a part file may not reach for `access` (file_reach.hpp).
+  void check_reach(const std::string& path, FileAccess access, const SourceLoc& loc) const;
+  // file_path's path for writing: refused at `loc` when out of reach or when it cannot be
+  // written (FileSystem::write_problem), in a check as in a run.
+  std::string writable_path(const std::string& name, const SourceLoc& loc) const;
   Diagnostic located(Diagnostic d) const;
   [[noreturn]] void rethrow_located(const GantryError& e) const;
   void unwind_all();

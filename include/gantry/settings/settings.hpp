@@ -212,7 +212,13 @@ struct MachineSettings {
   // SO 4,-1..-4: -1 to -3 switch 4 comes on with the warning and goes off when the run's
   // motion ends (it drives a "machine moving" light); -4 it is an ordinary switch.
   int switch4_mode = -1;
-  std::string editor;          // UN: the program FE opens files in ("": $VISUAL, $EDITOR)
+  std::string editor;  // FE's program ("": $VISUAL, $EDITOR); read from the profile only
+};
+
+// Where part files may read and write besides their job's folder and Gantry's data folder
+// (docs/security.md). Only the machine profile's count: a values file's or UR's are ignored.
+struct FilesSettings {
+  std::vector<std::string> allow;  // folders, absolute or ~/...
 };
 
 struct Settings {
@@ -240,6 +246,7 @@ struct Settings {
   DriverSettings drivers;
   CalibrationSettings calibration;
   MachineSettings machine;
+  FilesSettings files;
 };
 
 // The result of loading a profile: settings, or every problem found in it.
