@@ -23,7 +23,9 @@ struct GantryResult {
 // Runs `gantry ARGS` in the source folder, capturing stdout and stderr. Each call gets a
 // fresh config folder, so no run sees the values (or $variables) another run saved.
 // `limit_s`: killed after that many seconds (exit code 137), for a test of a hang.
-inline GantryResult gantry(const std::string& args, int limit_s = 0) {
+// `runner`: a command gantry runs under (e.g. setpriv, to run as another user).
+inline GantryResult gantry(const std::string& args, int limit_s = 0,
+                           const std::string& runner = "") {
   namespace fs = std::filesystem;
   static int calls = 0;
   ++calls;
@@ -31,8 +33,9 @@ inline GantryResult gantry(const std::string& args, int limit_s = 0) {
   const fs::path err = tmp / fmt::format("gantry_e2e_{}_{}.err", getpid(), calls);
   const fs::path config = tmp / fmt::format("gantry_e2e_config_{}_{}", getpid(), calls);
   const std::string cmd = fmt::format(
-      "cd '{}' && XDG_CONFIG_HOME='{}' {}'{}' {} 2>'{}'", GANTRY_SOURCE_DIR, config.string(),
-      limit_s ? fmt::format("timeout -s KILL {} ", limit_s) : "", GANTRY_BIN, args, err.string());
+      "cd '{}' && XDG_CONFIG_HOME='{}' {}{}'{}' {} 2>'{}'", GANTRY_SOURCE_DIR, config.string(),
+      limit_s ? fmt::format("timeout -s KILL {} ", limit_s) : "", runner, GANTRY_BIN, args,
+      err.string());
   GantryResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
