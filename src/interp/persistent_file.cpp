@@ -106,12 +106,17 @@ std::optional<json> parse_persistent_file(const std::string& text, std::string* 
       *why = fmt::format("its \"{}\" is not an object", it.key());
       return std::nullopt;
     }
-    std::optional<json> decoded_values = decoded(*it);
-    if (!decoded_values) {
-      *why = fmt::format("its \"{}\" holds a malformed \"{}\" text", it.key(), kBytes);
-      return std::nullopt;
+    // Member by member: "variables" and "registry" themselves stay objects, even one whose
+    // only key is "$bytes" (the fuzzer's find: it read back as a text, and saved unreadable).
+    json& members = values[it.key()] = json::object();
+    for (auto m = it->begin(); m != it->end(); ++m) {
+      std::optional<json> value = decoded(*m);
+      if (!value) {
+        *why = fmt::format("its \"{}\" holds a malformed \"{}\" text", it.key(), kBytes);
+        return std::nullopt;
+      }
+      members[m.key()] = std::move(*value);
     }
-    values[it.key()] = std::move(*decoded_values);
   }
   return values;
 }
