@@ -10,18 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "gantry/core/any_bytes.hpp"      // json_text
+#include "../support/null_sink.hpp"  // NullSink
 #include "gantry/interp/interpreter.hpp"  // Interpreter
 #include "gantry/lang/script.hpp"         // Script
-
-namespace {
-
-class NullSink : public gantry::MotionSink {
- public:
-  void move(const gantry::CanonMove&) override {}
-  void flush() override {}
-};
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const gantry::Settings settings = gantry::default_settings();
@@ -30,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t i = 0; i < text.size(); ++i)
     lines += text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'));
   auto script = gantry::Script::from_text(std::move(text), "/nonexistent/fuzz.nc");
-  NullSink sink;
+  gantry::NullSink sink;
   std::string printed;
   gantry::ScriptedIO io(true, {}, &printed);
   gantry::PersistentStore store;  // in memory: never saved

@@ -9,18 +9,9 @@
 
 #include "../support/same_statement.hpp"  // simple_command_mismatch
 
+#include "../support/null_sink.hpp"  // NullSink
 #include "gantry/interp/interpreter.hpp"  // Interpreter
 #include "gantry/lang/script.hpp"         // Script
-
-namespace {
-
-class NullSink : public gantry::MotionSink {
- public:
-  void move(const gantry::CanonMove&) override {}
-  void flush() override {}
-};
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const gantry::Settings settings = gantry::default_settings();
@@ -41,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     c = next;
   }
-  NullSink sink;
+  gantry::NullSink sink;
   std::string printed;
   gantry::ScriptedIO io(true, {}, &printed);
   gantry::PersistentStore store;  // in memory: never saved

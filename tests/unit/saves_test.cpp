@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 
+#include "../support/null_sink.hpp"  // NullSink
 #include "gantry/core/any_bytes.hpp"
 #include "gantry/core/text_file.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -57,12 +58,6 @@ class Saves : public ::testing::Test {
     return out;
   }
   fs::path dir_;
-};
-
-class NullSink : public MotionSink {
- public:
-  void move(const CanonMove&) override {}
-  void flush() override {}
 };
 
 // Runs `text` with the persistent file at `store_path` and saves it as a run's end does.

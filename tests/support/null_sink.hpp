@@ -1,0 +1,14 @@
+// A motion sink for tests and fuzz targets that keeps nothing.
+#pragma once
+
+#include "gantry/motion/canon_move.hpp"
+
+namespace gantry {
+
+class NullSink : public MotionSink {
+ public:
+  void move(const CanonMove&) override {}
+  void flush() override {}
+};
+
+}  // namespace gantry
