@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../support/null_sink.hpp"       // NullSink
 #include "gantry/core/any_bytes.hpp"      // json_text
-#include "../support/null_sink.hpp"  // NullSink
 #include "gantry/interp/interpreter.hpp"  // Interpreter
 #include "gantry/lang/script.hpp"         // Script
 

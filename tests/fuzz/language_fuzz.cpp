@@ -9,7 +9,7 @@
 
 #include "../support/same_statement.hpp"  // simple_command_mismatch
 
-#include "../support/null_sink.hpp"  // NullSink
+#include "../support/null_sink.hpp"       // NullSink
 #include "gantry/interp/interpreter.hpp"  // Interpreter
 #include "gantry/lang/script.hpp"         // Script
 
