@@ -1,0 +1,67 @@
+// What the G-code executor's files share: one block's words, the codes' names and the
+// outputs M3, M7 and M8 drive. Private to src/interp.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "gantry/interp/gcode_executor.hpp"
+
+namespace gantry::gcode {
+
+constexpr int kProbeInput = 1;  // the Z zero plate: input switch 1
+constexpr int kSpindleOutput = 1;
+constexpr int kFloodOutput = 2;  // M8
+constexpr int kMistOutput = 3;   // M7
+constexpr std::string_view kAxes = "XYZABC";
+
+inline std::string code_name(char letter, int code) {
+  return code % 10 ? fmt::format("{}{}.{}", letter, code / 10, code % 10)
+                   : fmt::format("{}{}", letter, code / 10);
+}
+
+inline bool is_cycle(int motion) {
+  return motion == 730 || (motion >= 810 && motion <= 830);
+}
+
+// The non-modal codes whose axis words are theirs, not a motion's.
+inline bool takes_axis_words(int non_modal, bool wincnc) {
+  return non_modal == 100 || non_modal == 280 || non_modal == 300 || non_modal == 920 ||
+         (wincnc && (non_modal == 922 || non_modal == 40));
+}
+
+}  // namespace gantry::gcode
+
+namespace gantry {
+
+// One block's values: every letter but G and M at most once, the G and M codes by group.
+struct GcodeExecutor::Words {
+  std::array<double, 26> value{};
+  std::array<int, 26> column{};
+  std::uint32_t present = 0;
+  std::array<int, 16> g{};  // by group: code x10, or -1
+  std::array<int, 16> g_col{};
+  int non_modal = -1;  // group 0 other than G53
+  bool g53 = false;
+  std::array<int, 10> m{};  // by group
+  std::array<int, 10> m_col{};
+  bool m7 = false, m8 = false;  // both may be given
+  bool has(char c) const { return present & (1u << (c - 'A')); }
+  double get(char c) const { return value[c - 'A']; }
+  SourceLoc at(char c, const SourceLoc& loc) const {
+    SourceLoc l = loc;
+    l.column = column[c - 'A'];
+    return l;
+  }
+  bool any_axis() const {
+    for (char c : gcode::kAxes)
+      if (has(c)) return true;
+    return false;
+  }
+};
+
+}  // namespace gantry
