@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>  // messages
 
-#include <cmath>  // lround, round
+#include <algorithm>  // max
+#include <cmath>      // lround, round, sqrt
 
-#include "gantry/motion/path_limits.hpp"  // nominal_path_speed
 #include "gcode_words.hpp"
 
 namespace gantry {
@@ -188,24 +188,29 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
     return evaluate_gcode_expression(b.exprs[static_cast<size_t>(expr)], at, this);
   };
   for (const GcodeWord& word : b.words) {
-    SourceLoc at = loc;
-    at.column = word.column;
+    // The word's location, made only for an error: copying `loc` (its file's shared name)
+    // for every word was a tenth of a plain block's time.
+    const auto at = [&] {
+      SourceLoc l = loc;
+      l.column = word.column;
+      return l;
+    };
     if (word.bare && !wincnc)
-      fail(at, fmt::format("{} needs a value, as in {}1.5 (a bare letter means 0 only in the "
-                           "WinCNC dialect)",
-                           word.letter, word.letter));
+      fail(at(), fmt::format("{} needs a value, as in {}1.5 (a bare letter means 0 only in the "
+                             "WinCNC dialect)",
+                             word.letter, word.letter));
     const double v = word.bare ? 0 : value_of(word.number, word.expr);
     if (!std::isfinite(v))
-      fail(at, fmt::format("the value of {} is not a finite number", word.letter));
+      fail(at(), fmt::format("the value of {} is not a finite number", word.letter));
     if (word.letter == 'G' || word.letter == 'M') {
       const double tenths = v * 10;
       const int code = static_cast<int>(std::lround(tenths));
       if (std::abs(tenths - code) > 1e-6 || code < 0)
-        fail(at, fmt::format("{}{} is not a code: codes are whole numbers or have one decimal, "
-                             "as G38.2",
-                             word.letter, v));
+        fail(at(), fmt::format("{}{} is not a code: codes are whole numbers or have one decimal, "
+                               "as G38.2",
+                               word.letter, v));
       const int group = word.letter == 'G' ? g_group(code) : m_group(code);
-      if (group < 0) fail(at, unknown_code_message(word.letter, code, wincnc));
+      if (group < 0) fail(at(), unknown_code_message(word.letter, code, wincnc));
       if (word.letter == 'G' && code == 530) {
         w.g53 = true;
         continue;
@@ -222,15 +227,15 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
         continue;
       }
       if (slot >= 0)
-        fail(at, fmt::format("{} and {} are in the same modal group: a block takes one of them",
-                             code_name(word.letter, slot), code_name(word.letter, code)));
+        fail(at(), fmt::format("{} and {} are in the same modal group: a block takes one of them",
+                               code_name(word.letter, slot), code_name(word.letter, code)));
       slot = code;
       slot_col = word.column;
       continue;
     }
     const int i = word.letter - 'A';
     if (w.has(word.letter))
-      fail(at, fmt::format("{} appears twice in this block; give each word once", word.letter));
+      fail(at(), fmt::format("{} appears twice in this block; give each word once", word.letter));
     w.present |= 1u << i;
     w.value[i] = v;
     w.column[i] = word.column;
@@ -404,23 +409,33 @@ double GcodeExecutor::feed_for(const Words& w, double length, const SourceLoc& l
 
 // A straight move at `speed` (feed, units/s) or at jog speed; G61 stops after it.
 void GcodeExecutor::line(const Vec6& target, SpeedClass cls, double speed, const SourceLoc& loc) {
+  line(program_position(), target, cls, speed, loc);
+}
+
+void GcodeExecutor::line(const Vec6& from, const Vec6& target, SpeedClass cls, double speed,
+                         const SourceLoc& loc) {
   ModalState& st = ctx_.state();
   if (cls == SpeedClass::Jog) {
     ctx_.line_to(to_file(target), cls, loc);
   } else {
     // F is the speed along the path: the groups' speeds are scaled so that the move's
-    // nominal path speed (the planner's) is exactly F.
-    const double per_unit = nominal_path_speed(target - program_position(), {1, 1, 1, 1, 1});
-    const double g = per_unit > 0 ? speed / per_unit : speed;
-    const SpeedSettings saved = st.speeds;
+    // nominal path speed (the planner's) is exactly F. With every group at speed 1 that path
+    // speed is the length over the largest group's travel (nominal_path_speed), so the groups
+    // go at F times that travel over the length.
+    const Vec6 d = target - from;
+    const double length = d.norm();
+    const double largest = std::max({std::sqrt(d[0] * d[0] + d[1] * d[1]), std::abs(d[2]),
+                                     std::abs(d[3]), std::abs(d[4]), std::abs(d[5])});
+    const double g = length > 0 && largest > 1e-12 * length ? speed * largest / length : speed;
+    const GroupSpeeds saved = st.speeds.move;
     st.speeds.move = {g, g, g, g, g};
     try {
       ctx_.line_to(to_file(target), cls, loc);
     } catch (...) {
-      st.speeds = saved;
+      st.speeds.move = saved;
       throw;
     }
-    st.speeds = saved;
+    st.speeds.move = saved;
   }
   if (modes_.exact_stop) ctx_.come_to_rest(loc);
 }

@@ -22,7 +22,7 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
     modes_.cycle_r.reset();
     modes_.cycle_q.reset();
     modes_.cycle_p = 0;
-    modes_.cycle_start_z = program_position()[2];
+    if (is_cycle(m)) modes_.cycle_start_z = program_position()[2];  // read by cycles alone
   }
   if (takes_axis_words(w.non_modal, wincnc) || w.g431_alone() || m < 0) return;
   const bool arc_mode = m == 20 || m == 30;
@@ -44,9 +44,10 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
   switch (m) {
     case 0:
     case 10: {
-      const Vec6 target = axis_target(w, program_position(), modes_.incremental);
-      const double len = (target - program_position()).norm();
-      line(target, m == 0 ? SpeedClass::Jog : SpeedClass::Move, feed_for(w, len, loc), loc);
+      const Vec6 from = program_position();
+      const Vec6 target = axis_target(w, from, modes_.incremental);
+      const double len = modes_.inverse_time ? (target - from).norm() : 0;  // G93 alone uses it
+      line(from, target, m == 0 ? SpeedClass::Jog : SpeedClass::Move, feed_for(w, len, loc), loc);
       return;
     }
     case 20:

@@ -4,6 +4,7 @@
 
 #include <algorithm>  // equal
 #include <cmath>      // math functions of expressions
+#include <cstdint>    // uint64_t
 
 #include "gantry/lang/gcode.hpp"
 #include "gantry/lang/parser.hpp"  // LineParse, Statement
@@ -21,12 +22,29 @@ using scan::is_letter;
 using scan::upper;
 
 // Reads `digits[.digits]` or `.digits` at s[i]; returns the end, or i when there is none.
+// The hot path of every block: the digits are summed as they are scanned, and the value is
+// the one plain_value gives (a mantissa of at most 15 digits over a power of ten, else the
+// exact conversion).
 size_t read_unsigned(std::string_view s, size_t i, double* value) {
+  std::uint64_t m = 0;
+  int digits = 0, decimals = -1;
   size_t j = i;
-  bool point = false;
-  for (; j < s.size() && (is_digit(s[j]) || (s[j] == '.' && !point)); ++j) point |= s[j] == '.';
-  if (j == i || (j == i + 1 && point)) return i;  // no digit
-  *value = literal::plain_value(s.substr(i, j - i));
+  for (; j < s.size(); ++j) {
+    const char c = s[j];
+    if (is_digit(c)) {
+      m = m * 10 + static_cast<unsigned>(c - '0');  // wraps past 19 digits: not used then
+      ++digits;
+      decimals += decimals >= 0;
+    } else if (c == '.' && decimals < 0) {
+      decimals = 0;
+    } else {
+      break;
+    }
+  }
+  if (digits == 0) return i;
+  *value = digits <= 15 && decimals <= 22
+               ? static_cast<double>(m) / literal::kPow10[decimals < 0 ? 0 : decimals]
+               : literal::plain_value(s.substr(i, j - i));
   return j;
 }
 
@@ -420,7 +438,8 @@ class BlockReader {
   void word(bool first) {
     const size_t at = i_;
     const char letter = upper(s_[i_]);
-    if (!function_at(s_, i_).empty())
+    // A function's name has two letters or more; a word's letter is followed by its value.
+    if (i_ + 1 < s_.size() && is_letter(s_[i_ + 1]) && !function_at(s_, i_).empty())
       error(at, "a function is a value: write it after a word's letter, as in X[SIN[30]]");
     ++i_;
     GcodeWord w;

@@ -70,6 +70,9 @@ class GcodeExecutor : private GcodeParameters {
   void select_system(int n);
   double feed_for(const Words& w, double length, const SourceLoc& loc) const;
   void line(const Vec6& target, SpeedClass cls, double speed, const SourceLoc& loc);
+  // The same from `from`, the program position (saves computing it again: the hot path).
+  void line(const Vec6& from, const Vec6& target, SpeedClass cls, double speed,
+            const SourceLoc& loc);
   void motion(const Words& w, const SourceLoc& loc);
   void arc(const Words& w, bool clockwise, const SourceLoc& loc);
   void canned_cycle(const Words& w, const SourceLoc& loc);
