@@ -46,10 +46,11 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
   const double bottom = modes_.incremental ? r_level + *modes_.cycle_z : *modes_.cycle_z;
   if (bottom > r_level)
     fail(loc, "the hole's bottom Z is above the retract plane R; check Z and R (and G90/G91)");
-  // Bounded before any move is made: at most 3 moves a peck and 4 more a hole.
+  // Bounded before any move is made: a hole is 4 moves (to X Y, to R, down, up); a pecking
+  // one at most 3 a peck and 3 more.
   const bool pecking = code == 730 || code == 830;
-  const double pecks = pecking ? std::ceil((r_level - bottom) / *modes_.cycle_q) : 1;
-  if (const double moves = repeats * (3 * pecks + 4); moves > kMaxBlockMoves)
+  const double pecks = pecking ? std::ceil((r_level - bottom) / *modes_.cycle_q) : 0;
+  if (const double moves = repeats * (pecking ? 3 * pecks + 3 : 4); moves > kMaxBlockMoves)
     fail(pecking && w.has('Q') && !(w.has('L') && repeats > 1) ? w.at('Q', loc)
          : w.has('L')                                          ? w.at('L', loc)
                                                                : loc,
