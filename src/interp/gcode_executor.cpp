@@ -129,7 +129,7 @@ GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<
 }
 
 void GcodeExecutor::begin_file() {
-  tool_note_given_ = false;
+  tool_note_given_ = table_read_ = false;
   modes_ = Modes{};  // a file gives its own feed rate too
   modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
                                              ? ProgramUnits::Millimetres

@@ -24,9 +24,10 @@ int tool_number(const char* code, char letter, double v, const SourceLoc& at) {
 
 }  // namespace
 
-// The file is the table: it is read again whenever its text differs from what was last read
-// or written here (an editor changed it between jobs). Changes a check or a preview makes
-// stay in this memory only, over the unchanged file.
+// The file is the table: once per G-code file it is read again when its text differs from
+// what was last read or written here (an editor changed it between jobs); a loop's T words
+// do not read it each time. Changes a check or a preview makes stay in this memory only,
+// over the unchanged file.
 ToolTable& GcodeExecutor::tool_table(const SourceLoc& loc) {
   ToolTable& t = ctx_.state().gcode.tools;
   const std::string& path = ctx_.settings().tool_table_path;
@@ -34,7 +35,9 @@ ToolTable& GcodeExecutor::tool_table(const SourceLoc& loc) {
     if (!t.implicit()) t = ToolTable{};  // the profile no longer names a file
     return t;
   }
+  if (table_read_ && t.path() == path) return t;
   const std::optional<std::string> text = read_text_file(path);
+  table_read_ = true;
   if (t.path() == path && text && *text == t.source_text()) return t;
   try {
     t = load_tool_table(path, loc);

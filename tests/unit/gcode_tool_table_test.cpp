@@ -207,13 +207,18 @@ TEST(ToolTableFile, MalformedLinesAreLocatedErrorsSayingWhatToWrite) {
 }
 
 TEST(ToolTableFile, AMissingFileIsAnErrorNamingThePath) {
-  try {
-    load_tool_table("/no/such/folder/tool.tbl");
-    FAIL();
-  } catch (const GantryError& e) {
-    EXPECT_NE(e.diagnostic().message.find("the tool table /no/such/folder/tool.tbl does not exist"),
-              std::string::npos)
-        << e.diagnostic().message;
+  const std::string absent = (fs::temp_directory_path() / "gantry_no_such_table.tbl").string();
+  for (const std::string& path : {absent, std::string("/no/such/folder/tool.tbl")}) {
+    try {
+      load_tool_table(path);
+      FAIL() << path;
+    } catch (const GantryError& e) {
+      const std::string& m = e.diagnostic().message;
+      EXPECT_NE(m.find("the tool table " + path), std::string::npos) << m;
+      EXPECT_NE(m.find(path == absent ? "does not exist" : "there is no folder /no/such/folder"),
+                std::string::npos)
+          << m;
+    }
   }
 }
 

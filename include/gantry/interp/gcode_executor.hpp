@@ -89,6 +89,7 @@ class GcodeExecutor : private GcodeParameters {
   Modes modes_;
   int selected_tool_ = 0;         // T
   bool tool_note_given_ = false;  // this file was told the implicit table's tools have length 0
+  bool table_read_ = false;       // this file compared the table file with the one in memory
   std::unordered_map<int, double> params_;
   std::map<std::string, double, std::less<>> named_;
   Vec6 probed_ = Vec6::Zero();  // #5061..: where the last probe stopped
