@@ -1292,10 +1292,12 @@ void Interpreter::loop(DiagnosticLog* collect) {
         pending_call_.reset();
         const std::string path =
             call.resolved ? call.path : readable_file(call.path, pending_call_loc_);
-        push_file(call.lines ? call.lines : frames_.front().script->called(path, [&] {
-          return files_system_->load_script(path, table_.is_command());
-        }),
-                  call, pending_call_loc_);
+        push_file(
+            call.lines
+                ? call.lines
+                : frames_.front().script->called(
+                      path, [&] { return files_system_->load_script(path, table_.is_command()); }),
+            call, pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;

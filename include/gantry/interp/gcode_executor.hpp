@@ -56,6 +56,8 @@ class GcodeExecutor : private GcodeParameters {
   void read_words(const GcodeBlock& b, const SourceLoc& loc, Words& w);
   void check_words(const Words& w, const SourceLoc& loc);
   void run(const Words& w, const SourceLoc& loc);
+  // (MSG,...), (PRINT,...), (DEBUG,...) print; (ABORT,...) stops with a located error.
+  void message(const GcodeBlock& b, const SourceLoc& loc);
 
   // Program units to machine units: per axis (A, B, C in degrees stay) and for lengths.
   Vec6 axis_scale() const;
