@@ -103,6 +103,7 @@ int m_group(int code) {
     case 300:
       return 4;
     case 60:
+    case 610:  // M61: the tool in the spindle, without a change
       return 6;
     case 30:
     case 40:
@@ -130,6 +131,7 @@ GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<
 }
 
 void GcodeExecutor::begin_file() {
+  tool_note_given_ = table_read_ = false;
   modes_ = Modes{};  // a file gives its own feed rate too
   modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
                                              ? ProgramUnits::Millimetres
@@ -158,8 +160,7 @@ double GcodeExecutor::numbered(int n, const SourceLoc&) const {
   if (n == 5220) return o.system + 1;
   for (int s = 0; s < 9; ++s)
     if (auto v = axis(s == o.system ? st.zero : o.origin[s], 5221 + 20 * s)) return *v;
-  if (n == 5400) return o.tool;
-  if (n == 5403) return o.tool_length / length_scale();
+  if (auto v = tool_parameter(n)) return *v;
   if (auto v = axis(program_position(), 5420)) return *v;
   return 0;
 }
@@ -300,7 +301,7 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     fail(w.at('R', loc),
          "R is an arc's radius or a canned cycle's retract plane: it needs G2, "
          "G3 or G81-G83");
-  if (w.has('Q') && !(motion == 730 || motion == 830) && w.g[13] != 640)
+  if (w.has('Q') && !(motion == 730 || motion == 830) && w.m[6] != 610 && w.g[13] != 640)
     fail(w.at('Q', loc), "Q is the peck depth of G73 and G83");
   if (w.has('H') && w.g[8] != 430)
     fail(w.at('H', loc), "H names the tool whose length G43 applies");
@@ -316,7 +317,7 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   if (motion == 820 && moving && !w.has('P') && modes_.motion != 820 && !wincnc)
     fail(w.g[1] == 820 ? code_at(1) : loc, "G82 needs P, the dwell at the bottom in seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
-    fail(loc, "G10 needs L (1 tool table, 2 or 20 coordinate system) and P");
+    fail(loc, "G10 needs L (1, 10 or 11 tool table, 2 or 20 coordinate system) and P");
   if (w.g53 && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
     fail(loc, "G53 goes with G0 or G1 only");
   if (w.g53 && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
@@ -473,18 +474,7 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   }
   if (w.has('S') && w.get('S') < 0)
     fail(w.at('S', loc), "S, the spindle speed, cannot be negative");
-  if (w.has('T')) {
-    const double t = w.get('T');
-    if (t != std::round(t) || t < 0)
-      fail(w.at('T', loc), fmt::format("T{} is not a tool number (a whole number, 0 or more)", t));
-    selected_tool_ = static_cast<int>(t);
-  }
-  if (w.m[6] == 60 && selected_tool_ != o.tool) {  // M6
-    ctx_.come_to_rest(loc);
-    if (!io_.confirm(fmt::format("Change to tool {} (M6), then continue", selected_tool_), loc))
-      throw OperatorStop({loc, Severity::Error, "stopped by the operator at M6"});
-    o.tool = selected_tool_;
-  }
+  tool_change(w, loc);  // T, M6, M61
   if (w.m[7] == 40)
     fail(loc,
          "M4 (spindle counter-clockwise) is not available: output switch 1 runs the "
@@ -545,16 +535,7 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     if (modes_.units != was) modes_.previous_units = was;
   }
   if (w.g[8] == 430) {
-    const int h = w.has('H') ? static_cast<int>(std::lround(w.get('H'))) : o.tool;
-    if (w.has('H') && (w.get('H') != h || h < 0))
-      fail(w.at('H', loc), fmt::format("H{} is not a tool number", w.get('H')));
-    const auto it = o.tools.find(h);
-    if (h != 0 && it == o.tools.end())
-      fail(w.has('H') ? w.at('H', loc) : loc,
-           fmt::format("tool {} is not in the tool table; give its length first with G10 L1 P{} "
-                       "Z<length>",
-                       h, h));
-    o.tool_length = h == 0 ? 0 : it->second.length;
+    tool_length(w, loc);
   } else if (w.g[8] == 431) {
     // Only the offset changes (no motion): the next move reads Z from the new offset. Without
     // Z the offset stays, as in LinuxCNC.

@@ -662,6 +662,10 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
   return path;
 }
 
+bool CommandContext::writes_to_disk() const {
+  return dynamic_cast<DiskFileSystem*>(interp_->files_system_) != nullptr;
+}
+
 std::optional<std::string> CommandContext::read_file(const std::string& name, const SourceLoc& loc,
                                                      std::string* path) {
   const std::string p = interp_->existing_file(name, loc);
