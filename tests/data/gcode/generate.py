@@ -186,14 +186,16 @@ for unit, (ucode, k, feed) in UNITS.items():
     program(f"g93_{unit}", body)
 body = ["G20 G90 F30", "G0 X0 Y0 Z0.1", "G61", "G1 X1", "G1 Y1", "G2 X0 Y1 I-0.5", "G0 Z0.5",
         "G64", "G1 X1", "G1 Y0", "G61.1", "G1 X0.5", "G1 Y0.5", "G64 P0.01", "G1 X0", "G1 Y0",
-        "G64 P0.005 Q0.001", "G1 X1", "G61 G1 Y1", "G64 G1 X0"]
+        "G61 G1 Y1", "G64 G1 X0"]
 program("path_modes", body)
+# G64's Q: the naive CAM tolerance.
+program("path_blend_q", ["G21 G90 F300", "G64 P0.1 Q0.05", "G1 X10", "G1 Y10", "G1 X0", "G1 Y0"])
 body = ["G20 G90 F30", "G0 X0 Y0", "G4 P1.5", "G1 X1", "G4 P0.25", "G4 P0", "G1 Y1",
         "G4 P2 G0 Z1", "G21 G4 P0.75", "G1 X0 F300"]
 program("dwell", body)
 
 # ---- canned cycles: each cycle, retract mode, distance mode, unit, repeats -------------------
-CYCLES = {"g81": "", "g82": "P0.5", "g83": "Q0.3", "g73": "Q0.2"}
+CYCLES = {"g81": "", "g82": "P0.5", "g83": "Q0.33", "g73": "Q0.27"}
 for cyc, extra in CYCLES.items():
     for unit, (ucode, k, feed) in UNITS.items():
         for ret in ("G98", "G99"):
@@ -206,21 +208,32 @@ for cyc, extra in CYCLES.items():
                     body = [f"{ucode} G17 G90 F{feed}", f"G0 X0 Y0 Z{fmt(0.6 * k)}",
                             f"{ret} {c} X{fmt(1 * k)} Y{fmt(1 * k)} Z{fmt(-0.75 * k)} R{fmt(0.1 * k)} {q}",
                             f"X{fmt(2 * k)}", f"Y{fmt(2 * k)} Z{fmt(-0.5 * k)}",
-                            f"G99 X{fmt(3 * k)} R{fmt(0.2 * k)}",
-                            f"G98 X{fmt(4 * k)} Y{fmt(1.5 * k)}",
+                            f"X{fmt(4 * k)} Y{fmt(1.5 * k)}",
                             "G80", f"G0 Z{fmt(0.3 * k)}",
                             f"{ret} {c} X{fmt(0.5 * k)} Y{fmt(0.5 * k)} Z{fmt(-0.2 * k)} R{fmt(0.5 * k)} {q}",
                             "G80", f"G0 X0 Y0 Z{fmt(1 * k)}"]
                 else:
                     body = [f"{ucode} G17 G90 F{feed}", f"G0 X0 Y0 Z{fmt(0.6 * k)}",
                             f"G91 {ret} {c} X{fmt(1 * k)} Y{fmt(0.5 * k)} Z{fmt(-0.8 * k)} R{fmt(-0.5 * k)} {q} L3",
-                            f"X{fmt(-0.5 * k)} Y0",
-                            f"X0 Y{fmt(0.75 * k)} L2", "G90 G80", f"G0 X0 Y0 Z{fmt(1 * k)}"]
+                            "G90 G80", f"G0 X0 Y0 Z{fmt(1 * k)}"]
                 program(f"cycle_{cyc}_{unit}_{ret.lower()}_{dist}", body)
 # A cycle that starts below R rises to R first; the cycle's modal axes; G80 in the motion group.
 program("cycle_below_r", ["G20 G90 F20", "G0 X0 Y0 Z0", "G98 G81 X1 Y1 Z-0.5 R0.2",
-                          "G99 G81 X2 Y1 Z-0.5 R0.2", "G0 Z-0.1", "G98 G83 X3 Y1 Z-0.6 R0.1 Q0.2",
-                          "G80 G0 Z1"])
+                          "G99 G81 X2 Y1 Z-0.5 R0.2", "G0 Z-0.1", "G98 G83 X3 Y1 Z-0.6 R0.1 Q0.3",
+                          "G80", "G0 Z1"])
+# The retract mode changed within a series: G98 goes back to where the series began.
+program("cycle_mode_switch", ["G20 G17 G90 F20", "G0 X0 Y0 Z0.6", "G98 G81 X1 Y1 Z-0.75 R0.1",
+                              "G99 X2", "X3", "G98 X4", "G80", "G0 Z1"])
+# R raised within a series of G99 cycles.
+program("cycle_r_raised", ["G20 G17 G90 F20", "G0 X0 Y0 Z0.6", "G99 G81 X1 Y1 Z-0.75 R0.1",
+                           "X2 R0.2", "X3", "G80", "G0 Z1"])
+# Incremental cycles continued by later blocks without R and Z.
+program("cycle_inc_continued", ["G21 G17 G90 F300", "G0 X0 Y0 Z15",
+                                "G91 G99 G81 X25 Y12.5 Z-20 R-12.5 L2", "X-12.5 Y0",
+                                "X0 Y20 L2", "G90 G80", "G0 X0 Y0 Z25"])
+# A depth that is a whole number of pecks, in millimetres.
+program("cycle_peck_multiple", ["G21 G90 F200", "G0 X0 Y0 Z15", "G98 G83 X25 Y25 Z-12.5 R2.5 Q7.5",
+                                "G73 X50 Z-12.5 R2.5 Q5", "G80", "G0 Z15"])
 program("cycle_modal", ["G21 G90 F200", "G0 X0 Y0 Z10", "G81 X10 Y10 Z-3 R2", "Y20", "X20",
                         "Z-5", "R5 X30", "G82 P0.2 R5 Z-5 X40", "G80", "G0 Z10"])
 
@@ -234,8 +247,11 @@ program("expressions", [
     "G1 X[1 + 2 * 3 - 4 / 2] Y[[1 + 2] * [3 - 4] / 2 + 3]",
     "G1 X[1 GT 0] Y[[2 LE 1] + [3 EQ 3] * 2]", "G1 X[1 AND 0] Y[1 OR 0 + 1 XOR 1]",
     "G1 X[-[-1]] Y[- 2 + 3]", "#4 = 2 #5 = #4", "G1 X#5 Y#4",
-    "#10 = 1.5", "#11 = #10", "#10 = 2.5 G1 X#10 Y#11", "#[1 + 1] = 0.25", "G1 X#2 Y#[1+1]",
+    "#10 = 1.5", "#11 = #10", "#10 = 2.5 G1 X#10 Y#11",
 ])
+# Indirect parameters: #[expression].
+program("param_indirect", ["G20 G90 F30", "#1 = 2", "#[#1 + 1] = 0.25", "G1 X#3 Y#[1+1]",
+                           "#[#1 * 5] = 1.5", "G1 X#10"])
 program("parameters_offsets", [
     "G20 G90 F30", "G10 L2 P2 X1 Y2 Z0.5", "G0 X[#5241] Y[#5242]",
     "G55 G0 X0 Y0", "G0 X[#5220] Y0", "G92 X1", "G0 X[#5211] Y0", "G92.1",
@@ -248,14 +264,14 @@ program("m_codes", [
     "G1 X0", "M5", "G0 Z1", "M3 S9000 M8", "G1 X0.5", "M5 M9", "G0 X0 Y0", "M1", "G0 X0.1",
 ])
 program("m_codes_outputs", [
-    "G21 G90 F600", "G0 X0 Y0 Z5", "M64 P1", "G1 X10", "M65 P1", "M62 P2 G1 X20", "M63 P2",
+    "G21 G90 F600", "G0 X0 Y0 Z5", "M64 P5", "G1 X10", "M65 P5", "M62 P6 G1 X20", "M63 P6",
     "G1 X30", "M3 S18000", "G0 Z1", "M0", "G1 X0", "M5",
 ])
 program("m30_end", ["G20 G90 F30", "G0 X1 Y1", "M3 S10000", "G1 X2", "M30 (end, the spindle stops)"])
 
 # ---- G38 probes -------------------------------------------------------------------------------
 program("probe", ["G20 G90 F10", "G0 X1 Y1 Z1", "G38.2 Z-1", "G0 Z1", "G38.3 Z-0.5 F5",
-                  "G91 G0 Z0.5", "G90 G0 X0"])
+                  "G0 Z1", "G0 X0"])
 
 for old in os.listdir(HERE):
     if old.startswith("gen_") and old.endswith(".ngc") and old not in written:
