@@ -689,7 +689,12 @@ int main(int argc, char** argv) {
   const fs::path scratch = fs::temp_directory_path() /
                            ("gantry-differential-" + std::to_string(static_cast<long>(getpid())));
   const fs::path cache = rs.root.parent_path() / "cache";
-  const std::string tools_text = read_text(tool_table);
+  // The key: the tool table and which rs274 (its size and time), besides the program.
+  std::error_code stamp_error;
+  const std::string tools_text =
+      read_text(tool_table) + "\x1f" + std::to_string(fs::file_size(rs.bin(), stamp_error)) +
+      "\x1f" +
+      std::to_string(fs::last_write_time(rs.bin(), stamp_error).time_since_epoch().count());
   std::atomic<size_t> next{0};
   std::atomic<bool> spawn_failed{false};
   const unsigned workers = std::max(2u, std::min(8u, std::thread::hardware_concurrency() * 2));
