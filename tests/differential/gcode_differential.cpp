@@ -94,6 +94,7 @@ struct Outcome {
   std::string error;                     // the message (rs274's, or Gantry's formatted diagnostic)
   std::vector<int> error_lines;          // rs274: the lines whose text is the refused block
   int error_line = 0, error_column = 0;  // Gantry
+  std::string error_file;                // Gantry: the file its error names
   std::vector<Motion> motions;
   int final_outputs = 0;
   std::string trouble;  // the harness could not read this side (a crash, an unknown call)
@@ -419,8 +420,10 @@ Outcome run_gantry(const fs::path& program, const Settings& settings) {
       if (d.severity == Severity::Error) {
         o.refused = true;
         o.error = format(d);
-        o.error_line = d.via.empty() ? d.loc.line : d.via.front().line;
-        o.error_column = d.via.empty() ? d.loc.column : d.via.front().column;
+        const SourceLoc& at = d.via.empty() ? d.loc : d.via.front();
+        o.error_line = at.line;
+        o.error_column = at.column;
+        o.error_file = at.file ? *at.file : "";
         return o;
       }
     KeepingSink sink;
@@ -473,11 +476,8 @@ Outcome run_gantry(const fs::path& program, const Settings& settings) {
     }
     o.final_outputs = outputs;
   } catch (const GantryError& e) {
-    o.refused = true;
-    o.error = "(while running, after the check passed) " + format(e.diagnostic());
-    o.error_line = e.diagnostic().loc.line;
-    o.error_column = e.diagnostic().loc.column;
-    o.motions.clear();
+    // The check passed, so a real run would have moved before this: never a refusal alike.
+    o.trouble = "Gantry's check passed but its run stopped: " + format(e.diagnostic());
   } catch (const std::exception& e) {
     o.trouble = std::string("Gantry threw: ") + e.what();
   }
@@ -550,7 +550,7 @@ struct Verdict {
   std::string detail;
 };
 
-Verdict compare(const Outcome& g, const Outcome& r) {
+Verdict compare(const Outcome& g, const Outcome& r, const fs::path& program) {
   Verdict v;
   if (!r.trouble.empty() || !g.trouble.empty()) {
     v.what = Verdict::Mismatch;
@@ -565,7 +565,8 @@ Verdict compare(const Outcome& g, const Outcome& r) {
                  ")\n  Gantry runs it (" + std::to_string(g.motions.size()) + " motions)\n";
       return v;
     }
-    const bool located = g.error_line > 0 && g.error_column > 0;
+    const bool located = g.error_line > 0 && g.error_column > 0 &&
+                         fs::path(g.error_file).filename() == program.filename();
     const bool same_line =
         r.error_lines.empty() ||
         std::find(r.error_lines.begin(), r.error_lines.end(), g.error_line) != r.error_lines.end();
@@ -784,7 +785,7 @@ int main(int argc, char** argv) {
     Verdict verdict;
     std::string detail;
     for (const auto& [label, settings, reference] : machines) {
-      const Verdict v = compare(run_gantry(programs[i], *settings), *reference);
+      const Verdict v = compare(run_gantry(programs[i], *settings), *reference, programs[i]);
       if (v.what == Verdict::Mismatch) {
         verdict = v;
         detail = std::string("  (") + label + ")\n" + v.detail;
