@@ -43,7 +43,7 @@ int run_gui_command(const GuiArgs& a) {
     return 1;
   }
   MachineProfile profile;
-  if (!load_machine_profile(a.profile, a.values, profile)) return 1;
+  if (!load_machine_profile(a.profile, a.values, profile, a.tool_table)) return 1;
   const Settings& settings = profile.settings;
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   ui::WindowIO io(false, {});

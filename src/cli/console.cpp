@@ -1035,7 +1035,7 @@ CLI::App* add_console_command(CLI::App& app, ConsoleArgs& a) {
 
 int run_console(const ConsoleArgs& a) {
   MachineProfile profile;
-  if (!load_machine_profile(a.profile, a.values, profile)) return 1;
+  if (!load_machine_profile(a.profile, a.values, profile, a.tool_table)) return 1;
   const Settings& settings = profile.settings;
   std::map<std::string, std::string> inputs;
   for (const std::string& kv : a.inputs) {

@@ -21,6 +21,7 @@ void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::stri
   cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
   cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
   add_allow_path_option(cmd, a.allow_paths);
+  add_tool_table_option(cmd, a.tool_table);
 }
 
 void ValuesKeeper::ran(const Settings& s) {

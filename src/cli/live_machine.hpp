@@ -22,6 +22,7 @@ struct LiveMachineArgs {
   bool realtime = false;
   bool allow_shell = false;
   std::vector<std::string> allow_paths;  // --allow-path
+  std::string tool_table;                // --tool-table
 };
 
 // Adds them to `cmd` (`realtime_help`: what real time is needed for there).

@@ -38,8 +38,10 @@ std::vector<std::string> allowed_folders(const MachineProfile& p,
   return out;
 }
 
-bool load_machine_profile(const std::string& profile_arg, const std::string& values_path,
-                          MachineProfile& out) {
+namespace {
+
+bool load_profile_and_values(const std::string& profile_arg, const std::string& values_path,
+                             MachineProfile& out) {
   auto print_errors = [](const std::vector<Diagnostic>& errors) {
     for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));
   };
@@ -90,6 +92,26 @@ bool load_machine_profile(const std::string& profile_arg, const std::string& val
   }
   out.settings = load.settings;
   return true;
+}
+
+}  // namespace
+
+void add_tool_table_option(CLI::App* cmd, std::string& file) {
+  cmd->add_option("--tool-table", file,
+                  "G-code's tool table (LinuxCNC's format: T1 P1 D0.25 Z+1.5), instead of the "
+                  "profile's tool_table; G10 L1/L10/L11 write it back (docs/gcode.md)");
+}
+
+bool load_machine_profile(const std::string& profile_arg, const std::string& values_path,
+                          MachineProfile& out, const std::string& tool_table) {
+  const bool loaded = load_profile_and_values(profile_arg, values_path, out);
+  // The profile's own: a values file cannot point G10's writes elsewhere.
+  out.settings.tool_table = out.bare.tool_table;
+  out.settings.tool_table_path = out.bare.tool_table_path;
+  if (!tool_table.empty())
+    out.bare.tool_table = out.settings.tool_table = out.bare.tool_table_path =
+        out.settings.tool_table_path = tool_table;
+  return loaded;
 }
 
 }  // namespace gantry

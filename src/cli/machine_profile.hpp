@@ -25,8 +25,12 @@ void add_profile_option(CLI::App* cmd, std::string& profile);
 // values file (`values_path`, or "" for the profile's file in the config folder, which may not
 // exist yet). On an error, prints every error to stderr (naming the file, line and key) and returns
 // false.
+// `tool_table` (--tool-table): the G-code tool table file, instead of the profile's.
 bool load_machine_profile(const std::string& profile_path, const std::string& values_path,
-                          MachineProfile& out);
+                          MachineProfile& out, const std::string& tool_table = "");
+
+// --tool-table FILE: G-code's tool table (docs/gcode.md, "Tool table").
+void add_tool_table_option(CLI::App* cmd, std::string& file);
 
 // --allow-path DIR (repeatable): a folder part files may read and write in, besides theirs.
 void add_allow_path_option(CLI::App* cmd, std::vector<std::string>& folders);

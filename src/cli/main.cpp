@@ -165,6 +165,7 @@ struct LanguageArgs {
   std::vector<std::string> allow_paths;  // --allow-path: folders part files may reach
   std::string persistent;  // file of $variables; default in the user's config directory
   std::string values;      // the values file; default in the user's config directory
+  std::string tool_table;  // --tool-table: G-code's tool table instead of the profile's
   std::size_t budget = 10'000'000;
   std::size_t max_errors = 100;
   double feed_override = 100;  // percent
@@ -178,6 +179,7 @@ struct LanguageArgs {
                     "Folder C<n> looks in first for C<n>.sbp / macro_<n>.sbp (then the shipped "
                     "macros)");
     add_allow_path_option(cmd, allow_paths);
+    add_tool_table_option(cmd, tool_table);
     cmd->add_option("--persistent", persistent, "File of persistent $variables (JSON)");
     cmd->add_option("--values", values,
                     "File of the V commands' values (TOML); default: the profile's in "
@@ -243,7 +245,7 @@ std::shared_ptr<const Script> load_part_file(const std::string& file) {
 bool load_and_check(const std::string& file, const std::string& settings_path,
                     const LanguageArgs& lang, CheckedFile& out, bool estimate = false,
                     RunControl* control = nullptr) {
-  if (!load_machine_profile(settings_path, lang.values, out.profile)) return false;
+  if (!load_machine_profile(settings_path, lang.values, out.profile, lang.tool_table)) return false;
   if (!lang.job_options(out.profile.settings, out.opt)) return false;
   describe(out.profile, lang.allow_paths, out.opt.interpreter);
   const Settings& settings = out.profile.settings;
@@ -261,7 +263,7 @@ bool load_and_check(const std::string& file, const std::string& settings_path,
 int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   MachineProfile profile;
   RunReport report;
-  if (!load_machine_profile(a.profile, lang.values, profile)) return 1;
+  if (!load_machine_profile(a.profile, lang.values, profile, lang.tool_table)) return 1;
   const Settings& settings = profile.settings;
   JobOptions opt;
   if (!lang.job_options(settings, opt)) return 1;
@@ -492,7 +494,7 @@ int cmd_export_gcode(const std::string& file, const std::string& out_path,
 // The toolpath drawn to a picture, with its bounds, estimate and violations.
 int cmd_preview(const PreviewArgs& args, const LanguageArgs& lang) {
   MachineProfile profile;
-  if (!load_machine_profile(args.settings, lang.values, profile)) return 1;
+  if (!load_machine_profile(args.settings, lang.values, profile, lang.tool_table)) return 1;
   JobOptions opt;
   if (!lang.job_options(profile.settings, opt)) return 1;
   describe(profile, lang.allow_paths, opt.interpreter);

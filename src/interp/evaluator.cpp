@@ -237,7 +237,9 @@ class Evaluator {
   Value plus(const ExprNode& n) {
     const Value a = val(*n.a);
     const Value b = val(*n.b);
-    const auto text = [](const Value& v) { return v.is_string() && !parse_number_literal(v.str()); };
+    const auto text = [](const Value& v) {
+      return v.is_string() && !parse_number_literal(v.str());
+    };
     if (text(a) || text(b)) return Value::string(bounded_text(a.to_string() + b.to_string(), n));
     const auto number = [](const Value& v) {
       return v.is_number() ? v.num() : *parse_number_literal(v.str());

@@ -9,6 +9,16 @@
 
 namespace gantry {
 using namespace gcode;
+namespace {
+
+std::string too_many_moves(double moves) {
+  return fmt::format(
+      "this cycle would make {} moves; a block may make at most {}: give fewer "
+      "repeats (L) or deeper pecks (Q)",
+      format_number(moves), format_number(kMaxBlockMoves));
+}
+
+}  // namespace
 
 // G73, G81, G82, G83 in the XY plane (docs/gcode.md, "Canned cycles").
 void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
@@ -26,6 +36,7 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
   if (w.has('L')) {
     const double l = w.get('L');
     if (l != std::round(l) || l < 0) fail(w.at('L', loc), "L, the repeats, is a whole number");
+    if (l > kMaxBlockMoves) fail(w.at('L', loc), too_many_moves(l));
     repeats = static_cast<int>(l);
   }
   const double feed = feed_for(w, 1, loc);
@@ -35,6 +46,14 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
   const double bottom = modes_.incremental ? r_level + *modes_.cycle_z : *modes_.cycle_z;
   if (bottom > r_level)
     fail(loc, "the hole's bottom Z is above the retract plane R; check Z and R (and G90/G91)");
+  // Bounded before any move is made: at most 3 moves a peck and 4 more a hole.
+  const bool pecking = code == 730 || code == 830;
+  const double pecks = pecking ? std::ceil((r_level - bottom) / *modes_.cycle_q) : 1;
+  if (const double moves = repeats * (3 * pecks + 4); moves > kMaxBlockMoves)
+    fail(pecking && w.has('Q') && !(w.has('L') && repeats > 1) ? w.at('Q', loc)
+         : w.has('L')                                          ? w.at('L', loc)
+                                                               : loc,
+         too_many_moves(moves));
   const double clear_z = modes_.retract_to_r ? r_level : std::max(modes_.cycle_start_z, r_level);
   auto z_move = [&](double z, SpeedClass cls) {
     Vec6 t = program_position();

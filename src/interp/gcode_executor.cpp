@@ -76,6 +76,8 @@ int g_group(int code) {
     case 611:
     case 640:
       return 13;
+    case 970:  // G97: spindle speed in RPM, the only mode there is
+      return 14;
     case 40:
     case 100:
     case 280:
@@ -101,6 +103,7 @@ int m_group(int code) {
     case 300:
       return 4;
     case 60:
+    case 610:  // M61: the tool in the spindle, without a change
       return 6;
     case 30:
     case 40:
@@ -128,6 +131,7 @@ GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<
 }
 
 void GcodeExecutor::begin_file() {
+  tool_note_given_ = table_read_ = false;
   modes_ = Modes{};  // a file gives its own feed rate too
   modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
                                              ? ProgramUnits::Millimetres
@@ -156,8 +160,7 @@ double GcodeExecutor::numbered(int n, const SourceLoc&) const {
   if (n == 5220) return o.system + 1;
   for (int s = 0; s < 9; ++s)
     if (auto v = axis(s == o.system ? st.zero : o.origin[s], 5221 + 20 * s)) return *v;
-  if (n == 5400) return o.tool;
-  if (n == 5403) return o.tool_length / length_scale();
+  if (auto v = tool_parameter(n)) return *v;
   if (auto v = axis(program_position(), 5420)) return *v;
   return 0;
 }
@@ -203,20 +206,22 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
                              "as G38.2",
                              word.letter, v));
       const int group = word.letter == 'G' ? g_group(code) : m_group(code);
-      if (group < 0)
-        fail(at, fmt::format("{} is not a code Gantry knows; docs/gcode.md lists the codes it "
-                             "runs",
-                             code_name(word.letter, code)));
-      if (word.letter == 'M' && (code == 70 || code == 80)) {
-        (code == 70 ? w.m7 : w.m8) = true;
-        continue;
-      }
+      if (group < 0) fail(at, unknown_code_message(word.letter, code, wincnc));
       if (word.letter == 'G' && code == 530) {
         w.g53 = true;
         continue;
       }
       int& slot = word.letter == 'G' ? (group == 0 ? w.non_modal : w.g[group]) : w.m[group];
       int& slot_col = word.letter == 'G' ? w.g_col[group] : w.m_col[group];
+      // G80 beside a motion (`G00 G17 G20 G40 G49 G80 G90`, a common safety line): LinuxCNC
+      // runs the motion, which ends any canned cycle anyway.
+      if (word.letter == 'G' && group == 1 && slot >= 0 && (slot == 800) != (code == 800)) {
+        if (code != 800) {
+          slot = code;
+          slot_col = word.column;
+        }
+        continue;
+      }
       if (slot >= 0)
         fail(at, fmt::format("{} and {} are in the same modal group: a block takes one of them",
                              code_name(word.letter, slot), code_name(word.letter, code)));
@@ -233,7 +238,15 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
   }
   // Parameters are set once every value of the block has been read.
   std::vector<std::pair<const GcodeAssign*, double>> sets;
-  for (const GcodeAssign& a : b.assigns) sets.emplace_back(&a, value_of(a.number, a.expr));
+  for (const GcodeAssign& a : b.assigns) {
+    const double v = value_of(a.number, a.expr);
+    if (!std::isfinite(v)) {
+      SourceLoc at = loc;
+      at.column = a.column;
+      fail(at, fmt::format("the value given to #{} is not a finite number", a.target));
+    }
+    sets.emplace_back(&a, v);
+  }
   for (const auto& [a, v] : sets) {
     if (a->target[0] == '<')
       named_[a->target.substr(1, a->target.size() - 2)] = v;
@@ -255,16 +268,27 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
                                  "toolpath with the compensation applied (G40)",
                                  code_name('G', w.g[7])));
   const bool uses_axes = takes_axis_words(w.non_modal, wincnc);
+  if (w.g[8] == 431 && w.g[1] >= 0 && w.any_axis())
+    fail(code_at(8), fmt::format("G43.1 and {} both use the axis words; put G43.1 in a block of "
+                                 "its own",
+                                 code_name('G', w.g[1])));
+  if (w.g[8] == 431)
+    for (char c : {'X', 'Y', 'A', 'B', 'C'})
+      if (w.has(c))
+        fail(w.at(c, loc), fmt::format("G43.1 {}: Gantry's tool length offset is along Z only; "
+                                       "give G43.1 Z",
+                                       c));
   if (uses_axes && w.g[1] >= 0 && w.any_axis())
     fail(code_at(1), fmt::format("{} and {} both use the axis words; put them in separate "
                                  "blocks",
                                  code_name('G', w.non_modal), code_name('G', w.g[1])));
-  if (w.any_axis() && !uses_axes) {
+  if (w.any_axis() && !uses_axes && !w.g431_alone()) {
     if (w.g[1] == 800) fail(code_at(1), "G80 cancels the canned cycle and takes no axis words");
     if (motion < 0) fail(loc, "axis words without a motion mode: give G0, G1, G2 or G3 first");
   }
-  const bool arc = (motion == 20 || motion == 30) && (w.g[1] >= 0 || w.any_axis());
-  const bool moving = (w.any_axis() && !uses_axes) || (w.g[1] >= 0 && is_cycle(w.g[1]));
+  const bool arc = (motion == 20 || motion == 30) && w.makes_arc(wincnc);
+  const bool moving =
+      (w.any_axis() && !uses_axes && !w.g431_alone()) || (w.g[1] >= 0 && is_cycle(w.g[1])) || arc;
   for (char c : {'I', 'J', 'K'})
     if (w.has(c) && !arc)
       fail(w.at(c, loc), fmt::format("{} is an arc's centre offset: it needs G2 or G3", c));
@@ -272,7 +296,7 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     fail(w.at('R', loc),
          "R is an arc's radius or a canned cycle's retract plane: it needs G2, "
          "G3 or G81-G83");
-  if (w.has('Q') && !(motion == 730 || motion == 830))
+  if (w.has('Q') && !(motion == 730 || motion == 830) && w.m[6] != 610 && w.g[13] != 640)
     fail(w.at('Q', loc), "Q is the peck depth of G73 and G83");
   if (w.has('H') && w.g[8] != 430)
     fail(w.at('H', loc), "H names the tool whose length G43 applies");
@@ -284,8 +308,11 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   if (w.has('P') && !p_used)
     fail(w.at('P', loc), "P goes with G4, G10, G82, G2/G3 (turns), G64 or M62-M65");
   if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
+  // G82's P lasts while G82 does: a new series of G82 holes gives it again, as LinuxCNC asks.
+  if (motion == 820 && moving && !w.has('P') && modes_.motion != 820 && !wincnc)
+    fail(w.g[1] == 820 ? code_at(1) : loc, "G82 needs P, the dwell at the bottom in seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
-    fail(loc, "G10 needs L (1 tool table, 2 or 20 coordinate system) and P");
+    fail(loc, "G10 needs L (1, 10 or 11 tool table, 2 or 20 coordinate system) and P");
   if (w.g53 && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
     fail(loc, "G53 goes with G0 or G1 only");
   if (w.g53 && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
@@ -405,8 +432,21 @@ void GcodeExecutor::execute(const GcodeBlock& block, const SourceLoc& loc) {
   Words w;
   read_words(block, loc, w);
   check_words(w, loc);
-  if (block.message) ctx_.print(*block.message + "\n");
+  if (block.message) message(block, loc);
   run(w, loc);
+}
+
+void GcodeExecutor::message(const GcodeBlock& b, const SourceLoc& loc) {
+  // (MSG,...) prints its text as written; the others substitute parameters, as LinuxCNC does.
+  const std::string text = b.message_kind == GcodeMessage::Msg
+                               ? *b.message
+                               : substitute_gcode_parameters(*b.message, *this);
+  if (b.message_kind == GcodeMessage::Abort) {
+    SourceLoc at = loc;
+    at.column = b.message_column;
+    fail(at, fmt::format("the program stopped itself (ABORT): {}", text));
+  }
+  ctx_.print(text + "\n");
 }
 
 void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
@@ -419,18 +459,7 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   }
   if (w.has('S') && w.get('S') < 0)
     fail(w.at('S', loc), "S, the spindle speed, cannot be negative");
-  if (w.has('T')) {
-    const double t = w.get('T');
-    if (t != std::round(t) || t < 0)
-      fail(w.at('T', loc), fmt::format("T{} is not a tool number (a whole number, 0 or more)", t));
-    selected_tool_ = static_cast<int>(t);
-  }
-  if (w.m[6] == 60 && selected_tool_ != o.tool) {  // M6
-    ctx_.come_to_rest(loc);
-    if (!io_.confirm(fmt::format("Change to tool {} (M6), then continue", selected_tool_), loc))
-      throw OperatorStop({loc, Severity::Error, "stopped by the operator at M6"});
-    o.tool = selected_tool_;
-  }
+  tool_change(w, loc);  // T, M6, M61
   if (w.m[7] == 40)
     fail(loc,
          "M4 (spindle counter-clockwise) is not available: output switch 1 runs the "
@@ -443,8 +472,8 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   auto output = [&](int n, bool on) {
     if (((st.outputs >> (n - 1)) & 1u) != static_cast<unsigned>(on)) ctx_.set_output(n, on, loc);
   };
-  if (w.m7) output(kMistOutput, true);
-  if (w.m8) output(kFloodOutput, true);
+  if (w.m[8] == 70) output(kMistOutput, true);
+  if (w.m[8] == 80) output(kFloodOutput, true);
   if (w.m[8] == 90) {
     output(kMistOutput, false);
     output(kFloodOutput, false);
@@ -491,19 +520,11 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     if (modes_.units != was) modes_.previous_units = was;
   }
   if (w.g[8] == 430) {
-    const int h = w.has('H') ? static_cast<int>(std::lround(w.get('H'))) : o.tool;
-    if (w.has('H') && (w.get('H') != h || h < 0))
-      fail(w.at('H', loc), fmt::format("H{} is not a tool number", w.get('H')));
-    const auto it = o.tools.find(h);
-    if (h != 0 && it == o.tools.end())
-      fail(w.has('H') ? w.at('H', loc) : loc,
-           fmt::format("tool {} is not in the tool table; give its length first with G10 L1 P{} "
-                       "Z<length>",
-                       h, h));
-    o.tool_length = h == 0 ? 0 : it->second.length;
+    tool_length(w, loc);
   } else if (w.g[8] == 431) {
-    if (!w.has('Z')) fail(loc, "G43.1 needs Z, the tool length offset");
-    o.tool_length = w.get('Z') * length_scale();
+    // Only the offset changes (no motion): the next move reads Z from the new offset. Without
+    // Z the offset stays, as in LinuxCNC.
+    if (w.has('Z')) o.tool_length = w.get('Z') * length_scale();
   } else if (w.g[8] == 490) {
     o.tool_length = 0;
   }

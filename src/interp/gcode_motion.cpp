@@ -24,8 +24,10 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
     modes_.cycle_p = 0;
     modes_.cycle_start_z = program_position()[2];
   }
-  if (takes_axis_words(w.non_modal, wincnc) || m < 0) return;
-  if (!w.any_axis() && !(w.g[1] >= 0 && is_cycle(m))) return;  // nothing to move
+  if (takes_axis_words(w.non_modal, wincnc) || w.g431_alone() || m < 0) return;
+  const bool arc_mode = m == 20 || m == 30;
+  if (!w.any_axis() && !(w.g[1] >= 0 && is_cycle(m)) && !(arc_mode && w.makes_arc(wincnc)))
+    return;  // nothing to move
   if (w.g53) {
     const ModalState& st = ctx_.state();
     const Vec6 k = axis_scale();
@@ -79,12 +81,22 @@ void GcodeExecutor::arc(const Words& w, bool clockwise, const SourceLoc& loc) {
   const double du = end[u] - start[u], dv = end[v] - start[v];
   const double chord = std::hypot(du, dv);
   const bool full = chord < 1e-9 * std::max(1.0, lin);
+  // LinuxCNC's arc tolerances, in the program's units (inches for G20, else millimetres): a
+  // radius below 0.00005 in (0.00127 mm) is no arc, and R may fall short of half the chord
+  // by as much; the end's radius may differ from the start's by up to 0.002*sqrt(2) in
+  // (0.02*sqrt(2) mm), or by up to 0.1 % of the larger radius if that is more, but never by
+  // more than 100 times the absolute tolerance.
+  const bool inch_units = modes_.units == ProgramUnits::Inches;
+  const double unit =
+      units_factor(inch_units ? Units::Inches : Units::Millimetres, ctx_.settings().units);
+  const double radius_tolerance = (inch_units ? 0.00005 : 0.00005 * 25.4) * unit;
+  const double spiral_tolerance = (inch_units ? 0.002 : 0.02) * M_SQRT2 * unit;
   double cu = 0, cv = 0;
   if (w.has('R')) {
     if (offsets) fail(w.at('R', loc), "an arc takes either a radius R or centre offsets, not both");
     if (full) fail(w.at('R', loc), "a full circle cannot be given by its radius: use I, J or K");
     const double r = w.get('R') * lin;
-    if (std::abs(r) * 2 < chord * (1 - 1e-9))
+    if (chord / 2 - std::abs(r) > radius_tolerance)
       fail(w.at('R', loc), fmt::format("radius {} is too small: the end point is {} from the "
                                        "start",
                                        std::abs(w.get('R')), chord / lin));
@@ -107,11 +119,13 @@ void GcodeExecutor::arc(const Words& w, bool clockwise, const SourceLoc& loc) {
     cv = absolute ? ov : start[v] + ov;
     const double r0 = std::hypot(start[u] - cu, start[v] - cv);
     const double r1 = std::hypot(end[u] - cu, end[v] - cv);
-    if (!(r0 > 1e-9 * std::max(1.0, lin)))
-      fail(loc, "the arc's centre is its start point: check I, J and K");
+    if (r0 < radius_tolerance) fail(loc, "the arc's centre is its start point: check I, J and K");
+    if (r1 < radius_tolerance)
+      fail(loc, "the arc's centre is its end point: check the end point and I, J and K");
+    const double differ = std::abs(r1 - r0);
     const double tolerance =
-        std::max(0.0005 * units_factor(Units::Inches, ctx_.settings().units), 0.001 * r0);
-    if (std::abs(r1 - r0) > tolerance)
+        std::min(100 * spiral_tolerance, std::max(spiral_tolerance, 0.001 * std::max(r0, r1)));
+    if (differ > tolerance)
       fail(loc, fmt::format("the arc's end is {:.4f} from its centre but its start is {:.4f}: "
                             "the radii differ by more than {:.4f}; check the end point and I, J, "
                             "K (and G90.1/G91.1)",
@@ -132,6 +146,11 @@ void GcodeExecutor::arc(const Words& w, bool clockwise, const SourceLoc& loc) {
     const double turns = w.get('P');
     if (turns != std::round(turns) || turns < 1)
       fail(w.at('P', loc), fmt::format("P{} is not a number of turns (1 or more)", turns));
+    // Every turn is at least four chords: refused here, before any arithmetic on the sweep.
+    if (turns > kMaxArcChords / 4)
+      fail(w.at('P', loc), fmt::format("P{} turns: an arc may have at most {} chords; give fewer "
+                                       "turns",
+                                       format_number(turns), format_number(kMaxArcChords)));
     sweep += (clockwise ? -2 : 2) * M_PI * (turns - 1);
   }
   const double r = std::hypot(start[u] - cu, start[v] - cv);

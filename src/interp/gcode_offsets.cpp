@@ -104,17 +104,10 @@ void GcodeExecutor::coordinate_data(const Words& w, const SourceLoc& loc) {
   GcodeOffsets& o = st.gcode;
   const Vec6 k = axis_scale();
   const double l = w.get('L'), p = w.get('P');
-  if (l == 1) {
-    if (p != std::round(p) || p < 1)
-      fail(w.at('P', loc), fmt::format("G10 L1: P{} is not a tool number (1 or more)", p));
-    GcodeTool& t = o.tools[static_cast<int>(p)];
-    if (w.has('Z')) t.length = w.get('Z') * length_scale();
-    if (w.has('R')) t.radius = w.get('R') * length_scale();
-    return;
-  }
+  if (l == 1 || l == 10 || l == 11) return tool_data(w, loc);  // gcode_tools.cpp
   if (l != 2 && l != 20)
-    fail(w.at('L', loc), fmt::format("G10 L{} is not supported; use L1 (tool table), L2 or L20 "
-                                     "(coordinate systems)",
+    fail(w.at('L', loc), fmt::format("G10 L{} is not supported; use L1, L10 or L11 (tool table), "
+                                     "L2 or L20 (coordinate systems)",
                                      l));
   if (p != std::round(p) || p < 0 || p > 9)
     fail(w.at('P', loc), fmt::format("G10: P{} is not a coordinate system: 1 (G54) to 9 (G59.3), "

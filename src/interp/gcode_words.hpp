@@ -18,11 +18,18 @@ constexpr int kSpindleOutput = 1;
 constexpr int kFloodOutput = 2;  // M8
 constexpr int kMistOutput = 3;   // M7
 constexpr std::string_view kAxes = "XYZABC";
+// The most moves one block may make (canned cycles' holes and pecks), as an arc may have at
+// most kMaxArcChords chords: beyond it a block is a mistake, and checking it would take long.
+constexpr double kMaxBlockMoves = 1e6;
 
 inline std::string code_name(char letter, int code) {
   return code % 10 ? fmt::format("{}{}.{}", letter, code / 10, code % 10)
                    : fmt::format("{}{}", letter, code / 10);
 }
+
+// Why `letter` `code` (x10) is refused: LinuxCNC's codes that Gantry does not run say why
+// and what to do instead (gcode_refused.cpp); any other is an unknown code.
+std::string unknown_code_message(char letter, int code, bool wincnc);
 
 inline bool is_cycle(int motion) {
   return motion == 730 || (motion >= 810 && motion <= 830);
@@ -49,7 +56,6 @@ struct GcodeExecutor::Words {
   bool g53 = false;
   std::array<int, 10> m{};  // by group
   std::array<int, 10> m_col{};
-  bool m7 = false, m8 = false;  // both may be given
   bool has(char c) const { return present & (1u << (c - 'A')); }
   double get(char c) const { return value[c - 'A']; }
   SourceLoc at(char c, const SourceLoc& loc) const {
@@ -61,6 +67,13 @@ struct GcodeExecutor::Words {
     for (char c : gcode::kAxes)
       if (has(c)) return true;
     return false;
+  }
+  // G43.1 without a motion code: its axis words are the offsets, and nothing moves.
+  bool g431_alone() const { return g[8] == 431 && g[1] < 0; }
+  // Whether a block in an arc mode makes an arc: a G2/G3 word, an axis word, or only the
+  // centre (`G2 I0.5`, a full circle). WinCNC's bare `G2` keeps the last centre: it needs more.
+  bool makes_arc(bool wincnc) const {
+    return (g[1] >= 0 && !wincnc) || any_axis() || has('I') || has('J') || has('K');
   }
 };
 

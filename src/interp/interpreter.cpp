@@ -662,6 +662,10 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
   return path;
 }
 
+bool CommandContext::writes_to_disk() const {
+  return dynamic_cast<DiskFileSystem*>(interp_->files_system_) != nullptr;
+}
+
 std::optional<std::string> CommandContext::read_file(const std::string& name, const SourceLoc& loc,
                                                      std::string* path) {
   const std::string p = interp_->existing_file(name, loc);
@@ -1288,10 +1292,12 @@ void Interpreter::loop(DiagnosticLog* collect) {
         pending_call_.reset();
         const std::string path =
             call.resolved ? call.path : readable_file(call.path, pending_call_loc_);
-        push_file(call.lines ? call.lines : frames_.front().script->called(path, [&] {
-          return files_system_->load_script(path, table_.is_command());
-        }),
-                  call, pending_call_loc_);
+        push_file(
+            call.lines
+                ? call.lines
+                : frames_.front().script->called(
+                      path, [&] { return files_system_->load_script(path, table_.is_command()); }),
+            call, pending_call_loc_);
       }
     } catch (const NeedsOperator&) {
       throw;

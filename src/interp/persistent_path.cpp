@@ -101,8 +101,8 @@ Value read_path(const json& root, const std::vector<Accessor>& path, EvalEnv& en
       if (!cur) fail(loc, fmt::format("{} is not set", shown));
     } else {
       if (!a.index && !placeholder)
-        fail(loc, fmt::format("empty index [] cannot be read; give the index, as in {}[%(25)]",
-                              parent));
+        fail(loc,
+             fmt::format("empty index [] cannot be read; give the index, as in {}[%(25)]", parent));
       const size_t i = a.index ? evaluate_index(*a.index, env) : *placeholder;
       shown += fmt::format("[{}]", i);
       if (cur->is_object())

@@ -125,9 +125,10 @@ class Expression {
       return params_ ? params_->named(name, loc(at)) : 0;
     }
     const double n = value();
+    if (!params_) return 0;  // `#[#1 + 1]`: the number is known when the block runs
     if (n != std::round(n) || n < 1 || n > 5602)
       error(at, fmt::format("#{} is not a parameter: parameters are #1 to #5602", n));
-    return params_ ? params_->numbered(static_cast<int>(n), loc(at)) : 0;
+    return params_->numbered(static_cast<int>(n), loc(at));
   }
 
   std::string read_name() {  // at '<'
@@ -163,8 +164,8 @@ class Expression {
     const double a = binary(0);
     expect(']', "to close the function's argument");
     constexpr double deg = M_PI / 180;
-    auto domain = [&](bool ok) {
-      if (!ok) error(at, fmt::format("{}[{}] is not defined", f, a));
+    auto domain = [&](bool ok) {  // only with the real values: see the header
+      if (!ok && params_) error(at, fmt::format("{}[{}] is not defined", f, a));
     };
     if (f == "ATAN") {  // ATAN[y]/[x], in degrees
       expect('/', "in ATAN[y]/[x]");
@@ -317,14 +318,24 @@ class BlockReader {
     std::string_view body = s_.substr(open + 1, close - open - 1);
     size_t b = 0;
     while (b < body.size() && is_space(body[b])) ++b;
-    for (std::string_view key : {"MSG", "PRINT", "DEBUG"}) {
-      size_t k = b + key.size();
-      if (!word_at(body, b, key)) continue;
+    struct Key {
+      std::string_view word;
+      GcodeMessage kind;
+    };
+    static constexpr Key keys[] = {{"MSG", GcodeMessage::Msg},
+                                   {"PRINT", GcodeMessage::Print},
+                                   {"DEBUG", GcodeMessage::Debug},
+                                   {"ABORT", GcodeMessage::Abort}};
+    for (const Key& key : keys) {
+      size_t k = b + key.word.size();
+      if (!word_at(body, b, key.word)) continue;
       while (k < body.size() && is_space(body[k])) ++k;
       if (k < body.size() && body[k] == ',') {
         std::string_view text = body.substr(k + 1);
         while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
         out_->message = std::string(text);
+        out_->message_kind = key.kind;
+        out_->message_column = static_cast<int>(open) + 1;
       }
     }
     if (body.find('(') != std::string_view::npos)

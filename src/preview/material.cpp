@@ -84,9 +84,11 @@ std::optional<float> HeightMap::height(float x, float y) const {
 }
 
 HeightMap carve(const Toolpath& path, const Cutter& cutter, float top, int max_cells) {
-  const auto r = static_cast<float>(cutter.diameter / 2);
-  const Profile profile{cutter.shape, r,
-                        static_cast<float>(1 / std::tan(cutter.v_angle / 2 * kPi / 180))};
+  const auto slope = static_cast<float>(1 / std::tan(cutter.v_angle / 2 * kPi / 180));
+  Profile profile{cutter.shape, static_cast<float>(cutter.diameter / 2), slope};
+  float r = profile.radius;  // the largest cutter's, for the margin
+  for (const Toolpath::CutterChange& c : path.cutter_changes)
+    r = std::max(r, static_cast<float>(c.diameter / 2));
   // The stock: the XY extent of what goes below its top.
   Eigen::AlignedBox2f area;
   float lowest = top;
@@ -116,7 +118,11 @@ HeightMap carve(const Toolpath& path, const Cutter& cutter, float top, int max_c
   // A sloped segment is swept as pieces that each fall at most a cell, at the lower end of
   // each: the depth is exact to a cell, and every piece is a flat sweep.
   from = path.start;
-  for (const ToolpathSegment& s : path.segments) {
+  auto change = path.cutter_changes.begin();
+  for (std::size_t i = 0; i < path.segments.size(); ++i) {
+    for (; change != path.cutter_changes.end() && change->first <= i; ++change)
+      profile.radius = static_cast<float>(change->diameter / 2);  // a tool change (M6)
+    const ToolpathSegment& s = path.segments[i];
     const Eigen::Vector3f to(s.x, s.y, s.z);
     if (std::min(from.z(), to.z()) < top) {
       const float flat = (to - from).head<2>().norm();

@@ -4,8 +4,8 @@
 #include <algorithm>  // any_of
 
 #include "gantry/commands/command_table.hpp"  // CommandTable::is_command
-#include "gantry/lang/script.hpp"        // Script
-#include "gantry/motion/arc_chords.hpp"  // arc_chords
+#include "gantry/lang/script.hpp"             // Script
+#include "gantry/motion/arc_chords.hpp"       // arc_chords
 
 namespace gantry {
 
@@ -25,7 +25,10 @@ struct Cancelled {};  // thrown through the interpreter to end a cancelled load
 class ToolpathSink : public MotionSink {
  public:
   ToolpathSink(Toolpath& path, const Settings& settings, const ToolpathOptions& opts)
-      : path_(path), tolerance_(settings.planner.chord_tolerance), opts_(opts) {}
+      : path_(path),
+        tolerance_(settings.planner.chord_tolerance),
+        cutter_(settings.cutter.diameter),
+        opts_(opts) {}
   void move(const CanonMove& m) override {
     if (opts_.cancel && opts_.cancel->load(std::memory_order_relaxed)) throw Cancelled{};
     path_.add(m, tolerance_);
@@ -35,13 +38,19 @@ class ToolpathSink : public MotionSink {
     }
   }
   void flush() override {}
-  // VP or a VU may change the chord tolerance part-way (it comes at rest, like the planner's).
-  void settings_changed(const Settings& s) override { tolerance_ = s.planner.chord_tolerance; }
+  // VP or a VU may change the chord tolerance part-way (it comes at rest, like the planner's),
+  // and a tool change the cutter (VC's diameter).
+  void settings_changed(const Settings& s) override {
+    tolerance_ = s.planner.chord_tolerance;
+    if (s.cutter.diameter != cutter_)
+      path_.cutter_changes.push_back({path_.segments.size(), cutter_ = s.cutter.diameter});
+  }
 
  private:
   static constexpr std::size_t kReportEvery = 1 << 16;
   Toolpath& path_;
   double tolerance_;
+  double cutter_;
   const ToolpathOptions& opts_;
   std::size_t next_report_ = kReportEvery;
 };

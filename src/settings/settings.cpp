@@ -4,10 +4,11 @@
 #include <fmt/format.h>   // messages
 #include <toml++/toml.h>  // the TOML parser
 
-#include <algorithm>  // sort
-#include <charconv>   // from_chars
-#include <cmath>      // ceil for tick counts
-#include <set>        // keys seen, to reject unknown ones
+#include <algorithm>   // sort
+#include <charconv>    // from_chars
+#include <cmath>       // ceil for tick counts
+#include <filesystem>  // tool_table from the profile's folder
+#include <set>         // keys seen, to reject unknown ones
 
 #include "gantry/core/text_file.hpp"  // read_text_file
 #include "settings_private.hpp"       // parse_settings_table
@@ -444,6 +445,7 @@ void read_profile(TableReader root, Settings& s) {
   if (gcode != "standard" && gcode != "wincnc")
     root.fail("gcode_dialect", "is not allowed; use one of \"standard\", \"wincnc\"");
   s.gcode_dialect = gcode == "wincnc" ? GcodeDialect::WinCNC : GcodeDialect::Standard;
+  s.tool_table = root.optional_text("tool_table", "");
 
   TableReader axes = root.table("axes");
   for (int i = 0; i < kAxisCount; ++i) {
@@ -698,6 +700,9 @@ SettingsLoad parse_settings(const std::string& text, const std::string& origin) 
 SettingsLoad parse_settings_table(const toml::table& table, const std::string& origin) {
   SettingsLoad out;
   read_profile(TableReader(table, "", origin, out.errors), out.settings);
+  if (const std::string& t = out.settings.tool_table; !t.empty())  // from the profile's folder
+    out.settings.tool_table_path =
+        (std::filesystem::path(origin).parent_path() / std::filesystem::path(t)).string();
   if (out.errors.empty()) check_consistency(out.settings, origin, out.errors, &table);
   return out;
 }

@@ -29,6 +29,7 @@ toml::table settings_table(const Settings& s) {
       {"units", units_name(s.units)},
       {"dialect", s.dialect == Dialect::FabMo ? "fabmo" : "sb3"},
       {"gcode_dialect", s.gcode_dialect == GcodeDialect::WinCNC ? "wincnc" : "standard"}};
+  if (!s.tool_table.empty()) root.insert("tool_table", s.tool_table);  // optional
   toml::table axes, pins, inputs, homing;
   for (int i = 0; i < kAxisCount; ++i) {
     const std::string L(1, kAxisLetters[i]);

@@ -275,7 +275,7 @@ TEST_F(GcodeTest, RejectionsAreLocatedErrors) {
       {"G20 F10\nG0 X1\nG2 X2 Y1 I0.5 J0\n", 3, 1, "radii differ"},
       {"F10\nG2 X1 Y1\n", 2, 1, "needs its centre"},
       {"G2 X1 Y1 I1 R1 F10\n", 1, 13, "not both"},
-      {"G5 X1\n", 1, 1, "G5 is not a code"},
+      {"G5 X1\n", 1, 1, "G5 is refused: splines"},
       {"M98\n", 1, 1, "M98 is not a code"},
       {"G81 X1 R0.1 F10\n", 1, 1, "needs Z"},
       {"G81 X1 Z-1 F10\n", 1, 1, "needs R"},
@@ -292,8 +292,8 @@ TEST_F(GcodeTest, RejectionsAreLocatedErrors) {
       {"F-10\nG1 X1\n", 1, 1, "F-10 is out of range"},
       {"G4 P100000000000000\n", 1, 1, "a wait of 100000000000000 s is out of range"},
       {"G4 P100000000000000000000\n", 1, 1, "a wait of 1e+20 s is out of range"},
-      {"G20 F10\nG2 X0 Y0 I1 J0 P1000000000000\n", 2, 1,
-       "chords within planner.chord_tolerance; an arc may have at most 1000000"},
+      {"G20 F10\nG2 X0 Y0 I1 J0 P1000000000000\n", 2, 16,
+       "turns: an arc may have at most 1000000 chords"},
   };
   for (const Case& c : cases) {
     const Diagnostic d = error(c.text);

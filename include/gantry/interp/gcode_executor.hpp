@@ -56,6 +56,8 @@ class GcodeExecutor : private GcodeParameters {
   void read_words(const GcodeBlock& b, const SourceLoc& loc, Words& w);
   void check_words(const Words& w, const SourceLoc& loc);
   void run(const Words& w, const SourceLoc& loc);
+  // (MSG,...), (PRINT,...), (DEBUG,...) print; (ABORT,...) stops with a located error.
+  void message(const GcodeBlock& b, const SourceLoc& loc);
 
   // Program units to machine units: per axis (A, B, C in degrees stay) and for lengths.
   Vec6 axis_scale() const;
@@ -74,13 +76,22 @@ class GcodeExecutor : private GcodeParameters {
   void probe(const Words& w, const SourceLoc& loc);
   void non_modal(const Words& w, int code, const SourceLoc& loc);
   void coordinate_data(const Words& w, const SourceLoc& loc);  // G10
+  // The tool table (gcode_tools.cpp).
+  ToolTable& tool_table(const SourceLoc& loc);
+  const ToolEntry& tool_entry(int number, const SourceLoc& at);
+  void tool_change(const Words& w, const SourceLoc& loc);  // T, M6, M61
+  void tool_length(const Words& w, const SourceLoc& loc);  // G43, G43.1, G49
+  void tool_data(const Words& w, const SourceLoc& loc);    // G10 L1, L10, L11
+  std::optional<double> tool_parameter(int n) const;       // #5400-#5413
   void end_program(const SourceLoc& loc);
 
   CommandContext& ctx_;
   OperatorIO& io_;
   std::function<void()> end_program_;
   Modes modes_;
-  int selected_tool_ = 0;  // T
+  int selected_tool_ = 0;         // T
+  bool tool_note_given_ = false;  // this file was told the implicit table's tools have length 0
+  bool table_read_ = false;       // this file compared the table file with the one in memory
   std::unordered_map<int, double> params_;
   std::map<std::string, double, std::less<>> named_;
   Vec6 probed_ = Vec6::Zero();  // #5061..: where the last probe stopped

@@ -3,16 +3,11 @@
 #pragma once
 
 #include <array>
-#include <map>
 
-#include "gantry/core/axes.hpp"  // Vec6
+#include "gantry/core/axes.hpp"          // Vec6
+#include "gantry/interp/tool_table.hpp"  // ToolTable
 
 namespace gantry {
-
-struct GcodeTool {  // G10 L1: a tool table entry, machine units
-  double length = 0;
-  double radius = 0;
-};
 
 struct GcodeOffsets {
   // The work coordinate systems G54 (0) .. G59.3 (8): where each one's 0 is, in table base
@@ -25,8 +20,10 @@ struct GcodeOffsets {
   Vec6 axis_offset = Vec6::Zero();
   Vec6 axis_offset_saved = Vec6::Zero();
   std::array<Vec6, 2> stored{};  // G28 and G30 positions (G28.1, G30.1), table base
-  std::map<int, GcodeTool> tools;
-  int tool = 0;            // the tool in the spindle (M6)
+  // The tool table: the profile's file (tool_table, --tool-table) as last read or written,
+  // or the implicit one (no file: every tool of length 0).
+  ToolTable tools;
+  int tool = 0;            // the tool in the spindle (M6, M61)
   double tool_length = 0;  // G43: program Z 0 is this far above the spindle's working Z 0
 
   GcodeOffsets() {
@@ -39,10 +36,7 @@ struct GcodeOffsets {
     for (Vec6& v : stored) v = v.cwiseProduct(k);
     axis_offset = axis_offset.cwiseProduct(k);
     axis_offset_saved = axis_offset_saved.cwiseProduct(k);
-    for (auto& [n, t] : tools) {
-      t.length *= k[2];
-      t.radius *= k[0];
-    }
+    tools.scale(k[2]);
     tool_length *= k[2];
   }
 };

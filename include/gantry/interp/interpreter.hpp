@@ -224,6 +224,8 @@ class CommandContext {
   // written (no folder, a folder, too long) is refused. On disk every write is atomic: a
   // crash leaves the old file or the new one. Returns the path.
   std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc);
+  // Whether write_file writes to the disk now (false: a check, a preview, FG's quiet lines).
+  bool writes_to_disk() const;
   // The text of a file found as write_file finds it (a check sees its own writes); nullopt
   // when it cannot be read. `path` receives where it looked.
   std::optional<std::string> read_file(const std::string& name, const SourceLoc& loc,

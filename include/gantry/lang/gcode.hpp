@@ -30,12 +30,19 @@ struct GcodeAssign {
   int column = 0;
 };
 
+// A comment that speaks: (MSG, text) prints text as written; (PRINT, text) and (DEBUG, text)
+// print it with its parameters' values substituted; (ABORT, text) stops the program with the
+// substituted text as a located error (docs/gcode.md, "Blocks").
+enum class GcodeMessage : char { None, Msg, Print, Debug, Abort };
+
 struct GcodeBlock {
   std::vector<GcodeWord> words;  // in the order written; N line numbers are left out
   std::vector<GcodeAssign> assigns;
   std::vector<std::string> exprs;      // expression texts; each starts at exprs_column
   std::vector<int> exprs_column;       // 1-based column of each expression's first character
-  std::optional<std::string> message;  // (MSG, text), (PRINT, text), (DEBUG, text)
+  std::optional<std::string> message;  // the text after the comma
+  GcodeMessage message_kind = GcodeMessage::None;
+  int message_column = 0;  // 1-based, the comment's '('
   bool empty() const { return words.empty() && assigns.empty() && !message; }
   void clear() {
     words.clear();
@@ -43,6 +50,8 @@ struct GcodeBlock {
     exprs.clear();
     exprs_column.clear();
     message.reset();
+    message_kind = GcodeMessage::None;
+    message_column = 0;
   }
 };
 
@@ -66,9 +75,17 @@ class GcodeParameters {
 // The value of an expression as the block stores it (`[1 + #2]`, `#5`, `SIN[30]`): LinuxCNC's
 // operators (** * / MOD + - EQ NE GT GE LT LE AND OR XOR) and functions (ABS ACOS ASIN ATAN
 // COS EXP FIX FUP ROUND LN SIN SQRT TAN EXISTS), angles in degrees. `params` null: only
-// checks the syntax (every parameter reads 0). Errors are located at `at` plus the offset.
+// checks the syntax: every parameter reads 0 and values are not checked against a function's
+// domain or a division by zero, since the real values are known only when the block runs
+// (docs/gcode.md, "Blocks"). Errors are located at `at` plus the offset.
 double evaluate_gcode_expression(std::string_view text, const SourceLoc& at,
                                  const GcodeParameters* params);
+
+// `text` with each parameter reference replaced by its value as LinuxCNC's (DEBUG,...) does:
+// `#5` (#0 to #5601, digits only) and `#<name>` (spaces dropped, any case) become the value
+// with six decimals (`2.500000`), a parameter that has no value becomes `######`, and any
+// other `#` stays as written.
+std::string substitute_gcode_parameters(std::string_view text, const GcodeParameters& params);
 
 // Whether a line of an OpenSBP file is G-code (docs/gcode.md, "G-code in OpenSBP files"):
 // it starts with G or N followed by a digit, or, on a line without commas, with M and two

@@ -44,6 +44,13 @@ struct Toolpath {
   // the tool stays where it was, as it would on the machine.
   std::vector<Diagnostic> violations;
   bool cancelled = false;  // ToolpathOptions::cancel stopped the load part-way
+  // Where the cutter changed (G-code's M6 to a tool of the table with a diameter, which VC
+  // follows): from segment `first` on, the cutter is `diameter` across.
+  struct CutterChange {
+    std::size_t first;
+    double diameter;
+  };
+  std::vector<CutterChange> cutter_changes;
 
   // Appends the segments of one canonical move (lines and arcs; the others only count).
   void add(const CanonMove& m, double chord_tolerance);

@@ -226,6 +226,11 @@ struct Settings {
   Units units = Units::Inches;
   Dialect dialect = Dialect::SB3;
   GcodeDialect gcode_dialect = GcodeDialect::Standard;
+  // G-code's tool table (docs/gcode.md, "Tool table"): the key as written ("" none: every
+  // tool has length 0), and the file it names, relative paths from the profile's folder
+  // (`gantry ... --tool-table FILE` sets the file). Read from the profile only.
+  std::string tool_table;
+  std::string tool_table_path;
   std::array<AxisSettings, kAxisCount> axes{};
   SpeedSettings speeds;
   RampSettings ramps;
