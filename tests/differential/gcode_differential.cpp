@@ -209,7 +209,7 @@ Outcome parse_rs274(const std::string& out, const std::string& err, int status,
   std::string control = "CANON_CONTINUOUS";
   int outputs = 0;
   double last[6] = {0, 0, 0, 0, 0, 0};  // where the last motion ended (both start at 0)
-  bool have_last = true;
+  double last_tol[6] = {0, 0, 0, 0, 0, 0};
   static const std::regex call_re(R"(^\s*\d+\s+N\S*\s+([A-Z_0-9]+)\((.*)\)\s*$)");
   std::vector<std::string> calls;
   for (const std::string& line : split_lines(out)) {
@@ -227,14 +227,18 @@ Outcome parse_rs274(const std::string& out, const std::string& err, int status,
       return 0.5e-4 * scale + g5x.tol[axis] + g92.tol[axis] + tlo.tol[axis];
     };
     auto add = [&](Motion mo) {
-      // A straight move to where the tool is moves nothing: Gantry issues none.
-      if ((mo.kind == Kind::Traverse || mo.kind == Kind::Feed) && have_last &&
-          std::equal(mo.to, mo.to + 6, last,
-                     [](double a, double b) { return std::abs(a - b) < 1e-9; }))
-        return;
+      // A straight move to where the tool is moves nothing: Gantry issues none. "Where the
+      // tool is" within the rounding of both printed positions (a change of units reprints
+      // the same point rounded otherwise).
+      if (mo.kind == Kind::Traverse || mo.kind == Kind::Feed) {
+        bool moves = false;
+        for (int a = 0; a < 6; ++a)
+          moves = moves || std::abs(mo.to[a] - last[a]) > mo.tol[a] + last_tol[a] + 1e-12;
+        if (!moves) return;
+      }
       if (mo.kind != Kind::Dwell) {
         std::copy(mo.to, mo.to + 6, last);
-        have_last = true;
+        std::copy(mo.tol, mo.tol + 6, last_tol);
       }
       mo.call = trim(line);
       mo.outputs = outputs;
