@@ -273,6 +273,28 @@ program("m30_end", ["G20 G90 F30", "G0 X1 Y1", "M3 S10000", "G1 X2", "M30 (end, 
 program("probe", ["G20 G90 F10", "G0 X1 Y1 Z1", "G38.2 Z-1", "G0 Z1", "G38.3 Z-0.5 F5",
                   "G0 Z1", "G0 X0"])
 
+# ---- codes Gantry refuses by name (docs/gcode.md): LinuxCNC runs them --------------------------
+REFUSED = {
+    "g52": ["G0 X1 Y1", "G52 X2 Y2", "G0 X0 Y0", "G52 X0 Y0"],
+    "g43_2": ["T1 M6", "G43 H1", "G43.2 H2", "G0 Z0"],
+    "g95": ["S1000 M3", "G95 F0.01", "G1 X1", "G94 M5"],
+    "g96": ["G96 D2000 S300 M3", "G0 X1", "G97 S1000", "M5"],
+    "g5_2": ["F30", "G5.2 X0 Y0 P1 L3", "X1 Y0 P1", "X1 Y1 P1", "G5.3"],
+    "g7_lathe": ["G18 G7", "G0 X1", "G8 G17"],
+    "g17_1": ["G17.1", "G0 X1", "G17"],
+    "g33_sync": ["S500 M3", "G33 Z-0.5 K0.05", "M5"],
+    "m19_orient": ["S500 M3", "M19 R90", "M5"],
+    "m48_overrides": ["M49", "G0 X1", "M48"],
+    "m52_adaptive": ["M52 P1", "G0 X1", "M52 P0"],
+    "m60_pallet": ["G0 X1", "M60", "G0 X2"],
+    "m61_set_tool": ["M61 Q1", "G43", "G0 Z0"],
+    "m66_wait": ["M66 P0 L0", "G0 X1"],
+    "m67_analog": ["M68 E0 Q2.5", "G0 X1"],
+    "m70_modal_state": ["M70", "G91", "M72", "G0 X1"],
+}
+for name, lines in REFUSED.items():
+    program(f"refused_{name}", ["G20 G90 G17"] + lines)
+
 for old in os.listdir(HERE):
     if old.startswith("gen_") and old.endswith(".ngc") and old not in written:
         os.remove(os.path.join(HERE, old))
