@@ -25,7 +25,7 @@ inline std::string code_name(char letter, int code) {
 }
 
 inline bool is_cycle(int motion) {
-  return motion == 730 || (motion >= 810 && motion <= 830);
+  return motion == 730 || (motion >= 810 && motion <= 890 && motion % 10 == 0);
 }
 
 // The non-modal codes whose axis words are theirs, not a motion's.
