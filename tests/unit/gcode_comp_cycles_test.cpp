@@ -460,6 +460,55 @@ const std::vector<Row> w_concave = {{'J', -1.0000, 0.0000, 0.0000, 0, 0, 0},
                                     {'L', 4.0000, 0.9375, 0.0000, 0, 0, 0},
                                     {'L', 4.0000, 3.0000, 0.0000, 0, 0, 0}};
 
+// circle.ngc
+const char* k_circle =
+    "G20 G17 G90 F10\n"
+    "G10 L1 P1 R0.125\n"
+    "T1 M6\n"
+    "G0 X3 Y1 Z0\n"
+    "G41 G1 X2 Y1\n"
+    "G3 X2 Y1 I-1 J0\n"
+    "G40 G1 X3 Y1\n"
+    "G42 G1 X2 Y1\n"
+    "G2 X2 Y1 I-1 J0 Z-0.5\n"
+    "G40 G1 X3 Y1\n"
+    "M2\n";
+const std::vector<Row> w_circle = {{'J', 3.0000, 1.0000, 0.0000, 0, 0, 0},
+                                   {'L', 2.0000, 0.8750, 0.0000, 0, 0, 0},
+                                   {'A', 1.8750, 1.0000, 0.0000, 2.0000, 1.0000, -1},
+                                   {'A', 1.8750, 1.0000, 0.0000, 1.0000, 1.0000, 1},
+                                   {'L', 3.0000, 1.0000, 0.0000, 0, 0, 0},
+                                   {'L', 2.0000, 1.1250, 0.0000, 0, 0, 0},
+                                   {'A', 1.8750, 1.0000, 0.0000, 2.0000, 1.0000, 1},
+                                   {'A', 1.8750, 1.0000, -0.5000, 1.0000, 1.0000, -1},
+                                   {'L', 3.0000, 1.0000, -0.5000, 0, 0, 0}};
+
+// incr.ngc
+const char* k_incr =
+    "G20 G17 G91 F10\n"
+    "G10 L1 P1 R0.1\n"
+    "T1 M6\n"
+    "G42 G1 X1 Y0\n"
+    "X2\n"
+    "G3 X1 Y1 I0 J1\n"
+    "G1 Y1 Z-0.2\n"
+    "G2 X-1 Y1 I-1 J0\n"
+    "G1 X-2\n"
+    "Y-3\n"
+    "G40 X-1 Y-1\n"
+    "G90 M2\n";
+const std::vector<Row> w_incr = {{'L', 1.0000, -0.1000, 0.0000, 0, 0, 0},
+                                 {'L', 3.0000, -0.1000, 0.0000, 0, 0, 0},
+                                 {'A', 4.1000, 1.0000, 0.0000, 3.0000, 1.0000, 1},
+                                 {'L', 4.1000, 2.0000, -0.2000, 0, 0, 0},
+                                 {'A', 3.9000, 2.0000, -0.2000, 4.0000, 2.0000, 1},
+                                 {'A', 3.0000, 2.9000, -0.2000, 3.0000, 2.0000, -1},
+                                 {'A', 3.0000, 3.1000, -0.2000, 3.0000, 3.0000, 1},
+                                 {'L', 1.0000, 3.1000, -0.2000, 0, 0, 0},
+                                 {'A', 0.9000, 3.0000, -0.2000, 1.0000, 3.0000, 1},
+                                 {'L', 0.9000, 0.0000, -0.2000, 0, 0, 0},
+                                 {'L', 0.0000, -1.0000, -0.2000, 0, 0, 0}};
+
 }  // namespace
 
 // ---- canned cycles ----------------------------------------------------------------------
@@ -554,6 +603,14 @@ TEST_F(GcodeCompCycles, CompBetweenArcsMeetsWhereTheOffsetCirclesCross) {
 
 TEST_F(GcodeCompCycles, CompConcaveCornersLineToArcArcToArcAndArcToLine) {
   expect_moves(k_concave, w_concave, false);
+}
+
+TEST_F(GcodeCompCycles, CompAroundFullCirclesAndAHelixBothSides) {
+  expect_moves(k_circle, w_circle, false);
+}
+
+TEST_F(GcodeCompCycles, CompWithIncrementalWordsFromTheProgrammedPoint) {
+  expect_moves(k_incr, w_incr, false);
 }
 
 TEST_F(GcodeCompCycles, CompEntryByAnArc) {
