@@ -597,7 +597,7 @@ TEST_F(GcodeCompCycles, CompWithRapidsZMovesIncrementalMovesAndBothArcSides) {
   expect_moves(k_mixed, w_mixed, false);
 }
 
-TEST_F(GcodeCompCycles, CompBetweenArcsMeetsWhereTheOffsetCirclesCross) {
+TEST_F(GcodeCompCycles, CompRoundsTheConvexCornersBetweenArcs) {
   expect_moves(k_arc_arc, w_arc_arc, false);
 }
 
