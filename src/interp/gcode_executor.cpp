@@ -10,6 +10,7 @@
 #include <cmath>  // lround, round
 
 #include "gantry/motion/path_limits.hpp"  // nominal_path_speed
+#include "gcode_cutter_comp.hpp"          // ~unique_ptr<Comp>
 #include "gcode_words.hpp"
 
 namespace gantry {
@@ -32,6 +33,12 @@ int g_group(int code) {
     case 810:
     case 820:
     case 830:
+    case 840:
+    case 850:
+    case 860:
+    case 870:
+    case 880:
+    case 890:
       return 1;
     case 170:
     case 180:
@@ -53,7 +60,9 @@ int g_group(int code) {
       return 6;
     case 400:
     case 410:
+    case 411:
     case 420:
+    case 421:
       return 7;
     case 430:
     case 431:
@@ -133,6 +142,7 @@ GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<
 void GcodeExecutor::begin_file() {
   tool_note_given_ = table_read_ = false;
   modes_ = Modes{};  // a file gives its own feed rate too
+  comp_.reset();     // G40: nothing held back from a run that stopped
   modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
                                              ? ProgramUnits::Millimetres
                                              : ProgramUnits::Inches;
@@ -263,10 +273,7 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     l.column = w.g_col[group];
     return l;
   };
-  if (w.g[7] == 410 || w.g[7] == 420)
-    fail(code_at(7), fmt::format("{}: cutter radius compensation is not supported; post the "
-                                 "toolpath with the compensation applied (G40)",
-                                 code_name('G', w.g[7])));
+  check_comp_words(w, motion, loc);
   const bool uses_axes = takes_axis_words(w.non_modal, wincnc);
   if (w.g[8] == 431 && w.g[1] >= 0 && w.any_axis())
     fail(code_at(8), fmt::format("G43.1 and {} both use the axis words; put G43.1 in a block of "
@@ -289,28 +296,28 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   const bool arc = (motion == 20 || motion == 30) && w.makes_arc(wincnc);
   const bool moving =
       (w.any_axis() && !uses_axes && !w.g431_alone()) || (w.g[1] >= 0 && is_cycle(w.g[1])) || arc;
+  if (is_cycle(motion) && moving) check_cycle_words(w, motion, loc);
   for (char c : {'I', 'J', 'K'})
-    if (w.has(c) && !arc)
-      fail(w.at(c, loc), fmt::format("{} is an arc's centre offset: it needs G2 or G3", c));
+    if (w.has(c) && !arc && motion != 870)
+      fail(w.at(c, loc),
+           fmt::format("{} is an arc's centre offset (or G87's back bore): it needs G2, G3 or "
+                       "G87",
+                       c));
   if (w.has('R') && !arc && !is_cycle(motion) && w.non_modal != 100)
     fail(w.at('R', loc),
          "R is an arc's radius or a canned cycle's retract plane: it needs G2, "
-         "G3 or G81-G83");
+         "G3 or G73, G81-G89");
   if (w.has('Q') && !(motion == 730 || motion == 830) && w.m[6] != 610 && w.g[13] != 640)
     fail(w.at('Q', loc), "Q is the peck depth of G73 and G83");
   if (w.has('H') && w.g[8] != 430)
     fail(w.at('H', loc), "H names the tool whose length G43 applies");
-  if (w.has('D')) fail(w.at('D', loc), "D (cutter compensation) is not supported");
   if (w.has('L') && w.non_modal != 100 && !is_cycle(motion))
     fail(w.at('L', loc), "L goes with G10 or a canned cycle's repeats");
-  const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || arc ||
-                      w.g[13] == 640 || w.m[5] >= 0;
+  const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || motion == 860 ||
+                      motion == 880 || motion == 890 || arc || w.g[13] == 640 || w.m[5] >= 0;
   if (w.has('P') && !p_used)
-    fail(w.at('P', loc), "P goes with G4, G10, G82, G2/G3 (turns), G64 or M62-M65");
+    fail(w.at('P', loc), "P goes with G4, G10, G82, G86, G88, G89, G2/G3 (turns), G64 or M62-M65");
   if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
-  // G82's P lasts while G82 does: a new series of G82 holes gives it again, as LinuxCNC asks.
-  if (motion == 820 && moving && !w.has('P') && modes_.motion != 820 && !wincnc)
-    fail(w.g[1] == 820 ? code_at(1) : loc, "G82 needs P, the dwell at the bottom in seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
     fail(loc, "G10 needs L (1, 10 or 11 tool table, 2 or 20 coordinate system) and P");
   if (w.g53 && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
@@ -334,19 +341,6 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
            fmt::format("{} needs a feed rate: give F (units per minute){}", code_name('G', motion),
                        inverse ? "; in inverse time (G93) every feeding block needs F" : ""));
     }
-  }
-  if (is_cycle(motion) && moving) {
-    if (!w.has('Z') && !modes_.cycle_z)
-      fail(loc, fmt::format("{} needs Z, the depth of the hole", code_name('G', motion)));
-    if (!w.has('R') && !modes_.cycle_r)
-      fail(loc, fmt::format("{} needs R, the retract plane", code_name('G', motion)));
-    if ((motion == 730 || motion == 830) && !w.has('Q') && !modes_.cycle_q)
-      fail(loc, fmt::format("{} needs Q, the peck depth", code_name('G', motion)));
-    const ArcPlane plane = w.g[2] == 180   ? ArcPlane::ZX
-                           : w.g[2] == 190 ? ArcPlane::YZ
-                           : w.g[2] == 170 ? ArcPlane::XY
-                                           : modes_.plane;
-    if (plane != ArcPlane::XY) fail(loc, "canned cycles drill along Z: select the XY plane (G17)");
   }
 }
 
@@ -464,14 +458,14 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     fail(loc,
          "M4 (spindle counter-clockwise) is not available: output switch 1 runs the "
          "spindle one way only; use M3");
-  if (w.m[7] >= 0) {
-    const bool on = w.m[7] == 30;
-    if (((st.outputs >> (kSpindleOutput - 1)) & 1u) != static_cast<unsigned>(on))
-      ctx_.set_output(kSpindleOutput, on, loc);
-  }
+  // Outputs, dwells and pauses wait for the moves cutter compensation holds back.
   auto output = [&](int n, bool on) {
-    if (((st.outputs >> (n - 1)) & 1u) != static_cast<unsigned>(on)) ctx_.set_output(n, on, loc);
+    deferred([this, n, on, loc] {
+      if (((ctx_.state().outputs >> (n - 1)) & 1u) != static_cast<unsigned>(on))
+        ctx_.set_output(n, on, loc);
+    });
   };
+  if (w.m[7] >= 0) output(kSpindleOutput, w.m[7] == 30);
   if (w.m[8] == 70) output(kMistOutput, true);
   if (w.m[8] == 80) output(kFloodOutput, true);
   if (w.m[8] == 90) {
@@ -482,24 +476,30 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     const double p = w.get('P');
     if (p != std::round(p) || p < 1 || p > 12)
       fail(w.at('P', loc), fmt::format("output switch {} does not exist; switches are 1 to 12", p));
-    ctx_.set_output(static_cast<int>(p), w.m[5] == 620 || w.m[5] == 640, loc);  // as SO: always
+    const bool on = w.m[5] == 620 || w.m[5] == 640;
+    deferred([this, p, on, loc] { ctx_.set_output(static_cast<int>(p), on, loc); });  // as SO
   }
   if (w.non_modal == 40) {  // G4
     if (wincnc) {
       if (!w.has('X')) {
-        ctx_.come_to_rest(loc);
-        if (!io_.confirm("G4: press Enter to continue", loc))
-          throw OperatorStop({loc, Severity::Error, "stopped by the operator at G4"});
+        deferred([this, loc] {
+          ctx_.come_to_rest(loc);
+          if (!io_.confirm("G4: press Enter to continue", loc))
+            throw OperatorStop({loc, Severity::Error, "stopped by the operator at G4"});
+        });
       } else {
-        ctx_.dwell(w.get('X'), loc);
+        const double x = w.get('X');
+        deferred([this, x, loc] { ctx_.dwell(x, loc); });
       }
     } else {
       const double p = w.get('P');
       if (p < 0) fail(w.at('P', loc), "G4's time P cannot be negative");
-      if (p == 0)
-        ctx_.come_to_rest(loc);
-      else
-        ctx_.dwell(p, loc);
+      deferred([this, p, loc] {
+        if (p == 0)
+          ctx_.come_to_rest(loc);
+        else
+          ctx_.dwell(p, loc);
+      });
     }
   }
   if (w.g[2] >= 0)
@@ -519,6 +519,7 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     }
     if (modes_.units != was) modes_.previous_units = was;
   }
+  if (w.g[7] >= 0) cutter_comp(w, loc);
   if (w.g[8] == 430) {
     tool_length(w, loc);
   } else if (w.g[8] == 431) {
@@ -539,14 +540,17 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   if (w.non_modal > 40) non_modal(w, w.non_modal, loc);
   motion(w, loc);
   if (w.m[4] == 0) {  // M0
-    ctx_.come_to_rest(loc);
-    if (!io_.confirm("Paused (M0): continue?", loc))
-      throw OperatorStop({loc, Severity::Error, "stopped by the operator at M0"});
+    deferred([this, loc] {
+      ctx_.come_to_rest(loc);
+      if (!io_.confirm("Paused (M0): continue?", loc))
+        throw OperatorStop({loc, Severity::Error, "stopped by the operator at M0"});
+    });
   }
   if (w.m[4] == 20 || w.m[4] == 300) end_program(loc);
 }
 
 void GcodeExecutor::end_program(const SourceLoc& loc) {
+  end_file(loc);  // compensation ends: its held-back moves go out
   ModalState& st = ctx_.state();
   for (int n : {kSpindleOutput, kFloodOutput, kMistOutput})
     if ((st.outputs >> (n - 1)) & 1u) ctx_.set_output(n, false, loc);

@@ -49,7 +49,6 @@ constexpr Refused kRefused[] = {
     {'M', 520, "there is no adaptive feed input"},
     {'M', 530, "there is no feed stop input"},
     {'M', 600, "there is no pallet shuttle; use M0 to pause"},
-    {'M', 610, "setting the tool without a change is not supported; use M6 T"},
     {'M', 660, "waiting on an input is not supported in G-code; use OpenSBP's ON INPUT or M0"},
     {'M', 670, "there are no analog outputs"},
     {'M', 680, "there are no analog outputs"},

@@ -32,7 +32,7 @@ inline std::string code_name(char letter, int code) {
 std::string unknown_code_message(char letter, int code, bool wincnc);
 
 inline bool is_cycle(int motion) {
-  return motion == 730 || (motion >= 810 && motion <= 830);
+  return motion == 730 || (motion >= 810 && motion <= 890 && motion % 10 == 0);
 }
 
 // The non-modal codes whose axis words are theirs, not a motion's.

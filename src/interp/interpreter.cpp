@@ -933,6 +933,7 @@ void Interpreter::plunge_for_pass(Frame& f) {
 // Ends the current pass of the innermost file: another repetition, or back to the caller.
 void Interpreter::end_file() {
   Frame& f = frames_.back();
+  if (f.script->gcode()) gcode_->end_file({f.script->name(), current_.line, 0});
   restore_file_values(f);
   if (++f.repetition < f.call.repetitions) {
     f.pc = f.script->start();

@@ -5,6 +5,8 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -18,8 +20,12 @@ class GcodeExecutor : private GcodeParameters {
  public:
   // `end_program`: M2 and M30 end the running file.
   GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end_program);
+  ~GcodeExecutor();
   // A G-code file starts: its modes start from their defaults (docs/gcode.md, "Modes").
   void begin_file();
+  // A G-code file ends (its last line at `loc`): moves that cutter compensation held back
+  // for their corner go out.
+  void end_file(const SourceLoc& loc);
   // Checks the block (modal groups, which words go with which codes, values), then runs it
   // in the standard order; a located error otherwise.
   void execute(const GcodeBlock& block, const SourceLoc& loc);
@@ -29,6 +35,7 @@ class GcodeExecutor : private GcodeParameters {
 
  private:
   struct Words;
+  struct Comp;  // cutter radius compensation (gcode_cutter_comp.cpp)
   struct Modes {
     int motion = -1;  // G code x10 of the motion mode (G1: 10, G38.2: 382); -1 none (G80)
     ArcPlane plane = ArcPlane::XY;
@@ -40,11 +47,12 @@ class GcodeExecutor : private GcodeParameters {
     ProgramUnits units = ProgramUnits::Inches;
     ProgramUnits previous_units = ProgramUnits::Inches;  // WinCNC's G23
     double feed = 0;                                     // machine units per second (G94)
-    // Canned cycles: the retained Z, R, Q (machine units) and P, and the Z where the series
-    // of cycles began (G98 returns there).
-    std::optional<double> cycle_z, cycle_r, cycle_q;
-    double cycle_p = 0;
-    double cycle_start_z = 0;
+    // Canned cycles (gcode_cycles.cpp): the words a cycle keeps while its code stays (the
+    // depth along the cycle axis, R, Q: machine units; P seconds; G87's I J K), and the
+    // cycle axis's level where the series of cycles began (G98 returns there).
+    std::optional<double> cycle_depth, cycle_r, cycle_q, cycle_p;
+    std::optional<std::array<double, 3>> cycle_ijk;
+    std::optional<double> cycle_initial;
     std::array<double, 3> last_ijk{0, 0, 0};  // WinCNC: a missing I or J keeps the last
   };
 
@@ -73,6 +81,8 @@ class GcodeExecutor : private GcodeParameters {
   void motion(const Words& w, const SourceLoc& loc);
   void arc(const Words& w, bool clockwise, const SourceLoc& loc);
   void canned_cycle(const Words& w, const SourceLoc& loc);
+  void check_cycle_words(const Words& w, int motion, const SourceLoc& loc) const;
+  void cycle_mode(int was);  // the motion mode changed from `was`
   void probe(const Words& w, const SourceLoc& loc);
   void non_modal(const Words& w, int code, const SourceLoc& loc);
   void coordinate_data(const Words& w, const SourceLoc& loc);  // G10
@@ -84,6 +94,20 @@ class GcodeExecutor : private GcodeParameters {
   void tool_data(const Words& w, const SourceLoc& loc);    // G10 L1, L10, L11
   std::optional<double> tool_parameter(int n) const;       // #5400-#5413
   void end_program(const SourceLoc& loc);
+  // Cutter radius compensation (gcode_cutter_comp.cpp).
+  void check_comp_words(const Words& w, int motion, const SourceLoc& loc) const;
+  void cutter_comp(const Words& w, const SourceLoc& loc);  // G40, G41, G42, G41.1, G42.1
+  bool comp_active() const;                                // on, with a tool radius above 0
+  // Where a move starts as programmed (with compensation on, the programmed path, not the
+  // tool's offset one), for incremental words and arc centres.
+  Vec6 motion_start() const;
+  void comp_line(const Vec6& target, bool rapid, double speed, const SourceLoc& loc);
+  void comp_arc(const Vec6& end, double cu, double cv, int turn, double speed,
+                const SourceLoc& loc);
+  void moved_straight();  // a straight move was made (an arc may follow G40 again)
+  void check_arc_allowed(const SourceLoc& loc) const;
+  // Runs `action` now, or after the moves compensation holds back (LinuxCNC's queue).
+  void deferred(std::function<void()> action);
 
   CommandContext& ctx_;
   OperatorIO& io_;
@@ -96,6 +120,7 @@ class GcodeExecutor : private GcodeParameters {
   std::map<std::string, double, std::less<>> named_;
   Vec6 probed_ = Vec6::Zero();  // #5061..: where the last probe stopped
   bool probe_hit_ = false;      // #5070
+  std::unique_ptr<Comp> comp_;
 };
 
 }  // namespace gantry
