@@ -29,13 +29,16 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
     repeats = static_cast<int>(l);
   }
   const double feed = feed_for(w, 1, loc);
-  const double retract_gap = 0.010 * units_factor(Units::Inches, ctx_.settings().units);
+  const double retract_gap = (wincnc ? kWinCncPeckClearanceIn : 0.010) *
+                             units_factor(Units::Inches, ctx_.settings().units);
   Vec6 p = program_position();
   const double r_level = modes_.incremental ? p[2] + *modes_.cycle_r : *modes_.cycle_r;
   const double bottom = modes_.incremental ? r_level + *modes_.cycle_z : *modes_.cycle_z;
   if (bottom > r_level)
     fail(loc, "the hole's bottom Z is above the retract plane R; check Z and R (and G90/G91)");
-  const double clear_z = modes_.retract_to_r ? r_level : std::max(modes_.cycle_start_z, r_level);
+  // WinCNC's cycles always end at R (manual, G73-G83: "moves back to R at Rapid velocity").
+  const double clear_z =
+      modes_.retract_to_r || wincnc ? r_level : std::max(modes_.cycle_start_z, r_level);
   auto z_move = [&](double z, SpeedClass cls) {
     Vec6 t = program_position();
     t[2] = z;

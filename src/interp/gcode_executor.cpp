@@ -125,9 +125,12 @@ int m_group(int code) {
 GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end)
     : ctx_(ctx), io_(io), end_program_(std::move(end)) {
   begin_file();
+  file_g92_.clear();
 }
 
-void GcodeExecutor::begin_file() {
+void GcodeExecutor::begin_file(bool typed) {
+  file_g92_.push_back({ctx_.state().gcode.axis_offset, typed});
+  skip_next_ = false;
   modes_ = Modes{};  // a file gives its own feed rate too
   modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
                                              ? ProgramUnits::Millimetres
@@ -183,6 +186,13 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
     if (expr < 0) return number;
     SourceLoc at = loc;
     at.column = b.exprs_column[static_cast<size_t>(expr)];
+    if (b.exprs[static_cast<size_t>(expr)][0] == '{') {
+      if (!wincnc)
+        fail(at,
+             "{...} is WinCNC's substitution; it needs gcode_dialect = \"wincnc\" in the "
+             "profile (standard G-code writes [expressions] and #parameters)");
+      return wincnc_brace(b.exprs[static_cast<size_t>(expr)], at);
+    }
     return evaluate_gcode_expression(b.exprs[static_cast<size_t>(expr)], at, this);
   };
   for (const GcodeWord& word : b.words) {
@@ -202,6 +212,15 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
         fail(at, fmt::format("{}{} is not a code: codes are whole numbers or have one decimal, "
                              "as G38.2",
                              word.letter, v));
+      if (wincnc && (word.letter == 'G' ? wincnc_own_g(code) : wincnc_own_m(code))) {
+        int& slot = word.letter == 'G' ? w.wg : w.wm;
+        if (slot >= 0)
+          fail(at, fmt::format("{} and {} in one block: WinCNC runs one command a line",
+                               code_name(word.letter, slot), code_name(word.letter, code)));
+        slot = code;
+        (word.letter == 'G' ? w.wg_col : w.wm_col) = word.column;
+        continue;
+      }
       const int group = word.letter == 'G' ? g_group(code) : m_group(code);
       if (group < 0)
         fail(at, fmt::format("{} is not a code Gantry knows; docs/gcode.md lists the codes it "
@@ -231,6 +250,7 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
     w.value[i] = v;
     w.column[i] = word.column;
   }
+  if (wincnc) wincnc_words(w, loc);
   // Parameters are set once every value of the block has been read.
   std::vector<std::pair<const GcodeAssign*, double>> sets;
   for (const GcodeAssign& a : b.assigns) sets.emplace_back(&a, value_of(a.number, a.expr));
@@ -254,11 +274,15 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     fail(code_at(7), fmt::format("{}: cutter radius compensation is not supported; post the "
                                  "toolpath with the compensation applied (G40)",
                                  code_name('G', w.g[7])));
-  const bool uses_axes = takes_axis_words(w.non_modal, wincnc);
+  const bool uses_axes = takes_axis_words(w.non_modal, wincnc) || w.wincnc_axes;
+  // WinCNC's M and L codes read their own letters (C channels, D, H, P, T ...).
+  const bool own_letters = w.wincnc_axes && (w.wm >= 0 || w.wl >= 0 || w.wg >= 0);
   if (uses_axes && w.g[1] >= 0 && w.any_axis())
     fail(code_at(1), fmt::format("{} and {} both use the axis words; put them in separate "
                                  "blocks",
-                                 code_name('G', w.non_modal), code_name('G', w.g[1])));
+                                 w.non_modal >= 0 ? code_name('G', w.non_modal)
+                                                  : std::string("the WinCNC code"),
+                                 code_name('G', w.g[1])));
   if (w.any_axis() && !uses_axes) {
     if (w.g[1] == 800) fail(code_at(1), "G80 cancels the canned cycle and takes no axis words");
     if (motion < 0) fail(loc, "axis words without a motion mode: give G0, G1, G2 or G3 first");
@@ -266,29 +290,29 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   const bool arc = (motion == 20 || motion == 30) && (w.g[1] >= 0 || w.any_axis());
   const bool moving = (w.any_axis() && !uses_axes) || (w.g[1] >= 0 && is_cycle(w.g[1]));
   for (char c : {'I', 'J', 'K'})
-    if (w.has(c) && !arc)
+    if (w.has(c) && !arc && !own_letters)
       fail(w.at(c, loc), fmt::format("{} is an arc's centre offset: it needs G2 or G3", c));
-  if (w.has('R') && !arc && !is_cycle(motion) && w.non_modal != 100)
+  if (w.has('R') && !arc && !is_cycle(motion) && w.non_modal != 100 && !own_letters)
     fail(w.at('R', loc),
          "R is an arc's radius or a canned cycle's retract plane: it needs G2, "
          "G3 or G81-G83");
-  if (w.has('Q') && !(motion == 730 || motion == 830))
+  if (w.has('Q') && !(motion == 730 || motion == 830) && !own_letters)
     fail(w.at('Q', loc), "Q is the peck depth of G73 and G83");
-  if (w.has('H') && w.g[8] != 430)
+  if (w.has('H') && w.g[8] != 430 && !own_letters)
     fail(w.at('H', loc), "H names the tool whose length G43 applies");
-  if (w.has('D')) fail(w.at('D', loc), "D (cutter compensation) is not supported");
+  if (w.has('D') && !own_letters) fail(w.at('D', loc), "D (cutter compensation) is not supported");
   if (w.has('L') && w.non_modal != 100 && !is_cycle(motion))
     fail(w.at('L', loc), "L goes with G10 or a canned cycle's repeats");
   const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || arc ||
-                      w.g[13] == 640 || w.m[5] >= 0;
+                      w.g[13] == 640 || w.m[5] >= 0 || own_letters;
   if (w.has('P') && !p_used)
     fail(w.at('P', loc), "P goes with G4, G10, G82, G2/G3 (turns), G64 or M62-M65");
   if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
     fail(loc, "G10 needs L (1 tool table, 2 or 20 coordinate system) and P");
-  if (w.g53 && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
+  if (w.g53 && !wincnc && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
     fail(loc, "G53 goes with G0 or G1 only");
-  if (w.g53 && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
+  if (w.g53 && w.any_axis() && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
     fail(loc, "G53 takes machine coordinates: it cannot be incremental (G91)");
   if (w.m[5] >= 0 && !w.has('P'))
     fail(loc, fmt::format("{} needs P, the output switch number", code_name('M', w.m[5])));
@@ -402,6 +426,10 @@ void GcodeExecutor::line(const Vec6& target, SpeedClass cls, double speed, const
 // ---- running a block --------------------------------------------------------------------
 
 void GcodeExecutor::execute(const GcodeBlock& block, const SourceLoc& loc) {
+  if (skip_next_ && !block.empty()) {  // WinCNC's M17.1 ... L112 said to skip this one
+    skip_next_ = false;
+    return;
+  }
   Words w;
   read_words(block, loc, w);
   check_words(w, loc);
@@ -490,7 +518,9 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     }
     if (modes_.units != was) modes_.previous_units = was;
   }
-  if (w.g[8] == 430) {
+  if (w.g[8] == 430 && wincnc) {  // WinCNC: the length the last M37 measured
+    o.tool_length = o.measured_length;
+  } else if (w.g[8] == 430) {
     const int h = w.has('H') ? static_cast<int>(std::lround(w.get('H'))) : o.tool;
     if (w.has('H') && (w.get('H') != h || h < 0))
       fail(w.at('H', loc), fmt::format("H{} is not a tool number", w.get('H')));
@@ -509,6 +539,11 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   }
   if (w.g[12] >= 0) {
     const int code = w.g[12];
+    if (wincnc && code != 540)
+      fail(SourceLoc{loc.file, loc.line, w.g_col[12]},
+           fmt::format("{} selects another head in WinCNC (its g{}= workspace); this machine has "
+                       "one head, Z: use G54, and G92 or G92.1 for a local zero",
+                       code_name('G', code), code / 10));
     select_system(code <= 590 ? (code - 540) / 10 : 6 + (code - 591));
   }
   if (w.g[13] >= 0) modes_.exact_stop = w.g[13] != 640;
@@ -516,13 +551,27 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   if (w.g[4] >= 0) modes_.arc_absolute = w.g[4] == 901;
   if (w.g[10] >= 0) modes_.retract_to_r = w.g[10] == 990;
   if (w.non_modal > 40) non_modal(w, w.non_modal, loc);
+  // WinCNC's L90/L91: absolute or incremental for this block only.
+  const bool incremental = modes_.incremental;
+  if (w.wl == 900 || w.wl == 910) modes_.incremental = w.wl == 910;
+  if (wincnc) wincnc_codes(w, loc);
   motion(w, loc);
+  modes_.incremental = incremental;
   if (w.m[4] == 0) {  // M0
     ctx_.come_to_rest(loc);
     if (!io_.confirm("Paused (M0): continue?", loc))
       throw OperatorStop({loc, Severity::Error, "stopped by the operator at M0"});
   }
   if (w.m[4] == 20 || w.m[4] == 300) end_program(loc);
+}
+
+void GcodeExecutor::end_file() {
+  if (file_g92_.empty()) return;
+  const FileG92 f = file_g92_.back();
+  file_g92_.pop_back();
+  // WinCNC restores the G92 offsets a file began with unless it gave L92 (manual, G92, L92).
+  if (ctx_.settings().gcode_dialect == GcodeDialect::WinCNC && !f.keep)
+    ctx_.state().gcode.axis_offset = f.offset;
 }
 
 void GcodeExecutor::end_program(const SourceLoc& loc) {

@@ -24,7 +24,8 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
     modes_.cycle_p = 0;
     modes_.cycle_start_z = program_position()[2];
   }
-  if (takes_axis_words(w.non_modal, wincnc) || m < 0) return;
+  if (wincnc && w.g53) return wincnc_g53(w, loc);  // a rapid, or alone a lift
+  if (takes_axis_words(w.non_modal, wincnc) || w.wincnc_axes || m < 0) return;
   if (!w.any_axis() && !(w.g[1] >= 0 && is_cycle(m))) return;  // nothing to move
   if (w.g53) {
     const ModalState& st = ctx_.state();

@@ -26,8 +26,9 @@ struct GcodeOffsets {
   Vec6 axis_offset_saved = Vec6::Zero();
   std::array<Vec6, 2> stored{};  // G28 and G30 positions (G28.1, G30.1), table base
   std::map<int, GcodeTool> tools;
-  int tool = 0;            // the tool in the spindle (M6)
-  double tool_length = 0;  // G43: program Z 0 is this far above the spindle's working Z 0
+  int tool = 0;                // the tool in the spindle (M6)
+  double tool_length = 0;      // G43: program Z 0 is this far above the spindle's working Z 0
+  double measured_length = 0;  // WinCNC's M37: the length G43 turns on (G49 off)
 
   GcodeOffsets() {
     for (Vec6& v : origin) v.setZero();
@@ -44,6 +45,7 @@ struct GcodeOffsets {
       t.radius *= k[0];
     }
     tool_length *= k[2];
+    measured_length *= k[2];
   }
 };
 
