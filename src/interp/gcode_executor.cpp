@@ -434,6 +434,7 @@ void GcodeExecutor::execute(const GcodeBlock& block, const SourceLoc& loc) {
   read_words(block, loc, w);
   check_words(w, loc);
   if (block.message) ctx_.print(*block.message + "\n");
+  prompt_ = block.bracket ? &*block.bracket : nullptr;
   run(w, loc);
 }
 
@@ -487,7 +488,9 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     if (wincnc) {
       if (!w.has('X')) {
         ctx_.come_to_rest(loc);
-        if (!io_.confirm("G4: press Enter to continue", loc))
+        // "Place a comment after the dwell to prompt the operator" (manual, G4).
+        if (!io_.confirm(prompt_ && !prompt_->empty() ? *prompt_ : "G4: press Enter to continue",
+                         loc))
           throw OperatorStop({loc, Severity::Error, "stopped by the operator at G4"});
       } else {
         ctx_.dwell(w.get('X'), loc);

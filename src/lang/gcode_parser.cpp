@@ -288,6 +288,13 @@ class BlockReader {
       } else if (c == '[') {
         // WinCNC's comment: to the matching ']' or the end of the line.
         const size_t close = s_.find(']', i_);
+        if (!out_->bracket) {
+          std::string_view text = s_.substr(
+              i_ + 1, close == std::string_view::npos ? std::string_view::npos : close - i_ - 1);
+          while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+          while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+          out_->bracket = std::string(text);
+        }
         if (close == std::string_view::npos) return;
         i_ = close + 1;
       } else if (c == '#') {

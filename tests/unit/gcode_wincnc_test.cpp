@@ -350,8 +350,10 @@ TEST_F(WinCncTest, BracesSubstituteValues) {
 // pushes ENTER. Place a comment after the dwell to prompt the operator. Example: G4 [Ready To
 // Start Section 2]".
 TEST_F(WinCncTest, G4WaitsForTheOperatorOrDwellsXSeconds) {
-  const auto m = run("G4 [Ready To Start Section 2]\nG4 X1.5\n", true);
-  ASSERT_EQ(io.questions.size(), 1u);
+  const auto m = run("G4 [Ready To Start Section 2]\nG4 X1.5\nG4\n", true);
+  ASSERT_EQ(io.questions.size(), 2u);
+  EXPECT_EQ(io.questions[0], "Ready To Start Section 2");
+  EXPECT_EQ(io.questions[1], "G4: press Enter to continue");
   bool dwelled = false;
   for (const CanonMove& c : m) dwelled |= c.kind == MoveKind::Dwell && c.dwell_s == 1.5;
   EXPECT_TRUE(dwelled);

@@ -104,6 +104,7 @@ class GcodeExecutor : private GcodeParameters {
   // position L3 stored (table base); each running file's G92 offsets, restored when it ends
   // unless it gave L92.
   bool skip_next_ = false;
+  const std::string* prompt_ = nullptr;  // the running block's [comment]: G4's prompt
   std::uint64_t virtual_inputs_ = 0;
   Vec6 l3_position_ = Vec6::Zero();
   unsigned l3_axes_ = 0;  // the axes L3 stored (bit 0 X .. 5 C)

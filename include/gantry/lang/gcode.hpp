@@ -36,6 +36,7 @@ struct GcodeBlock {
   std::vector<std::string> exprs;      // expression texts; each starts at exprs_column
   std::vector<int> exprs_column;       // 1-based column of each expression's first character
   std::optional<std::string> message;  // (MSG, text), (PRINT, text), (DEBUG, text)
+  std::optional<std::string> bracket;  // the first [comment]'s text: WinCNC's G4 prompt
   bool empty() const { return words.empty() && assigns.empty() && !message; }
   void clear() {
     words.clear();
@@ -43,6 +44,7 @@ struct GcodeBlock {
     exprs.clear();
     exprs_column.clear();
     message.reset();
+    bracket.reset();
   }
 };
 
