@@ -177,7 +177,7 @@ void GcodeExecutor::check_comp_words(const Words& w, int motion, const SourceLoc
   SourceLoc at7 = loc;
   at7.column = w.g_col[7];
   const bool turning_on = g7 == 410 || g7 == 420 || g7 == 411 || g7 == 421;
-  if (w.has('D') && !turning_on)
+  if (w.has('D') && !turning_on && !w.own_letters())
     fail(w.at('D', loc),
          "D goes with G41/G42 (the tool whose radius compensates) or G41.1/G42.1 "
          "(the tool's diameter)");

@@ -181,7 +181,8 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
     line(t, SpeedClass::Jog, 0, loc);
     level0 = first_level = r;
   }
-  const double clear = modes_.retract_to_r ? r : level0;
+  // WinCNC's cycles always end at R (manual, G73-G83: "moves back to R at Rapid velocity").
+  const double clear = modes_.retract_to_r || wincnc ? r : level0;
   double hole_u = start[ua], hole_v = start[va];
   const double step_u = modes_.incremental && w.has(u_letter) ? w.get(u_letter) * k[ua] : 0;
   const double step_v = modes_.incremental && w.has(v_letter) ? w.get(v_letter) * k[va] : 0;
@@ -236,10 +237,12 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
         for (double depth = r - q; depth > bottom; depth -= q) {
           go(u, v, depth, SpeedClass::Move);
           if (code == 730) {
-            go(u, v, depth + kG73Backoff * inch, SpeedClass::Jog);
+            go(u, v, depth + (wincnc ? kWinCncPeckClearanceIn : kG73Backoff) * inch,
+               SpeedClass::Jog);
           } else {
             go(u, v, r, SpeedClass::Jog);
-            go(u, v, depth + kG83Clearance * inch, SpeedClass::Jog);
+            go(u, v, depth + (wincnc ? kWinCncPeckClearanceIn : kG83Clearance) * inch,
+               SpeedClass::Jog);
           }
         }
         go(u, v, bottom, SpeedClass::Move);

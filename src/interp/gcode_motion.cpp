@@ -18,7 +18,8 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
   if (w.g[1] >= 0) modes_.motion = w.g[1] == 800 ? -1 : w.g[1];
   const int m = modes_.motion;
   cycle_mode(was);
-  if (takes_axis_words(w.non_modal, wincnc) || w.g431_alone() || m < 0) return;
+  if (wincnc && w.g53) return wincnc_g53(w, loc);  // a rapid, or alone a lift
+  if (takes_axis_words(w.non_modal, wincnc) || w.wincnc_axes || w.g431_alone() || m < 0) return;
   const bool arc_mode = m == 20 || m == 30;
   if (!w.any_axis() && !(w.g[1] >= 0 && is_cycle(m)) && !(arc_mode && w.makes_arc(wincnc)))
     return;  // nothing to move

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "gantry/interp/interpreter.hpp"  // CommandContext
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
@@ -22,10 +24,14 @@ class GcodeExecutor : private GcodeParameters {
   GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end_program);
   ~GcodeExecutor();
   // A G-code file starts: its modes start from their defaults (docs/gcode.md, "Modes").
-  void begin_file();
-  // A G-code file ends (its last line at `loc`): moves that cutter compensation held back
-  // for their corner go out.
+  // `typed`: lines typed at the console, whose G92 offsets stay (WinCNC).
+  void begin_file(bool typed = false);
+  // A pass of a G-code file ends (its last line at `loc` ran, or M2/M30): moves that cutter
+  // compensation held back for their corner go out.
   void end_file(const SourceLoc& loc);
+  // The file is left for good: WinCNC restores the G92 offsets it began with unless it gave
+  // L92.
+  void leave_file();
   // Checks the block (modal groups, which words go with which codes, values), then runs it
   // in the standard order; a located error otherwise.
   void execute(const GcodeBlock& block, const SourceLoc& loc);
@@ -108,6 +114,14 @@ class GcodeExecutor : private GcodeParameters {
   void check_arc_allowed(const SourceLoc& loc) const;
   // Runs `action` now, or after the moves compensation holds back (LinuxCNC's queue).
   void deferred(std::function<void()> action);
+  // The WinCNC dialect's own codes (gcode_wincnc.cpp, docs/gcode.md "The WinCNC dialect").
+  Vec6 program_from_table_base(const Vec6& table_base, unsigned axes) const;
+  void wincnc_lift(const SourceLoc& loc);                                 // G53 alone, G0.1
+  void wincnc_g53(const Words& w, const SourceLoc& loc);                  // G53 [X Y Z]
+  void wincnc_words(Words& w, const SourceLoc& loc);                      // L words, owned axes
+  void wincnc_codes(const Words& w, const SourceLoc& loc);                // G0.1, M11-M37, L-codes
+  void wincnc_home(const Words& w, const SourceLoc& loc);                 // G28 [axes]
+  double wincnc_brace(std::string_view text, const SourceLoc& at) const;  // {TH1+2}
 
   CommandContext& ctx_;
   OperatorIO& io_;
@@ -121,6 +135,19 @@ class GcodeExecutor : private GcodeParameters {
   Vec6 probed_ = Vec6::Zero();  // #5061..: where the last probe stopped
   bool probe_hit_ = false;      // #5070
   std::unique_ptr<Comp> comp_;
+  // WinCNC: the next block is skipped (M17.1 ... L113); the virtual inputs L60/L61 set; the
+  // position L3 stored (table base); each running file's G92 offsets, restored when it ends
+  // unless it gave L92.
+  bool skip_next_ = false;
+  const std::string* prompt_ = nullptr;  // the running block's [comment]: G4's prompt
+  std::uint64_t virtual_inputs_ = 0;
+  Vec6 l3_position_ = Vec6::Zero();
+  unsigned l3_axes_ = 0;  // the axes L3 stored (bit 0 X .. 5 C)
+  struct FileG92 {
+    Vec6 offset;
+    bool keep = false;
+  };
+  std::vector<FileG92> file_g92_;
 };
 
 }  // namespace gantry
