@@ -7,4 +7,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 # The language fuzzer first (bounded), so that ctest's summary is the last thing printed.
 "$root/scripts/fuzz.sh" "${GANTRY_FUZZ_SECONDS:-60}"
 cd "$root/build"
+# The differential test against LinuxCNC's rs274 prints its counts here (ctest shows a passing
+# test's output only with -V); ctest runs it again, from its cache of rs274's answers.
+tests/gantry_gcode_differential | tail -n 1 || true
 ctest --output-on-failure --parallel "$(nproc)"

@@ -49,10 +49,11 @@ std::vector<ParamSpec> probe_params(std::string_view axes) {
 // Each axis of the profile's order: fast to its switch, back off, slowly to it again (the
 // measured approach), set the table base there, back off the switch. Without a switch
 // within a table's length and a bit, it stops with an error.
-void home_on_switches(CommandContext& ctx, const SourceLoc& loc) {
+void home_on_switches(CommandContext& ctx, const SourceLoc& loc, std::string_view only) {
   const Settings& s = ctx.settings();
   const HomingSettings& h = s.homing;
   for (const char letter : h.order) {
+    if (!only.empty() && only.find(letter) == std::string_view::npos) continue;
     const int i = static_cast<int>(std::string_view("xyzabc").find(letter));
     const double dir = h.direction[i];
     const double reach = s.axes[i].max - s.axes[i].min + 2 * h.back_off;

@@ -10,6 +10,7 @@
 #include <algorithm>  // max
 #include <cmath>      // lround, round, sqrt
 
+#include "gcode_cutter_comp.hpp"  // ~unique_ptr<Comp>
 #include "gcode_words.hpp"
 
 namespace gantry {
@@ -32,6 +33,12 @@ int g_group(int code) {
     case 810:
     case 820:
     case 830:
+    case 840:
+    case 850:
+    case 860:
+    case 870:
+    case 880:
+    case 890:
       return 1;
     case 170:
     case 180:
@@ -53,7 +60,9 @@ int g_group(int code) {
       return 6;
     case 400:
     case 410:
+    case 411:
     case 420:
+    case 421:
       return 7;
     case 430:
     case 431:
@@ -128,11 +137,15 @@ int m_group(int code) {
 GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end)
     : ctx_(ctx), io_(io), end_program_(std::move(end)) {
   begin_file();
+  file_g92_.clear();
 }
 
-void GcodeExecutor::begin_file() {
+void GcodeExecutor::begin_file(bool typed) {
   tool_note_given_ = table_read_ = false;
+  file_g92_.push_back({ctx_.state().gcode.axis_offset, typed});
+  skip_next_ = false;
   modes_ = Modes{};  // a file gives its own feed rate too
+  comp_.reset();     // G40: nothing held back from a run that stopped
   modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
                                              ? ProgramUnits::Millimetres
                                              : ProgramUnits::Inches;
@@ -186,6 +199,13 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
     if (expr < 0) return number;
     SourceLoc at = loc;
     at.column = b.exprs_column[static_cast<size_t>(expr)];
+    if (b.exprs[static_cast<size_t>(expr)][0] == '{') {
+      if (!wincnc)
+        fail(at,
+             "{...} is WinCNC's substitution; it needs gcode_dialect = \"wincnc\" in the "
+             "profile (standard G-code writes [expressions] and #parameters)");
+      return wincnc_brace(b.exprs[static_cast<size_t>(expr)], at);
+    }
     return evaluate_gcode_expression(b.exprs[static_cast<size_t>(expr)], at, this);
   };
   for (const GcodeWord& word : b.words) {
@@ -210,6 +230,15 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
         fail(at(), fmt::format("{}{} is not a code: codes are whole numbers or have one decimal, "
                                "as G38.2",
                                word.letter, v));
+      if (wincnc && (word.letter == 'G' ? wincnc_own_g(code) : wincnc_own_m(code))) {
+        int& slot = word.letter == 'G' ? w.wg : w.wm;
+        if (slot >= 0)
+          fail(at(), fmt::format("{} and {} in one block: WinCNC runs one command a line",
+                                 code_name(word.letter, slot), code_name(word.letter, code)));
+        slot = code;
+        (word.letter == 'G' ? w.wg_col : w.wm_col) = word.column;
+        continue;
+      }
       const int group = word.letter == 'G' ? g_group(code) : m_group(code);
       if (group < 0) fail(at(), unknown_code_message(word.letter, code, wincnc));
       if (word.letter == 'G' && code == 530) {
@@ -241,6 +270,7 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
     w.value[i] = v;
     w.column[i] = word.column;
   }
+  if (wincnc) wincnc_words(w, loc);
   // Parameters are set once every value of the block has been read.
   std::vector<std::pair<const GcodeAssign*, double>> sets;
   for (const GcodeAssign& a : b.assigns) {
@@ -268,11 +298,9 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     l.column = w.g_col[group];
     return l;
   };
-  if (w.g[7] == 410 || w.g[7] == 420)
-    fail(code_at(7), fmt::format("{}: cutter radius compensation is not supported; post the "
-                                 "toolpath with the compensation applied (G40)",
-                                 code_name('G', w.g[7])));
-  const bool uses_axes = takes_axis_words(w.non_modal, wincnc);
+  check_comp_words(w, motion, loc);
+  const bool uses_axes = takes_axis_words(w.non_modal, wincnc) || w.wincnc_axes;
+  const bool own_letters = w.own_letters();
   if (w.g[8] == 431 && w.g[1] >= 0 && w.any_axis())
     fail(code_at(8), fmt::format("G43.1 and {} both use the axis words; put G43.1 in a block of "
                                  "its own",
@@ -286,7 +314,9 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   if (uses_axes && w.g[1] >= 0 && w.any_axis())
     fail(code_at(1), fmt::format("{} and {} both use the axis words; put them in separate "
                                  "blocks",
-                                 code_name('G', w.non_modal), code_name('G', w.g[1])));
+                                 w.non_modal >= 0 ? code_name('G', w.non_modal)
+                                                  : std::string("the WinCNC code"),
+                                 code_name('G', w.g[1])));
   if (w.any_axis() && !uses_axes && !w.g431_alone()) {
     if (w.g[1] == 800) fail(code_at(1), "G80 cancels the canned cycle and takes no axis words");
     if (motion < 0) fail(loc, "axis words without a motion mode: give G0, G1, G2 or G3 first");
@@ -294,33 +324,35 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   const bool arc = (motion == 20 || motion == 30) && w.makes_arc(wincnc);
   const bool moving =
       (w.any_axis() && !uses_axes && !w.g431_alone()) || (w.g[1] >= 0 && is_cycle(w.g[1])) || arc;
+  if (is_cycle(motion) && moving) check_cycle_words(w, motion, loc);
   for (char c : {'I', 'J', 'K'})
-    if (w.has(c) && !arc)
-      fail(w.at(c, loc), fmt::format("{} is an arc's centre offset: it needs G2 or G3", c));
-  if (w.has('R') && !arc && !is_cycle(motion) && w.non_modal != 100)
+    if (w.has(c) && !arc && motion != 870 && !own_letters)
+      fail(w.at(c, loc),
+           fmt::format("{} is an arc's centre offset (or G87's back bore): it needs G2, G3 or "
+                       "G87",
+                       c));
+  if (w.has('R') && !arc && !is_cycle(motion) && w.non_modal != 100 && !own_letters)
     fail(w.at('R', loc),
          "R is an arc's radius or a canned cycle's retract plane: it needs G2, "
-         "G3 or G81-G83");
-  if (w.has('Q') && !(motion == 730 || motion == 830) && w.m[6] != 610 && w.g[13] != 640)
+         "G3 or G73, G81-G89");
+  if (w.has('Q') && !(motion == 730 || motion == 830) && w.m[6] != 610 && w.g[13] != 640 &&
+      !own_letters)
     fail(w.at('Q', loc), "Q is the peck depth of G73 and G83");
-  if (w.has('H') && w.g[8] != 430)
+  if (w.has('H') && w.g[8] != 430 && !own_letters)
     fail(w.at('H', loc), "H names the tool whose length G43 applies");
-  if (w.has('D')) fail(w.at('D', loc), "D (cutter compensation) is not supported");
   if (w.has('L') && w.non_modal != 100 && !is_cycle(motion))
     fail(w.at('L', loc), "L goes with G10 or a canned cycle's repeats");
-  const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || arc ||
-                      w.g[13] == 640 || w.m[5] >= 0;
+  const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || motion == 860 ||
+                      motion == 880 || motion == 890 || arc || w.g[13] == 640 || w.m[5] >= 0 ||
+                      own_letters;
   if (w.has('P') && !p_used)
-    fail(w.at('P', loc), "P goes with G4, G10, G82, G2/G3 (turns), G64 or M62-M65");
+    fail(w.at('P', loc), "P goes with G4, G10, G82, G86, G88, G89, G2/G3 (turns), G64 or M62-M65");
   if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
-  // G82's P lasts while G82 does: a new series of G82 holes gives it again, as LinuxCNC asks.
-  if (motion == 820 && moving && !w.has('P') && modes_.motion != 820 && !wincnc)
-    fail(w.g[1] == 820 ? code_at(1) : loc, "G82 needs P, the dwell at the bottom in seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
     fail(loc, "G10 needs L (1, 10 or 11 tool table, 2 or 20 coordinate system) and P");
-  if (w.g53 && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
+  if (w.g53 && !wincnc && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
     fail(loc, "G53 goes with G0 or G1 only");
-  if (w.g53 && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
+  if (w.g53 && w.any_axis() && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
     fail(loc, "G53 takes machine coordinates: it cannot be incremental (G91)");
   if (w.m[5] >= 0 && !w.has('P'))
     fail(loc, fmt::format("{} needs P, the output switch number", code_name('M', w.m[5])));
@@ -339,19 +371,6 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
            fmt::format("{} needs a feed rate: give F (units per minute){}", code_name('G', motion),
                        inverse ? "; in inverse time (G93) every feeding block needs F" : ""));
     }
-  }
-  if (is_cycle(motion) && moving) {
-    if (!w.has('Z') && !modes_.cycle_z)
-      fail(loc, fmt::format("{} needs Z, the depth of the hole", code_name('G', motion)));
-    if (!w.has('R') && !modes_.cycle_r)
-      fail(loc, fmt::format("{} needs R, the retract plane", code_name('G', motion)));
-    if ((motion == 730 || motion == 830) && !w.has('Q') && !modes_.cycle_q)
-      fail(loc, fmt::format("{} needs Q, the peck depth", code_name('G', motion)));
-    const ArcPlane plane = w.g[2] == 180   ? ArcPlane::ZX
-                           : w.g[2] == 190 ? ArcPlane::YZ
-                           : w.g[2] == 170 ? ArcPlane::XY
-                                           : modes_.plane;
-    if (plane != ArcPlane::XY) fail(loc, "canned cycles drill along Z: select the XY plane (G17)");
   }
 }
 
@@ -444,10 +463,15 @@ void GcodeExecutor::line(const Vec6& from, const Vec6& target, SpeedClass cls, d
 // ---- running a block --------------------------------------------------------------------
 
 void GcodeExecutor::execute(const GcodeBlock& block, const SourceLoc& loc) {
+  if (skip_next_ && !block.empty()) {  // WinCNC's M17.1 ... L112 said to skip this one
+    skip_next_ = false;
+    return;
+  }
   Words w;
   read_words(block, loc, w);
   check_words(w, loc);
   if (block.message) message(block, loc);
+  prompt_ = block.bracket ? &*block.bracket : nullptr;
   run(w, loc);
 }
 
@@ -479,14 +503,14 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     fail(loc,
          "M4 (spindle counter-clockwise) is not available: output switch 1 runs the "
          "spindle one way only; use M3");
-  if (w.m[7] >= 0) {
-    const bool on = w.m[7] == 30;
-    if (((st.outputs >> (kSpindleOutput - 1)) & 1u) != static_cast<unsigned>(on))
-      ctx_.set_output(kSpindleOutput, on, loc);
-  }
+  // Outputs, dwells and pauses wait for the moves cutter compensation holds back.
   auto output = [&](int n, bool on) {
-    if (((st.outputs >> (n - 1)) & 1u) != static_cast<unsigned>(on)) ctx_.set_output(n, on, loc);
+    deferred([this, n, on, loc] {
+      if (((ctx_.state().outputs >> (n - 1)) & 1u) != static_cast<unsigned>(on))
+        ctx_.set_output(n, on, loc);
+    });
   };
+  if (w.m[7] >= 0) output(kSpindleOutput, w.m[7] == 30);
   if (w.m[8] == 70) output(kMistOutput, true);
   if (w.m[8] == 80) output(kFloodOutput, true);
   if (w.m[8] == 90) {
@@ -497,24 +521,31 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     const double p = w.get('P');
     if (p != std::round(p) || p < 1 || p > 12)
       fail(w.at('P', loc), fmt::format("output switch {} does not exist; switches are 1 to 12", p));
-    ctx_.set_output(static_cast<int>(p), w.m[5] == 620 || w.m[5] == 640, loc);  // as SO: always
+    const bool on = w.m[5] == 620 || w.m[5] == 640;
+    deferred([this, p, on, loc] { ctx_.set_output(static_cast<int>(p), on, loc); });  // as SO
   }
   if (w.non_modal == 40) {  // G4
     if (wincnc) {
       if (!w.has('X')) {
-        ctx_.come_to_rest(loc);
-        if (!io_.confirm("G4: press Enter to continue", loc))
-          throw OperatorStop({loc, Severity::Error, "stopped by the operator at G4"});
+        deferred([this, loc, prompt = prompt_ ? *prompt_ : std::string()] {
+          ctx_.come_to_rest(loc);
+          // "Place a comment after the dwell to prompt the operator" (manual, G4).
+          if (!io_.confirm(!prompt.empty() ? prompt : "G4: press Enter to continue", loc))
+            throw OperatorStop({loc, Severity::Error, "stopped by the operator at G4"});
+        });
       } else {
-        ctx_.dwell(w.get('X'), loc);
+        const double x = w.get('X');
+        deferred([this, x, loc] { ctx_.dwell(x, loc); });
       }
     } else {
       const double p = w.get('P');
       if (p < 0) fail(w.at('P', loc), "G4's time P cannot be negative");
-      if (p == 0)
-        ctx_.come_to_rest(loc);
-      else
-        ctx_.dwell(p, loc);
+      deferred([this, p, loc] {
+        if (p == 0)
+          ctx_.come_to_rest(loc);
+        else
+          ctx_.dwell(p, loc);
+      });
     }
   }
   if (w.g[2] >= 0)
@@ -534,7 +565,10 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
     }
     if (modes_.units != was) modes_.previous_units = was;
   }
-  if (w.g[8] == 430) {
+  if (w.g[7] >= 0) cutter_comp(w, loc);
+  if (w.g[8] == 430 && wincnc) {  // WinCNC: the length the last M37 measured
+    o.tool_length = o.measured_length;
+  } else if (w.g[8] == 430) {
     tool_length(w, loc);
   } else if (w.g[8] == 431) {
     // Only the offset changes (no motion): the next move reads Z from the new offset. Without
@@ -545,6 +579,11 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   }
   if (w.g[12] >= 0) {
     const int code = w.g[12];
+    if (wincnc && code != 540)
+      fail(SourceLoc{loc.file, loc.line, w.g_col[12]},
+           fmt::format("{} selects another head in WinCNC (its g{}= workspace); this machine has "
+                       "one head, Z: use G54, and G92 or G92.1 for a local zero",
+                       code_name('G', code), code / 10));
     select_system(code <= 590 ? (code - 540) / 10 : 6 + (code - 591));
   }
   if (w.g[13] >= 0) modes_.exact_stop = w.g[13] != 640;
@@ -552,16 +591,33 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   if (w.g[4] >= 0) modes_.arc_absolute = w.g[4] == 901;
   if (w.g[10] >= 0) modes_.retract_to_r = w.g[10] == 990;
   if (w.non_modal > 40) non_modal(w, w.non_modal, loc);
+  // WinCNC's L90/L91: absolute or incremental for this block only.
+  const bool incremental = modes_.incremental;
+  if (w.wl == 900 || w.wl == 910) modes_.incremental = w.wl == 910;
+  if (wincnc) wincnc_codes(w, loc);
   motion(w, loc);
+  modes_.incremental = incremental;
   if (w.m[4] == 0) {  // M0
-    ctx_.come_to_rest(loc);
-    if (!io_.confirm("Paused (M0): continue?", loc))
-      throw OperatorStop({loc, Severity::Error, "stopped by the operator at M0"});
+    deferred([this, loc] {
+      ctx_.come_to_rest(loc);
+      if (!io_.confirm("Paused (M0): continue?", loc))
+        throw OperatorStop({loc, Severity::Error, "stopped by the operator at M0"});
+    });
   }
   if (w.m[4] == 20 || w.m[4] == 300) end_program(loc);
 }
 
+void GcodeExecutor::leave_file() {
+  if (file_g92_.empty()) return;
+  const FileG92 f = file_g92_.back();
+  file_g92_.pop_back();
+  // WinCNC restores the G92 offsets a file began with unless it gave L92 (manual, G92, L92).
+  if (ctx_.settings().gcode_dialect == GcodeDialect::WinCNC && !f.keep)
+    ctx_.state().gcode.axis_offset = f.offset;
+}
+
 void GcodeExecutor::end_program(const SourceLoc& loc) {
+  end_file(loc);  // compensation ends: its held-back moves go out
   ModalState& st = ctx_.state();
   for (int n : {kSpindleOutput, kFloodOutput, kMistOutput})
     if ((st.outputs >> (n - 1)) & 1u) ctx_.set_output(n, false, loc);

@@ -17,14 +17,9 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
   const int was = modes_.motion;
   if (w.g[1] >= 0) modes_.motion = w.g[1] == 800 ? -1 : w.g[1];
   const int m = modes_.motion;
-  if (!is_cycle(m) || !is_cycle(was)) {  // a new series of cycles (or none)
-    modes_.cycle_z.reset();
-    modes_.cycle_r.reset();
-    modes_.cycle_q.reset();
-    modes_.cycle_p = 0;
-    if (is_cycle(m)) modes_.cycle_start_z = program_position()[2];  // read by cycles alone
-  }
-  if (takes_axis_words(w.non_modal, wincnc) || w.g431_alone() || m < 0) return;
+  cycle_mode(was);
+  if (wincnc && w.g53) return wincnc_g53(w, loc);  // a rapid, or alone a lift
+  if (takes_axis_words(w.non_modal, wincnc) || w.wincnc_axes || w.g431_alone() || m < 0) return;
   const bool arc_mode = m == 20 || m == 30;
   if (!w.any_axis() && !(w.g[1] >= 0 && is_cycle(m)) && !(arc_mode && w.makes_arc(wincnc)))
     return;  // nothing to move
@@ -44,10 +39,13 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
   switch (m) {
     case 0:
     case 10: {
-      const Vec6 from = program_position();
+      const Vec6 from = motion_start();
       const Vec6 target = axis_target(w, from, modes_.incremental);
       const double len = modes_.inverse_time ? (target - from).norm() : 0;  // G93 alone uses it
-      line(from, target, m == 0 ? SpeedClass::Jog : SpeedClass::Move, feed_for(w, len, loc), loc);
+      const double speed = feed_for(w, len, loc);
+      if (comp_active()) return comp_line(target, m == 0, speed, loc);
+      moved_straight();
+      line(target, m == 0 ? SpeedClass::Jog : SpeedClass::Move, speed, loc);
       return;
     }
     case 20:
@@ -69,7 +67,8 @@ void GcodeExecutor::arc(const Words& w, bool clockwise, const SourceLoc& loc) {
   const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
   const std::array<int, 3> ax = plane_axes(modes_.plane);
   const int u = ax[0], v = ax[1];
-  const Vec6 start = program_position();
+  check_arc_allowed(loc);
+  const Vec6 start = motion_start();
   const Vec6 end = axis_target(w, start, modes_.incremental);
   const double lin = length_scale();
   const char normal_offset = "IJK"[ax[2]];
@@ -159,6 +158,10 @@ void GcodeExecutor::arc(const Words& w, bool clockwise, const SourceLoc& loc) {
   rest[u] = rest[v] = 0;
   const double length = std::hypot(r * sweep, rest.norm());
   const double speed = feed_for(w, length, loc);
+  if (comp_active()) {
+    const int turns = w.has('P') ? static_cast<int>(w.get('P')) : 1;
+    return comp_arc(end, cu, cv, clockwise ? -turns : turns, speed, loc);
+  }
   Vec6 centre = Vec6::Zero();
   centre[u] = cu;
   centre[v] = cv;

@@ -39,13 +39,7 @@ void GcodeExecutor::non_modal(const Words& w, int code, const SourceLoc& loc) {
       return coordinate_data(w, loc);
     case 280:
     case 300: {
-      if (wincnc && code == 280) {  // WinCNC: G28 homes the machine
-        if (w.any_axis())
-          fail(loc,
-               "G28 with axes is not supported: Gantry homes every axis of the profile's "
-               "homing order (G28 alone, or C3)");
-        return home_on_switches(ctx_, loc);
-      }
+      if (wincnc && code == 280) return wincnc_home(w, loc);  // WinCNC: G28 homes
       const Vec6 here = program_position();
       if (w.any_axis()) line(axis_target(w, here, modes_.incremental), SpeedClass::Jog, 0, loc);
       // The stored position (table base) in program coordinates, for the axes given or all.
@@ -74,25 +68,38 @@ void GcodeExecutor::non_modal(const Words& w, int code, const SourceLoc& loc) {
         if (w.has(kAxes[static_cast<size_t>(a)]))
           o.axis_offset[a] =
               file[a] - (a == 2 ? o.tool_length : 0) - w.get(kAxes[static_cast<size_t>(a)]) * k[a];
-      o.axis_offset_saved = o.axis_offset;
+      if (!wincnc) o.axis_offset_saved = o.axis_offset;  // WinCNC's store is G92.3's own
       return;
     }
     case 921:
+      if (wincnc) {  // WinCNC: local zero is machine zero shifted by the values; no motion
+        if (!w.any_axis())
+          fail(loc, "G92.1 needs the axes to shift, as G92.1 X20 Y20 Z1 (G92 alone clears them)");
+        for (int a = 0; a < kAxisCount; ++a)
+          if (w.has(kAxes[static_cast<size_t>(a)]))
+            o.axis_offset[a] = w.get(kAxes[static_cast<size_t>(a)]) * k[a];
+        return;
+      }
       o.axis_offset.setZero();
       o.axis_offset_saved.setZero();
       return;
     case 922:
-      if (wincnc) {  // WinCNC: add to the offsets (G92.2 Z-.01 cuts .01 deeper)
+      if (wincnc) {  // WinCNC: the shift adds to local zero (G92.2 Z-.01 cuts .01 deeper)
+        if (!w.any_axis()) fail(loc, "G92.2 needs the axes to shift, as G92.2 Z-.01");
         for (int a = 0; a < kAxisCount; ++a)
           if (w.has(kAxes[static_cast<size_t>(a)]))
-            o.axis_offset[a] -= w.get(kAxes[static_cast<size_t>(a)]) * k[a];
-        o.axis_offset_saved = o.axis_offset;
+            o.axis_offset[a] += w.get(kAxes[static_cast<size_t>(a)]) * k[a];
         return;
       }
       o.axis_offset.setZero();
       return;
     case 923:
-      o.axis_offset = o.axis_offset_saved;
+      if (wincnc && !o.axis_offset.isZero(0)) {  // WinCNC: offsets set: store and clear them
+        o.axis_offset_saved = o.axis_offset;
+        o.axis_offset.setZero();
+        return;
+      }
+      o.axis_offset = o.axis_offset_saved;  // WinCNC: none set: the stored ones come back
       return;
     default:
       return;

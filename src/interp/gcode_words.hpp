@@ -32,14 +32,23 @@ inline std::string code_name(char letter, int code) {
 std::string unknown_code_message(char letter, int code, bool wincnc);
 
 inline bool is_cycle(int motion) {
-  return motion == 730 || (motion >= 810 && motion <= 830);
+  return motion == 730 || (motion >= 810 && motion <= 890 && motion % 10 == 0);
 }
 
 // The non-modal codes whose axis words are theirs, not a motion's.
 inline bool takes_axis_words(int non_modal, bool wincnc) {
   return non_modal == 100 || non_modal == 280 || non_modal == 300 || non_modal == 920 ||
-         (wincnc && (non_modal == 922 || non_modal == 40));
+         (wincnc && (non_modal == 921 || non_modal == 922 || non_modal == 40));
 }
+
+// The codes only the WinCNC dialect has (gcode_wincnc.cpp), x10: G0.1, G5, G9, G31, G50-G52.1,
+// G92.4, G95; M11-M14, M17.x, M18.x, M28, M29, M37.x, M99.1.
+bool wincnc_own_g(int code);
+bool wincnc_own_m(int code);
+
+// WinCNC's peck clearance: G73 lifts, and G83 comes back down to, 0.05 in from the last peck
+// (manual, G73 and G83); the standard cycles use 0.010 in.
+constexpr double kWinCncPeckClearanceIn = 0.05;
 
 }  // namespace gantry::gcode
 
@@ -56,6 +65,12 @@ struct GcodeExecutor::Words {
   bool g53 = false;
   std::array<int, 10> m{};  // by group
   std::array<int, 10> m_col{};
+  // WinCNC: its own G code (G0.1, G5, G9, G31, G50-G52, G92.4, G95), M code (M11-M37, M99.1)
+  // and L code, x10, or -1; and whether one of its codes takes the axis words (G53, L3 X...).
+  int wg = -1, wg_col = 0, wm = -1, wm_col = 0, wl = -1, wl_col = 0;
+  bool wincnc_axes = false;
+  // WinCNC's M and L codes read their own letters (C channels, D, H, P, T ...).
+  bool own_letters() const { return wincnc_axes && (wm >= 0 || wl >= 0 || wg >= 0); }
   bool has(char c) const { return present & (1u << (c - 'A')); }
   double get(char c) const { return value[c - 'A']; }
   SourceLoc at(char c, const SourceLoc& loc) const {

@@ -893,7 +893,7 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
     target[2] = 0;
     ctx_.line_to(target, SpeedClass::Move, from);
   }
-  if (script->gcode()) gcode_->begin_file();
+  if (script->gcode()) gcode_->begin_file(call.lines != nullptr);
   Frame f;
   f.script = std::move(script);
   f.pc = f.script->start();
@@ -933,6 +933,7 @@ void Interpreter::plunge_for_pass(Frame& f) {
 // Ends the current pass of the innermost file: another repetition, or back to the caller.
 void Interpreter::end_file() {
   Frame& f = frames_.back();
+  if (f.script->gcode()) gcode_->end_file({f.script->name(), current_.line, 0});
   restore_file_values(f);
   if (++f.repetition < f.call.repetitions) {
     f.pc = f.script->start();
@@ -942,6 +943,7 @@ void Interpreter::end_file() {
     return;
   }
   if (start_ && start_->depth + 1 == frames_.size()) start_missed();
+  if (f.script->gcode()) gcode_->leave_file();  // WinCNC restores the file's G92 (unless L92)
   frames_.pop_back();
   update_file_tabs();
 }

@@ -8,6 +8,7 @@
 
 #include "gantry/lang/gcode.hpp"
 #include "gantry/lang/parser.hpp"  // LineParse, Statement
+#include "gantry/lang/wincnc.hpp"  // evaluate_wincnc_braces
 #include "number_literal.hpp"      // is_digit, plain_value
 #include "scan.hpp"                // is_letter, upper
 
@@ -306,6 +307,13 @@ class BlockReader {
       } else if (c == '[') {
         // WinCNC's comment: to the matching ']' or the end of the line.
         const size_t close = s_.find(']', i_);
+        if (!out_->bracket) {
+          std::string_view text = s_.substr(
+              i_ + 1, close == std::string_view::npos ? std::string_view::npos : close - i_ - 1);
+          while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+          while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+          out_->bracket = std::string(text);
+        }
         if (close == std::string_view::npos) return;
         i_ = close + 1;
       } else if (c == '#') {
@@ -421,6 +429,16 @@ class BlockReader {
       if (negative) *number = -*number;
       i_ = e;
       return -1;
+    }
+    if (b < s_.size() && s_[b] == '{') {  // WinCNC's substitution, kept whole: {TH1+2}
+      const size_t close = s_.find('}', b);
+      if (close == std::string_view::npos) error(b, "this '{' is never closed with '}'");
+      const std::string_view text = s_.substr(b, close + 1 - b);
+      evaluate_wincnc_braces(text, loc(b), nullptr);  // its syntax, now
+      out_->exprs.emplace_back(text);
+      out_->exprs_column.push_back(static_cast<int>(b) + 1);
+      i_ = close + 1;
+      return static_cast<int>(out_->exprs.size()) - 1;
     }
     const size_t e = value_end(b);
     if (e == b) {

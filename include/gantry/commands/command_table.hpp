@@ -143,8 +143,9 @@ const char* group_name(CommandGroup g);
 void add_move_commands(std::vector<CommandSpec>& out);
 void add_probe_commands(std::vector<CommandSpec>& out);
 // C3 when there is no custom file C3.sbp or macro_3.sbp: homing on the proximity switches
-// as the profile's [homing] says.
-void home_on_switches(CommandContext& ctx, const SourceLoc& loc);
+// as the profile's [homing] says. `only` (lower-case letters): home just those axes, in the
+// profile's order (WinCNC's `G28 Z`); empty: every axis of the order.
+void home_on_switches(CommandContext& ctx, const SourceLoc& loc, std::string_view only = {});
 void add_mode_commands(std::vector<CommandSpec>& out);
 void add_file_commands(std::vector<CommandSpec>& out);
 void add_output_commands(std::vector<CommandSpec>& out);

@@ -3,10 +3,14 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "gantry/interp/interpreter.hpp"  // CommandContext
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
@@ -18,8 +22,16 @@ class GcodeExecutor : private GcodeParameters {
  public:
   // `end_program`: M2 and M30 end the running file.
   GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end_program);
+  ~GcodeExecutor();
   // A G-code file starts: its modes start from their defaults (docs/gcode.md, "Modes").
-  void begin_file();
+  // `typed`: lines typed at the console, whose G92 offsets stay (WinCNC).
+  void begin_file(bool typed = false);
+  // A pass of a G-code file ends (its last line at `loc` ran, or M2/M30): moves that cutter
+  // compensation held back for their corner go out.
+  void end_file(const SourceLoc& loc);
+  // The file is left for good: WinCNC restores the G92 offsets it began with unless it gave
+  // L92.
+  void leave_file();
   // Checks the block (modal groups, which words go with which codes, values), then runs it
   // in the standard order; a located error otherwise.
   void execute(const GcodeBlock& block, const SourceLoc& loc);
@@ -29,6 +41,7 @@ class GcodeExecutor : private GcodeParameters {
 
  private:
   struct Words;
+  struct Comp;  // cutter radius compensation (gcode_cutter_comp.cpp)
   struct Modes {
     int motion = -1;  // G code x10 of the motion mode (G1: 10, G38.2: 382); -1 none (G80)
     ArcPlane plane = ArcPlane::XY;
@@ -40,11 +53,12 @@ class GcodeExecutor : private GcodeParameters {
     ProgramUnits units = ProgramUnits::Inches;
     ProgramUnits previous_units = ProgramUnits::Inches;  // WinCNC's G23
     double feed = 0;                                     // machine units per second (G94)
-    // Canned cycles: the retained Z, R, Q (machine units) and P, and the Z where the series
-    // of cycles began (G98 returns there).
-    std::optional<double> cycle_z, cycle_r, cycle_q;
-    double cycle_p = 0;
-    double cycle_start_z = 0;
+    // Canned cycles (gcode_cycles.cpp): the words a cycle keeps while its code stays (the
+    // depth along the cycle axis, R, Q: machine units; P seconds; G87's I J K), and the
+    // cycle axis's level where the series of cycles began (G98 returns there).
+    std::optional<double> cycle_depth, cycle_r, cycle_q, cycle_p;
+    std::optional<std::array<double, 3>> cycle_ijk;
+    std::optional<double> cycle_initial;
     std::array<double, 3> last_ijk{0, 0, 0};  // WinCNC: a missing I or J keeps the last
   };
 
@@ -76,6 +90,8 @@ class GcodeExecutor : private GcodeParameters {
   void motion(const Words& w, const SourceLoc& loc);
   void arc(const Words& w, bool clockwise, const SourceLoc& loc);
   void canned_cycle(const Words& w, const SourceLoc& loc);
+  void check_cycle_words(const Words& w, int motion, const SourceLoc& loc) const;
+  void cycle_mode(int was);  // the motion mode changed from `was`
   void probe(const Words& w, const SourceLoc& loc);
   void non_modal(const Words& w, int code, const SourceLoc& loc);
   void coordinate_data(const Words& w, const SourceLoc& loc);  // G10
@@ -87,6 +103,28 @@ class GcodeExecutor : private GcodeParameters {
   void tool_data(const Words& w, const SourceLoc& loc);    // G10 L1, L10, L11
   std::optional<double> tool_parameter(int n) const;       // #5400-#5413
   void end_program(const SourceLoc& loc);
+  // Cutter radius compensation (gcode_cutter_comp.cpp).
+  void check_comp_words(const Words& w, int motion, const SourceLoc& loc) const;
+  void cutter_comp(const Words& w, const SourceLoc& loc);  // G40, G41, G42, G41.1, G42.1
+  bool comp_active() const;                                // on, with a tool radius above 0
+  // Where a move starts as programmed (with compensation on, the programmed path, not the
+  // tool's offset one), for incremental words and arc centres.
+  Vec6 motion_start() const;
+  void comp_line(const Vec6& target, bool rapid, double speed, const SourceLoc& loc);
+  void comp_arc(const Vec6& end, double cu, double cv, int turn, double speed,
+                const SourceLoc& loc);
+  void moved_straight();  // a straight move was made (an arc may follow G40 again)
+  void check_arc_allowed(const SourceLoc& loc) const;
+  // Runs `action` now, or after the moves compensation holds back (LinuxCNC's queue).
+  void deferred(std::function<void()> action);
+  // The WinCNC dialect's own codes (gcode_wincnc.cpp, docs/gcode.md "The WinCNC dialect").
+  Vec6 program_from_table_base(const Vec6& table_base, unsigned axes) const;
+  void wincnc_lift(const SourceLoc& loc);                                 // G53 alone, G0.1
+  void wincnc_g53(const Words& w, const SourceLoc& loc);                  // G53 [X Y Z]
+  void wincnc_words(Words& w, const SourceLoc& loc);                      // L words, owned axes
+  void wincnc_codes(const Words& w, const SourceLoc& loc);                // G0.1, M11-M37, L-codes
+  void wincnc_home(const Words& w, const SourceLoc& loc);                 // G28 [axes]
+  double wincnc_brace(std::string_view text, const SourceLoc& at) const;  // {TH1+2}
 
   CommandContext& ctx_;
   OperatorIO& io_;
@@ -99,6 +137,20 @@ class GcodeExecutor : private GcodeParameters {
   std::map<std::string, double, std::less<>> named_;
   Vec6 probed_ = Vec6::Zero();  // #5061..: where the last probe stopped
   bool probe_hit_ = false;      // #5070
+  std::unique_ptr<Comp> comp_;
+  // WinCNC: the next block is skipped (M17.1 ... L113); the virtual inputs L60/L61 set; the
+  // position L3 stored (table base); each running file's G92 offsets, restored when it ends
+  // unless it gave L92.
+  bool skip_next_ = false;
+  const std::string* prompt_ = nullptr;  // the running block's [comment]: G4's prompt
+  std::uint64_t virtual_inputs_ = 0;
+  Vec6 l3_position_ = Vec6::Zero();
+  unsigned l3_axes_ = 0;  // the axes L3 stored (bit 0 X .. 5 C)
+  struct FileG92 {
+    Vec6 offset;
+    bool keep = false;
+  };
+  std::vector<FileG92> file_g92_;
 };
 
 }  // namespace gantry

@@ -25,6 +25,7 @@ struct GcodeOffsets {
   ToolTable tools;
   int tool = 0;            // the tool in the spindle (M6, M61)
   double tool_length = 0;  // G43: program Z 0 is this far above the spindle's working Z 0
+  double measured_length = 0;  // WinCNC's M37: the length G43 turns on (G49 off)
 
   GcodeOffsets() {
     for (Vec6& v : origin) v.setZero();
@@ -38,6 +39,7 @@ struct GcodeOffsets {
     axis_offset_saved = axis_offset_saved.cwiseProduct(k);
     tools.scale(k[2]);
     tool_length *= k[2];
+    measured_length *= k[2];
   }
 };
 

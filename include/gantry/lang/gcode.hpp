@@ -43,6 +43,7 @@ struct GcodeBlock {
   std::optional<std::string> message;  // the text after the comma
   GcodeMessage message_kind = GcodeMessage::None;
   int message_column = 0;  // 1-based, the comment's '('
+  std::optional<std::string> bracket;  // the first [comment]'s text: WinCNC's G4 prompt
   bool empty() const { return words.empty() && assigns.empty() && !message; }
   void clear() {
     words.clear();
@@ -52,6 +53,7 @@ struct GcodeBlock {
     message.reset();
     message_kind = GcodeMessage::None;
     message_column = 0;
+    bracket.reset();
   }
 };
 
