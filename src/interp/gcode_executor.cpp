@@ -99,6 +99,9 @@ int m_group(int code) {
     case 10:
     case 20:
     case 300:
+    case 980:  // M98, M99: the O-word flow runs them (gcode_control_flow.cpp)
+    case 981:
+    case 990:
       return 4;
     case 60:
       return 6;
@@ -125,6 +128,7 @@ int m_group(int code) {
 GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end)
     : ctx_(ctx), io_(io), end_program_(std::move(end)) {
   begin_file();
+  set_returned(std::nullopt);
 }
 
 void GcodeExecutor::begin_file() {
@@ -277,12 +281,14 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   if (w.has('H') && w.g[8] != 430)
     fail(w.at('H', loc), "H names the tool whose length G43 applies");
   if (w.has('D')) fail(w.at('D', loc), "D (cutter compensation) is not supported");
-  if (w.has('L') && w.non_modal != 100 && !is_cycle(motion))
+  const bool m98 = w.m[4] == 980;
+  if (w.has('L') && w.non_modal != 100 && !is_cycle(motion) && !m98)
     fail(w.at('L', loc), "L goes with G10 or a canned cycle's repeats");
   const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || arc ||
-                      w.g[13] == 640 || w.m[5] >= 0;
+                      w.g[13] == 640 || w.m[5] >= 0 || m98;
   if (w.has('P') && !p_used)
-    fail(w.at('P', loc), "P goes with G4, G10, G82, G2/G3 (turns), G64 or M62-M65");
+    fail(w.at('P', loc), "P goes with G4, G10, G82, G2/G3 (turns), G64, M62-M65 or M98");
+  if (m98 && !w.has('P')) fail(loc, "M98 needs P, the number of the O subprogram it calls");
   if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
     fail(loc, "G10 needs L (1 tool table, 2 or 20 coordinate system) and P");

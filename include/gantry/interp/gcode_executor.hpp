@@ -5,8 +5,10 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "gantry/interp/interpreter.hpp"  // CommandContext
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
@@ -23,6 +25,20 @@ class GcodeExecutor : private GcodeParameters {
   // Checks the block (modal groups, which words go with which codes, values), then runs it
   // in the standard order; a located error otherwise.
   void execute(const GcodeBlock& block, const SourceLoc& loc);
+
+  // O-word subroutines and M98 (gcode_scopes.cpp). A call has its own #1-#30 (`args`, the
+  // rest 0, as LinuxCNC 2.9) unless `numbered_local` is false (M98: shared with the caller),
+  // and its own named parameters but those starting with `_`; leave_call gives the caller's
+  // back. `returned`: #<_value> and #<_value_returned> (cleared by every call).
+  void enter_call(const std::vector<double>& args, bool numbered_local);
+  void leave_call();
+  void reset_calls();  // a new run: no call is open, #<_value> is 0
+  size_t call_depth() const { return scopes_.size(); }
+  void set_returned(std::optional<double> value);
+  // The value of a word or an O-word's expression (`expr` -1: `number`).
+  double value(const GcodeBlock& b, double number, int expr, const SourceLoc& loc) const;
+  // M2's end of the program (M99 in the main program too, as rs274 does).
+  void end_program(const SourceLoc& loc);
 
   // The units program values are in.
   enum class ProgramUnits { Inches, Millimetres, Centimetres };
@@ -74,7 +90,6 @@ class GcodeExecutor : private GcodeParameters {
   void probe(const Words& w, const SourceLoc& loc);
   void non_modal(const Words& w, int code, const SourceLoc& loc);
   void coordinate_data(const Words& w, const SourceLoc& loc);  // G10
-  void end_program(const SourceLoc& loc);
 
   CommandContext& ctx_;
   OperatorIO& io_;
@@ -85,6 +100,12 @@ class GcodeExecutor : private GcodeParameters {
   std::map<std::string, double, std::less<>> named_;
   Vec6 probed_ = Vec6::Zero();  // #5061..: where the last probe stopped
   bool probe_hit_ = false;      // #5070
+  struct Scope {                // what a call hides of its caller's parameters
+    std::array<std::optional<double>, 30> numbered;
+    bool numbered_local = true;
+    std::vector<std::pair<std::string, double>> named;
+  };
+  std::vector<Scope> scopes_;
 };
 
 }  // namespace gantry
