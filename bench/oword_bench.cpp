@@ -60,4 +60,21 @@ void BM_CountedLoopGcodeRepeat(benchmark::State& state) {
 }
 BENCHMARK(BM_CountedLoopGcodeRepeat)->Arg(200000)->Unit(benchmark::kMillisecond);
 
+// The control flow alone: the same loops counting without a move.
+void BM_CountedLoopOpenSbpGotoNoMove(benchmark::State& state) {
+  counted_loop(
+      state,
+      fmt::format("&i = 0\nLOOP:\n&i = &i + 1\nIF &i < {} THEN GOTO LOOP\nEND\n", state.range(0)),
+      "loop.sbp");
+}
+BENCHMARK(BM_CountedLoopOpenSbpGotoNoMove)->Arg(200000)->Unit(benchmark::kMillisecond);
+
+void BM_CountedLoopGcodeWhileNoMove(benchmark::State& state) {
+  counted_loop(
+      state,
+      fmt::format("#1 = 0\no1 while [#1 LT {}]\n#1 = [#1 + 1]\no1 endwhile\nM2\n", state.range(0)),
+      "loop.ngc");
+}
+BENCHMARK(BM_CountedLoopGcodeWhileNoMove)->Arg(200000)->Unit(benchmark::kMillisecond);
+
 }  // namespace

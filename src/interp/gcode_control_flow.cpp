@@ -103,12 +103,21 @@ void Interpreter::gcode_flow(const GcodeBlock& b, const SourceLoc& loc) {
       return;
     case OwordKind::While:
       if (!linked) return;
-      if (link->closes_do ? test() : !test()) f.pc = link->jump;
+      if (link->closes_do ? test() : !test()) {
+        f.pc = link->jump;
+        g.hot = link->closes_do || !g.calls.empty();
+      } else if (link->closes_do) {
+        g.hot = !g.calls.empty();  // the do loop ends
+      }
       return;
     case OwordKind::Endwhile:
-    case OwordKind::Break:
     case OwordKind::Continue:
       if (linked) f.pc = link->jump;
+      g.hot = true;
+      return;
+    case OwordKind::Break:
+      if (linked) f.pc = link->jump;
+      g.hot = !g.calls.empty();
       return;
     case OwordKind::Repeat: {
       if (!linked) return;
@@ -125,6 +134,7 @@ void Interpreter::gcode_flow(const GcodeBlock& b, const SourceLoc& loc) {
         f.pc = link->jump;
         return;
       }
+      g.hot = true;
       g.repeats.push_back({f.script.get(), current_.offset, count - 1});
       return;
     }
@@ -140,6 +150,7 @@ void Interpreter::gcode_flow(const GcodeBlock& b, const SourceLoc& loc) {
           f.pc = link->jump;
         } else {
           g.repeats.resize(i);
+          g.hot = !g.calls.empty();
         }
         return;
       }
@@ -219,6 +230,7 @@ void Interpreter::gcode_call(const GcodeBlock& b, const SourceLoc& loc) {
   }
   c.frame = frames_.size() - 1;
   g.calls.push_back(c);
+  g.hot = true;
   gcode_->enter_call(args, /*numbered_local=*/true);
 }
 
@@ -237,6 +249,7 @@ void Interpreter::gcode_return(const GcodeBlock& b, const SourceLoc& loc) {
   g.repeats.resize(std::min(g.repeats.size(), c.repeats_base));
   gcode_->leave_call();
   gcode_->set_returned(value);
+  g.hot = !g.calls.empty();
   if (c.own_frame) end_file();
   frames_.back().pc = c.back;
 }
@@ -313,6 +326,7 @@ void Interpreter::gcode_m98_m99(const GcodeBlock& b, const SourceLoc& loc) {
   c.frame = frames_.size() - 1;
   gcode_->enter_call({}, /*numbered_local=*/false);
   g.calls.push_back(c);
+  g.hot = true;
   f.pc = *body;
 }
 

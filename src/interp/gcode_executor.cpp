@@ -141,6 +141,10 @@ void GcodeExecutor::begin_file() {
 // ---- parameters -------------------------------------------------------------------------
 
 double GcodeExecutor::numbered(int n, const SourceLoc&) const {
+  if (n <= 5000) {  // first: a loop reads these on every pass
+    auto it = params_.find(n);
+    return it == params_.end() ? 0 : it->second;
+  }
   const ModalState& st = ctx_.state();
   const GcodeOffsets& o = st.gcode;
   const Vec6 k = axis_scale();
@@ -148,10 +152,6 @@ double GcodeExecutor::numbered(int n, const SourceLoc&) const {
     if (n >= base && n < base + 6) return v[n - base] / k[n - base];
     return std::nullopt;
   };
-  if (n <= 5000) {
-    auto it = params_.find(n);
-    return it == params_.end() ? 0 : it->second;
-  }
   if (auto v = axis(probed_, 5061)) return *v;
   if (n == 5070) return probe_hit_ ? 1 : 0;
   if (auto v = axis(o.stored[0], 5161)) return *v;

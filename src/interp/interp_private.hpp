@@ -157,6 +157,9 @@ struct Interpreter::GcodeFlow {
   // rather than ending the branch before it.
   const Script* branch_script = nullptr;
   size_t branch_offset = 0;
+  // A loop or a subroutine runs: its lines come round again, so they are parsed once into
+  // the script's parse cache rather than on every pass (the interpreter's loop reads it).
+  bool hot = false;
 };
 
 // A file opened with OPEN ... AS #n.

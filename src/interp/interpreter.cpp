@@ -1269,7 +1269,8 @@ void Interpreter::loop(DiagnosticLog* collect) {
     std::shared_ptr<const LineParse> lp;  // only lines that are not simple commands need one
     const Statement* st = &simple_;
     const std::string_view text = f.script->line_at(f.pc, &next);
-    if (!(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
+    if ((f.script->gcode() && gcode_flow_->hot) ||  // an O-word loop: parsed once, cached
+        !(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
                             : parse_simple_command(text, f.script->name(), f.pc.line, &simple_))) {
       lp = f.script->parse(f.pc, &next);
       st = lp->statement ? &*lp->statement : nullptr;

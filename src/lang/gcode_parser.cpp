@@ -193,6 +193,8 @@ class Expression {
   int op_at(std::string_view* op) {
     skip();
     if (i_ >= s_.size()) return 0;
+    // Most values end at ']': no operator starts with any other character than these.
+    if (std::string_view("*/+-MmEeNnGgLlAaOoXx").find(s_[i_]) == std::string_view::npos) return 0;
     struct Op {
       std::string_view text;
       int prec;

@@ -5,6 +5,7 @@
 
 #include <unistd.h>  // getpid
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -188,6 +189,31 @@ TEST_F(OwordTest, CheckComputesTheValuesTheLoopsCompute) {
   const auto errors = check(Script::from_text("o1 while [1]\nG0 X1\no1 endwhile\n", "t.ngc"), o);
   ASSERT_FALSE(errors.empty());
   EXPECT_NE(errors.front().message.find("loops here without end"), std::string::npos);
+}
+
+// The operator's stop (Ctrl-C) ends an endless O-word loop, as it ends a GOTO loop.
+TEST_F(OwordTest, StopEndsAnEndlessLoop) {
+  class StopAfter : public MotionSink {
+   public:
+    explicit StopAfter(std::atomic<bool>& stop) : stop_(stop) {}
+    void move(const CanonMove&) override {
+      if (++moves == 5) stop_ = true;
+    }
+    void flush() override {}
+    int moves = 0;
+
+   private:
+    std::atomic<bool>& stop_;
+  };
+  std::atomic<bool> stop{false};
+  StopAfter sink(stop);
+  InterpreterOptions o;
+  o.stop_check = &stop;
+  Interpreter interp(settings, sink, io, store, o);
+  EXPECT_THROW(interp.run(Script::from_text(
+                   "#1=0\no1 while [1]\n#1=[#1+1]\nG0 X[#1 MOD 2]\no1 endwhile\n", "t.ngc")),
+               OperatorStop);
+  EXPECT_EQ(sink.moves, 5);
 }
 
 // rs274: (1,0) (2,0) (3,0) (3,3) (3,3,1): M98 P100 L3, L0 runs nothing, #1 is shared.
