@@ -356,7 +356,7 @@ struct InterpreterOptions {
   int start_line = 0;
   int max_gosub_depth = 256;
   // Where `o<name> call` finds name.ngc when the calling file does not define the subroutine:
-  // the calling file's folder, then these (--subroutines, the profile's [gcode] subroutines);
+  // the calling file's folder, then these (--subroutines);
   // a part file reads them as it reads the macro folders (docs/security.md).
   std::vector<std::string> subroutine_dirs;
   // Called when a run ends (not in a dry run) with the settings as the run leaves them:
