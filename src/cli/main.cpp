@@ -162,6 +162,7 @@ struct LanguageArgs {
   bool allow_shell = false;
   std::vector<std::string> inputs;  // NAME=VALUE
   std::string macros;
+  std::vector<std::string> subroutines;  // --subroutines: where o<name> call finds name.ngc
   std::vector<std::string> allow_paths;  // --allow-path: folders part files may reach
   std::string persistent;  // file of $variables; default in the user's config directory
   std::string values;      // the values file; default in the user's config directory
@@ -178,6 +179,9 @@ struct LanguageArgs {
     cmd->add_option("--macros", macros,
                     "Folder C<n> looks in first for C<n>.sbp / macro_<n>.sbp (then the shipped "
                     "macros)");
+    cmd->add_option("--subroutines", subroutines,
+                    "Folder where G-code's o<name> call finds name.ngc after the calling "
+                    "file's folder (may be given again)");
     add_allow_path_option(cmd, allow_paths);
     add_tool_table_option(cmd, tool_table);
     cmd->add_option("--persistent", persistent, "File of persistent $variables (JSON)");
@@ -197,6 +201,7 @@ struct LanguageArgs {
   bool job_options(const Settings& settings, JobOptions& out) const {
     out.interpreter.allow_shell = allow_shell;
     out.interpreter.macro_dir = macros;
+    out.interpreter.subroutine_dirs = subroutines;
     out.interpreter.trig_in_degrees = out.interpreter.plus_joins_text =
         settings.dialect == Dialect::FabMo;
     out.check_budget = budget;

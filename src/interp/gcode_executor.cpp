@@ -110,6 +110,9 @@ int m_group(int code) {
     case 10:
     case 20:
     case 300:
+    case 980:  // M98, M99: the O-word flow runs them (gcode_control_flow.cpp)
+    case 981:
+    case 990:
       return 4;
     case 60:
     case 610:  // M61: the tool in the spindle, without a change
@@ -138,6 +141,7 @@ GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<
     : ctx_(ctx), io_(io), end_program_(std::move(end)) {
   begin_file();
   file_g92_.clear();
+  set_returned(std::nullopt);
 }
 
 void GcodeExecutor::begin_file(bool typed) {
@@ -154,6 +158,10 @@ void GcodeExecutor::begin_file(bool typed) {
 // ---- parameters -------------------------------------------------------------------------
 
 double GcodeExecutor::numbered(int n, const SourceLoc&) const {
+  if (n <= 5000) {  // first: a loop reads these on every pass
+    auto it = params_.find(n);
+    return it == params_.end() ? 0 : it->second;
+  }
   const ModalState& st = ctx_.state();
   const GcodeOffsets& o = st.gcode;
   const Vec6 k = axis_scale();
@@ -161,10 +169,6 @@ double GcodeExecutor::numbered(int n, const SourceLoc&) const {
     if (n >= base && n < base + 6) return v[n - base] / k[n - base];
     return std::nullopt;
   };
-  if (n <= 5000) {
-    auto it = params_.find(n);
-    return it == params_.end() ? 0 : it->second;
-  }
   if (auto v = axis(probed_, 5061)) return *v;
   if (n == 5070) return probe_hit_ ? 1 : 0;
   if (auto v = axis(o.stored[0], 5161)) return *v;
@@ -340,13 +344,16 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     fail(w.at('Q', loc), "Q is the peck depth of G73 and G83");
   if (w.has('H') && w.g[8] != 430 && !own_letters)
     fail(w.at('H', loc), "H names the tool whose length G43 applies");
-  if (w.has('L') && w.non_modal != 100 && !is_cycle(motion))
-    fail(w.at('L', loc), "L goes with G10 or a canned cycle's repeats");
+  const bool m98 = w.m[4] == 980;
+  if (w.has('L') && w.non_modal != 100 && !is_cycle(motion) && !m98)
+    fail(w.at('L', loc), "L goes with G10, a canned cycle's repeats or M98");
   const bool p_used = w.non_modal == 40 || w.non_modal == 100 || motion == 820 || motion == 860 ||
                       motion == 880 || motion == 890 || arc || w.g[13] == 640 || w.m[5] >= 0 ||
-                      own_letters;
+                      own_letters || m98;
   if (w.has('P') && !p_used)
-    fail(w.at('P', loc), "P goes with G4, G10, G82, G86, G88, G89, G2/G3 (turns), G64 or M62-M65");
+    fail(w.at('P', loc),
+         "P goes with G4, G10, G82, G86, G88, G89, G2/G3 (turns), G64, M62-M65 or M98");
+  if (m98 && !w.has('P')) fail(loc, "M98 needs P, the number of the O subprogram it calls");
   if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
     fail(loc, "G10 needs L (1, 10 or 11 tool table, 2 or 20 coordinate system) and P");

@@ -135,6 +135,33 @@ struct Interpreter::StartLine {
   std::unique_ptr<SandboxFileSystem> sandbox;  // the quiet part's writes
 };
 
+// G-code's open subroutine calls (o-call, M98) and repeat loops, for every running file.
+struct Interpreter::GcodeFlow {
+  struct Call {
+    size_t frame = 0;        // index in frames_ of the frame the subroutine runs in
+    Cursor back;             // the line after the call, in the caller's frame
+    bool own_frame = false;  // the subroutine's file was pushed for it: returning pops it
+    bool fanuc = false;      // M98: ends at M99, shares #1-#30
+    long loops_left = 0;     // M98 L: runs still to come
+    Cursor body;             // M98: the subprogram's first line, for L
+    size_t repeats_base = 0;
+  };
+  struct Repeat {
+    const Script* script;
+    size_t offset;  // the repeat line's
+    long left;      // passes still to run after the current one
+  };
+  std::vector<Call> calls;
+  std::vector<Repeat> repeats;
+  // The branch line a false if or elseif jumped to: it is tested (elseif) or entered (else)
+  // rather than ending the branch before it.
+  const Script* branch_script = nullptr;
+  size_t branch_offset = 0;
+  // A loop or a subroutine runs: its lines come round again, so they are parsed once into
+  // the script's parse cache rather than on every pass (the interpreter's loop reads it).
+  bool hot = false;
+};
+
 // A file opened with OPEN ... AS #n.
 struct Interpreter::UserFile {
   int number = 0;

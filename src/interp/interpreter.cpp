@@ -789,13 +789,19 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
       io_(*gated_io_),
       store_(store),
       options_(std::move(options)),
-      ctx_(state_, settings_, sink_) {
+      ctx_(state_, settings_, sink_),
+      gcode_flow_(std::make_unique<GcodeFlow>()) {
   ctx_.interp_ = this;
   gated_io_->before_asking = [this] { ctx_.sync(); };
   state_.speeds = settings.speeds;
   gcode_ = std::make_unique<GcodeExecutor>(ctx_, io_, [this] {  // M2, M30: the file ends
-    Frame& f = frames_.back();
-    f.pc = Cursor{std::string::npos, f.pc.line};
+    // In a subroutine's own file, its callers' file ends too: it is one program.
+    size_t from = frames_.size() - 1;
+    for (const GcodeFlow::Call& c : gcode_flow_->calls)
+      if (c.own_frame && c.frame > 0 && c.frame < frames_.size())
+        from = std::min(from, c.frame - 1);
+    for (size_t i = from; i < frames_.size(); ++i)
+      frames_[i].pc = Cursor{std::string::npos, frames_[i].pc.line};
   });
   if (options_.files) {
     files_system_ = options_.files;
@@ -867,6 +873,8 @@ void Interpreter::check_reach(const std::string& path, FileAccess access,
   reach.read_write = options_.allowed_folders;
   reach.read_write.push_back(options_.data_dir);
   reach.read_only = {options_.macro_dir, options_.user_macro_dir, options_.shipped_macro_dir};
+  reach.read_only.insert(reach.read_only.end(), options_.subroutine_dirs.begin(),
+                         options_.subroutine_dirs.end());
   if (const std::string why = reach_refusal(path, access, job_folder(), reach); !why.empty())
     fail(loc, why);
 }
@@ -892,6 +900,10 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
     Vec6 target = ctx_.position();
     target[2] = 0;
     ctx_.line_to(target, SpeedClass::Move, from);
+  }
+  if (frames_.empty()) {  // a new run or check: no G-code call is open
+    gcode_flow_ = std::make_unique<GcodeFlow>();
+    gcode_->reset_calls();
   }
   if (script->gcode()) gcode_->begin_file(call.lines != nullptr);
   Frame f;
@@ -1263,7 +1275,8 @@ void Interpreter::loop(DiagnosticLog* collect) {
     std::shared_ptr<const LineParse> lp;  // only lines that are not simple commands need one
     const Statement* st = &simple_;
     const std::string_view text = f.script->line_at(f.pc, &next);
-    if (!(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
+    if ((f.script->gcode() && gcode_flow_->hot) ||  // an O-word loop: parsed once, cached
+        !(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
                             : parse_simple_command(text, f.script->name(), f.pc.line, &simple_))) {
       lp = f.script->parse(f.pc, &next);
       st = lp->statement ? &*lp->statement : nullptr;
@@ -1687,7 +1700,10 @@ void Interpreter::extra_params(const CommandSpec& spec, const CommandStmt& cmd, 
 }
 
 void Interpreter::exec(const GcodeStmt& s, const SourceLoc& loc) {
+  if (s.block.oword.kind != OwordKind::None || !s.block.call_file.empty())
+    return gcode_flow(s.block, loc);
   gcode_->execute(s.block, loc);
+  if (s.block.flow_m) gcode_m98_m99(s.block, loc);
 }
 
 void Interpreter::exec(const CustomCutStmt& s, const SourceLoc& loc) {

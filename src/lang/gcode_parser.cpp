@@ -9,6 +9,7 @@
 #include "gantry/lang/gcode.hpp"
 #include "gantry/lang/parser.hpp"  // LineParse, Statement
 #include "gantry/lang/wincnc.hpp"  // evaluate_wincnc_braces
+#include "gcode_oword.hpp"         // O-word lines
 #include "number_literal.hpp"      // is_digit, plain_value
 #include "scan.hpp"                // is_letter, upper
 
@@ -183,7 +184,8 @@ class Expression {
     const double a = binary(0);
     expect(']', "to close the function's argument");
     constexpr double deg = M_PI / 180;
-    auto domain = [&](bool ok) {  // only with the real values: see the header
+    auto domain = [&](bool ok) {
+      // Without parameters (the load pass) every #n reads 0: only the syntax is checked.
       if (!ok && params_) error(at, fmt::format("{}[{}] is not defined", f, a));
     };
     if (f == "ATAN") {  // ATAN[y]/[x], in degrees
@@ -211,6 +213,8 @@ class Expression {
   int op_at(std::string_view* op) {
     skip();
     if (i_ >= s_.size()) return 0;
+    // Most values end at ']': no operator starts with any other character than these.
+    if (std::string_view("*/+-MmEeNnGgLlAaOoXx").find(s_[i_]) == std::string_view::npos) return 0;
     struct Op {
       std::string_view text;
       int prec;
@@ -459,6 +463,13 @@ class BlockReader {
     // A function's name has two letters or more; a word's letter is followed by its value.
     if (i_ + 1 < s_.size() && is_letter(s_[i_ + 1]) && !function_at(s_, i_).empty())
       error(at, "a function is a value: write it after a word's letter, as in X[SIN[30]]");
+    if (letter == 'O') {
+      if (!out_->words.empty() || !out_->assigns.empty() || out_->message)
+        error(at, "an O-word comes first on its line: put the other words on a line of their own");
+      gcode_oword::read(s_, at, loc(at), out_);
+      i_ = s_.size();
+      return;
+    }
     ++i_;
     GcodeWord w;
     w.letter = letter;
@@ -470,10 +481,19 @@ class BlockReader {
                         : "a line number N must come first in the block");
       return;
     }
-    if (letter == 'O')
-      error(at,
-            "O-words (subroutines, loops) are not supported; write the moves out, or use an "
-            "OpenSBP file for control flow");
+    if (letter == 'M' && w.expr < 0 && (w.number == 98 || w.number == 99))
+      out_->flow_m = static_cast<std::uint8_t>(w.number);
+    // WinCNC's `M98 file.tap` (M98.1 too): the rest of the word is a file name.
+    if (letter == 'M' && w.expr < 0 && (w.number == 98 || std::abs(w.number - 98.1) < 1e-9)) {
+      size_t end = 0;
+      if (gcode_oword::file_name_at(s_, i_, &end)) {
+        size_t b = i_;
+        while (is_space(s_[b])) ++b;
+        out_->call_file = std::string(s_.substr(b, end - b));
+        out_->call_file_column = static_cast<int>(b) + 1;
+        i_ = end;
+      }
+    }
     if (std::string_view("ABCDFGHIJKLMPQRSTXYZ").find(letter) == std::string_view::npos)
       error(at,
             fmt::format("'{}' is not a G-code word letter; the letters are A B C D F G H I J K L "

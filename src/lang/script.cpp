@@ -12,6 +12,7 @@
 #include <xxhash.h>    // XXH3_64bits: the blocks' hashes
 
 #include "gantry/core/file_problem.hpp"  // read_problem: why a part file cannot be opened
+#include "gcode_oword.hpp"               // OwordIndexer
 
 namespace gantry {
 namespace {
@@ -204,6 +205,18 @@ std::optional<std::string_view> Script::line_before(Cursor c) const {
   return w.substr(begin, end - begin);
 }
 
+std::optional<Cursor> Script::gcode_sub(const std::string& name) const {
+  auto it = gcode_subs_.find(name);
+  if (it == gcode_subs_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<Cursor> Script::gcode_program(const std::string& number) const {
+  auto it = gcode_programs_.find(number);
+  if (it == gcode_programs_.end()) return std::nullopt;
+  return it->second;
+}
+
 std::optional<Cursor> Script::label(const std::string& name) const {
   auto it = labels_.find(name);
   if (it == labels_.end()) return std::nullopt;
@@ -251,14 +264,18 @@ std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
 }
 
 void Script::index(const IsCommand& is_command) {
-  if (gcode_) {  // G-code has no labels: only each block's syntax
+  if (gcode_) {  // G-code: each block's syntax, and the O-words' pairs (gcode_oword.hpp)
     GcodeBlock block;
     Diagnostic error;
+    OwordIndexer owords(*this);
     for (Cursor c = start(), next; !at_end(c); c = next) {
       ++lines_;
       if (!parse_gcode_block(line_at(c, &next), name_, c.line, &block, &error))
         errors_.push_back(error);
+      else if (block.oword.kind != OwordKind::None)
+        owords.add(block, c, next);
     }
+    owords.finish();
     return;
   }
   std::vector<std::pair<std::string, SourceLoc>> targets;

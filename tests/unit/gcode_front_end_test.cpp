@@ -276,7 +276,7 @@ TEST_F(GcodeTest, RejectionsAreLocatedErrors) {
       {"F10\nG2 X1 Y1\n", 2, 1, "needs its centre"},
       {"G2 X1 Y1 I1 R1 F10\n", 1, 13, "not both"},
       {"G5 X1\n", 1, 1, "G5 is refused: splines"},
-      {"M98\n", 1, 1, "M98 is not a code"},
+      {"M98\n", 1, 1, "M98 needs P"},
       {"G81 X1 R0.1 F10\n", 1, 1, "needs Z"},
       {"G81 X1 Z-1 F10\n", 1, 1, "needs R"},
       {"G41 D7 G1 X1 F10\n", 1, 5, "tool 7 is not in the tool table"},

@@ -36,6 +36,20 @@ class GcodeExecutor : private GcodeParameters {
   // in the standard order; a located error otherwise.
   void execute(const GcodeBlock& block, const SourceLoc& loc);
 
+  // O-word subroutines and M98 (gcode_scopes.cpp). A call has its own #1-#30 (`args`, the
+  // rest 0, as LinuxCNC 2.9) unless `numbered_local` is false (M98: shared with the caller),
+  // and its own named parameters but those starting with `_`; leave_call gives the caller's
+  // back. `returned`: #<_value> and #<_value_returned> (cleared by every call).
+  void enter_call(const std::vector<double>& args, bool numbered_local);
+  void leave_call();
+  void reset_calls();  // a new run: no call is open, #<_value> is 0
+  size_t call_depth() const { return scopes_.size(); }
+  void set_returned(std::optional<double> value);
+  // The value of a word or an O-word's expression (`expr` -1: `number`).
+  double value(const GcodeBlock& b, double number, int expr, const SourceLoc& loc) const;
+  // M2's end of the program (M99 in the main program too, as rs274 does).
+  void end_program(const SourceLoc& loc);
+
   // The units program values are in.
   enum class ProgramUnits { Inches, Millimetres, Centimetres };
 
@@ -102,7 +116,6 @@ class GcodeExecutor : private GcodeParameters {
   void tool_length(const Words& w, const SourceLoc& loc);  // G43, G43.1, G49
   void tool_data(const Words& w, const SourceLoc& loc);    // G10 L1, L10, L11
   std::optional<double> tool_parameter(int n) const;       // #5400-#5413
-  void end_program(const SourceLoc& loc);
   // Cutter radius compensation (gcode_cutter_comp.cpp).
   void check_comp_words(const Words& w, int motion, const SourceLoc& loc) const;
   void cutter_comp(const Words& w, const SourceLoc& loc);  // G40, G41, G42, G41.1, G42.1
@@ -151,6 +164,12 @@ class GcodeExecutor : private GcodeParameters {
     bool keep = false;
   };
   std::vector<FileG92> file_g92_;
+  struct Scope {                // what a call hides of its caller's parameters
+    std::array<std::optional<double>, 30> numbered;
+    bool numbered_local = true;
+    std::vector<std::pair<std::string, double>> named;
+  };
+  std::vector<Scope> scopes_;
 };
 
 }  // namespace gantry

@@ -357,6 +357,10 @@ struct InterpreterOptions {
   // (docs/language.md, "Starting at a line").
   int start_line = 0;
   int max_gosub_depth = 256;
+  // Where `o<name> call` finds name.ngc when the calling file does not define the subroutine:
+  // the calling file's folder, then these (--subroutines);
+  // a part file reads them as it reads the macro folders (docs/security.md).
+  std::vector<std::string> subroutine_dirs;
   // Called when a run ends (not in a dry run) with the settings as the run leaves them:
   // file-scoped values undone, the speeds MS/JS left in force. The job saves the values.
   std::function<void(const Settings&)> save_values;
@@ -487,6 +491,16 @@ class Interpreter : private EvalEnv {
   void exec(const PlayStmt& s, const SourceLoc& loc);
   void exec(const RegistryStmt& s, const SourceLoc& loc);
   void exec(const GcodeStmt& s, const SourceLoc& loc);
+  // O-words, M98/M99 and WinCNC's M98 file (gcode_control_flow.cpp).
+  struct GcodeFlow;
+  void gcode_flow(const GcodeBlock& b, const SourceLoc& loc);
+  void gcode_call(const GcodeBlock& b, const SourceLoc& loc);
+  void gcode_return(const GcodeBlock& b, const SourceLoc& loc);
+  void gcode_m98_m99(const GcodeBlock& b, const SourceLoc& loc);
+  void gcode_call_file(const GcodeBlock& b, const SourceLoc& loc);
+  void gcode_drop_stale_calls();
+  std::string gcode_sub_file(const std::string& name, const SourceLoc& loc) const;
+  void push_gcode_frame(std::shared_ptr<const Script> script, Cursor pc, const SourceLoc& from);
   UserFile& user_file(const Expr& number, const SourceLoc& loc, bool must_be_open);
   std::string pause_message(const SourceLoc& loc) const;
   Value value_of(const Arg& a);
@@ -559,6 +573,7 @@ class Interpreter : private EvalEnv {
   std::function<void(std::size_t, std::size_t)> progress_;
   std::unique_ptr<StartLine> start_;      // a start line not reached yet
   std::unique_ptr<GcodeExecutor> gcode_;  // G-code's modes and parameters
+  std::unique_ptr<GcodeFlow> gcode_flow_;  // G-code's open calls and repeat counts
 };
 
 }  // namespace gantry

@@ -1,6 +1,7 @@
 // G-code text to blocks, one physical line at a time: pure, no I/O (docs/gcode.md).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,6 +36,38 @@ struct GcodeAssign {
 // substituted text as a located error (docs/gcode.md, "Blocks").
 enum class GcodeMessage : char { None, Msg, Print, Debug, Abort };
 
+// An O-word line (docs/gcode.md, "O-words"): `o100 if [#1 GT 2]`, `o<name> call [1] [2]`, or a
+// Fanuc program number `O1234` alone (kind Program).
+enum class OwordKind : std::uint8_t {
+  None,
+  Sub,
+  Endsub,
+  Call,
+  Return,
+  If,
+  Elseif,
+  Else,
+  Endif,
+  While,
+  Endwhile,
+  Do,
+  Repeat,
+  Endrepeat,
+  Break,
+  Continue,
+  Program
+};
+struct GcodeOword {
+  OwordKind kind = OwordKind::None;
+  std::string name;        // `o100`: "100" (leading zeros dropped); `o<Name>`: "name"
+  int column = 0;          // the O's, 1-based
+  int keyword_column = 0;  // the keyword's (the O's for Program)
+  std::vector<int> args;   // indices into GcodeBlock::exprs: a condition, count, value, arguments
+};
+
+// The keyword as written in a program (`endsub`), for messages.
+const char* oword_keyword(OwordKind kind);
+
 struct GcodeBlock {
   std::vector<GcodeWord> words;  // in the order written; N line numbers are left out
   std::vector<GcodeAssign> assigns;
@@ -44,7 +77,15 @@ struct GcodeBlock {
   GcodeMessage message_kind = GcodeMessage::None;
   int message_column = 0;  // 1-based, the comment's '('
   std::optional<std::string> bracket;  // the first [comment]'s text: WinCNC's G4 prompt
-  bool empty() const { return words.empty() && assigns.empty() && !message; }
+  GcodeOword oword;                    // kind None: no O-word on this line
+  // WinCNC's `M98 file.tap`: the file named after M98 (or M98.1), and its column.
+  std::string call_file;
+  int call_file_column = 0;
+  std::uint8_t flow_m = 0;  // 98 or 99: the block holds M98 or M99 (a subprogram's call, end)
+  bool empty() const {
+    return words.empty() && assigns.empty() && !message && oword.kind == OwordKind::None &&
+           call_file.empty();
+  }
   void clear() {
     words.clear();
     assigns.clear();
@@ -54,6 +95,9 @@ struct GcodeBlock {
     message_kind = GcodeMessage::None;
     message_column = 0;
     bracket.reset();
+    oword.kind = OwordKind::None;
+    call_file.clear();
+    flow_m = 0;
   }
 };
 

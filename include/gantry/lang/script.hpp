@@ -24,6 +24,20 @@ struct Cursor {
   int line = 1;
 };
 
+// Where an O-word control line of a G-code file leads, found when the file is loaded
+// (docs/gcode.md, "O-words"), so that every jump is one lookup:
+//   if, elseif: `jump` the next branch line (elseif, else or endif); elseif, else: `end` the
+//   line after endif. while (opening a loop), repeat: `jump` the line after the loop's end.
+//   endwhile, continue: `jump` the line that tests the condition. endrepeat: `jump` the first
+//   line of the body, `end` the repeat line (its count's key). do: nothing. while (closing a
+//   do): `jump` the first line of the body. break: `jump` the line after the loop. sub: `end`
+//   the line after endsub.
+struct OwordLink {
+  Cursor jump, end;
+  bool closes_do = false;  // a `while` that ends a do-while loop
+  bool complete = false;   // its block is closed (else the load pass reported it)
+};
+
 // Whether a two-letter code (upper case) names a command. The command table, in a layer above
 // this one, answers (CommandTable::is_command); a script loaded with one reports an unknown
 // command on every line, whether a run would reach it or not.
@@ -68,6 +82,16 @@ class Script {
   // The line after `NAME:` (name upper case, inner spaces single), or nullopt.
   std::optional<Cursor> label(const std::string& name) const;
 
+  // G-code O-words: the links of the O-word line starting at `offset` (null when it has none),
+  // the first body line of subroutine `name` (`o<name> sub`, `o100 sub`: "100") and of the
+  // Fanuc subprogram `O<number>`.
+  const OwordLink* oword_link(size_t offset) const {
+    auto it = oword_links_.find(offset);
+    return it == oword_links_.end() ? nullptr : &it->second;
+  }
+  std::optional<Cursor> gcode_sub(const std::string& name) const;
+  std::optional<Cursor> gcode_program(const std::string& number) const;
+
   // The line at `c` through the general parser. Parses are kept in a small direct-mapped
   // cache, so the body of a loop or subroutine is parsed once rather than on every pass,
   // while memory stays bounded.
@@ -108,6 +132,9 @@ class Script {
   };
   mutable std::vector<CachedParse> cache_;  // kCacheSlots entries once the first line is parsed
   std::unordered_map<std::string, Cursor> labels_;
+  std::unordered_map<size_t, OwordLink> oword_links_;
+  std::unordered_map<std::string, Cursor> gcode_subs_, gcode_programs_;
+  friend class OwordIndexer;
   mutable std::mutex called_m_;
   mutable std::map<std::string, std::shared_ptr<const Script>> called_;
   std::vector<Diagnostic> errors_;
