@@ -143,7 +143,9 @@ ToolTable ToolTable::parse(std::string_view text, const std::string& path) {
         at(start, value.empty()
                       ? fmt::format("{} needs its number right after it, as {}{}", letter, letter,
                                     whole ? "1" : "0.25")
-                      : fmt::format("{}{}: \"{}\" is not a number", letter, value, value));
+                      : fmt::format("{}{}: \"{}\" is not a number; write the letter and a "
+                                    "number, as {}{}",
+                                    letter, value, value, letter, whole ? "1" : "+1.5"));
       if (whole && *v != static_cast<double>(static_cast<long>(*v)))
         at(start, fmt::format("{}{}: {} takes a whole number", letter, value, letter));
       switch (letter) {
