@@ -254,10 +254,22 @@ void Script::index(const IsCommand& is_command) {
   if (gcode_) {  // G-code has no labels: only each block's syntax
     GcodeBlock block;
     Diagnostic error;
+    // 1 once the first line that is not blank is `%` (LinuxCNC's program marker), -1 when it
+    // is anything else; 0 before it.
+    int opened = 0;
     for (Cursor c = start(), next; !at_end(c); c = next) {
+      const std::string_view text = line_at(c, &next);
+      const size_t b = text.find_first_not_of(" \t");
+      if (b != std::string_view::npos) {
+        const bool percent = text[b] == '%';
+        if (percent && opened == 1) {  // the closing `%`: the program ends here
+          program_end_ = c.offset;
+          return;
+        }
+        if (opened == 0) opened = percent ? 1 : -1;
+      }
       ++lines_;
-      if (!parse_gcode_block(line_at(c, &next), name_, c.line, &block, &error))
-        errors_.push_back(error);
+      if (!parse_gcode_block(text, name_, c.line, &block, &error)) errors_.push_back(error);
     }
     return;
   }

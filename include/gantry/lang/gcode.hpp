@@ -24,7 +24,8 @@ struct GcodeWord {
 
 // `#n = value` or `#<name> = value`: applied after every word of the block is read.
 struct GcodeAssign {
-  std::string target;  // "5" or "<name>" (name lower case, spaces removed)
+  std::string target;    // "5", "<name>" (name lower case, spaces removed) or "[expression]"
+  int target_expr = -1;  // `#[expression] = v`: the target's number, index into exprs
   double number = 0;
   int expr = -1;  // index into GcodeBlock::exprs, or -1
   int column = 0;
