@@ -135,6 +135,20 @@ int m_group(int code) {
   }
 }
 
+// The parameter `#[expression] = v` sets: a whole number (within LinuxCNC's 0.0001) that is
+// writable, #1 to #5000, as a plain `#n = v` must be.
+int indirect_target(double n, const std::string& text, const SourceLoc& at) {
+  const double whole = std::round(n);
+  if (!std::isfinite(n) || std::abs(n - whole) > 0.0001 || whole < 1 || whole > 5602)
+    fail(at, fmt::format("#{} sets #{}, which is not a parameter: parameters are #1 to #5602", text,
+                         n));
+  if (whole > 5000)
+    fail(at, fmt::format("#{} sets #{}, which is read-only: it holds the machine's state; set "
+                         "#1 to #5000 or a named #<parameter>",
+                         text, whole));
+  return static_cast<int>(whole);
+}
+
 }  // namespace
 
 GcodeExecutor::GcodeExecutor(CommandContext& ctx, OperatorIO& io, std::function<void()> end)
@@ -276,21 +290,31 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
   }
   if (wincnc) wincnc_words(w, loc);
   // Parameters are set once every value of the block has been read.
-  std::vector<std::pair<const GcodeAssign*, double>> sets;
+  struct Set {
+    const GcodeAssign* a;
+    int n;  // the numbered target (`#[expression] = v` evaluated with the old values)
+    double v;
+  };
+  std::vector<Set> sets;
   for (const GcodeAssign& a : b.assigns) {
-    const double v = value_of(a.number, a.expr);
-    if (!std::isfinite(v)) {
-      SourceLoc at = loc;
-      at.column = a.column;
-      fail(at, fmt::format("the value given to #{} is not a finite number", a.target));
+    SourceLoc at = loc;
+    at.column = a.column;
+    int n = 0;
+    if (a.target_expr >= 0) {
+      n = indirect_target(value_of(0, a.target_expr), a.target, at);
+    } else if (a.target[0] != '<') {
+      n = std::stoi(a.target);
     }
-    sets.emplace_back(&a, v);
+    const double v = value_of(a.number, a.expr);
+    if (!std::isfinite(v))
+      fail(at, fmt::format("the value given to #{} is not a finite number", a.target));
+    sets.push_back({&a, n, v});
   }
-  for (const auto& [a, v] : sets) {
-    if (a->target[0] == '<')
-      named_[a->target.substr(1, a->target.size() - 2)] = v;
+  for (const Set& s : sets) {
+    if (s.a->target[0] == '<')
+      named_[s.a->target.substr(1, s.a->target.size() - 2)] = s.v;
     else
-      params_[std::stoi(a->target)] = v;
+      params_[s.n] = s.v;
   }
 }
 
@@ -357,8 +381,13 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
   if (w.non_modal == 40 && !w.has('P') && !wincnc) fail(loc, "G4 needs its time: G4 P seconds");
   if (w.non_modal == 100 && (!w.has('L') || !w.has('P')))
     fail(loc, "G10 needs L (1, 10 or 11 tool table, 2 or 20 coordinate system) and P");
-  if (w.g53 && !wincnc && (w.g[1] >= 0 ? w.g[1] : modes_.motion) > 10)
-    fail(loc, "G53 goes with G0 or G1 only");
+  // G53 moves: with G0 or G1 given, or with axis words in G0 or G1 (LinuxCNC refuses a G53
+  // that moves nothing, as `G53 G90 G40`). WinCNC's bare G53 is its own command.
+  const int g53_motion = w.g[1] >= 0 ? w.g[1] : (w.any_axis() ? modes_.motion : -1);
+  if (w.g53 && (g53_motion > 10 || (g53_motion < 0 && !wincnc)))
+    fail(loc,
+         "G53 goes with G0 or G1 only: give G0 or G1 and the machine coordinates, as "
+         "G53 G0 Z0");
   if (w.g53 && w.any_axis() && (w.g[3] == 910 || (w.g[3] < 0 && modes_.incremental)))
     fail(loc, "G53 takes machine coordinates: it cannot be incremental (G91)");
   if (w.m[5] >= 0 && !w.has('P'))

@@ -23,6 +23,34 @@ using literal::is_digit;
 using scan::is_letter;
 using scan::upper;
 
+// A number with spaces between its digits: LinuxCNC ignores them (`X 1 . 5` is X1.5).
+size_t read_spaced(std::string_view s, size_t i, double* value) {
+  size_t end = i;  // past the last digit or point read
+  bool point = false, digit = false, spaced = false;
+  for (size_t j = i; j < s.size(); ++j) {
+    const char c = s[j];
+    if (is_space(c)) {
+      if (end == i) break;  // the caller skips the spaces before a value
+      continue;
+    }
+    if (!is_digit(c) && (c != '.' || point)) break;
+    point |= c == '.';
+    digit |= c != '.';
+    spaced |= j != end;
+    end = j + 1;
+  }
+  if (!digit) return i;
+  if (!spaced) {
+    *value = literal::plain_value(s.substr(i, end - i));
+  } else {
+    std::string packed;
+    for (size_t k = i; k < end; ++k)
+      if (!is_space(s[k])) packed += s[k];
+    *value = literal::plain_value(packed);
+  }
+  return end;
+}
+
 // Reads `digits[.digits]` or `.digits` at s[i]; returns the end, or i when there is none.
 // The hot path of every block: the digits are summed as they are scanned, and the value is
 // the one plain_value gives (a mantissa of at most 15 digits over a power of ten, else the
@@ -44,6 +72,12 @@ size_t read_unsigned(std::string_view s, size_t i, double* value) {
     }
   }
   if (digits == 0) return i;
+  if (j < s.size() && is_space(s[j])) {  // more digits after spaces: the slow path
+    size_t k = j;
+    while (k < s.size() && is_space(s[k])) ++k;
+    if (k < s.size() && (is_digit(s[k]) || (s[k] == '.' && decimals < 0)))
+      return read_spaced(s, i, value);
+  }
   *value = digits <= 15 && decimals <= 22
                ? static_cast<double>(m) / literal::kPow10[decimals < 0 ? 0 : decimals]
                : literal::plain_value(s.substr(i, j - i));
@@ -258,8 +292,11 @@ class Expression {
     }
     if (op == "+") return a + b;
     if (op == "-") return a - b;
-    if (op == "EQ") return a == b;
-    if (op == "NE") return a != b;
+    // EQ and NE count values within 0.0001 as equal, as LinuxCNC does ([0.1 + 0.2 EQ 0.3] is 1);
+    // GT, GE, LT and LE compare exactly there too.
+    constexpr double kEqualWithin = 0.0001;
+    if (op == "EQ") return std::abs(a - b) < kEqualWithin;
+    if (op == "NE") return !(std::abs(a - b) < kEqualWithin);
     if (op == "GT") return a > b;
     if (op == "GE") return a >= b;
     if (op == "LT") return a < b;
@@ -428,7 +465,9 @@ class BlockReader {
     // The common case, a plain signed number, without the expression machinery.
     size_t j = b;
     const bool negative = j < s_.size() && s_[j] == '-';
-    if (j < s_.size() && (s_[j] == '-' || s_[j] == '+')) ++j;
+    if (j < s_.size() && (s_[j] == '-' || s_[j] == '+'))
+      while (++j < s_.size() && is_space(s_[j])) {
+      }
     if (const size_t e = read_unsigned(s_, j, number); e != j) {
       if (negative) *number = -*number;
       i_ = e;
@@ -517,6 +556,13 @@ class BlockReader {
       a.target += '>';
       if (a.target == "<>") error(i_, "the parameter name between < and > is empty");
       i_ = close + 1;
+    } else if (i_ < s_.size() && s_[i_] == '[') {
+      // `#[#1 + 2] = v`: the number is known when the block runs (the executor checks it).
+      const size_t b = i_;
+      double unused = 0;
+      bool bare = false;
+      a.target_expr = value(&unused, &bare);
+      a.target = std::string(s_.substr(b, i_ - b));
     } else {
       double n = 0;
       const size_t e = read_unsigned(s_, i_, &n);
@@ -526,7 +572,7 @@ class BlockReader {
         error(at, fmt::format("#{} is read-only: it holds the machine's state; set #1 to #5000 or "
                               "a named #<parameter>",
                               n));
-      a.target = std::string(s_.substr(i_, e - i_));
+      a.target = std::to_string(static_cast<int>(n));  // `#1 0 = 5` sets #10
       i_ = e;
     }
     skip();

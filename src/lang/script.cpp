@@ -103,13 +103,13 @@ bool Script::read_window(size_t offset, size_t len) const {
   if (fd_ < 0) return true;  // text scripts hold everything already
   offset = std::min(offset, size_);
   const size_t begin = offset / kBlock * kBlock;
-  const size_t end = std::min(size_, (offset + std::min(len, size_ - offset) + kBlock - 1) /
-                                         kBlock * kBlock);
+  const size_t end =
+      std::min(size_, (offset + std::min(len, size_ - offset) + kBlock - 1) / kBlock * kBlock);
   window_.resize(end - begin);
   size_t got = 0;
   while (got < window_.size()) {
-    const ssize_t n = ::pread(fd_, window_.data() + got, window_.size() - got,
-                              static_cast<off_t>(begin + got));
+    const ssize_t n =
+        ::pread(fd_, window_.data() + got, window_.size() - got, static_cast<off_t>(begin + got));
     if (n <= 0) break;
     got += static_cast<size_t>(n);
   }
@@ -268,9 +268,22 @@ void Script::index(const IsCommand& is_command) {
     GcodeBlock block;
     Diagnostic error;
     OwordIndexer owords(*this);
+    // 1 once the first line that is not blank is `%` (LinuxCNC's program marker), -1 when it
+    // is anything else; 0 before it.
+    int opened = 0;
     for (Cursor c = start(), next; !at_end(c); c = next) {
+      const std::string_view text = line_at(c, &next);
+      const size_t b = text.find_first_not_of(" \t");
+      if (b != std::string_view::npos) {
+        const bool percent = text[b] == '%';
+        if (percent && opened == 1) {  // the closing `%`: the program ends here
+          program_end_ = c.offset;
+          break;
+        }
+        if (opened == 0) opened = percent ? 1 : -1;
+      }
       ++lines_;
-      if (!parse_gcode_block(line_at(c, &next), name_, c.line, &block, &error))
+      if (!parse_gcode_block(text, name_, c.line, &block, &error))
         errors_.push_back(error);
       else if (block.oword.kind != OwordKind::None)
         owords.add(block, c, next);

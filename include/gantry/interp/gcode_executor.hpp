@@ -164,7 +164,7 @@ class GcodeExecutor : private GcodeParameters {
     bool keep = false;
   };
   std::vector<FileG92> file_g92_;
-  struct Scope {                // what a call hides of its caller's parameters
+  struct Scope {  // what a call hides of its caller's parameters
     std::array<std::optional<double>, 30> numbered;
     bool numbered_local = true;
     std::vector<std::pair<std::string, double>> named;

@@ -25,7 +25,8 @@ struct GcodeWord {
 
 // `#n = value` or `#<name> = value`: applied after every word of the block is read.
 struct GcodeAssign {
-  std::string target;  // "5" or "<name>" (name lower case, spaces removed)
+  std::string target;    // "5", "<name>" (name lower case, spaces removed) or "[expression]"
+  int target_expr = -1;  // `#[expression] = v`: the target's number, index into exprs
   double number = 0;
   int expr = -1;  // index into GcodeBlock::exprs, or -1
   int column = 0;
@@ -75,7 +76,7 @@ struct GcodeBlock {
   std::vector<int> exprs_column;       // 1-based column of each expression's first character
   std::optional<std::string> message;  // the text after the comma
   GcodeMessage message_kind = GcodeMessage::None;
-  int message_column = 0;  // 1-based, the comment's '('
+  int message_column = 0;              // 1-based, the comment's '('
   std::optional<std::string> bracket;  // the first [comment]'s text: WinCNC's G4 prompt
   GcodeOword oword;                    // kind None: no O-word on this line
   // WinCNC's `M98 file.tap`: the file named after M98 (or M98.1), and its column.

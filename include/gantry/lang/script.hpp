@@ -72,7 +72,7 @@ class Script {
   bool gcode() const { return gcode_; }
 
   Cursor start() const { return {text_start_, 1}; }
-  bool at_end(Cursor c) const { return c.offset >= size_; }
+  bool at_end(Cursor c) const { return c.offset >= size_ || c.offset >= program_end_; }
   // The line at `c` (without its terminator); `next` receives the following line's cursor.
   // The view is valid until the next call on this script. Throws GantryError when the file
   // on disk is no longer the one loaded.
@@ -140,6 +140,8 @@ class Script {
   std::vector<Diagnostic> errors_;
   int lines_ = 0;
   bool gcode_ = false;
+  // A G-code file opened with `%` ends at the next `%` line: what follows it is not the program.
+  size_t program_end_ = SIZE_MAX;
 };
 
 }  // namespace gantry
