@@ -279,13 +279,10 @@ void GcodeExecutor::cutter_comp(const Words& w, const SourceLoc& loc) {
     radius = w.get('D') * length_scale() / 2;
   } else {
     const int tool = w.has('D') && w.get('D') != 0 ? static_cast<int>(w.get('D')) : o.tool;
-    const auto it = o.tools.find(tool);
-    if (tool != 0 && it == o.tools.end())
-      fail(w.has('D') ? w.at('D', loc) : loc,
-           fmt::format("{}: tool {} is not in the tool table; give its radius first with G10 L1 "
-                       "P{} R<radius>",
-                       code_name('G', g7), tool, tool));
-    radius = tool == 0 ? 0 : it->second.radius;
+    const double d = tool_entry(tool, w.has('D') ? w.at('D', loc) : loc).diameter;
+    // With no tool table file every tool's diameter is 0: the cutter is SB3's (VC's), so that
+    // G41 never runs uncompensated without a word.
+    radius = (d == 0 && tool != 0 && o.tools.implicit() ? ctx_.settings().cutter.diameter : d) / 2;
   }
   if (radius < 0) {  // a negative radius (a worn tool's table entry): the other side
     radius = -radius;

@@ -544,8 +544,9 @@ void GcodeExecutor::wincnc_codes(const Words& w, const SourceLoc& loc) {
           // The tip reads Z (no G92) from now on: file Z - length = Z.
           o.measured_length = ctx_.position()[2] - z * k[2];
         }
-        o.tool_length = o.measured_length;                            // M37 turns G43 on
-        if (o.tool != 0) o.tools[o.tool].length = o.measured_length;  // for L110
+        o.tool_length = o.measured_length;  // M37 turns G43 on
+        if (ToolEntry* e = o.tool != 0 ? o.tools.change(o.tool) : nullptr)
+          e->offset[2] = o.measured_length;  // for L110
         break;
       }
       case 991:
@@ -612,8 +613,8 @@ void GcodeExecutor::wincnc_codes(const Words& w, const SourceLoc& loc) {
             whole(required('T', code, "the tool number"), 0, 99999, w.at('T', loc), "L110 T");
         o.tool = t;
         selected_tool_ = t;
-        if (const auto it = o.tools.find(t); it != o.tools.end()) {
-          o.measured_length = it->second.length;
+        if (const ToolEntry* e = o.tools.find(t)) {
+          o.measured_length = e->length();
           o.tool_length = o.measured_length;
         }
         return;
