@@ -35,6 +35,8 @@ std::string too_many_moves(double moves) {
 // down at rapid, in inches (LinuxCNC's defaults). The WinCNC dialect has its own values.
 constexpr double kG73Backoff = 0.010;
 constexpr double kG83Clearance = 0.010;
+// Relative to the hole's depth: far below any real peck, far above unit rounding.
+constexpr double kPeckTolerance = 1e-9;
 
 ArcPlane plane_of(int g2_code, ArcPlane current) {
   return g2_code == 180   ? ArcPlane::ZX
@@ -161,7 +163,8 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
   // Bounded before any move is made: a hole is at most 8 moves (G87's), a pecking one at most
   // 3 a peck and 3 more.
   const bool pecking = code == 730 || code == 830;
-  const double pecks = pecking ? std::ceil((r - bottom) / *modes_.cycle_q) : 0;
+  const double pecks =
+      pecking ? std::ceil((r - bottom) / *modes_.cycle_q * (1 - kPeckTolerance)) : 0;
   if (const double moves = repeats * (pecking ? 3 * pecks + 3 : 8); moves > kMaxBlockMoves)
     fail(pecking && w.has('Q') && !(w.has('L') && repeats > 1) ? w.at('Q', loc)
          : w.has('L')                                          ? w.at('L', loc)
@@ -233,8 +236,12 @@ void GcodeExecutor::canned_cycle(const Words& w, const SourceLoc& loc) {
       case 830: {
         // Peck: feed Q deeper each time; G73 backs off a little, G83 goes back to R and
         // comes down at rapid to a little above the last depth.
+        // A depth within a rounding error of the bottom is the bottom: a depth that is a
+        // whole number of pecks in the program's units is not one in the machine's, and
+        // must not end in a sliver of a peck.
         const double q = *modes_.cycle_q;
-        for (double depth = r - q; depth > bottom; depth -= q) {
+        const double eps = kPeckTolerance * (r - bottom);
+        for (double depth = r - q; depth > bottom + eps; depth -= q) {
           go(u, v, depth, SpeedClass::Move);
           if (code == 730) {
             go(u, v, depth + (wincnc ? kWinCncPeckClearanceIn : kG73Backoff) * inch,

@@ -167,6 +167,7 @@ void GcodeExecutor::begin_file(bool typed) {
   modes_.units = modes_.previous_units = ctx_.settings().units == Units::Millimetres
                                              ? ProgramUnits::Millimetres
                                              : ProgramUnits::Inches;
+  modes_.retract_to_r = true;  // G99: LinuxCNC's interpreter starts in it (docs/gcode.md)
 }
 
 // ---- parameters -------------------------------------------------------------------------

@@ -541,6 +541,165 @@ TEST_F(GcodeCompCycles, IncrementalCyclesMeasureRFromTheLevelWhereTheSeriesBegan
   expect_moves(k_cyc_g91, w_cyc_g91, false);
 }
 
+// rs274's rows of a millimetre program, in the inch machine's units.
+std::vector<Row> from_mm(std::vector<Row> rows) {
+  for (Row& r : rows)
+    if (r.kind == 'J' || r.kind == 'L') {
+      r.x /= 25.4;
+      r.y /= 25.4;
+      r.z /= 25.4;
+    }
+  return rows;
+}
+
+// gen_cycle_inc_continued.ngc: in G91 a block without R and Z drills at the series' R and
+// bottom, R still measured from the level where the series began.
+TEST_F(GcodeCompCycles, IncrementalCycleBlocksWithoutRAndZKeepTheSeriesLevels) {
+  expect_moves(
+      "G21 G17 G90 F300\n"
+      "G0 X0 Y0 Z15\n"
+      "G91 G99 G81 X25 Y12.5 Z-20 R-12.5 L2\n"
+      "X-12.5 Y0\n"
+      "X0 Y20 L2\n"
+      "G90 G80\n"
+      "G0 X0 Y0 Z25\n"
+      "M2\n",
+      from_mm({{'J', 0, 0, 15, 0, 0, 0},
+               {'J', 25, 12.5, 15, 0, 0, 0},
+               {'J', 25, 12.5, 2.5, 0, 0, 0},
+               {'L', 25, 12.5, -17.5, 0, 0, 0},
+               {'J', 25, 12.5, 2.5, 0, 0, 0},
+               {'J', 50, 25, 2.5, 0, 0, 0},
+               {'L', 50, 25, -17.5, 0, 0, 0},
+               {'J', 50, 25, 2.5, 0, 0, 0},
+               {'J', 37.5, 25, 2.5, 0, 0, 0},
+               {'L', 37.5, 25, -17.5, 0, 0, 0},
+               {'J', 37.5, 25, 2.5, 0, 0, 0},
+               {'J', 37.5, 45, 2.5, 0, 0, 0},
+               {'L', 37.5, 45, -17.5, 0, 0, 0},
+               {'J', 37.5, 45, 2.5, 0, 0, 0},
+               {'J', 37.5, 65, 2.5, 0, 0, 0},
+               {'L', 37.5, 65, -17.5, 0, 0, 0},
+               {'J', 37.5, 65, 2.5, 0, 0, 0},
+               {'J', 0, 0, 25, 0, 0, 0}}),
+      false);
+}
+
+// gen_cycle_mode_switch.ngc: G98 after G99 in one series retracts to the Z where the series
+// began, not to R.
+TEST_F(GcodeCompCycles, G98AfterG99InASeriesRetractsToTheSeriesFirstLevel) {
+  expect_moves(
+      "G20 G17 G90 F20\n"
+      "G0 X0 Y0 Z0.6\n"
+      "G98 G81 X1 Y1 Z-0.75 R0.1\n"
+      "G99 X2\n"
+      "X3\n"
+      "G98 X4\n"
+      "G80\n"
+      "G0 Z1\n"
+      "M2\n",
+      {{'J', 0, 0, 0.6, 0, 0, 0},
+       {'J', 1, 1, 0.6, 0, 0, 0},
+       {'J', 1, 1, 0.1, 0, 0, 0},
+       {'L', 1, 1, -0.75, 0, 0, 0},
+       {'J', 1, 1, 0.6, 0, 0, 0},
+       {'J', 2, 1, 0.6, 0, 0, 0},
+       {'J', 2, 1, 0.1, 0, 0, 0},
+       {'L', 2, 1, -0.75, 0, 0, 0},
+       {'J', 2, 1, 0.1, 0, 0, 0},
+       {'J', 3, 1, 0.1, 0, 0, 0},
+       {'L', 3, 1, -0.75, 0, 0, 0},
+       {'J', 3, 1, 0.1, 0, 0, 0},
+       {'J', 4, 1, 0.6, 0, 0, 0},
+       {'J', 4, 1, 0.1, 0, 0, 0},
+       {'L', 4, 1, -0.75, 0, 0, 0},
+       {'J', 4, 1, 0.6, 0, 0, 0},
+       {'J', 4, 1, 1, 0, 0, 0}},
+      false);
+}
+
+// gen_cycle_r_raised.ngc: a higher R in a G99 series: one traverse to the next hole at the
+// new R (the series began above it), no rise at the old hole.
+TEST_F(GcodeCompCycles, AHigherRInAG99SeriesGoesToTheNextHoleAndRInOneTraverse) {
+  expect_moves(
+      "G20 G17 G90 F20\n"
+      "G0 X0 Y0 Z0.6\n"
+      "G99 G81 X1 Y1 Z-0.75 R0.1\n"
+      "X2 R0.2\n"
+      "X3\n"
+      "G80\n"
+      "G0 Z1\n"
+      "M2\n",
+      {{'J', 0, 0, 0.6, 0, 0, 0},
+       {'J', 1, 1, 0.6, 0, 0, 0},
+       {'J', 1, 1, 0.1, 0, 0, 0},
+       {'L', 1, 1, -0.75, 0, 0, 0},
+       {'J', 1, 1, 0.1, 0, 0, 0},
+       {'J', 2, 1, 0.2, 0, 0, 0},
+       {'L', 2, 1, -0.75, 0, 0, 0},
+       {'J', 2, 1, 0.2, 0, 0, 0},
+       {'J', 3, 1, 0.2, 0, 0, 0},
+       {'L', 3, 1, -0.75, 0, 0, 0},
+       {'J', 3, 1, 0.2, 0, 0, 0},
+       {'J', 3, 1, 1, 0, 0, 0}},
+      false);
+}
+
+// gen_cycle_modal.ngc: a file starts in G99 (retract to R), as LinuxCNC's interpreter does.
+TEST_F(GcodeCompCycles, AFileStartsInG99) {
+  expect_moves(
+      "G21 G90 F200\n"
+      "G0 X0 Y0 Z10\n"
+      "G81 X10 Y10 Z-3 R2\n"
+      "Y20\n"
+      "X20\n"
+      "Z-5\n"
+      "R5 X30\n"
+      "G82 P0.2 R5 Z-5 X40\n"
+      "G80\n"
+      "G0 Z10\n"
+      "M2\n",
+      from_mm({{'J', 0, 0, 10, 0, 0, 0},   {'J', 10, 10, 10, 0, 0, 0}, {'J', 10, 10, 2, 0, 0, 0},
+               {'L', 10, 10, -3, 0, 0, 0}, {'J', 10, 10, 2, 0, 0, 0},  {'J', 10, 20, 2, 0, 0, 0},
+               {'L', 10, 20, -3, 0, 0, 0}, {'J', 10, 20, 2, 0, 0, 0},  {'J', 20, 20, 2, 0, 0, 0},
+               {'L', 20, 20, -3, 0, 0, 0}, {'J', 20, 20, 2, 0, 0, 0},  {'L', 20, 20, -5, 0, 0, 0},
+               {'J', 20, 20, 2, 0, 0, 0},  {'J', 30, 20, 5, 0, 0, 0},  {'L', 30, 20, -5, 0, 0, 0},
+               {'J', 30, 20, 5, 0, 0, 0},  {'J', 40, 20, 5, 0, 0, 0},  {'L', 40, 20, -5, 0, 0, 0},
+               {'D', 0.2, 0, 0, 0, 0, 0},  {'J', 40, 20, 5, 0, 0, 0},  {'J', 40, 20, 10, 0, 0, 0}}),
+      false);
+}
+
+// gen_cycle_peck_multiple.ngc on an inch machine: millimetre depths that are a whole number
+// of pecks end in the last full peck, not a sliver after it.
+TEST_F(GcodeCompCycles, PecksOfAMillimetreProgramOnAnInchMachineEndWithoutASliver) {
+  ASSERT_EQ(settings.units, Units::Inches);
+  expect_moves(
+      "G21 G90 F200\n"
+      "G0 X0 Y0 Z15\n"
+      "G98 G83 X25 Y25 Z-12.5 R2.5 Q7.5\n"
+      "G73 X50 Z-12.5 R2.5 Q5\n"
+      "G80\n"
+      "G0 Z15\n"
+      "M2\n",
+      from_mm({{'J', 0, 0, 15, 0, 0, 0},
+               {'J', 25, 25, 15, 0, 0, 0},
+               {'J', 25, 25, 2.5, 0, 0, 0},
+               {'L', 25, 25, -5, 0, 0, 0},
+               {'J', 25, 25, 2.5, 0, 0, 0},
+               {'J', 25, 25, -4.746, 0, 0, 0},
+               {'L', 25, 25, -12.5, 0, 0, 0},
+               {'J', 25, 25, 15, 0, 0, 0},
+               {'J', 50, 25, 15, 0, 0, 0},
+               {'J', 50, 25, 2.5, 0, 0, 0},
+               {'L', 50, 25, -2.5, 0, 0, 0},
+               {'J', 50, 25, -2.246, 0, 0, 0},
+               {'L', 50, 25, -7.5, 0, 0, 0},
+               {'J', 50, 25, -7.246, 0, 0, 0},
+               {'L', 50, 25, -12.5, 0, 0, 0},
+               {'J', 50, 25, 15, 0, 0, 0}}),
+      false);
+}
+
 TEST_F(GcodeCompCycles, CycleRefusalsAreLocatedAndNothingMoves) {
   struct Case {
     const char* text;
