@@ -279,7 +279,6 @@ TEST_F(GcodeTest, RejectionsAreLocatedErrors) {
       {"M98\n", 1, 1, "M98 needs P"},
       {"G81 X1 R0.1 F10\n", 1, 1, "needs Z"},
       {"G81 X1 Z-1 F10\n", 1, 1, "needs R"},
-      {"G41 D7 G1 X1 F10\n", 1, 5, "tool 7 is not in the tool table"},
       {"G0 X1 X2\n", 1, 7, "appears twice"},
       {"G0 X[1 +\n", 1, 5, "never closed"},
       {"G0 X\n", 1, 4, "needs a value"},

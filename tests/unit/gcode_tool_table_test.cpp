@@ -367,7 +367,7 @@ TEST_F(GcodeToolTable, WithNoTableConfiguredCamProgramsRunWithLengthsOfZero) {
 }
 
 // rs274 -t with a table lacking tool 5 refuses `T5 M6`, `T5`, `G43 H5`, `M61 Q5` and
-// `G10 L1 P5 Z1` alike: "Requested tool 5 not found in the tool table", nothing run.
+// `G10 L1 P5 Z1` and `G41 D5` alike: "Requested tool 5 not found in the tool table", nothing run.
 TEST_F(GcodeToolTable, AToolMissingFromAConfiguredTableIsRefusedLocated) {
   table_file(kTable);
   struct Case {
@@ -378,7 +378,8 @@ TEST_F(GcodeToolTable, AToolMissingFromAConfiguredTableIsRefusedLocated) {
                                    {"G20\nG0 X1 T5\n", 2, 7},
                                    {"G20\nG43 H5\n", 2, 5},
                                    {"G20\nM61 Q5\n", 2, 5},
-                                   {"G20\nG10 L1 P5 Z1\n", 2, 8}};
+                                   {"G20\nG10 L1 P5 Z1\n", 2, 8},
+                                   {"G20\nG41 D5 G1 X1 F10\n", 2, 5}};
   for (const Case& c : cases) {
     const Diagnostic d = first_error(c.program);
     EXPECT_EQ(d.loc.line, c.line) << c.program;
