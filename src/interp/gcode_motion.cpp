@@ -45,7 +45,10 @@ void GcodeExecutor::motion(const Words& w, const SourceLoc& loc) {
       const double speed = feed_for(w, len, loc);
       if (comp_active()) return comp_line(target, m == 0, speed, loc);
       moved_straight();
-      line(target, m == 0 ? SpeedClass::Jog : SpeedClass::Move, speed, loc);
+      const SpeedClass cls = m == 0 ? SpeedClass::Jog : SpeedClass::Move;
+      // Without compensation `from` is where the tool is: not computed twice (the hot path).
+      if (!comp_) return line(from, target, cls, speed, loc);
+      line(target, cls, speed, loc);
       return;
     }
     case 20:
