@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/answering_io.hpp"
 #include "../support/recording_sink.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/operator_io.hpp"
@@ -17,24 +18,7 @@
 namespace gantry {
 namespace {
 
-class AskingIO : public OperatorIO {
- public:
-  void print(std::string_view) override {}
-  bool confirm(std::string_view q, const SourceLoc&) override {
-    asked.emplace_back(q);
-    return true;
-  }
-  std::optional<std::string> ask(std::string_view, std::string_view, std::string_view,
-                                 const SourceLoc&) override {
-    return std::nullopt;
-  }
-  std::string choose(std::string_view, const std::vector<std::string>& b, size_t d,
-                     std::string_view, const SourceLoc&) override {
-    return b.at(d);
-  }
-  void warn(const Diagnostic&) override {}
-  std::vector<std::string> asked;
-};
+using AskingIO = AnsweringIO;
 
 // One canonical call as rs274 prints it: J traverse, L feed, A arc (x y z the end; cu cv the
 // centre on the plane's axes; turn +1 counter-clockwise, -1 clockwise), D dwell (x: seconds),
@@ -522,10 +506,10 @@ TEST_F(GcodeCompCycles, BoringCyclesG85ToG89InTheXyPlane) {
   want.insert(want.end() - 2, {'J', 5, 1, 0.1, 0, 0, 0});  // before the spindle starts, M2
   expect_moves(k_cyc_xy, want, true);
   // G87 asks the operator to turn the tool going in and coming out; G88 to retract.
-  ASSERT_EQ(io.asked.size(), 3u);
-  EXPECT_NE(io.asked[0].find("G87"), std::string::npos);
-  EXPECT_NE(io.asked[1].find("G87"), std::string::npos);
-  EXPECT_NE(io.asked[2].find("G88"), std::string::npos);
+  ASSERT_EQ(io.questions.size(), 3u);
+  EXPECT_NE(io.questions[0].find("G87"), std::string::npos);
+  EXPECT_NE(io.questions[1].find("G87"), std::string::npos);
+  EXPECT_NE(io.questions[2].find("G88"), std::string::npos);
 }
 
 TEST_F(GcodeCompCycles, CyclesInTheZxPlaneDrillAlongY) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/answering_io.hpp"
 #include "../support/recording_sink.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -16,20 +17,7 @@
 namespace gantry {
 namespace {
 
-class QuietIO : public OperatorIO {
- public:
-  void print(std::string_view) override {}
-  bool confirm(std::string_view, const SourceLoc&) override { return true; }
-  std::optional<std::string> ask(std::string_view, std::string_view, std::string_view,
-                                 const SourceLoc&) override {
-    return std::nullopt;
-  }
-  std::string choose(std::string_view, const std::vector<std::string>& b, size_t d,
-                     std::string_view, const SourceLoc&) override {
-    return b.at(d);
-  }
-  void warn(const Diagnostic&) override {}
-};
+using QuietIO = AnsweringIO;
 
 class GcodeDiffBugs : public ::testing::Test {
  protected:

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/answering_io.hpp"
 #include "../support/recording_sink.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/operator_io.hpp"
@@ -21,21 +22,7 @@
 namespace gantry {
 namespace {
 
-class PrintingIO : public OperatorIO {
- public:
-  void print(std::string_view text) override { printed += text; }
-  bool confirm(std::string_view, const SourceLoc&) override { return true; }
-  std::optional<std::string> ask(std::string_view, std::string_view, std::string_view,
-                                 const SourceLoc&) override {
-    return std::nullopt;
-  }
-  std::string choose(std::string_view, const std::vector<std::string>& b, size_t d,
-                     std::string_view, const SourceLoc&) override {
-    return b.at(d);
-  }
-  void warn(const Diagnostic&) override {}
-  std::string printed;
-};
+using PrintingIO = AnsweringIO;
 
 class GcodeFidelity : public ::testing::Test {
  protected:

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/answering_io.hpp"
 #include "../support/recording_sink.hpp"
 #include "gantry/core/text_file.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -37,26 +38,7 @@ const std::string kTable =
     "T4 P4\n"
     "T10 P10 X0 Y0 Z+2.000000 A0 B0 C0 U0 V0 W0 D+0.062500 I0 J0 Q0 ;as LinuxCNC writes it\n";
 
-class RecordingIO : public OperatorIO {
- public:
-  void print(std::string_view text) override { printed += text; }
-  bool confirm(std::string_view q, const SourceLoc&) override {
-    questions.emplace_back(q);
-    return true;
-  }
-  std::optional<std::string> ask(std::string_view, std::string_view, std::string_view,
-                                 const SourceLoc&) override {
-    return std::nullopt;
-  }
-  std::string choose(std::string_view, const std::vector<std::string>& b, size_t d,
-                     std::string_view, const SourceLoc&) override {
-    return b.at(d);
-  }
-  void warn(const Diagnostic& d) override { warnings.push_back(d); }
-  std::string printed;
-  std::vector<std::string> questions;
-  std::vector<Diagnostic> warnings;
-};
+using RecordingIO = AnsweringIO;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -374,12 +356,9 @@ TEST_F(GcodeToolTable, AToolMissingFromAConfiguredTableIsRefusedLocated) {
     std::string program;
     int line, column;
   };
-  const std::vector<Case> cases = {{"G20\nT5 M6\n", 2, 1},
-                                   {"G20\nG0 X1 T5\n", 2, 7},
-                                   {"G20\nG43 H5\n", 2, 5},
-                                   {"G20\nM61 Q5\n", 2, 5},
-                                   {"G20\nG10 L1 P5 Z1\n", 2, 8},
-                                   {"G20\nG41 D5 G1 X1 F10\n", 2, 5}};
+  const std::vector<Case> cases = {
+      {"G20\nT5 M6\n", 2, 1},  {"G20\nG0 X1 T5\n", 2, 7},     {"G20\nG43 H5\n", 2, 5},
+      {"G20\nM61 Q5\n", 2, 5}, {"G20\nG10 L1 P5 Z1\n", 2, 8}, {"G20\nG41 D5 G1 X1 F10\n", 2, 5}};
   for (const Case& c : cases) {
     const Diagnostic d = first_error(c.program);
     EXPECT_EQ(d.loc.line, c.line) << c.program;

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/answering_io.hpp"
 #include "../support/recording_sink.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/operator_io.hpp"
@@ -20,25 +21,7 @@
 namespace gantry {
 namespace {
 
-class CountingIO : public OperatorIO {
- public:
-  void print(std::string_view text) override { printed += text; }
-  bool confirm(std::string_view q, const SourceLoc&) override {
-    questions.emplace_back(q);
-    return true;
-  }
-  std::optional<std::string> ask(std::string_view, std::string_view, std::string_view,
-                                 const SourceLoc&) override {
-    return std::nullopt;
-  }
-  std::string choose(std::string_view, const std::vector<std::string>& b, size_t d,
-                     std::string_view, const SourceLoc&) override {
-    return b.at(d);
-  }
-  void warn(const Diagnostic&) override {}
-  std::string printed;
-  std::vector<std::string> questions;
-};
+using CountingIO = AnsweringIO;
 
 class WinCncTest : public ::testing::Test {
  protected:
