@@ -172,11 +172,8 @@ void GcodeExecutor::begin_file(bool typed) {
 
 // ---- parameters -------------------------------------------------------------------------
 
-double GcodeExecutor::numbered(int n, const SourceLoc&) const {
-  if (n <= 5000) {  // first: a loop reads these on every pass
-    auto it = params_.find(n);
-    return it == params_.end() ? 0 : it->second;
-  }
+double GcodeExecutor::numbered(int n) const {
+  if (n <= kLastSettable) return params_[static_cast<size_t>(n)];  // first: loops read these
   const ModalState& st = ctx_.state();
   const GcodeOffsets& o = st.gcode;
   const Vec6 k = axis_scale();
@@ -197,15 +194,23 @@ double GcodeExecutor::numbered(int n, const SourceLoc&) const {
   return 0;
 }
 
-double GcodeExecutor::named(std::string_view name, const SourceLoc& loc) const {
+const double* GcodeExecutor::named(std::string_view name) const {
   auto it = named_.find(name);
-  if (it == named_.end())
-    fail(loc, fmt::format("#<{}> has no value yet; set it first, as #<{}> = 1", name, name));
-  return it->second;
+  return it == named_.end() ? nullptr : &it->second;
 }
 
-bool GcodeExecutor::exists(std::string_view name) const {
-  return named_.count(name) > 0;
+double GcodeExecutor::value(const GcodeBlock& b, double number, int expr,
+                            const SourceLoc& loc) const {
+  if (expr < 0) return number;
+  const std::string& text = b.exprs[static_cast<size_t>(expr)];
+  if (text[0] != '{') return evaluate_gcode_expression(b, expr, loc, *this);
+  SourceLoc at = loc;
+  at.column = b.exprs_column[static_cast<size_t>(expr)];
+  if (ctx_.settings().gcode_dialect != GcodeDialect::WinCNC)
+    fail(at,
+         "{...} is WinCNC's substitution; it needs gcode_dialect = \"wincnc\" in the "
+         "profile (standard G-code writes [expressions] and #parameters)");
+  return wincnc_brace(text, at);
 }
 
 // ---- reading and checking a block -------------------------------------------------------
@@ -214,19 +219,7 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
   const bool wincnc = ctx_.settings().gcode_dialect == GcodeDialect::WinCNC;
   w.g.fill(-1);
   w.m.fill(-1);
-  auto value_of = [&](double number, int expr) {
-    if (expr < 0) return number;
-    SourceLoc at = loc;
-    at.column = b.exprs_column[static_cast<size_t>(expr)];
-    if (b.exprs[static_cast<size_t>(expr)][0] == '{') {
-      if (!wincnc)
-        fail(at,
-             "{...} is WinCNC's substitution; it needs gcode_dialect = \"wincnc\" in the "
-             "profile (standard G-code writes [expressions] and #parameters)");
-      return wincnc_brace(b.exprs[static_cast<size_t>(expr)], at);
-    }
-    return evaluate_gcode_expression(b.exprs[static_cast<size_t>(expr)], at, this);
-  };
+  auto value_of = [&](double number, int expr) { return value(b, number, expr, loc); };
   for (const GcodeWord& word : b.words) {
     // The word's location, made only for an error: copying `loc` (its file's shared name)
     // for every word was a tenth of a plain block's time.
@@ -290,32 +283,40 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
     w.column[i] = word.column;
   }
   if (wincnc) wincnc_words(w, loc);
-  // Parameters are set once every value of the block has been read.
-  struct Set {
-    const GcodeAssign* a;
-    int n;  // the numbered target (`#[expression] = v` evaluated with the old values)
-    double v;
-  };
-  std::vector<Set> sets;
+  set_parameters(b, loc);
+}
+
+void GcodeExecutor::set_parameters(const GcodeBlock& b, const SourceLoc& loc) {
+  // Parameters are set once every value of the block has been read (`#1 = 2 #2 = #1` reads
+  // the old #1): first every target and value, then the settings.
+  if (b.assigns.empty()) return;
+  auto value_of = [&](double number, int expr) { return value(b, number, expr, loc); };
+  assigned_.clear();
   for (const GcodeAssign& a : b.assigns) {
-    SourceLoc at = loc;
-    at.column = a.column;
-    int n = 0;
-    if (a.target_expr >= 0) {
-      n = indirect_target(value_of(0, a.target_expr), a.target, at);
-    } else if (a.target[0] != '<') {
-      n = std::stoi(a.target);
-    }
+    const auto at = [&] {
+      SourceLoc l = loc;
+      l.column = a.column;
+      return l;
+    };
+    const int n =
+        a.target_expr >= 0 ? indirect_target(value_of(0, a.target_expr), a.target, at()) : a.param;
     const double v = value_of(a.number, a.expr);
     if (!std::isfinite(v))
-      fail(at, fmt::format("the value given to #{} is not a finite number", a.target));
-    sets.push_back({&a, n, v});
+      fail(at(), fmt::format("the value given to #{} is not a finite number", a.target));
+    assigned_.emplace_back(n, v);
   }
-  for (const Set& s : sets) {
-    if (s.a->target[0] == '<')
-      named_[s.a->target.substr(1, s.a->target.size() - 2)] = s.v;
+  for (size_t i = 0; i < b.assigns.size(); ++i) {
+    const auto [n, v] = assigned_[i];
+    if (n > 0) {
+      params_[static_cast<size_t>(n)] = v;
+      continue;
+    }
+    const std::string& t = b.assigns[i].target;  // "<name>"
+    const std::string_view name = std::string_view(t).substr(1, t.size() - 2);
+    if (auto it = named_.find(name); it != named_.end())
+      it->second = v;
     else
-      params_[s.n] = s.v;
+      named_.emplace(name, v);
   }
 }
 
@@ -504,6 +505,8 @@ void GcodeExecutor::execute(const GcodeBlock& block, const SourceLoc& loc) {
     skip_next_ = false;
     return;
   }
+  if (block.words.empty() && !block.message && !block.bracket)  // `#1 = [#1 + 1]`: the hot path
+    return set_parameters(block, loc);
   Words w;
   read_words(block, loc, w);
   check_words(w, loc);

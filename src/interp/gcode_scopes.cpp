@@ -18,10 +18,9 @@ void GcodeExecutor::enter_call(const std::vector<double>& args, bool numbered_lo
   Scope s;
   s.numbered_local = numbered_local;
   if (numbered_local)
-    for (int n = 1; n <= 30; ++n) {
-      auto it = params_.find(n);
-      if (it != params_.end()) s.numbered[static_cast<size_t>(n - 1)] = it->second;
-      params_[n] = static_cast<size_t>(n - 1) < args.size() ? args[static_cast<size_t>(n - 1)] : 0;
+    for (size_t n = 1; n <= 30; ++n) {
+      s.numbered[n - 1] = params_[n];
+      params_[n] = n - 1 < args.size() ? args[n - 1] : 0;
     }
   for (auto it = named_.begin(); it != named_.end();) {
     if (global_name(it->first)) {
@@ -39,13 +38,7 @@ void GcodeExecutor::leave_call() {
   if (scopes_.empty()) return;
   Scope& s = scopes_.back();
   if (s.numbered_local)
-    for (int n = 1; n <= 30; ++n) {
-      const auto& v = s.numbered[static_cast<size_t>(n - 1)];
-      if (v)
-        params_[n] = *v;
-      else
-        params_.erase(n);
-    }
+    for (size_t n = 1; n <= 30; ++n) params_[n] = s.numbered[n - 1];
   for (auto it = named_.begin(); it != named_.end();)
     it = global_name(it->first) ? std::next(it) : named_.erase(it);
   for (auto& [name, v] : s.named) named_[name] = v;
@@ -60,14 +53,6 @@ void GcodeExecutor::reset_calls() {
 void GcodeExecutor::set_returned(std::optional<double> value) {
   named_["_value"] = value.value_or(0);
   named_["_value_returned"] = value ? 1 : 0;
-}
-
-double GcodeExecutor::value(const GcodeBlock& b, double number, int expr,
-                            const SourceLoc& loc) const {
-  if (expr < 0) return number;
-  SourceLoc at = loc;
-  at.column = b.exprs_column[static_cast<size_t>(expr)];
-  return evaluate_gcode_expression(b.exprs[static_cast<size_t>(expr)], at, this);
 }
 
 }  // namespace gantry

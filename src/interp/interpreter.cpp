@@ -1274,8 +1274,10 @@ void Interpreter::loop(DiagnosticLog* collect) {
     current_ = f.pc;
     std::shared_ptr<const LineParse> lp;  // only lines that are not simple commands need one
     const Statement* st = &simple_;
-    const std::string_view text = f.script->line_at(f.pc, &next);
-    if ((f.script->gcode() && gcode_flow_->hot) ||  // an O-word loop: parsed once, cached
+    // An O-word loop's lines are parsed once, then taken from the script's cache.
+    const bool hot = f.script->gcode() && gcode_flow_->hot;
+    const std::string_view text = hot ? std::string_view() : f.script->line_at(f.pc, &next);
+    if (hot ||
         !(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
                             : parse_simple_command(text, f.script->name(), f.pc.line, &simple_))) {
       lp = f.script->parse(f.pc, &next);

@@ -25,7 +25,6 @@ constexpr int kLastNumbered = 5601;  // LinuxCNC's numbered parameters are #0 to
 std::string substitute_gcode_parameters(std::string_view text, const GcodeParameters& params) {
   std::string out;
   out.reserve(text.size());
-  const SourceLoc nowhere;
   size_t i = 0;
   while (i < text.size()) {
     const char c = text[i];
@@ -44,8 +43,8 @@ std::string substitute_gcode_parameters(std::string_view text, const GcodeParame
       for (size_t k = i + 2; k < close; ++k)
         if (text[k] != ' ' && text[k] != '\t')
           name += static_cast<char>(std::tolower(static_cast<unsigned char>(text[k])));
-      out += !name.empty() && params.exists(name) ? six_decimals(params.named(name, nowhere))
-                                                  : std::string(kNoValue);
+      const double* v = name.empty() ? nullptr : params.named(name);
+      out += v ? six_decimals(*v) : std::string(kNoValue);
       i = close + 1;
       continue;
     }
@@ -61,7 +60,7 @@ std::string substitute_gcode_parameters(std::string_view text, const GcodeParame
       ++i;
       continue;
     }
-    out += n <= kLastNumbered ? six_decimals(params.numbered(static_cast<int>(n), nowhere))
+    out += n <= kLastNumbered ? six_decimals(params.numbered(static_cast<int>(n)))
                               : std::string(kNoValue);
     i = j;
   }

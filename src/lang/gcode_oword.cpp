@@ -153,10 +153,7 @@ class Reader {
       const std::string_view text = s_.substr(b, e - b);
       SourceLoc at = loc_;
       at.column = static_cast<int>(b) + 1;
-      evaluate_gcode_expression(text, at, nullptr);  // its syntax, now
-      out_->exprs.emplace_back(text);
-      out_->exprs_column.push_back(static_cast<int>(b) + 1);
-      o.args.push_back(static_cast<int>(out_->exprs.size()) - 1);
+      o.args.push_back(add_gcode_expression(out_, text, at));
       i_ = e;
     }
     if (static_cast<int>(o.args.size()) < k->min_args)

@@ -255,9 +255,13 @@ std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
   if (cache_.empty()) cache_.resize(kCacheSlots);
   // Fibonacci hashing spreads nearby offsets (consecutive lines) over the slots.
   CachedParse& slot = cache_[(c.offset * 0x9E3779B97F4A7C15ull) >> 54];
-  const std::string_view text = line_at(c, next);  // also gives `next` on a hit
-  if (slot.parse && slot.offset == c.offset) return slot.parse;
+  if (slot.parse && slot.offset == c.offset) {
+    *next = slot.next;
+    return slot.parse;
+  }
+  const std::string_view text = line_at(c, next);
   slot.offset = c.offset;
+  slot.next = *next;
   slot.parse = std::make_shared<const LineParse>(gcode_ ? parse_gcode_line(text, name_, c.line)
                                                         : parse_line(text, name_, c.line));
   return slot.parse;

@@ -9,7 +9,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "gantry/interp/interpreter.hpp"  // CommandContext
@@ -77,11 +76,11 @@ class GcodeExecutor : private GcodeParameters {
   };
 
   // GcodeParameters
-  double numbered(int n, const SourceLoc& loc) const override;
-  double named(std::string_view name, const SourceLoc& loc) const override;
-  bool exists(std::string_view name) const override;
+  double numbered(int n) const override;
+  const double* named(std::string_view name) const override;
 
   void read_words(const GcodeBlock& b, const SourceLoc& loc, Words& w);
+  void set_parameters(const GcodeBlock& b, const SourceLoc& loc);  // the block's #n = v
   void check_words(const Words& w, const SourceLoc& loc);
   void run(const Words& w, const SourceLoc& loc);
   // (MSG,...), (PRINT,...), (DEBUG,...) print; (ABORT,...) stops with a located error.
@@ -146,7 +145,9 @@ class GcodeExecutor : private GcodeParameters {
   int selected_tool_ = 0;         // T
   bool tool_note_given_ = false;  // this file was told the implicit table's tools have length 0
   bool table_read_ = false;       // this file compared the table file with the one in memory
-  std::unordered_map<int, double> params_;
+  static constexpr int kLastSettable = 5000;  // #1-#5000 a program sets; above: the machine's
+  std::vector<double> params_ = std::vector<double>(kLastSettable + 1);  // #0 reads 0 too
+  std::vector<std::pair<int, double>> assigned_;  // a block's settings (read_words), reused
   std::map<std::string, double, std::less<>> named_;
   Vec6 probed_ = Vec6::Zero();  // #5061..: where the last probe stopped
   bool probe_hit_ = false;      // #5070
@@ -165,7 +166,7 @@ class GcodeExecutor : private GcodeParameters {
   };
   std::vector<FileG92> file_g92_;
   struct Scope {  // what a call hides of its caller's parameters
-    std::array<std::optional<double>, 30> numbered;
+    std::array<double, 30> numbered;
     bool numbered_local = true;
     std::vector<std::pair<std::string, double>> named;
   };

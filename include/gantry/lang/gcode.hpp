@@ -13,8 +13,8 @@
 namespace gantry {
 
 // One word of a block: a letter and its value. The value is a plain number, or an
-// expression (`[...]`, `#n`, a function) kept as text and evaluated when the block runs, or
-// nothing at all (WinCNC's bare axis letters, `G28 Z`).
+// expression (`[...]`, `#n`, a function) compiled when the line is read and evaluated when the
+// block runs, or nothing at all (WinCNC's bare axis letters, `G28 Z`).
 struct GcodeWord {
   char letter = 0;  // upper case
   double number = 0;
@@ -26,6 +26,7 @@ struct GcodeWord {
 // `#n = value` or `#<name> = value`: applied after every word of the block is read.
 struct GcodeAssign {
   std::string target;    // "5", "<name>" (name lower case, spaces removed) or "[expression]"
+  int param = 0;         // `#5 = v`: 5 (0 for the other targets)
   int target_expr = -1;  // `#[expression] = v`: the target's number, index into exprs
   double number = 0;
   int expr = -1;  // index into GcodeBlock::exprs, or -1
@@ -69,11 +70,64 @@ struct GcodeOword {
 // The keyword as written in a program (`endsub`), for messages.
 const char* oword_keyword(OwordKind kind);
 
+// An expression is compiled when its line is read, into steps that run on a stack of values
+// (postfix order: `[#1 + 2] * 3` is #1, 2, +, 3, *), so a loop that runs a line a million times
+// reads its text once (docs/gcode.md, "Speed").
+struct GcodeStep {
+  enum class Op : std::uint8_t {
+    Number,   // push `number`
+    Param,    // push #index (a number known when the line is read)
+    ParamAt,  // replace the top n by #n (`##1`, `#[#1 + 1]`): n checked when the block runs
+    Named,    // push #<names[index]>
+    Exists,   // push 1 when #<names[index]> has a value, else 0
+    Neg,
+    Abs,
+    Acos,
+    Asin,
+    Cos,
+    Exp,
+    Fix,
+    Fup,
+    Ln,
+    Round,
+    Sin,
+    Sqrt,
+    Tan,   // the top value's function
+    Atan,  // ATAN[y]/[x]: two values
+    Pow,
+    Mul,
+    Div,
+    Mod,
+    Add,
+    Sub,
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+    Lt,
+    Le,
+    And,
+    Or,
+    Xor  // two values
+  };
+  Op op = Op::Number;
+  std::uint32_t offset = 0;  // of the step's text from the expression's first character
+  std::int32_t index = 0;
+  double number = 0;
+};
+struct GcodeCode {
+  std::uint32_t begin = 0, end = 0;  // the expression's steps in GcodeBlock::steps
+  std::uint32_t depth = 0;           // the most values it stacks
+};
+
 struct GcodeBlock {
   std::vector<GcodeWord> words;  // in the order written; N line numbers are left out
   std::vector<GcodeAssign> assigns;
   std::vector<std::string> exprs;      // expression texts; each starts at exprs_column
   std::vector<int> exprs_column;       // 1-based column of each expression's first character
+  std::vector<GcodeCode> codes;        // each expression's steps (none for WinCNC's {braces})
+  std::vector<GcodeStep> steps;        // every expression's steps, one expression after another
+  std::vector<std::string> names;      // the named parameters steps read (lower case)
   std::optional<std::string> message;  // the text after the comma
   GcodeMessage message_kind = GcodeMessage::None;
   int message_column = 0;              // 1-based, the comment's '('
@@ -92,6 +146,9 @@ struct GcodeBlock {
     assigns.clear();
     exprs.clear();
     exprs_column.clear();
+    codes.clear();
+    steps.clear();
+    names.clear();
     message.reset();
     message_kind = GcodeMessage::None;
     message_column = 0;
@@ -113,20 +170,23 @@ bool parse_gcode_block(std::string_view line, const std::shared_ptr<const std::s
 class GcodeParameters {
  public:
   virtual ~GcodeParameters() = default;
-  // The value of parameter `n` or `name` (lower case); fails at `loc` when it has none.
-  virtual double numbered(int n, const SourceLoc& loc) const = 0;
-  virtual double named(std::string_view name, const SourceLoc& loc) const = 0;
-  virtual bool exists(std::string_view name) const = 0;
+  // The value of #n (0 to 5602; one never set reads 0).
+  virtual double numbered(int n) const = 0;
+  // The value of #<name> (lower case), or null when it has none.
+  virtual const double* named(std::string_view name) const = 0;
 };
 
-// The value of an expression as the block stores it (`[1 + #2]`, `#5`, `SIN[30]`): LinuxCNC's
-// operators (** * / MOD + - EQ NE GT GE LT LE AND OR XOR) and functions (ABS ACOS ASIN ATAN
-// COS EXP FIX FUP ROUND LN SIN SQRT TAN EXISTS), angles in degrees. `params` null: only
-// checks the syntax: every parameter reads 0 and values are not checked against a function's
-// domain or a division by zero, since the real values are known only when the block runs
-// (docs/gcode.md, "Blocks"). Errors are located at `at` plus the offset.
-double evaluate_gcode_expression(std::string_view text, const SourceLoc& at,
-                                 const GcodeParameters* params);
+// Appends the expression `text` (`[1 + #2]`, `#5`, `SIN[30]`, WinCNC's `{TH1+2}`) to `b`,
+// compiled, and returns its index. `at` is where the text starts: a syntax error is located
+// from there. LinuxCNC's operators (** * / MOD + - EQ NE GT GE LT LE AND OR XOR) and functions
+// (ABS ACOS ASIN ATAN COS EXP FIX FUP ROUND LN SIN SQRT TAN EXISTS), angles in degrees.
+int add_gcode_expression(GcodeBlock* b, std::string_view text, const SourceLoc& at);
+
+// The value of expression `expr` of `b` (not a {brace}, which the WinCNC dialect evaluates),
+// with `params`. A value outside a function's domain, a division by zero, a parameter number
+// out of range or a named parameter with no value is an error at its column of `line`.
+double evaluate_gcode_expression(const GcodeBlock& b, int expr, const SourceLoc& line,
+                                 const GcodeParameters& params);
 
 // `text` with each parameter reference replaced by its value as LinuxCNC's (DEBUG,...) does:
 // `#5` (#0 to #5601, digits only) and `#<name>` (spaces dropped, any case) become the value

@@ -118,16 +118,17 @@ class Script {
   bool read_window(size_t offset, size_t len) const;
   void read_or_throw(Cursor at, size_t len) const;  // read_window, or say the file changed
 
-  int fd_ = -1;                 // the open file; -1 for a script made from text
-  size_t size_ = 0;             // bytes in the file (or text)
-  timespec mtime_{};            // the file's modification time when loaded
+  int fd_ = -1;       // the open file; -1 for a script made from text
+  size_t size_ = 0;   // bytes in the file (or text)
+  timespec mtime_{};  // the file's modification time when loaded
   mutable std::vector<std::uint64_t> block_hashes_;  // 0: not read yet
-  size_t text_start_ = 0;       // past a UTF-8 byte-order mark
+  size_t text_start_ = 0;                            // past a UTF-8 byte-order mark
   mutable std::string window_;  // bytes [window_start_, window_start_ + size())
   mutable size_t window_start_ = 0;
   std::shared_ptr<const std::string> name_;
   struct CachedParse {
     size_t offset = 0;
+    Cursor next;  // the line after it: a hit reads no text
     std::shared_ptr<const LineParse> parse;
   };
   mutable std::vector<CachedParse> cache_;  // kCacheSlots entries once the first line is parsed
