@@ -204,6 +204,21 @@ TEST_F(OwordTest, StopEndsAnEndlessLoop) {
   EXPECT_EQ(sink.moves, 5);
 }
 
+// rs274: o100 and o<100> name one subroutine (each calls the other's, X1; both defined:
+// "redefining sub: o|100| already defined"), o0100 is o100, but o<0100> is not o<100> (a
+// name, not a number: "EOF ... seeking o-word: o<100>"); names ignore case.
+TEST_F(OwordTest, NumberedAndNamedOwordsShareOneNamespaceAsInLinuxCnc) {
+  expect_moves(run("o100 sub\nG0 X1\no100 endsub\no<100> call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o<100> sub\nG0 X1\no<100> endsub\no100 call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o0100 sub\nG0 X1\no0100 endsub\no100 call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o100 sub\nG0 X1\no100 endsub\no0100 call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o<abc> sub\nG0 X1\no<abc> endsub\no<ABC> call\nM2\n"), {v6(1, 0)});
+  expect_at(refused("o100 sub\nG0 X1\no100 endsub\no<100> sub\nG0 X2\no<100> endsub\n"
+                    "o100 call\nM2\n"),
+            4, 1, "is defined twice: first at line 1");
+  expect_at(refused("o<0100> sub\nG0 X1\no<0100> endsub\no<100> call\nM2\n"), 4, 1, "no 100.ngc");
+}
+
 // rs274: (1,0) (2,0) (3,0) (3,3) (3,3,1): M98 P100 L3, L0 runs nothing, #1 is shared.
 TEST_F(OwordTest, FanucM98M99AndProgramNumbers) {
   const std::string text =
