@@ -202,9 +202,12 @@ void GcodeExecutor::check_comp_words(const Words& w, int motion, const SourceLoc
     if ((g7 == 411 || g7 == 421) && !w.has('D'))
       fail(at7, fmt::format("{} needs D, the tool's diameter", name));
     if (w.has('L') && (g7 == 411 || g7 == 421))
-      fail(w.at('L', loc), fmt::format("{}: L is a lathe tool's orientation; Gantry drives "
-                                       "routers and mills, whose tools have none",
-                                       name));
+      // LinuxCNC refuses L outside G18 too ("plane is not G18"); in G18 it is a lathe's.
+      fail(w.at('L', loc),
+           fmt::format("{}: L is a lathe tool's orientation, which LinuxCNC takes only in the "
+                       "ZX plane (G18) of a lathe; Gantry drives routers and mills, whose tools "
+                       "have none: leave L out",
+                       name));
     if ((g7 == 410 || g7 == 420) && w.has('D')) {
       const double d = w.get('D');
       if (d != std::round(d) || d < 0)
