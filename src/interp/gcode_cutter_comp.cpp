@@ -142,6 +142,21 @@ bool GcodeExecutor::comp_active() const {
   return comp_ && comp_->side != 0 && comp_->radius > 0;
 }
 
+// As LinuxCNC 2.9: with G41/G42 on, an expression may not read the position (its end points
+// are not known until the next move); a (DEBUG)/(PRINT) message shows the last move's
+// compensated end point before its corner is joined to the next move. After G40 it is the
+// programmed end point, from which the next move leaves the offset path.
+Vec6 GcodeExecutor::current_position(const SourceLoc& loc) const {
+  if (comp_ && comp_->side != 0 && loc.line > 0)
+    fail(loc,
+         "#5420-#5425 cannot be read while cutter radius compensation is on (G41/G42), "
+         "as in LinuxCNC: the compensated position is not known until the next move; read "
+         "them before G41/G42 or after G40");
+  if (comp_ && comp_->exit_base) return *comp_->exit_base;
+  if (comp_active()) return comp_->cur;
+  return program_position();
+}
+
 Vec6 GcodeExecutor::motion_start() const {
   if (comp_active() && !comp_->first) return comp_->prog;
   if (comp_ && comp_->exit_base) return *comp_->exit_base;

@@ -172,7 +172,7 @@ void GcodeExecutor::begin_file(bool typed) {
 
 // ---- parameters -------------------------------------------------------------------------
 
-double GcodeExecutor::numbered(int n, const SourceLoc&) const {
+double GcodeExecutor::numbered(int n, const SourceLoc& loc) const {
   if (n <= 5000) {  // first: a loop reads these on every pass
     auto it = params_.find(n);
     return it == params_.end() ? 0 : it->second;
@@ -193,7 +193,7 @@ double GcodeExecutor::numbered(int n, const SourceLoc&) const {
   for (int s = 0; s < 9; ++s)
     if (auto v = axis(s == o.system ? st.zero : o.origin[s], 5221 + 20 * s)) return *v;
   if (auto v = tool_parameter(n)) return *v;
-  if (auto v = axis(program_position(), 5420)) return *v;
+  if (n >= 5420 && n < 5426) return axis(current_position(loc), 5420).value_or(0);
   return 0;
 }
 

@@ -123,6 +123,9 @@ class GcodeExecutor : private GcodeParameters {
   // Where a move starts as programmed (with compensation on, the programmed path, not the
   // tool's offset one), for incremental words and arc centres.
   Vec6 motion_start() const;
+  // #5420-#5425 (gcode_cutter_comp.cpp): where the program is, the held-back compensated move
+  // counted; `loc` an expression's (refused while compensation is on) or none (a message's).
+  Vec6 current_position(const SourceLoc& loc) const;
   void comp_line(const Vec6& target, bool rapid, double speed, const SourceLoc& loc);
   void comp_arc(const Vec6& end, double cu, double cv, int turn, double speed,
                 const SourceLoc& loc);
