@@ -22,6 +22,7 @@ void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::stri
   cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
   add_allow_path_option(cmd, a.allow_paths);
   add_tool_table_option(cmd, a.tool_table);
+  add_subroutines_option(cmd, a.subroutines);
 }
 
 void ValuesKeeper::ran(const Settings& s) {
@@ -48,6 +49,7 @@ InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeepe
   InterpreterOptions opt;
   opt.allow_shell = a.allow_shell;
   opt.macro_dir = a.macros;
+  opt.subroutine_dirs = a.subroutines;  // the Interpreter adds the profile's after
   opt.allowed_folders = allowed_folders(p, a.allow_paths);
   opt.warn_before_motion = real_time;
   opt.trig_in_degrees = opt.plus_joins_text = p.settings.dialect == Dialect::FabMo;

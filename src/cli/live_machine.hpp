@@ -23,6 +23,7 @@ struct LiveMachineArgs {
   bool allow_shell = false;
   std::vector<std::string> allow_paths;  // --allow-path
   std::string tool_table;                // --tool-table
+  std::vector<std::string> subroutines;  // --subroutines, before the profile's
 };
 
 // Adds them to `cmd` (`realtime_help`: what real time is needed for there).

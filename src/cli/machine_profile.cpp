@@ -102,12 +102,20 @@ void add_tool_table_option(CLI::App* cmd, std::string& file) {
                   "profile's tool_table; G10 L1/L10/L11 write it back (docs/gcode.md)");
 }
 
+void add_subroutines_option(CLI::App* cmd, std::vector<std::string>& folders) {
+  cmd->add_option("--subroutines", folders,
+                  "Folder where G-code's o<name> call finds name.ngc after the calling file's "
+                  "folder, before the profile's subroutines folders (may be given again)");
+}
+
 bool load_machine_profile(const std::string& profile_arg, const std::string& values_path,
                           MachineProfile& out, const std::string& tool_table) {
   const bool loaded = load_profile_and_values(profile_arg, values_path, out);
   // The profile's own: a values file cannot point G10's writes elsewhere.
   out.settings.tool_table = out.bare.tool_table;
   out.settings.tool_table_path = out.bare.tool_table_path;
+  out.settings.subroutines = out.bare.subroutines;
+  out.settings.subroutine_paths = out.bare.subroutine_paths;
   if (!tool_table.empty())
     out.bare.tool_table = out.settings.tool_table = out.bare.tool_table_path =
         out.settings.tool_table_path = tool_table;

@@ -32,6 +32,10 @@ bool load_machine_profile(const std::string& profile_path, const std::string& va
 // --tool-table FILE: G-code's tool table (docs/gcode.md, "Tool table").
 void add_tool_table_option(CLI::App* cmd, std::string& file);
 
+// --subroutines DIR (repeatable): where G-code's o<name> call finds name.ngc, before the
+// profile's `subroutines` folders.
+void add_subroutines_option(CLI::App* cmd, std::vector<std::string>& folders);
+
 // --allow-path DIR (repeatable): a folder part files may read and write in, besides theirs.
 void add_allow_path_option(CLI::App* cmd, std::vector<std::string>& folders);
 // The folders part files may reach besides their own and the data folder: the profile's

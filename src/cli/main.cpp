@@ -80,7 +80,7 @@ struct RunArgs {
   std::string trace;                         // --trace FILE: the simulated card's pin trace
   std::optional<double> estop_at, stall_at;  // simulated operator and producer
   std::optional<double> probe_z;
-  std::vector<std::string> limits;  // AXIS-=POS or AXIS+=POS: simulated limit switches
+  std::vector<std::string> limits;      // AXIS-=POS or AXIS+=POS: simulated limit switches
   std::vector<std::string> sim_inputs;  // N=S@SECONDS or N=S@AXIS>=POS / AXIS<=POS
 
   // The simulated machine's switches and events: the profile's ([simulator]) and the options';
@@ -179,9 +179,7 @@ struct LanguageArgs {
     cmd->add_option("--macros", macros,
                     "Folder C<n> looks in first for C<n>.sbp / macro_<n>.sbp (then the shipped "
                     "macros)");
-    cmd->add_option("--subroutines", subroutines,
-                    "Folder where G-code's o<name> call finds name.ngc after the calling "
-                    "file's folder (may be given again)");
+    add_subroutines_option(cmd, subroutines);
     add_allow_path_option(cmd, allow_paths);
     add_tool_table_option(cmd, tool_table);
     cmd->add_option("--persistent", persistent, "File of persistent $variables (JSON)");
@@ -201,7 +199,7 @@ struct LanguageArgs {
   bool job_options(const Settings& settings, JobOptions& out) const {
     out.interpreter.allow_shell = allow_shell;
     out.interpreter.macro_dir = macros;
-    out.interpreter.subroutine_dirs = subroutines;
+    out.interpreter.subroutine_dirs = subroutines;  // the Interpreter adds the profile's after
     out.interpreter.trig_in_degrees = out.interpreter.plus_joins_text =
         settings.dialect == Dialect::FabMo;
     out.check_budget = budget;

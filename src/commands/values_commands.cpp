@@ -8,7 +8,8 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/interp/interpreter.hpp"
-#include "gantry/lang/expression.hpp"  // parse_lvalue: VV's names
+#include "gantry/interp/tool_table.hpp"  // cutter_to_tool_table
+#include "gantry/lang/expression.hpp"    // parse_lvalue: VV's names
 
 namespace gantry {
 namespace {
@@ -128,6 +129,7 @@ const std::vector<Field>& vc_fabmo() {
 
 void values_cutter(CommandContext& ctx, const CommandCall& call) {
   const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  const double before = ctx.settings().cutter.diameter;
   apply(ctx, call, fabmo ? vc_fabmo() : vc_sb3(), ValueScope::Permanent,
         [](CommandContext&, const CommandCall& call, Settings& s) {
           if (s.cutter.trigger_output == 4)
@@ -135,6 +137,9 @@ void values_cutter(CommandContext& ctx, const CommandCall& call) {
                  "VC: the triggered switch cannot be output 4 (the "
                  "tool-in-motion switch); use 3 or 5-12");
         });
+  // The tool in the spindle keeps VC's diameter in G-code's tool table (docs/gcode.md).
+  if (const double d = ctx.settings().cutter.diameter; d != before)
+    cutter_to_tool_table(ctx, d, call.param_loc(0));
 }
 
 // ---- VB: tabs -------------------------------------------------------------------------

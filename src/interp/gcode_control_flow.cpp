@@ -202,7 +202,8 @@ void Interpreter::gcode_call(const GcodeBlock& b, const SourceLoc& loc) {
       std::string where = "the calling file's folder";
       for (const std::string& d : options_.subroutine_dirs) where += ", " + d;
       fail(at, fmt::format("{} call: no {} sub in this file, and no {}.ngc in {}; define it "
-                           "(o... sub ... o... endsub), or give its folder with --subroutines",
+                           "(o... sub ... o... endsub), or give its folder with --subroutines or "
+                           "the profile's subroutines",
                            shown(o.name), shown(o.name), o.name, where));
     }
     file = frames_.front().script->called(

@@ -142,6 +142,21 @@ bool GcodeExecutor::comp_active() const {
   return comp_ && comp_->side != 0 && comp_->radius > 0;
 }
 
+// As LinuxCNC 2.9: with G41/G42 on, an expression may not read the position (its end points
+// are not known until the next move); a (DEBUG)/(PRINT) message shows the last move's
+// compensated end point before its corner is joined to the next move. After G40 it is the
+// programmed end point, from which the next move leaves the offset path.
+Vec6 GcodeExecutor::current_position(const SourceLoc* at) const {
+  if (comp_ && comp_->side != 0 && at)
+    fail(*at,
+         "#5420-#5425 cannot be read while cutter radius compensation is on (G41/G42), "
+         "as in LinuxCNC: the compensated position is not known until the next move; read "
+         "them before G41/G42 or after G40");
+  if (comp_ && comp_->exit_base) return *comp_->exit_base;
+  if (comp_active()) return comp_->cur;
+  return program_position();
+}
+
 Vec6 GcodeExecutor::motion_start() const {
   if (comp_active() && !comp_->first) return comp_->prog;
   if (comp_ && comp_->exit_base) return *comp_->exit_base;
@@ -202,9 +217,12 @@ void GcodeExecutor::check_comp_words(const Words& w, int motion, const SourceLoc
     if ((g7 == 411 || g7 == 421) && !w.has('D'))
       fail(at7, fmt::format("{} needs D, the tool's diameter", name));
     if (w.has('L') && (g7 == 411 || g7 == 421))
-      fail(w.at('L', loc), fmt::format("{}: L is a lathe tool's orientation; Gantry drives "
-                                       "routers and mills, whose tools have none",
-                                       name));
+      // LinuxCNC refuses L outside G18 too ("plane is not G18"); in G18 it is a lathe's.
+      fail(w.at('L', loc),
+           fmt::format("{}: L is a lathe tool's orientation, which LinuxCNC takes only in the "
+                       "ZX plane (G18) of a lathe; Gantry drives routers and mills, whose tools "
+                       "have none: leave L out",
+                       name));
     if ((g7 == 410 || g7 == 420) && w.has('D')) {
       const double d = w.get('D');
       if (d != std::round(d) || d < 0)

@@ -172,7 +172,7 @@ void GcodeExecutor::begin_file(bool typed) {
 
 // ---- parameters -------------------------------------------------------------------------
 
-double GcodeExecutor::numbered(int n) const {
+double GcodeExecutor::numbered(int n, const SourceLoc* at) const {
   if (n <= kLastSettable) return params_[static_cast<size_t>(n)];  // first: loops read these
   const ModalState& st = ctx_.state();
   const GcodeOffsets& o = st.gcode;
@@ -190,7 +190,7 @@ double GcodeExecutor::numbered(int n) const {
   for (int s = 0; s < 9; ++s)
     if (auto v = axis(s == o.system ? st.zero : o.origin[s], 5221 + 20 * s)) return *v;
   if (auto v = tool_parameter(n)) return *v;
-  if (auto v = axis(program_position(), 5420)) return *v;
+  if (n >= 5420 && n < 5426) return axis(current_position(at), 5420).value_or(0);
   return 0;
 }
 

@@ -793,6 +793,9 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO&
       gcode_flow_(std::make_unique<GcodeFlow>()) {
   ctx_.interp_ = this;
   gated_io_->before_asking = [this] { ctx_.sync(); };
+  // The profile's subroutine folders after --subroutines', for every front end alike.
+  options_.subroutine_dirs.insert(options_.subroutine_dirs.end(), settings.subroutine_paths.begin(),
+                                  settings.subroutine_paths.end());
   state_.speeds = settings.speeds;
   gcode_ = std::make_unique<GcodeExecutor>(ctx_, io_, [this] {  // M2, M30: the file ends
     // In a subroutine's own file, its callers' file ends too: it is one program.

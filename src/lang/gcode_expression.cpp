@@ -265,6 +265,14 @@ double evaluate_gcode_expression(const GcodeBlock& b, int expr, const SourceLoc&
     l.column = b.exprs_column[static_cast<size_t>(expr)] + static_cast<int>(s.offset);
     fail(l, what);
   };
+  // #n: a machine parameter (above #5000) is given its reader's location, in case it cannot
+  // be read now; the others never need one.
+  auto parameter = [&](const GcodeStep& s, int n) {
+    if (n <= 5000) return params.numbered(n, &line);
+    SourceLoc l = line;
+    l.column = b.exprs_column[static_cast<size_t>(expr)] + static_cast<int>(s.offset);
+    return params.numbered(n, &l);
+  };
   auto domain = [&](const GcodeStep& s, bool ok) {
     if (!ok) error(s, fmt::format("{}[{}] is not defined", name_of(s.op), *top));
   };
@@ -337,13 +345,13 @@ double evaluate_gcode_expression(const GcodeBlock& b, int expr, const SourceLoc&
         *++top = s.number;
         break;
       case Op::Param:
-        *++top = params.numbered(s.index);
+        *++top = parameter(s, s.index);
         break;
       case Op::ParamAt: {
         const double n = *top;
         if (n != std::round(n) || n < 1 || n > kLastParameter)
           error(s, fmt::format("#{} is not a parameter: parameters are #1 to #5602", n));
-        *top = params.numbered(static_cast<int>(n));
+        *top = parameter(s, static_cast<int>(n));
         break;
       }
       case Op::Named: {

@@ -60,7 +60,7 @@ std::string substitute_gcode_parameters(std::string_view text, const GcodeParame
       ++i;
       continue;
     }
-    out += n <= kLastNumbered ? six_decimals(params.numbered(static_cast<int>(n)))
+    out += n <= kLastNumbered ? six_decimals(params.numbered(static_cast<int>(n), nullptr))
                               : std::string(kNoValue);
     i = j;
   }

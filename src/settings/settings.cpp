@@ -7,6 +7,7 @@
 #include <algorithm>   // sort
 #include <charconv>    // from_chars
 #include <cmath>       // ceil for tick counts
+#include <cstdlib>     // getenv: ~/ in subroutine folders
 #include <filesystem>  // tool_table from the profile's folder
 #include <set>         // keys seen, to reject unknown ones
 
@@ -446,6 +447,7 @@ void read_profile(TableReader root, Settings& s) {
     root.fail("gcode_dialect", "is not allowed; use one of \"standard\", \"wincnc\"");
   s.gcode_dialect = gcode == "wincnc" ? GcodeDialect::WinCNC : GcodeDialect::Standard;
   s.tool_table = root.optional_text("tool_table", "");
+  s.subroutines = root.optional_texts("subroutines");
 
   TableReader axes = root.table("axes");
   for (int i = 0; i < kAxisCount; ++i) {
@@ -587,9 +589,9 @@ static void check_consistency(const Settings& s, const std::string& origin,
     if (!node) return errors.push_back({file_loc(origin), Severity::Error, std::move(msg)});
     const toml::source_region& where = node->source();
     const std::string file = where.path ? std::string(*where.path) : origin;
-    errors.push_back({file_loc(file, static_cast<int>(where.begin.line),
-                               static_cast<int>(where.begin.column)),
-                      Severity::Error, std::move(msg)});
+    errors.push_back(
+        {file_loc(file, static_cast<int>(where.begin.line), static_cast<int>(where.begin.column)),
+         Severity::Error, std::move(msg)});
   };
   auto err = [&](std::string msg) { err_at(msg.substr(0, msg.find_first_of(" :")), msg); };
   const double pacer = s.card.pacer_hz();
@@ -610,8 +612,8 @@ static void check_consistency(const Settings& s, const std::string& origin,
           "steps/s (pacer {:.0f} Hz, {}-tick pulse plus one idle tick); lower max_speed or "
           "raise the pacer",
           L, a.max_speed, a.steps_per_unit, rate, max_rate, pacer, pulse_ticks));
-    for (const auto& [key, bit] : {std::pair{"step_bit", s.pins[i].step_bit},
-                                   std::pair{"dir_bit", s.pins[i].dir_bit}}) {
+    for (const auto& [key, bit] :
+         {std::pair{"step_bit", s.pins[i].step_bit}, std::pair{"dir_bit", s.pins[i].dir_bit}}) {
       if (used & (1u << bit))
         err(fmt::format("pins.{}.{}: output bit {} is already used by another pin", L, key, bit));
       used |= 1u << bit;
@@ -697,12 +699,42 @@ SettingsLoad parse_settings(const std::string& text, const std::string& origin) 
   return parse_settings_table(table, origin);
 }
 
+namespace {
+
+// The profile's subroutine folders, relative ones from the profile's folder; a folder that is
+// not there is an error at the key now, not a "not found" at the first call.
+void resolve_subroutine_folders(const toml::table& table, const std::string& origin,
+                                SettingsLoad& out) {
+  std::vector<std::string>& paths = out.settings.subroutine_paths;
+  paths.clear();
+  for (const std::string& folder : out.settings.subroutines) {
+    std::filesystem::path p(folder);
+    if (folder.starts_with("~/"))
+      if (const char* home = std::getenv("HOME"))
+        p = std::filesystem::path(home) / folder.substr(2);
+    if (p.is_relative()) p = std::filesystem::path(origin).parent_path() / p;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(p, ec)) {
+      TableReader(table, "", origin, out.errors)
+          .fail("subroutines",
+                fmt::format("names the folder \"{}\" ({}), which does not exist or is not a "
+                            "folder; create it or correct the path",
+                            folder, p.string()));
+      continue;
+    }
+    paths.push_back(p.string());
+  }
+}
+
+}  // namespace
+
 SettingsLoad parse_settings_table(const toml::table& table, const std::string& origin) {
   SettingsLoad out;
   read_profile(TableReader(table, "", origin, out.errors), out.settings);
   if (const std::string& t = out.settings.tool_table; !t.empty())  // from the profile's folder
     out.settings.tool_table_path =
         (std::filesystem::path(origin).parent_path() / std::filesystem::path(t)).string();
+  resolve_subroutine_folders(table, origin, out);
   if (out.errors.empty()) check_consistency(out.settings, origin, out.errors, &table);
   return out;
 }

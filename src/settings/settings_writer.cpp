@@ -30,6 +30,11 @@ toml::table settings_table(const Settings& s) {
       {"dialect", s.dialect == Dialect::FabMo ? "fabmo" : "sb3"},
       {"gcode_dialect", s.gcode_dialect == GcodeDialect::WinCNC ? "wincnc" : "standard"}};
   if (!s.tool_table.empty()) root.insert("tool_table", s.tool_table);  // optional
+  if (!s.subroutines.empty()) {                                        // optional
+    toml::array dirs;
+    for (const std::string& d : s.subroutines) dirs.push_back(d);
+    root.insert("subroutines", dirs);
+  }
   toml::table axes, pins, inputs, homing;
   for (int i = 0; i < kAxisCount; ++i) {
     const std::string L(1, kAxisLetters[i]);

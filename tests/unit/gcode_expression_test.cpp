@@ -13,7 +13,7 @@ namespace {
 
 class Params : public GcodeParameters {
  public:
-  double numbered(int n) const override {
+  double numbered(int n, const SourceLoc*) const override {
     auto it = numbered_.find(n);
     return it == numbered_.end() ? 0 : it->second;
   }

@@ -19,6 +19,7 @@
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/interp/persistent_store.hpp"
 #include "gantry/lang/script.hpp"
+#include "gantry/settings/settings.hpp"
 
 namespace gantry {
 namespace {
@@ -203,6 +204,21 @@ TEST_F(OwordTest, StopEndsAnEndlessLoop) {
   EXPECT_EQ(sink.moves, 5);
 }
 
+// rs274: o100 and o<100> name one subroutine (each calls the other's, X1; both defined:
+// "redefining sub: o|100| already defined"), o0100 is o100, but o<0100> is not o<100> (a
+// name, not a number: "EOF ... seeking o-word: o<100>"); names ignore case.
+TEST_F(OwordTest, NumberedAndNamedOwordsShareOneNamespaceAsInLinuxCnc) {
+  expect_moves(run("o100 sub\nG0 X1\no100 endsub\no<100> call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o<100> sub\nG0 X1\no<100> endsub\no100 call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o0100 sub\nG0 X1\no0100 endsub\no100 call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o100 sub\nG0 X1\no100 endsub\no0100 call\nM2\n"), {v6(1, 0)});
+  expect_moves(run("o<abc> sub\nG0 X1\no<abc> endsub\no<ABC> call\nM2\n"), {v6(1, 0)});
+  expect_at(refused("o100 sub\nG0 X1\no100 endsub\no<100> sub\nG0 X2\no<100> endsub\n"
+                    "o100 call\nM2\n"),
+            4, 1, "is defined twice: first at line 1");
+  expect_at(refused("o<0100> sub\nG0 X1\no<0100> endsub\no<100> call\nM2\n"), 4, 1, "no 100.ngc");
+}
+
 // rs274: (1,0) (2,0) (3,0) (3,3) (3,3,1): M98 P100 L3, L0 runs nothing, #1 is shared.
 TEST_F(OwordTest, FanucM98M99AndProgramNumbers) {
   const std::string text =
@@ -249,6 +265,38 @@ TEST_F(OwordFileTest, SubroutineFilesByName) {
   write("empty.ngc", "G0 X1\n");
   expect_at(check(Script::load(write("calls.ngc", "o<empty> call\nM2\n"))), 1, 1,
             "does not define o<empty> sub");
+}
+
+// The profile's `subroutines` folders (relative to the profile's folder) serve o<name> call
+// after --subroutines' folders; a folder that is not there is an error at the key.
+TEST_F(OwordFileTest, ProfileSubroutineFolders) {
+  fs::create_directories(dir / "prof" / "subs");
+  fs::create_directories(dir / "first");
+  write("prof/subs/lift.ngc", "o<lift> sub\nG0 Z#1\no<lift> endsub\n");
+  const std::string origin = (dir / "prof" / "machine.toml").string();
+  SettingsLoad l = parse_settings("subroutines = [\"subs\"]\n" + default_profile_text(), origin);
+  ASSERT_TRUE(l.ok()) << l.errors[0].message;
+  ASSERT_EQ(l.settings.subroutine_paths.size(), 1u);
+  settings.subroutine_paths = l.settings.subroutine_paths;
+  const std::string lifts = write("lifts.ngc", "G0 X1\no<lift> call [2]\nG0 X3\nM2\n");
+  expect_moves(run(Script::load(lifts)), {v6(1, 0), v6(1, 0, 2), v6(3, 0, 2)});
+  EXPECT_TRUE(check(Script::load(lifts)).empty());
+  // --subroutines' folder comes first: its lift.ngc wins.
+  write("first/lift.ngc", "o<lift> sub\nG0 Y#1\no<lift> endsub\n");
+  InterpreterOptions o;
+  o.subroutine_dirs = {(dir / "first").string()};
+  expect_moves(run(Script::load(lifts), o), {v6(1, 0), v6(1, 2), v6(3, 2)});
+  // Without the key, the call is refused at the call.
+  settings.subroutine_paths.clear();
+  expect_at(check(Script::load(lifts)), 2, 1, "no lift.ngc");
+  // A folder that is not there: located at the key, in the profile's file.
+  l = parse_settings("\nsubroutines = [\"subs\", \"nosuch\"]\n" + default_profile_text(), origin);
+  ASSERT_EQ(l.errors.size(), 1u);
+  EXPECT_EQ(*l.errors[0].loc.file, origin);
+  EXPECT_EQ(l.errors[0].loc.line, 2);
+  EXPECT_NE(l.errors[0].message.find("subroutines names the folder \"nosuch\""), std::string::npos)
+      << l.errors[0].message;
+  EXPECT_NE(l.errors[0].message.find("does not exist"), std::string::npos);
 }
 
 // WinCNC's M98 <file> (the manual: "m98 Texas.tap"): the file runs, M99 ends it.

@@ -414,6 +414,58 @@ TEST_F(GcodeToolTable, VcsCutterDiameterIsTheDiameterOfTheToolInTheSpindle) {
   EXPECT_EQ(after.cutter.diameter, 0.4);
 }
 
+// And back: a VC that changes the cutter's diameter writes it as the spindle tool's D, the
+// other lines byte for byte as they were; a check writes nothing; T0 or no table: nothing.
+TEST_F(GcodeToolTable, VcWritesTheDiameterOfTheToolInTheSpindleToTheTable) {
+  const std::string path = table_file(kTable);
+  settings.cutter.diameter = 0.75;
+  {
+    Interpreter interp(settings, sink, io, store);
+    interp.run(Script::from_text("T2 M6\n", "t.ngc"));
+    EXPECT_EQ(interp.settings().cutter.diameter, 0.125);
+    EXPECT_EQ(slurp(path), kTable);  // M6 reads the table, writes nothing
+    interp.run(Script::from_text("VC, 0.3\n", "t.sbp"));
+    EXPECT_EQ(interp.settings().cutter.diameter, 0.3);
+    std::string expected = kTable;
+    const std::string old_line = "T2  P2 D0.125 Z+1.0\n";
+    expected.replace(expected.find(old_line), old_line.size(), "T2 P2 D+0.3 Z+1\n");
+    EXPECT_EQ(slurp(path), expected);
+    // G-code sees it: #5410 is tool 2's diameter now.
+    io.printed.clear();
+    interp.run(Script::from_text("(DEBUG, #5400 #5410)\n", "t.ngc"));
+    EXPECT_EQ(io.printed, "2.000000 0.300000\n");
+    settings = interp.settings();
+  }
+  // A check of another VC writes nothing.
+  const std::string written = slurp(path);
+  {
+    InterpreterOptions o;
+    o.dry_run = true;
+    Interpreter interp(settings, sink, io, store, o);
+    interp.run(Script::from_text("T2 M6\n", "t.ngc"));
+    for (const Diagnostic& d : interp.check(Script::from_text("VC, 0.4\n", "t.sbp")))
+      ADD_FAILURE() << format(d);
+    EXPECT_EQ(slurp(path), written);
+  }
+  // T0 in the spindle: VC is VC's own.
+  {
+    Interpreter interp(settings, sink, io, store);
+    interp.run(Script::from_text("M61 Q0\n", "t.ngc"));
+    interp.run(Script::from_text("VC, 0.6\n", "t.sbp"));
+    EXPECT_EQ(interp.settings().cutter.diameter, 0.6);
+    EXPECT_EQ(slurp(path), written);
+  }
+}
+
+TEST_F(GcodeToolTable, VcWithoutATableWritesNoFile) {
+  settings.tool_table_path.clear();
+  Interpreter interp(settings, sink, io, store);
+  interp.run(Script::from_text("T2 M6\n", "t.ngc"));
+  interp.run(Script::from_text("VC, 0.3\n", "t.sbp"));
+  EXPECT_EQ(interp.settings().cutter.diameter, 0.3);
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
 // The preview cuts with the tool in the spindle: a 0.5 in cutter along Y = 0, then, after
 // T2 M6 (D0.125), along Y = 1. A point 0.2 in from each line's axis is cut by the first
 // (radius 0.25) and not by the second (radius 0.0625).

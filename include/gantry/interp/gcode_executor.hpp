@@ -76,7 +76,7 @@ class GcodeExecutor : private GcodeParameters {
   };
 
   // GcodeParameters
-  double numbered(int n) const override;
+  double numbered(int n, const SourceLoc* at) const override;
   const double* named(std::string_view name) const override;
 
   void read_words(const GcodeBlock& b, const SourceLoc& loc, Words& w);
@@ -122,6 +122,9 @@ class GcodeExecutor : private GcodeParameters {
   // Where a move starts as programmed (with compensation on, the programmed path, not the
   // tool's offset one), for incremental words and arc centres.
   Vec6 motion_start() const;
+  // #5420-#5425 (gcode_cutter_comp.cpp): where the program is, the held-back compensated move
+  // counted; `at` an expression's (refused while compensation is on), null for a message's.
+  Vec6 current_position(const SourceLoc* at) const;
   void comp_line(const Vec6& target, bool rapid, double speed, const SourceLoc& loc);
   void comp_arc(const Vec6& end, double cu, double cv, int turn, double speed,
                 const SourceLoc& loc);

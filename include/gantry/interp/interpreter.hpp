@@ -315,10 +315,10 @@ class CommandContext {
   std::size_t moves_ = 0;
   bool file_tabs_ = false;
   bool own_tabs_ = false;
-  bool independent_resting_ = false;  // the machine came to rest under MI: restart it
-  bool warned_ = false;               // this run's first motion was warned of
-  bool checking_ = false;             // a check: a refused move still changes the location
-  bool switch4_auto_ = false;         // ... and switch 4 came on with the warning
+  bool independent_resting_ = false;   // the machine came to rest under MI: restart it
+  bool warned_ = false;                // this run's first motion was warned of
+  bool checking_ = false;              // a check: a refused move still changes the location
+  bool switch4_auto_ = false;          // ... and switch 4 came on with the warning
   bool spindle_speed_warned_ = false;  // TR with no speed output: this run was told once
 };
 
@@ -351,14 +351,14 @@ struct InterpreterOptions {
   // --allow-path), and reads the macro folders above.
   std::string data_dir = user_config_dir();
   std::vector<std::string> allowed_folders;
-  int max_file_depth = 8;            // FP nesting, the top-level file included
+  int max_file_depth = 8;  // FP nesting, the top-level file included
   // The top-level file's first line to run (0 or 1: all of it): the lines before it run
   // without motion, output or questions, then the tool approaches where they leave it
   // (docs/language.md, "Starting at a line").
   int start_line = 0;
   int max_gosub_depth = 256;
   // Where `o<name> call` finds name.ngc when the calling file does not define the subroutine:
-  // the calling file's folder, then these (--subroutines);
+  // the calling file's folder, then these (--subroutines), then the profile's `subroutines`;
   // a part file reads them as it reads the macro folders (docs/security.md).
   std::vector<std::string> subroutine_dirs;
   // Called when a run ends (not in a dry run) with the settings as the run leaves them:
@@ -541,9 +541,9 @@ class Interpreter : private EvalEnv {
   CommandContext ctx_;
   std::vector<Frame> frames_;
   std::unordered_map<std::string, Value> vars_;
-  std::set<std::string> failed_vars_;      // check: assignments that failed
+  std::set<std::string> failed_vars_;          // check: assignments that failed
   std::set<std::string> extra_params_warned_;  // "file\ncode": warned of ignored parameters
-  std::unique_ptr<FileSystem> own_files_;  // when options_.files is null
+  std::unique_ptr<FileSystem> own_files_;      // when options_.files is null
   FileSystem* files_system_ = nullptr;
   // ON INPUT handlers by (switch, 1 closing or 0 opening): one-shot, for the run.
   struct InputHandler {
@@ -571,8 +571,8 @@ class Interpreter : private EvalEnv {
   std::size_t executed_ = 0;
   std::size_t budget_lines_ = 0;  // the checked file's lines, on top of the statement budget
   std::function<void(std::size_t, std::size_t)> progress_;
-  std::unique_ptr<StartLine> start_;      // a start line not reached yet
-  std::unique_ptr<GcodeExecutor> gcode_;  // G-code's modes and parameters
+  std::unique_ptr<StartLine> start_;       // a start line not reached yet
+  std::unique_ptr<GcodeExecutor> gcode_;   // G-code's modes and parameters
   std::unique_ptr<GcodeFlow> gcode_flow_;  // G-code's open calls and repeat counts
 };
 

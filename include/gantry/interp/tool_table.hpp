@@ -79,4 +79,10 @@ std::string format_tool_line(const ToolEntry& t);
 // read (located at `need`, the line that needed the table, when given), or for a bad line.
 ToolTable load_tool_table(const std::string& path, const SourceLoc& need = {});
 
+class CommandContext;
+// VC changed the cutter's diameter to `diameter`: with a tool table file configured and a tool
+// (not T0) in the spindle, it becomes that tool's D in the file (tool_table_cutter.cpp), the
+// other lines as they were; a check or a preview changes the table in memory only.
+void cutter_to_tool_table(CommandContext& ctx, double diameter, const SourceLoc& loc);
+
 }  // namespace gantry

@@ -170,8 +170,10 @@ bool parse_gcode_block(std::string_view line, const std::shared_ptr<const std::s
 class GcodeParameters {
  public:
   virtual ~GcodeParameters() = default;
-  // The value of #n (0 to 5602; one never set reads 0).
-  virtual double numbered(int n) const = 0;
+  // The value of #n (0 to 5602; one never set reads 0). `at`: where an expression reads it
+  // (some of the machine's, above #5000, cannot be read at every moment); null when a
+  // message shows it.
+  virtual double numbered(int n, const SourceLoc* at) const = 0;
   // The value of #<name> (lower case), or null when it has none.
   virtual const double* named(std::string_view name) const = 0;
 };

@@ -231,6 +231,12 @@ struct Settings {
   // (`gantry ... --tool-table FILE` sets the file). Read from the profile only.
   std::string tool_table;
   std::string tool_table_path;
+  // Folders where G-code's `o<name> call` finds name.ngc after the calling file's folder
+  // (docs/gcode.md, "O-words"): the key as written, and the folders it names (relative ones
+  // from the profile's folder; each must exist). `--subroutines DIR` adds folders before
+  // these. Read from the profile only.
+  std::vector<std::string> subroutines;
+  std::vector<std::string> subroutine_paths;
   std::array<AxisSettings, kAxisCount> axes{};
   SpeedSettings speeds;
   RampSettings ramps;

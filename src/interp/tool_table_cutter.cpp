@@ -1,0 +1,40 @@
+// SB3's cutter (VC) and G-code's tool table in step (docs/gcode.md, "Tool table"): M6/M61
+// give VC the diameter of the tool in the spindle (gcode_tools.cpp); a VC that changes the
+// diameter writes it back as that tool's D, through the same atomic writer as G10 L1.
+#include <fmt/format.h>  // messages
+
+#include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
+#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/tool_table.hpp"
+
+namespace gantry {
+
+void cutter_to_tool_table(CommandContext& ctx, double diameter, const SourceLoc& loc) {
+  const std::string& path = ctx.settings().tool_table_path;
+  GcodeOffsets& o = ctx.state().gcode;
+  if (path.empty() || o.tool == 0) return;  // no file, or the empty spindle: VC only
+  ToolTable& table = o.tools;
+  // The file as it is now (an editor may have changed it since G-code last read it).
+  const std::optional<std::string> text = read_text_file(path);
+  if (table.path() != path || !text || *text != table.source_text())
+    table = load_tool_table(path, loc);
+  ToolTable changed = table;  // a failed write keeps the file and this table as they were
+  ToolEntry* e = changed.change(o.tool);
+  if (!e)
+    fail(loc, fmt::format("VC: tool {} (in the spindle) is not in the tool table {}, so its "
+                          "diameter cannot be written there; add a line T{} P{} for it",
+                          o.tool, path, o.tool, o.tool));
+  if (e->diameter == diameter) return;
+  e->diameter = diameter;
+  if (ctx.writes_to_disk()) {  // a check or a preview changes the table in memory only
+    const std::string out = changed.text();
+    if (std::string why; !write_file_atomically(path, out, &why))
+      fail(loc, fmt::format("VC: could not write tool {}'s diameter to the tool table {} ({}); "
+                            "the previous file is kept",
+                            o.tool, path, why));
+    changed = ToolTable::parse(out, path);
+  }
+  table = std::move(changed);
+}
+
+}  // namespace gantry
