@@ -5,7 +5,7 @@
 
 #include <cmath>  // abs, ceil
 
-#include "gantry/motion/arc_chords.hpp"   // plane_axes
+#include "gantry/canon/arc_geometry.hpp"   // plane_axes
 #include "gantry/motion/path_limits.hpp"  // nominal_path_speed
 
 namespace gantry {

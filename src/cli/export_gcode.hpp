@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "gantry/motion/canon_move.hpp"  // MotionSink, CanonMove
+#include "gantry/canon/canon_move.hpp"  // MotionSink, CanonMove
 
 namespace gantry {
 

@@ -20,6 +20,7 @@
 #include "gantry/core/text_file.hpp"         // read_text_file
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
+#include "gantry/motion/cycle_timer.hpp"     // estimate
 #include "gantry/settings/values_file.hpp"   // the values file
 #include "machine_profile.hpp"               // MachineProfile, load_machine_profile
 #include "open_card.hpp"                     // open_card
@@ -256,10 +257,13 @@ bool load_and_check(const std::string& file, const std::string& settings_path,
     out.opt.interpreter.unattended_inputs =
         unattended_inputs(simulated_world(settings), settings.inputs);
   if (estimate) out.opt.operator_present = false;  // --yes and --input answer
-  out.opt.control = control;
+  if (control) out.opt.stop = &control->stopped();
   out.script = load_part_file(file);
-  out.found = check_program(out.script, out.profile.settings, lang.store(), out.opt, true,
-                            estimate ? &out.estimate_s : nullptr);
+  std::optional<CycleTimer> timer;
+  JobOptions check = out.opt;
+  if (estimate) check.check_moves = &timer.emplace(settings, check.feed_override, check.check_moves);
+  out.found = check_program(out.script, settings, lang.store(), check);
+  if (timer) out.estimate_s = timer->seconds();
   return true;
 }
 
@@ -325,8 +329,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       SignalWatch& w;
       ~StopFirst() { w.stop(); }
     } stop_first{signals};
-    opt.control = &control;
-    job = run_job(script, settings, *card, io, store, opt);
+    job = run_job(script, settings, *card, io, store, opt, &control);
     stops = control.stops();
   }
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));

@@ -10,7 +10,7 @@
 #include "gantry/commands/command_table.hpp"  // CommandSpec
 #include "gantry/core/axes.hpp"               // Vec6, Steps6
 #include "gantry/core/diagnostic.hpp"         // Diagnostic
-#include "gantry/motion/canon_move.hpp"       // CanonMove
+#include "gantry/canon/canon_move.hpp"       // CanonMove
 #include "gantry/settings/settings.hpp"       // Units
 
 namespace gantry {

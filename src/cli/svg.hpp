@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "gantry/motion/canon_move.hpp"  // CanonMove
+#include "gantry/canon/canon_move.hpp"  // CanonMove
 #include "gantry/settings/settings.hpp"  // Settings (the chord tolerance)
 
 namespace gantry {

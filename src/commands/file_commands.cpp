@@ -12,7 +12,7 @@
 #include "gantry/commands/command_table.hpp"
 #include "gantry/convert/to_sbp.hpp"  // hpgl_to_sbp, dxf_to_sbp
 #include "gantry/interp/interpreter.hpp"
-#include "../lang/scan.hpp"  // upper, is_word
+#include "gantry/lang/scan.hpp"  // upper, is_word
 
 #include <spawn.h>     // posix_spawnp: FE's editor, without a shell
 #include <sys/wait.h>  // waitpid, WEXITSTATUS

@@ -5,7 +5,6 @@
 // UR loads them back (or the profile's). UI installs control-box firmware, and Gantry has no
 // control box: it says so by name. UZ is with the zero commands.
 #include <fmt/format.h>   // reports, messages
-#include <toml++/toml.h>  // comparing the machine's own keys (UR)
 
 #include <cmath>       // llround
 #include <cstdlib>     // getenv
@@ -14,7 +13,6 @@
 #include <sstream>
 #include <string>
 
-#include "../settings/settings_private.hpp"  // settings_table
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/text_file.hpp"  // read_text_file
 #include "gantry/interp/interpreter.hpp"
@@ -257,36 +255,6 @@ void save_settings(CommandContext& ctx, const CommandCall& call) {
   const std::string path = ctx.write_file(*call.text(0), text, call.param_loc(0));
   ctx.print(fmt::format("US saved the current settings to {}; UR, {} loads them again\n", path,
                         *call.text(0)));
-}
-
-std::string section_text(const toml::table& t, std::string_view key) {
-  const toml::node* n = t.get(key);
-  if (!n) return "";
-  toml::table one;
-  n->visit([&](const auto& v) { one.insert(key, v); });
-  std::ostringstream text;
-  text << toml::toml_formatter(one);
-  return text.str();
-}
-
-// The first key describing the machine itself (not an operator's value) that differs:
-// the card, its wiring, the axes' hardware limits, the planner; "" when none does.
-std::string machine_key_changed(const Settings& now, const Settings& next) {
-  const toml::table a = settings_table(now), b = settings_table(next);
-  for (const char* key : {"name", "dialect", "card", "pins", "outputs", "inputs"})
-    if (section_text(a, key) != section_text(b, key)) return key;
-  for (int i = 0; i < kAxisCount; ++i)
-    for (const char* key : {"max_speed", "max_accel"}) {
-      const std::string axis(1, kAxisLetters[i]);
-      if (a["axes"][axis][key].value<double>() != b["axes"][axis][key].value<double>())
-        return fmt::format("axes.{}.{}", axis, key);
-    }
-  for (const char* key :
-       {"mode", "corner_jump", "junction_deviation", "chord_tolerance", "lookahead"}) {
-    const toml::table pa = *a["planner"].as_table(), pb = *b["planner"].as_table();
-    if (section_text(pa, key) != section_text(pb, key)) return fmt::format("planner.{}", key);
-  }
-  return "";
 }
 
 void reset_settings(CommandContext& ctx, const CommandCall& call) {

@@ -1,7 +1,7 @@
 // The built-in functions of expressions (ABS ... FLOOR): their values and domain errors.
 #pragma once
 
-#include "../lang/expr_node.hpp"  // ExprNode
+#include "gantry/lang/expr_node.hpp"  // ExprNode
 
 namespace gantry {
 

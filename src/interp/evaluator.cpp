@@ -1,4 +1,5 @@
 // Evaluating expression trees: arithmetic, text, comparisons, logic, variables and calls.
+#include "gantry/lang/number_literal.hpp"  // parse_number_literal
 #include "gantry/interp/evaluator.hpp"
 
 #include <fmt/format.h>  // messages
@@ -7,12 +8,12 @@
 #include <climits>    // INT_MIN, INT_MAX
 #include <cmath>
 
-#include "../lang/expr_node.hpp"
+#include "gantry/lang/expr_node.hpp"
 #include "builtin_functions.hpp"    // apply_function
 #include "gantry/core/bounded.hpp"  // kMaxTextBytes
 #include "persistent_path.hpp"      // describe_path
 
-#include "../lang/scan.hpp"  // upper
+#include "gantry/lang/scan.hpp"  // upper
 
 namespace gantry {
 

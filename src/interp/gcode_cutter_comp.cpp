@@ -37,7 +37,7 @@
 #include <cmath>      // atan2, hypot, cos, sin, acos, asin, tan
 
 #include "gantry/interp/gcode_executor.hpp"
-#include "gantry/motion/arc_chords.hpp"  // plane_axes
+#include "gantry/canon/arc_geometry.hpp"  // plane_axes
 
 #include "gcode_cutter_comp.hpp"
 #include "gcode_words.hpp"

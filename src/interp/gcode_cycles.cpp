@@ -15,7 +15,7 @@
 
 #include <cmath>  // round
 
-#include "gantry/motion/arc_chords.hpp"  // plane_axes
+#include "gantry/canon/arc_geometry.hpp"  // plane_axes
 
 #include "gcode_cutter_comp.hpp"
 #include "gcode_words.hpp"

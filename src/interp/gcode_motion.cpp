@@ -5,7 +5,7 @@
 
 #include <cmath>  // atan2, hypot, round
 
-#include "gantry/motion/arc_chords.hpp"  // plane_axes
+#include "gantry/canon/arc_geometry.hpp"  // plane_axes
 
 #include "gcode_words.hpp"
 

@@ -10,14 +10,14 @@
 #include <filesystem>  // path joining for FP and C#
 #include <utility>     // exchange
 
-#include "../lang/scan.hpp"                  // looks_like_expression
+#include "gantry/lang/scan.hpp"                  // looks_like_expression
 #include "gantry/core/bounded.hpp"           // kMaxCoordinate
 #include "gantry/core/diagnostic_log.hpp"    // DiagnosticLog
 #include "gantry/core/file_problem.hpp"      // shown_path
 #include "gantry/core/text_file.hpp"         // write_file_atomically
 #include "gantry/cuts/passes.hpp"            // tabs on plain moves
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
-#include "gantry/motion/arc_chords.hpp"      // arc_to under an uneven FP scale
+#include "gantry/canon/arc_geometry.hpp"      // arc_to under an uneven FP scale
 #include "gantry/settings/profiles.hpp"      // shipped_profiles_holding
 #include "interp_private.hpp"                // Frame, UserFile
 #include "persistent_path.hpp"               // describe_path

@@ -9,7 +9,8 @@
 #include <filesystem>  // GetUsrPath, GetAppPath
 #include <functional>  // option values
 
-#include "../lang/scan.hpp"  // upper, trim
+#include "gantry/lang/number_literal.hpp"  // parse_number_literal
+#include "gantry/lang/scan.hpp"  // upper, trim
 #include "gantry/interp/interpreter.hpp"
 #include "interp_private.hpp"
 

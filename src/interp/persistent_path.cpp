@@ -7,7 +7,7 @@
 #include <cmath>    // trunc, fabs
 #include <cstdint>  // int64_t
 
-#include "../lang/expr_node.hpp"  // index expressions' own locations
+#include "gantry/lang/expr_node.hpp"  // index expressions' own locations
 
 namespace gantry {
 

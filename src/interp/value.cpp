@@ -5,16 +5,12 @@
 
 #include <cmath>  // isfinite, trunc, fabs
 
-#include "../lang/number_literal.hpp"  // literal::scan, literal::value
+#include "gantry/lang/number_literal.hpp"  // parse_number_literal
 #include "gantry/core/any_bytes.hpp"   // echoed: long texts are cut in messages
 
 namespace gantry {
 
 namespace {
-
-bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
-}
 
 // Long texts are cut in messages so the error line stays readable.
 std::string quoted_excerpt(std::string_view s) {
@@ -74,22 +70,6 @@ std::string format_number(double d) {
     out += "0." + std::string(static_cast<size_t>(-exp - 1), '0') + digits;
   }
   return out;
-}
-
-std::optional<double> parse_number_literal(std::string_view text) {
-  size_t b = 0, e = text.size();
-  while (b < e && is_space(text[b])) ++b;
-  while (e > b && is_space(text[e - 1])) --e;
-  text = text.substr(b, e - b);
-  bool negative = false;
-  if (!text.empty() && (text[0] == '+' || text[0] == '-')) {
-    negative = text[0] == '-';
-    text.remove_prefix(1);
-  }
-  if (text.empty() || literal::scan(text, 0) != text.size()) return std::nullopt;
-  std::optional<double> d = literal::value(text);
-  if (d && negative) *d = -*d;
-  return d;
 }
 
 }  // namespace gantry

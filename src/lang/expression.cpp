@@ -6,9 +6,9 @@
 
 #include <algorithm>  // max
 
-#include "expr_node.hpp"
+#include "gantry/lang/expr_node.hpp"
 #include "gantry/core/any_bytes.hpp"  // echoed: a token quoted in a message is capped
-#include "number_literal.hpp"  // literal::scan, literal::value
+#include "gantry/lang/number_literal.hpp"  // literal::scan, literal::value
 
 namespace gantry {
 

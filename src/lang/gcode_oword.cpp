@@ -7,8 +7,8 @@
 
 #include <cctype>  // tolower
 
-#include "number_literal.hpp"  // is_digit
-#include "scan.hpp"            // is_letter
+#include "gantry/lang/number_literal.hpp"  // is_digit
+#include "gantry/lang/scan.hpp"            // is_letter
 
 namespace gantry {
 

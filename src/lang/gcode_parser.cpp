@@ -8,7 +8,7 @@
 #include "gantry/lang/parser.hpp"  // LineParse, Statement
 #include "gcode_oword.hpp"         // O-word lines
 #include "gcode_scan.hpp"          // numbers, function names
-#include "scan.hpp"                // is_letter
+#include "gantry/lang/scan.hpp"                // is_letter
 
 namespace gantry {
 namespace {

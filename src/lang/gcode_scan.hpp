@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
-#include "number_literal.hpp"  // is_digit, plain_value, kPow10
-#include "scan.hpp"            // upper
+#include "gantry/lang/number_literal.hpp"  // is_digit, plain_value, kPow10
+#include "gantry/lang/scan.hpp"            // upper
 
 namespace gantry::gcode_scan {
 

@@ -8,9 +8,9 @@
 #include <cmath>      // floor
 
 #include "gantry/core/any_bytes.hpp"  // echoed: quoted source text is capped
-#include "gantry/interp/value.hpp"    // parse_number_literal
+#include "gantry/lang/number_literal.hpp"  // parse_number_literal
 #include "line_parser.hpp"          // LineParser
-#include "scan.hpp"                 // character helpers
+#include "gantry/lang/scan.hpp"                 // character helpers
 
 namespace gantry {
 

@@ -6,8 +6,8 @@
 // differential fuzz target checks that.
 #include "gantry/lang/parser.hpp"
 
-#include "number_literal.hpp"  // literal::scan, literal::value
-#include "scan.hpp"            // is_space, is_word
+#include "gantry/lang/number_literal.hpp"  // literal::scan, literal::value
+#include "gantry/lang/scan.hpp"            // is_space, is_word
 
 namespace gantry {
 namespace {

@@ -3,7 +3,7 @@
 #include <fmt/format.h>  // messages
 
 #include "line_parser.hpp"  // LineParser
-#include "scan.hpp"         // character helpers
+#include "gantry/lang/scan.hpp"         // character helpers
 
 namespace gantry {
 

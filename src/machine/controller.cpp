@@ -6,7 +6,8 @@
 #include <bit>  // countr_zero
 
 #include "gantry/core/bounded.hpp"  // checked_llround
-#include "gantry/machine/job.hpp"   // check_program
+#include "gantry/interp/program_check.hpp"  // check_program
+#include "gantry/motion/cycle_timer.hpp"    // the estimate
 
 namespace gantry {
 namespace {
@@ -219,8 +220,10 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
   std::vector<Diagnostic> errors;
   double estimate = estimated_time_s;
   if (!checked) {
-    DiagnosticLog found =
-        check_program(script, interp_->settings(), store_, check, false, &estimate);
+    CycleTimer timer(interp_->settings(), check.feed_override);
+    check.check_moves = &timer;
+    DiagnosticLog found = check_program(script, interp_->settings(), store_, check, false);
+    estimate = timer.seconds();
     for (Diagnostic& d : found.kept())
       if (d.severity == Severity::Error) errors.push_back(std::move(d));
   }

@@ -4,86 +4,13 @@
 
 #include <fmt/format.h>  // the warning
 
-#include <algorithm>  // stable_sort
-#include <climits>    // INT_MAX
 
 #include "gantry/core/text_file.hpp"            // read_text_file
 #include "gantry/machine/controller.hpp"        // Controller
-#include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
+#include "gantry/motion/cycle_timer.hpp"        // CycleTimer
 #include "gantry/settings/values_file.hpp"      // values_text
 
 namespace gantry {
-namespace {
-
-class NullSink : public MotionSink {
- public:
-  void move(const CanonMove&) override {}
-  void flush() override {}
-};
-
-// The check's moves to the estimating planner (or nowhere) and to an observer.
-class TeeSink : public MotionSink {
- public:
-  TeeSink(MotionSink& a, MotionSink& b) : a_(a), b_(b) {}
-  void move(const CanonMove& m) override { a_.move(m), b_.move(m); }
-  void flush() override { a_.flush(), b_.flush(); }
-  void settings_changed(const Settings& s) override {
-    a_.settings_changed(s), b_.settings_changed(s);
-  }
-
- private:
-  MotionSink &a_, &b_;
-};
-
-class NullSegments : public SegmentSink {
- public:
-  void segment(const PlannedSegment&) override {}
-  void flush() override {}
-};
-
-}  // namespace
-
-DiagnosticLog check_program(std::shared_ptr<const Script> script, const Settings& settings,
-                            const PersistentStore& store, const JobOptions& options,
-                            bool runtime_warnings, double* estimated_time_s) {
-  NullSink nothing;
-  NullSegments segments;
-  LookAheadPlanner planner(settings, segments);
-  planner.feed_override(options.feed_override);
-  MotionSink& planned = estimated_time_s ? static_cast<MotionSink&>(planner) : nothing;
-  TeeSink both(planned, options.check_moves ? *options.check_moves : nothing);
-  MotionSink& sink = options.check_moves ? static_cast<MotionSink&>(both) : planned;
-  std::string printed;  // a check prints nothing
-  ScriptedIO io(options.yes || options.operator_present, options.inputs, &printed);
-  PersistentStore scratch = store.scratch_copy();  // a check may assign $variables, never saves
-  InterpreterOptions opt = options.interpreter;
-  opt.dry_run = true;
-  opt.statement_budget = options.check_budget;
-  opt.operator_present = options.operator_present;
-  if (options.control) opt.stop_check = &options.control->stopped();
-  Interpreter interp(settings, sink, io, scratch, opt);
-  if (options.start_state) interp.restore_state(*options.start_state);
-  if (options.start_variables) interp.restore_variables(*options.start_variables);
-  if (options.record) interp.recorder() = *options.record;
-  DiagnosticLog log(options.max_errors);
-  interp.check(std::move(script), log);
-  if (estimated_time_s) *estimated_time_s = planner.planned_time();
-  if (runtime_warnings)
-    for (const Diagnostic& w : io.warnings()) log.add(w);
-  // In line order: the script's own pass found the syntax errors, the run the others.
-  // Messages from nested files keep their order after those of the top-level file.
-  auto key = [](const Diagnostic& d) { return d.via.empty() ? d.loc.line : INT_MAX; };
-  std::stable_sort(log.kept().begin(), log.kept().end(),
-                   [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
-  return log;
-}
-
-void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
-               OperatorIO& io, PersistentStore& store, const JobOptions& options) {
-  Interpreter interp(settings, sink, io, store, options.interpreter);
-  interp.run(std::move(script));
-}
-
 bool RunControl::stop() {
   std::lock_guard lock(m_);
   const bool first = ++stops_ == 1;
@@ -106,11 +33,16 @@ void RunControl::detach() {
 }
 
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
-                  OperatorIO& io, PersistentStore& store, const JobOptions& options) {
+                  OperatorIO& io, PersistentStore& store, const JobOptions& options,
+                  RunControl* control) {
   JobResult result;
   result.settings = settings;
-  DiagnosticLog checked =
-      check_program(script, settings, store, options, false, &result.estimated_time_s);
+  CycleTimer timer(settings, options.feed_override, options.check_moves);
+  JobOptions check = options;
+  check.check_moves = &timer;
+  if (control) check.stop = &control->stopped();
+  DiagnosticLog checked = check_program(script, settings, store, check, false);
+  result.estimated_time_s = timer.seconds();
   for (Diagnostic& d : checked.kept())
     (d.severity == Severity::Error ? result.errors : result.warnings).push_back(std::move(d));
   result.error_summary = checked.summary();
@@ -138,9 +70,9 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   const std::string name = *script->name();
   Outcome started;
   auto start = [&] { started = machine.run(std::move(script), true, result.estimated_time_s); };
-  if (!options.control) {
+  if (!control) {
     start();
-  } else if (!options.control->start(machine, start)) {
+  } else if (!control->start(machine, start)) {
     result.errors.push_back({file_loc(name), Severity::Error,
                              "stopped by the operator before the run started; nothing moved"});
     return result;
@@ -150,7 +82,7 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
     ~Detach() {
       if (c) c->detach();
     }
-  } detach{options.control};
+  } detach{control};
   if (!started) {
     result.errors.push_back({file_loc(name), Severity::Error, started.reason});
     return result;

@@ -22,7 +22,7 @@
 #include <cmath>      // abs, M_PI
 #include <vector>
 
-#include "gantry/motion/arc_chords.hpp"    // arc_chords
+#include "gantry/canon/arc_geometry.hpp"    // arc_chords
 #include "gantry/motion/corner_speed.hpp"  // corner_speed, rest_speed
 #include "gantry/motion/path_limits.hpp"   // path_limits
 

@@ -2,10 +2,12 @@
 #include "gantry/preview/toolpath.hpp"
 
 #include <algorithm>  // any_of
+#include <optional>
 
 #include "gantry/commands/command_table.hpp"  // CommandTable::is_command
 #include "gantry/lang/script.hpp"             // Script
-#include "gantry/motion/arc_chords.hpp"       // arc_chords
+#include "gantry/canon/arc_geometry.hpp"      // arc_chords
+#include "gantry/motion/cycle_timer.hpp"      // the estimate
 
 namespace gantry {
 
@@ -93,15 +95,17 @@ Toolpath load_toolpath(const std::string& path, const Settings& settings,
   Toolpath out;
   ToolpathSink sink(out, settings, opts);
   JobOptions job = opts.job;
-  job.check_moves = &sink;
+  std::optional<CycleTimer> timer;
+  if (opts.estimate) timer.emplace(settings, job.feed_override, &sink);
+  job.check_moves = timer ? static_cast<MotionSink*>(&*timer) : &sink;
   const PersistentStore none;
   try {
     std::shared_ptr<const Script> script =
         Script::load(path, CommandTable::standard().is_command());
     out.violations =
-        std::move(check_program(std::move(script), settings, opts.store ? *opts.store : none, job,
-                                true, opts.estimate ? &out.estimated_time_s : nullptr)
+        std::move(check_program(std::move(script), settings, opts.store ? *opts.store : none, job)
                       .kept());
+    if (timer) out.estimated_time_s = timer->seconds();
   } catch (const GantryError& e) {
     out.violations.push_back(e.diagnostic());
   } catch (const Cancelled&) {

@@ -147,4 +147,34 @@ std::string default_values_path(const std::string& profile_name) {
   return fmt::format("{}/values/{}.toml", user_config_dir(), file.empty() ? "profile" : file);
 }
 
+static std::string section_text(const toml::table& t, std::string_view key) {
+  const toml::node* n = t.get(key);
+  if (!n) return "";
+  toml::table one;
+  n->visit([&](const auto& v) { one.insert(key, v); });
+  std::ostringstream text;
+  text << toml::toml_formatter(one);
+  return text.str();
+}
+
+// The first key describing the machine itself (not an operator's value) that differs:
+// the card, its wiring, the axes' hardware limits, the planner; "" when none does.
+std::string machine_key_changed(const Settings& now, const Settings& next) {
+  const toml::table a = settings_table(now), b = settings_table(next);
+  for (const char* key : {"name", "dialect", "card", "pins", "outputs", "inputs"})
+    if (section_text(a, key) != section_text(b, key)) return key;
+  for (int i = 0; i < kAxisCount; ++i)
+    for (const char* key : {"max_speed", "max_accel"}) {
+      const std::string axis(1, kAxisLetters[i]);
+      if (a["axes"][axis][key].value<double>() != b["axes"][axis][key].value<double>())
+        return fmt::format("axes.{}.{}", axis, key);
+    }
+  for (const char* key :
+       {"mode", "corner_jump", "junction_deviation", "chord_tolerance", "lookahead"}) {
+    const toml::table pa = *a["planner"].as_table(), pb = *b["planner"].as_table();
+    if (section_text(pa, key) != section_text(pb, key)) return fmt::format("planner.{}", key);
+  }
+  return "";
+}
+
 }  // namespace gantry

@@ -1,7 +1,7 @@
 // A motion sink for tests and fuzz targets that keeps nothing.
 #pragma once
 
-#include "gantry/motion/canon_move.hpp"
+#include "gantry/canon/canon_move.hpp"
 
 namespace gantry {
 

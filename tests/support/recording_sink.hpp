@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "gantry/motion/canon_move.hpp"
+#include "gantry/canon/canon_move.hpp"
 
 namespace gantry {
 

@@ -26,7 +26,7 @@
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/interp/persistent_store.hpp"
 #include "gantry/lang/script.hpp"
-#include "gantry/motion/canon_move.hpp"
+#include "gantry/canon/canon_move.hpp"
 #include "gantry/motion/corner_speed.hpp"
 #include "gantry/motion/lookahead_planner.hpp"
 #include "gantry/motion/planned_segment.hpp"

@@ -22,7 +22,7 @@
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/interp/persistent_store.hpp"
 #include "gantry/lang/script.hpp"
-#include "gantry/motion/arc_chords.hpp"
+#include "gantry/canon/arc_geometry.hpp"
 #include "gantry/motion/lookahead_planner.hpp"
 #include "gantry/motion/planned_segment.hpp"
 

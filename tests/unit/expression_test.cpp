@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "gantry/lang/number_literal.hpp"  // parse_number_literal
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/evaluator.hpp"
 #include "gantry/interp/value.hpp"

@@ -11,7 +11,7 @@
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/lang/script.hpp"
-#include "gantry/motion/canon_move.hpp"
+#include "gantry/canon/canon_move.hpp"
 #include "gantry/settings/settings.hpp"
 
 namespace gantry {

@@ -26,7 +26,7 @@
 #include "gantry/interp/persistent_store.hpp"
 #include "gantry/interp/value.hpp"
 #include "gantry/lang/script.hpp"
-#include "gantry/motion/canon_move.hpp"
+#include "gantry/canon/canon_move.hpp"
 #include "gantry/settings/settings.hpp"
 
 namespace gantry {

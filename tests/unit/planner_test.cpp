@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "gantry/motion/arc_chords.hpp"
+#include "gantry/canon/arc_geometry.hpp"
 #include "gantry/motion/corner_speed.hpp"
 #include "gantry/motion/lookahead_planner.hpp"
 #include "gantry/motion/path_limits.hpp"

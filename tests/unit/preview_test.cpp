@@ -8,6 +8,7 @@
 #include <fstream>
 #include <regex>
 
+#include "gantry/motion/cycle_timer.hpp"
 #include "gantry/lang/script.hpp"  // Script
 #include "gantry/machine/job.hpp"  // check_program, interpret
 #include "gantry/preview/material.hpp"
@@ -78,9 +79,11 @@ TEST(Toolpath, DemoHasTheBoundsMovesAndEstimateOfTheCheck) {
   for (const CanonMove& m : moves) lines += m.kind == MoveKind::Line;
   EXPECT_EQ(path.segments.size(), lines);
 
-  double estimate = 0;
-  check_program(Script::load((kParts / "demo.sbp").string()), s, PersistentStore(), {}, true,
-                &estimate);
+  CycleTimer timer(s, 1);
+  JobOptions timed;
+  timed.check_moves = &timer;
+  check_program(Script::load((kParts / "demo.sbp").string()), s, PersistentStore(), timed);
+  const double estimate = timer.seconds();
   EXPECT_GT(estimate, 0);
   EXPECT_DOUBLE_EQ(path.estimated_time_s, estimate);
   EXPECT_EQ(load_toolpath((kParts / "demo.sbp").string(), s).estimated_time_s, 0);  // not asked

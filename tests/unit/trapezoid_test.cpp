@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "gantry/motion/canon_move.hpp"
+#include "gantry/canon/canon_move.hpp"
 #include "gantry/motion/path_limits.hpp"
 #include "gantry/motion/trapezoid.hpp"
 #include "gantry/settings/settings.hpp"

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "gantry/motion/canon_move.hpp"  // SpeedClass
+#include "gantry/canon/canon_move.hpp"  // SpeedClass
 
 namespace gantry::cuts {
 

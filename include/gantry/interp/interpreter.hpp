@@ -22,7 +22,7 @@
 #include "gantry/interp/persistent_store.hpp"    // PersistentStore
 #include "gantry/interp/system_variables.hpp"    // MachineSnapshot
 #include "gantry/lang/script.hpp"                // Script, Cursor
-#include "gantry/motion/canon_move.hpp"          // CanonMove, MotionSink
+#include "gantry/canon/canon_move.hpp"          // CanonMove, MotionSink
 #include "gantry/settings/settings.hpp"          // Settings
 
 namespace gantry {

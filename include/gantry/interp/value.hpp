@@ -37,8 +37,4 @@ class Value {
 // How the language prints a number (PRINT, WRITE, string joins): see docs/language.md.
 std::string format_number(double d);
 
-// Parses a whole trimmed string as a number literal with an optional sign; nullopt if it is
-// not one.
-std::optional<double> parse_number_literal(std::string_view text);
-
 }  // namespace gantry

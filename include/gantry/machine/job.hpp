@@ -13,11 +13,10 @@
 
 #include "gantry/core/diagnostic_log.hpp"      // DiagnosticLog
 #include "gantry/hal/card.hpp"                 // Card
-#include "gantry/interp/interpreter.hpp"       // InterpreterOptions
 #include "gantry/interp/operator_io.hpp"       // OperatorIO
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
+#include "gantry/interp/program_check.hpp"     // JobOptions, check_program
 #include "gantry/lang/script.hpp"              // Script
-#include "gantry/motion/canon_move.hpp"        // MotionSink
 #include "gantry/settings/settings.hpp"        // Settings
 
 namespace gantry {
@@ -50,30 +49,6 @@ class RunControl {
   std::atomic<bool> stopped_{false};
 };
 
-struct JobOptions {
-  std::function<void(std::size_t done, std::size_t total)> progress;  // lines of the top file
-  InterpreterOptions interpreter;
-  std::map<std::string, std::string> inputs;  // --input answers, for the check as well
-  bool yes = false;                           // --yes: PAUSE continues, MSGBOX defaults
-  bool operator_present = true;               // a person answers at a terminal
-  std::size_t check_budget = 10'000'000;      // statements a check may run (loops end there)
-  std::size_t max_errors = 100;  // a check stops after this many errors (0: never); the rest
-                                 // are counted by kind (DiagnosticLog::summary)
-  double feed_override = 1;                   // 0.1 to 2: the speeds' factor (estimate too)
-  // Where the run saves the values it leaves changed (V commands, MS, JS), as the keys that
-  // differ from `profile`; empty (or no profile): nothing is saved.
-  std::string values_path;
-  const Settings* profile = nullptr;
-  // Where the check starts (the machine controller's live state); null: a fresh machine.
-  const ModalState* start_state = nullptr;
-  const std::unordered_map<std::string, Value>* start_variables = nullptr;  // and its &variables
-  // The console's command record, for a check of RP, RR and RS; null: an empty one.
-  const CommandRecorder* record = nullptr;
-  // The check's moves go here as well (a preview draws them); null: nowhere.
-  MotionSink* check_moves = nullptr;
-  RunControl* control = nullptr;  // stops the run from another thread; null: none
-};
-
 struct JobResult {
   std::vector<Diagnostic> errors;     // empty when the job ran to its end
   std::string error_summary;          // the check's errors beyond its cap, in one line
@@ -96,21 +71,9 @@ struct JobResult {
 // Checks every statement first (collecting all errors) without writing a file or touching
 // the persistent store; only a clean file reaches the card, so a bad file never moves the
 // machine. Then runs it, asking `io` for operator answers.
+// `control`: stops the check and the run from another thread (null: nothing does).
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
-                  OperatorIO& io, PersistentStore& store, const JobOptions& options = {});
-
-// Interprets without motion and returns every error and warning (up to options.max_errors
-// errors, the rest summarised), in line order, and whether it stopped short: what `gantry
-// check` says. `runtime_warnings`: also the warnings statements give as they run (PLAY,
-// CLOSE), which a run reports itself.
-// With `estimated_time_s`, the check also plans the motion it finds and gives its cycle time
-// (what `gantry estimate` prints); operator waits (PAUSE with no time) count as zero.
-DiagnosticLog check_program(std::shared_ptr<const Script> script, const Settings& settings,
-                            const PersistentStore& store, const JobOptions& options = {},
-                            bool runtime_warnings = true, double* estimated_time_s = nullptr);
-
-// Interprets a checked program, handing each canonical move to `sink` (for `gantry moves`).
-void interpret(std::shared_ptr<const Script> script, const Settings& settings, MotionSink& sink,
-               OperatorIO& io, PersistentStore& store, const JobOptions& options = {});
+                  OperatorIO& io, PersistentStore& store, const JobOptions& options = {},
+                  RunControl* control = nullptr);
 
 }  // namespace gantry

@@ -5,7 +5,7 @@
 #include <deque>
 #include <vector>
 
-#include "gantry/motion/canon_move.hpp"       // MotionSink, CanonMove
+#include "gantry/canon/canon_move.hpp"       // MotionSink, CanonMove
 #include "gantry/motion/planned_segment.hpp"  // SegmentSink
 
 namespace gantry {

@@ -3,7 +3,7 @@
 
 #include <span>
 
-#include "gantry/motion/canon_move.hpp"  // CanonMove, SpeedClass
+#include "gantry/canon/canon_move.hpp"  // CanonMove, SpeedClass
 #include "gantry/settings/settings.hpp"  // Settings
 
 namespace gantry {

@@ -3,7 +3,7 @@
 
 #include <optional>
 
-#include "gantry/motion/canon_move.hpp"  // SpeedClass, Vec6, SourceLoc
+#include "gantry/canon/canon_move.hpp"  // SpeedClass, Vec6, SourceLoc
 #include "gantry/motion/trapezoid.hpp"   // Trapezoid
 
 namespace gantry {

@@ -14,8 +14,8 @@
 
 #include "gantry/core/diagnostic.hpp"          // Diagnostic
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
-#include "gantry/machine/job.hpp"              // JobOptions
-#include "gantry/motion/canon_move.hpp"        // CanonMove
+#include "gantry/interp/program_check.hpp"     // JobOptions
+#include "gantry/canon/canon_move.hpp"        // CanonMove
 #include "gantry/settings/settings.hpp"        // Settings
 
 namespace gantry {

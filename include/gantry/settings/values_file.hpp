@@ -27,4 +27,9 @@ std::string values_text(const Settings& current, const Settings& profile);
 // user_config_dir()/values/<name as a file name>.toml.
 std::string default_values_path(const std::string& profile_name);
 
+// The first key describing the machine itself (not an operator's value) that differs between
+// `now` and `next`: the card, its wiring, the axes' hardware limits, the planner; "" when none
+// does (UR refuses to change these from a values file).
+std::string machine_key_changed(const Settings& now, const Settings& next);
+
 }  // namespace gantry

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "gantry/motion/canon_move.hpp"  // IndependentMotion
+#include "gantry/canon/canon_move.hpp"  // IndependentMotion
 
 namespace gantry {
 

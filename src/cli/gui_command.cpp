@@ -10,11 +10,11 @@
 
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
 #include "gantry/machine/controller.hpp"       // Controller
-#include "gui.hpp"                             // run_gui
-#include "live_machine.hpp"                    // ValuesKeeper, open_live_card (src/cli)
-#include "machine_profile.hpp"                 // load_machine_profile (src/cli)
-#include "open_card.hpp"                       // plays_in_real_time (src/cli)
-#include "window_io.hpp"                       // WindowIO
+#include "gui.hpp"                             // run_gui (ui/)
+#include "live_machine.hpp"                    // ValuesKeeper, open_live_card
+#include "machine_profile.hpp"                 // load_machine_profile
+#include "open_card.hpp"                       // plays_in_real_time
+#include "window_io.hpp"                       // WindowIO (ui/)
 
 namespace gantry {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "live_machine.hpp"  // LiveMachineArgs (src/cli)
+#include "live_machine.hpp"  // LiveMachineArgs
 
 namespace gantry {
 

@@ -92,3 +92,11 @@ inline std::optional<double> value(std::string_view lit) {
 }
 
 }  // namespace gantry::literal
+
+namespace gantry {
+
+// Parses a whole trimmed string as a number literal with an optional sign; nullopt if it is
+// not one.
+std::optional<double> parse_number_literal(std::string_view text);
+
+}  // namespace gantry

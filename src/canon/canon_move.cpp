@@ -1,5 +1,5 @@
 // Names of move kinds and speed classes, as reports and `gantry moves` print them.
-#include "gantry/motion/canon_move.hpp"
+#include "gantry/canon/canon_move.hpp"
 
 namespace gantry {
 

@@ -1,5 +1,5 @@
 // Chordal approximation of arcs.
-#include "gantry/motion/arc_chords.hpp"
+#include "gantry/canon/arc_geometry.hpp"
 
 #include <algorithm>  // max, min
 #include <cmath>      // acos, ceil, cos, sin, atan2, hypot

@@ -1,10 +1,11 @@
-// Arcs as chords: the points a planner runs an arc through, within a chordal tolerance.
+// Arc geometry the interpreters, the planner, the preview and export share: an arc plane's axes,
+// its radius, and its chords within a tolerance (what a planner runs an arc through).
 #pragma once
 
 #include <array>
 #include <vector>
 
-#include "gantry/motion/canon_move.hpp"  // CanonMove (Arc)
+#include "gantry/canon/canon_move.hpp"  // CanonMove (Arc)
 
 namespace gantry {
 
