@@ -6,9 +6,9 @@
 
 #include "gantry/lang/gcode.hpp"
 #include "gantry/lang/parser.hpp"  // LineParse, Statement
+#include "gantry/lang/scan.hpp"    // is_letter
 #include "gcode_oword.hpp"         // O-word lines
 #include "gcode_scan.hpp"          // numbers, function names
-#include "gantry/lang/scan.hpp"                // is_letter
 
 namespace gantry {
 namespace {
@@ -59,6 +59,10 @@ class BlockReader {
       } else if (is_letter(c)) {
         word(first);
         first = false;
+      } else if (c == '"') {
+        error(i_,
+              "a quoted text is WinCNC's G5 message box (G5 T# M\"text\"), which Gantry does not "
+              "show: write (MSG, text) and M0 to stop with a message");
       } else {
         error(i_, fmt::format("unexpected '{}': a block is made of words such as G1 or X2.5, "
                               "comments in ( ) and #n = value settings",
@@ -72,6 +76,19 @@ class BlockReader {
   [[noreturn]] void error(size_t i, std::string what) const { fail(loc(i), std::move(what)); }
   void skip() {
     while (i_ < s_.size() && is_space(s_[i_])) ++i_;
+  }
+
+  // WinCNC's codes that take an O word (G41/G42's compensation amount, M37's manual offset),
+  // when the block so far holds one; null otherwise.
+  const char* wincnc_o_code() const {
+    for (const GcodeWord& w : out_->words) {
+      if (w.expr >= 0) continue;
+      if (w.letter == 'G' && (w.number == 41 || w.number == 42))
+        return w.number == 41 ? "G41 O# (the compensation amount)"
+                              : "G42 O# (the compensation amount)";
+      if (w.letter == 'M' && w.number == 37) return "M37 O# (a manual offset of the measure)";
+    }
+    return nullptr;
   }
 
   void comment() {
@@ -192,6 +209,11 @@ class BlockReader {
     if (i_ + 1 < s_.size() && is_letter(s_[i_ + 1]) && !function_at(s_, i_).empty())
       error(at, "a function is a value: write it after a word's letter, as in X[SIN[30]]");
     if (letter == 'O') {
+      if (const char* code = wincnc_o_code())
+        error(at, fmt::format("O is WinCNC's {}, which Gantry does not read: {}", code,
+                              std::string_view(code).starts_with("M37")
+                                  ? "measure with M37 Z (the height of the tool tip)"
+                                  : "give the tool's diameter with D (or the tool table)"));
       if (!out_->words.empty() || !out_->assigns.empty() || out_->message)
         error(at, "an O-word comes first on its line: put the other words on a line of their own");
       gcode_oword::read(s_, at, loc(at), out_);
@@ -206,7 +228,8 @@ class BlockReader {
     if (letter == 'N') {
       if (!first || w.bare || w.expr >= 0)
         error(at, first ? "N needs a line number, as in N10"
-                        : "a line number N must come first in the block");
+                        : "a line number N must come first in the block (WinCNC's L1 N# V# "
+                          "stores an H register, which Gantry does not have: use #parameters)");
       return;
     }
     if (letter == 'M' && w.expr < 0 && (w.number == 98 || w.number == 99))
@@ -222,6 +245,17 @@ class BlockReader {
         i_ = end;
       }
     }
+    if (letter == 'W' || letter == 'U' || letter == 'V')
+      error(at, fmt::format("{} is not a G-code word letter: in WinCNC it is the axis of {} "
+                            "vertical head; Gantry drives one head, Z: program the cut on Z",
+                            letter,
+                            letter == 'W'   ? "a second"
+                            : letter == 'U' ? "a third"
+                                            : "a fourth"));
+    if (letter == 'E')
+      error(at,
+            "E is not a G-code word letter: in WinCNC it is L10's (a cut array), which Gantry "
+            "does not run: repeat the cut in the CAM program, or with FP from an OpenSBP file");
     if (std::string_view("ABCDFGHIJKLMPQRSTXYZ").find(letter) == std::string_view::npos)
       error(at,
             fmt::format("'{}' is not a G-code word letter; the letters are A B C D F G H I J K L "

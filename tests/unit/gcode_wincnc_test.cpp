@@ -491,5 +491,35 @@ TEST_F(WinCncTest, EveryCodeOfTheManualWorksOrIsRefusedByName) {
               works, refused);
 }
 
+// The letters and forms WinCNC writes that have no place here are refused where they stand,
+// naming what they are in WinCNC and what to write instead (docs/gcode.md, the WinCNC table).
+TEST_F(WinCncTest, WinCncLettersAreRefusedByWhatTheyAre) {
+  struct Case {
+    const char* line;
+    int column;
+    const char* names;
+  };
+  const Case cases[] = {
+      {"G1 X1 W-0.5 F20", 7, "a second vertical head"},
+      {"G0 U2", 4, "a third vertical head"},
+      {"G0 V2", 4, "a fourth vertical head"},
+      {"L10 R5 C5 X4 Y4 E1", 17, "L10's (a cut array)"},
+      {"L1 N3 V2", 4, "WinCNC's L1 N# V# stores an H register"},
+      {"G41 O0.125", 5, "G41 O# (the compensation amount)"},
+      {"G42 O0.125", 5, "G42 O# (the compensation amount)"},
+      {"M37 O0.1 Z0", 5, "M37 O# (a manual offset of the measure)"},
+      {"G5 T1 M\"Continue?\"", 8, "WinCNC's G5 message box"},
+  };
+  for (const Case& c : cases) {
+    const Diagnostic d = error(std::string(c.line) + "\n");
+    EXPECT_EQ(d.loc.line, 1) << c.line;
+    EXPECT_EQ(d.loc.column, c.column) << c.line << ": " << d.message;
+    EXPECT_NE(d.message.find(c.names), std::string::npos) << c.line << ": " << d.message;
+    EXPECT_TRUE(sink.moves.empty()) << c.line;
+  }
+  // An O-word line of standard G-code still reads as one.
+  EXPECT_NE(error("G1 X1 o100 call\n").message.find("an O-word comes first"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace gantry
