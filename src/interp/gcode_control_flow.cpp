@@ -39,7 +39,7 @@ void Interpreter::gcode_drop_stale_calls() {
 }
 
 void Interpreter::push_gcode_frame(std::shared_ptr<const Script> script, Cursor pc,
-                                   const SourceLoc& from) {
+                                   const SourceLoc& from, bool restore_g92) {
   if (static_cast<int>(frames_.size()) >= options_.max_file_depth)
     fail(from, fmt::format("files are nested {} deep, the most allowed; a file may be calling "
                            "itself",
@@ -53,6 +53,7 @@ void Interpreter::push_gcode_frame(std::shared_ptr<const Script> script, Cursor 
   f.transform = frames_.back().transform;
   f.plunge_start_z = state_.position[2];
   frames_.push_back(std::move(f));
+  gcode_->enter_file(restore_g92);  // end_file's leave_file pops what this pushes
 }
 
 void Interpreter::gcode_flow(const GcodeBlock& b, const SourceLoc& loc) {
@@ -224,7 +225,7 @@ void Interpreter::gcode_call(const GcodeBlock& b, const SourceLoc& loc) {
   c.back = f->pc;
   c.repeats_base = g.repeats.size();
   if (file) {
-    push_gcode_frame(std::move(file), *body, at);
+    push_gcode_frame(std::move(file), *body, at, /*restore_g92=*/false);
     c.own_frame = true;
   } else {
     f->pc = *body;
@@ -352,7 +353,7 @@ void Interpreter::gcode_call_file(const GcodeBlock& b, const SourceLoc& loc) {
         d.via.push_back(at);
         throw GantryError(std::move(d));
       }
-  push_gcode_frame(file, file->start(), at);
+  push_gcode_frame(file, file->start(), at, /*restore_g92=*/true);
 }
 
 }  // namespace gantry

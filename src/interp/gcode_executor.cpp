@@ -170,6 +170,10 @@ void GcodeExecutor::begin_file(bool typed) {
   modes_.retract_to_r = true;  // G99: LinuxCNC's interpreter starts in it (docs/gcode.md)
 }
 
+void GcodeExecutor::enter_file(bool restore_g92) {
+  file_g92_.push_back({ctx_.state().gcode.axis_offset, !restore_g92});
+}
+
 // ---- parameters -------------------------------------------------------------------------
 
 double GcodeExecutor::numbered(int n, const SourceLoc* at) const {

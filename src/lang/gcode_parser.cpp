@@ -78,17 +78,11 @@ class BlockReader {
     while (i_ < s_.size() && is_space(s_[i_])) ++i_;
   }
 
-  // WinCNC's codes that take an O word (G41/G42's compensation amount, M37's manual offset),
-  // when the block so far holds one; null otherwise.
-  const char* wincnc_o_code() const {
-    for (const GcodeWord& w : out_->words) {
-      if (w.expr >= 0) continue;
-      if (w.letter == 'G' && (w.number == 41 || w.number == 42))
-        return w.number == 41 ? "G41 O# (the compensation amount)"
-                              : "G42 O# (the compensation amount)";
-      if (w.letter == 'M' && w.number == 37) return "M37 O# (a manual offset of the measure)";
-    }
-    return nullptr;
+  // Whether the block so far holds the plain word `letter``number` (G41, M37).
+  bool has_code(char letter, double number) const {
+    for (const GcodeWord& w : out_->words)
+      if (w.letter == letter && w.expr < 0 && w.number == number) return true;
+    return false;
   }
 
   void comment() {
@@ -208,12 +202,14 @@ class BlockReader {
     // A function's name has two letters or more; a word's letter is followed by its value.
     if (i_ + 1 < s_.size() && is_letter(s_[i_ + 1]) && !function_at(s_, i_).empty())
       error(at, "a function is a value: write it after a word's letter, as in X[SIN[30]]");
-    if (letter == 'O') {
-      if (const char* code = wincnc_o_code())
-        error(at, fmt::format("O is WinCNC's {}, which Gantry does not read: {}", code,
-                              std::string_view(code).starts_with("M37")
-                                  ? "measure with M37 Z (the height of the tool tip)"
-                                  : "give the tool's diameter with D (or the tool table)"));
+    // WinCNC's O word: M37's offset (read as a word), G41/G42's compensation amount (not read).
+    const bool m37_offset = letter == 'O' && has_code('M', 37);
+    if (letter == 'O' && !m37_offset) {
+      if (has_code('G', 41) || has_code('G', 42))
+        error(at,
+              "O is WinCNC's compensation amount of G41/G42 (G41 O#), which Gantry does not "
+              "read: give the tool's diameter with G41.1 D#, or its tool number with G41 D# and "
+              "the tool table");
       if (!out_->words.empty() || !out_->assigns.empty() || out_->message)
         error(at, "an O-word comes first on its line: put the other words on a line of their own");
       gcode_oword::read(s_, at, loc(at), out_);
@@ -256,7 +252,8 @@ class BlockReader {
       error(at,
             "E is not a G-code word letter: in WinCNC it is L10's (a cut array), which Gantry "
             "does not run: repeat the cut in the CAM program, or with FP from an OpenSBP file");
-    if (std::string_view("ABCDFGHIJKLMPQRSTXYZ").find(letter) == std::string_view::npos)
+    if (!m37_offset &&
+        std::string_view("ABCDFGHIJKLMPQRSTXYZ").find(letter) == std::string_view::npos)
       error(at,
             fmt::format("'{}' is not a G-code word letter; the letters are A B C D F G H I J K L "
                         "M N P Q R S T X Y Z",

@@ -309,6 +309,31 @@ TEST_F(OwordFileTest, WincncM98File) {
   expect_at(check(Script::load(main)), 2, 5, "gcode_dialect = \"wincnc\"");
 }
 
+// WinCNC, L92: "The current G92 Local Coordinate system is saved every time a program is
+// started or a subprogram is called using M98. When the program is finished, the original G92
+// system is restored"; "L92 causes the normal G92 coordinate restore to be skipped after the
+// program containing the L92 is finished". The caller's G92 X0 at machine X1 makes X2 machine
+// 3; the sub's G92.1 X10 (local X0 at machine 10) makes it 12 when kept.
+TEST_F(OwordFileTest, WincncM98FileRestoresTheCallersG92UnlessL92) {
+  settings.gcode_dialect = GcodeDialect::WinCNC;
+  const std::string sub = "G92.1 X10\nG0 X0\n";
+  write("m99.tap", sub + "M99\nG0 X7\n");
+  write("eof.tap", sub);
+  write("keep.tap", "L92\n" + sub + "M99\n");
+  for (const char* call : {"M98 m99.tap", "M98 eof.tap", "M98.1 m99.tap", "M98.1 eof.tap"}) {
+    const std::string main =
+        write("main.tap", std::string("G0 X1\nG92 X0\n") + call + "\nG0 X2\nG0 X0\n");
+    expect_moves(run(Script::load(main)), {v6(1, 0), v6(10, 0), v6(3, 0), v6(1, 0)});
+    EXPECT_TRUE(check(Script::load(main)).empty()) << call;
+  }
+  const std::string main = write("main.tap", "G0 X1\nG92 X0\nM98 keep.tap\nG0 X2\n");
+  expect_moves(run(Script::load(main)), {v6(1, 0), v6(10, 0), v6(12, 0)});
+  // Two calls deep: each file gets back the offsets it made the call with.
+  write("outer.tap", "G92.1 X20\nM98 m99.tap\nG0 X1\nM99\n");
+  const std::string nested = write("main.tap", "G0 X1\nG92 X0\nM98 outer.tap\nG0 X2\n");
+  expect_moves(run(Script::load(nested)), {v6(1, 0), v6(10, 0), v6(21, 0), v6(3, 0)});
+}
+
 // LinuxCNC's refusals, found by the load pass where they can be seen without running, each
 // located, and nothing moves.
 TEST_F(OwordTest, RefusalsAreLocated) {

@@ -505,9 +505,8 @@ TEST_F(WinCncTest, WinCncLettersAreRefusedByWhatTheyAre) {
       {"G0 V2", 4, "a fourth vertical head"},
       {"L10 R5 C5 X4 Y4 E1", 17, "L10's (a cut array)"},
       {"L1 N3 V2", 4, "WinCNC's L1 N# V# stores an H register"},
-      {"G41 O0.125", 5, "G41 O# (the compensation amount)"},
-      {"G42 O0.125", 5, "G42 O# (the compensation amount)"},
-      {"M37 O0.1 Z0", 5, "M37 O# (a manual offset of the measure)"},
+      {"G41 O0.125", 5, "compensation amount of G41/G42"},
+      {"G42 O0.125", 5, "compensation amount of G41/G42"},
       {"G5 T1 M\"Continue?\"", 8, "WinCNC's G5 message box"},
   };
   for (const Case& c : cases) {
@@ -517,6 +516,13 @@ TEST_F(WinCncTest, WinCncLettersAreRefusedByWhatTheyAre) {
     EXPECT_NE(d.message.find(c.names), std::string::npos) << c.line << ": " << d.message;
     EXPECT_TRUE(sink.moves.empty()) << c.line;
   }
+  // M37's O, the measure's offset, is read (the measure is the O given).
+  settings.gcode_dialect = GcodeDialect::WinCNC;
+  const std::vector<CanonMove> plain = run("G90\nG0 Z1\n");
+  const std::vector<CanonMove> measured = run("G90\nM37 O0.25\nG43\nG0 Z1\n");
+  ASSERT_FALSE(plain.empty());
+  ASSERT_FALSE(measured.empty());
+  EXPECT_NEAR(measured.back().to[2] - plain.back().to[2], 0.25, 1e-9);  // machine = file + O
   // An O-word line of standard G-code still reads as one.
   EXPECT_NE(error("G1 X1 o100 call\n").message.find("an O-word comes first"), std::string::npos);
 }

@@ -28,6 +28,10 @@ class GcodeExecutor : private GcodeParameters {
   // A pass of a G-code file ends (its last line at `loc` ran, or M2/M30): moves that cutter
   // compensation held back for their corner go out.
   void end_file(const SourceLoc& loc);
+  // A file called from a G-code file starts (WinCNC's M98 file, a subroutine's file): its
+  // modes go on; its G92 offsets are saved to be restored when it is left (WinCNC, for M98's
+  // file, `restore_g92`) unless it gives L92.
+  void enter_file(bool restore_g92);
   // The file is left for good: WinCNC restores the G92 offsets it began with unless it gave
   // L92.
   void leave_file();

@@ -500,7 +500,9 @@ class Interpreter : private EvalEnv {
   void gcode_call_file(const GcodeBlock& b, const SourceLoc& loc);
   void gcode_drop_stale_calls();
   std::string gcode_sub_file(const std::string& name, const SourceLoc& loc) const;
-  void push_gcode_frame(std::shared_ptr<const Script> script, Cursor pc, const SourceLoc& from);
+  // `restore_g92`: WinCNC's M98 file, whose end restores the caller's G92 (unless L92).
+  void push_gcode_frame(std::shared_ptr<const Script> script, Cursor pc, const SourceLoc& from,
+                        bool restore_g92);
   UserFile& user_file(const Expr& number, const SourceLoc& loc, bool must_be_open);
   std::string pause_message(const SourceLoc& loc) const;
   Value value_of(const Arg& a);
