@@ -258,30 +258,30 @@ double evaluate_gcode_expression(const GcodeBlock& b, int expr, const SourceLoc&
   std::vector<double> large;
   if (code.depth > kOnStack) large.resize(code.depth);
   double* const stack = code.depth > kOnStack ? large.data() : small;
-  double* top = stack - 1;  // the last value pushed
-  // A step's location, made only for an error (a SourceLoc copy costs an atomic increment).
-  auto error = [&](const GcodeStep& s, const std::string& what) {
+  double* top = stack;  // past the last value pushed
+  // A step's location, made only when needed (a SourceLoc copy costs an atomic increment).
+  auto located = [&](const GcodeStep& s) {
     SourceLoc l = line;
     l.column = b.exprs_column[static_cast<size_t>(expr)] + static_cast<int>(s.offset);
-    fail(l, what);
+    return l;
   };
+  auto error = [&](const GcodeStep& s, const std::string& what) { fail(located(s), what); };
   // #n: a machine parameter (above #5000) is given its reader's location, in case it cannot
   // be read now; the others never need one.
   auto parameter = [&](const GcodeStep& s, int n) {
     if (n <= 5000) return params.numbered(n, &line);
-    SourceLoc l = line;
-    l.column = b.exprs_column[static_cast<size_t>(expr)] + static_cast<int>(s.offset);
-    return params.numbered(n, &l);
+    const SourceLoc at = located(s);
+    return params.numbered(n, &at);
   };
   auto domain = [&](const GcodeStep& s, bool ok) {
-    if (!ok) error(s, fmt::format("{}[{}] is not defined", name_of(s.op), *top));
+    if (!ok) error(s, fmt::format("{}[{}] is not defined", name_of(s.op), top[-1]));
   };
   constexpr double deg = M_PI / 180;
   for (std::uint32_t i = code.begin; i < code.end; ++i) {
     const GcodeStep& s = b.steps[i];
     if (s.op >= Op::Atan) {  // the two-value steps
-      const double y = *top--;
-      double& x = *top;
+      const double y = *--top;
+      double& x = top[-1];
       switch (s.op) {
         case Op::Atan:
           x = std::atan2(x, y) / deg;
@@ -342,16 +342,16 @@ double evaluate_gcode_expression(const GcodeBlock& b, int expr, const SourceLoc&
     }
     switch (s.op) {
       case Op::Number:
-        *++top = s.number;
+        *top++ = s.number;
         break;
       case Op::Param:
-        *++top = parameter(s, s.index);
+        *top++ = parameter(s, s.index);
         break;
       case Op::ParamAt: {
-        const double n = *top;
+        const double n = top[-1];
         if (n != std::round(n) || n < 1 || n > kLastParameter)
           error(s, fmt::format("#{} is not a parameter: parameters are #1 to #5602", n));
-        *top = parameter(s, static_cast<int>(n));
+        top[-1] = parameter(s, static_cast<int>(n));
         break;
       }
       case Op::Named: {
@@ -359,54 +359,54 @@ double evaluate_gcode_expression(const GcodeBlock& b, int expr, const SourceLoc&
         const double* v = params.named(name);
         if (!v)
           error(s, fmt::format("#<{}> has no value yet; set it first, as #<{}> = 1", name, name));
-        *++top = *v;
+        *top++ = *v;
         break;
       }
       case Op::Exists:
-        *++top = params.named(b.names[static_cast<size_t>(s.index)]) ? 1 : 0;
+        *top++ = params.named(b.names[static_cast<size_t>(s.index)]) ? 1 : 0;
         break;
       case Op::Neg:
-        *top = -*top;
+        top[-1] = -top[-1];
         break;
       case Op::Abs:
-        *top = std::abs(*top);
+        top[-1] = std::abs(top[-1]);
         break;
       case Op::Acos:
-        domain(s, *top >= -1 && *top <= 1), *top = std::acos(*top) / deg;
+        domain(s, top[-1] >= -1 && top[-1] <= 1), top[-1] = std::acos(top[-1]) / deg;
         break;
       case Op::Asin:
-        domain(s, *top >= -1 && *top <= 1), *top = std::asin(*top) / deg;
+        domain(s, top[-1] >= -1 && top[-1] <= 1), top[-1] = std::asin(top[-1]) / deg;
         break;
       case Op::Cos:
-        *top = std::cos(*top * deg);
+        top[-1] = std::cos(top[-1] * deg);
         break;
       case Op::Exp:
-        *top = std::exp(*top);
+        top[-1] = std::exp(top[-1]);
         break;
       case Op::Fix:
-        *top = std::floor(*top);
+        top[-1] = std::floor(top[-1]);
         break;
       case Op::Fup:
-        *top = std::ceil(*top);
+        top[-1] = std::ceil(top[-1]);
         break;
       case Op::Ln:
-        domain(s, *top > 0), *top = std::log(*top);
+        domain(s, top[-1] > 0), top[-1] = std::log(top[-1]);
         break;
       case Op::Round:
-        *top = std::round(*top);
+        top[-1] = std::round(top[-1]);
         break;
       case Op::Sin:
-        *top = std::sin(*top * deg);
+        top[-1] = std::sin(top[-1] * deg);
         break;
       case Op::Sqrt:
-        domain(s, *top >= 0), *top = std::sqrt(*top);
+        domain(s, top[-1] >= 0), top[-1] = std::sqrt(top[-1]);
         break;
       default:
-        *top = std::tan(*top * deg);
+        top[-1] = std::tan(top[-1] * deg);
         break;  // TAN
     }
   }
-  return *top;
+  return top[-1];
 }
 
 }  // namespace gantry
