@@ -177,11 +177,13 @@ void StepGenerator::play_independent(const StepEvent& e) {
 }
 
 void StepGenerator::emit_until(std::int64_t tick) {
-  for (std::optional<StepEvent> e;
-       (e = placement_.independent_event(writer_.cursor(), writer_.pulse_end())) && e->tick < tick;) {
-    writer_.emit(e->tick);
-    play_independent(*e);
-  }
+  if (placement_.independent())
+    for (std::optional<StepEvent> e;
+         (e = placement_.independent_event(writer_.cursor(), writer_.pulse_end())) &&
+         e->tick < tick;) {
+      writer_.emit(e->tick);
+      play_independent(*e);
+    }
   writer_.emit(tick);
 }
 

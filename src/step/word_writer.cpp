@@ -111,24 +111,6 @@ void WordWriter::restart() {
   cursor_ = static_cast<std::int64_t>(card_.ticks_played());  // its new count
 }
 
-std::uint32_t WordWriter::word_at(std::int64_t tick) const {
-  std::uint32_t w = level_word_;
-  for (int i = 0; i < kAxisCount; ++i)
-    if (tick < pulse_end_[i]) w ^= pins_.axes[i].step_mask;  // active = not idle
-  return w;
-}
-
-void WordWriter::emit(std::int64_t tick) {
-  while (cursor_ < tick) {
-    // The word only changes where a pulse ends; emit up to the next such tick in one run.
-    std::int64_t next = tick;
-    for (std::int64_t pe : pulse_end_)
-      if (pe > cursor_ && pe < next) next = pe;
-    write_run(word_at(cursor_), next - cursor_);
-    cursor_ = next;
-  }
-}
-
 // `count` words from cursor_ on. The charge pump's bit flips every pump_half_ticks_ ticks,
 // and the spindle speed's bit is high for the first pwm_high_ticks_ of each period (both by
 // the tick's own number, so the square waves are unbroken across runs and blocks).

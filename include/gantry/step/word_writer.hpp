@@ -40,7 +40,17 @@ class WordWriter {
     else
       pulse_end_[e.axis] = e.tick + timing_.pulse_ticks;
   }
-  void emit(std::int64_t tick);  // words for [cursor(), tick)
+  // Words for [cursor(), tick). The word only changes where a pulse ends: they go out up to
+  // the next such tick in one run.
+  void emit(std::int64_t tick) {
+    while (cursor_ < tick) {
+      std::int64_t next = tick;
+      for (std::int64_t pe : pulse_end_)
+        if (pe > cursor_ && pe < next) next = pe;
+      write_run(word_at(cursor_), next - cursor_);
+      cursor_ = next;
+    }
+  }
   // Plays out every pending pulse: words up to `end` and until every pulse is over (the
   // idle word itself sent when one ends exactly there).
   void finish_pulses(std::int64_t end);
@@ -74,7 +84,12 @@ class WordWriter {
   void restart();
 
  private:
-  std::uint32_t word_at(std::int64_t tick) const;
+  std::uint32_t word_at(std::int64_t tick) const {
+    std::uint32_t w = level_word_;
+    for (int i = 0; i < kAxisCount; ++i)
+      if (tick < pulse_end_[i]) w ^= pins_.axes[i].step_mask;  // active = not idle
+    return w;
+  }
   void write_run(std::uint32_t word, std::int64_t count);
   void set_card_trips();
 
