@@ -375,7 +375,7 @@ void CommandContext::end_motion_warning() {
 }
 
 std::optional<MotionReport> CommandContext::sync() {
-  std::optional<MotionReport> r = sink_.sync();
+  std::optional<MotionReport> r = interp_->gated_sink_->sync();
   if (state_.independent) {
     independent_resting_ = true;
     if (r) {  // it moved on its own: it is where the pulses left it
@@ -535,11 +535,11 @@ void CommandContext::homing_line(const Vec6& file_target, double speed, const So
 
 std::optional<std::array<bool, 12>> CommandContext::input_switches() {
   sync();
-  return sink_.input_switches();
+  return interp_->gated_sink_->input_switches();
 }
 
 bool CommandContext::probe(const Vec6& file_target, double speed, int input, const SourceLoc& loc,
-                           MotionSink::Watching why, bool closing) {
+                           MachineLink::Watching why, bool closing) {
   if (input < 1 || input > 12)
     fail(loc, fmt::format("input switch {} does not exist; inputs are 1 to 12", input));
   if (settings_.inputs.switch_bits[input - 1] < 0)
@@ -548,21 +548,21 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
                           input));
   if (!(speed > 0) || !std::isfinite(speed))
     fail(loc, fmt::format("the probing speed must be above 0, not {}", speed));
-  if (why == MotionSink::Watching::Probe) check_reach(file_target, loc);
+  if (why == MachineLink::Watching::Probe) check_reach(file_target, loc);
   const Vec6 target = transform_.to_machine(file_target);
   if (state_.preview) {
     send_line(target, SpeedClass::Move, loc);
     return false;
   }
   sync();
-  if (const std::optional<std::array<bool, 12>> in = sink_.input_switches();
+  if (const std::optional<std::array<bool, 12>> in = interp_->gated_sink_->input_switches();
       in && (*in)[input - 1] == closing)
     fail(loc, fmt::format("input switch {} is {} already ({}): nothing moved", input,
                           closing ? "closed" : "open",
                           closing ? "the probe is touching: move it clear first"
                                   : "the probe is not touching"));
   const std::array<InputTrigger, 1> watch{{{input, closing, false}}};
-  sink_.watch_inputs(watch, why);
+  interp_->gated_sink_->watch_inputs(watch, why);
   const Vec6 start = state_.position;
   const SpeedSettings speeds = state_.speeds;
   state_.speeds.move = {speed, speed, speed, speed, speed};
@@ -592,7 +592,7 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
 void CommandContext::keypad(std::string_view message, const SourceLoc& loc) {
   if (interp_->io_.keypad(message, loc) == KeypadAnswer::GoOn) return;
   independent_resting_ = state_.independent.has_value();  // it rests while the keypad is open
-  if (const std::optional<MotionReport> r = sink_.keypad(loc))
+  if (const std::optional<MotionReport> r = interp_->gated_sink_->keypad(loc))
     interp_->set_machine_position(r->machine);
 }
 
@@ -781,8 +781,13 @@ void Interpreter::restore_file_values(Frame& f) {
 Interpreter::Interpreter(const Settings& settings, MotionSink& sink, OperatorIO& io,
                          PersistentStore& store, InterpreterOptions options,
                          const CommandTable& table)
+    : Interpreter(settings, sink, nullptr, io, store, std::move(options), table) {}
+
+Interpreter::Interpreter(const Settings& settings, MotionSink& sink, MachineLink* machine,
+                         OperatorIO& io, PersistentStore& store, InterpreterOptions options,
+                         const CommandTable& table)
     : settings_(settings),
-      gated_sink_(std::make_unique<GatedSink>(sink)),
+      gated_sink_(std::make_unique<GatedSink>(sink, machine)),
       gated_io_(std::make_unique<GatedIO>(io)),
       table_(table),
       sink_(*gated_sink_),
@@ -1141,7 +1146,7 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     files_.clear();
     if (!on_input_.empty()) {
       on_input_.clear();
-      sink_.watch_inputs({}, MotionSink::Watching::Handlers);
+      gated_sink_->watch_inputs({}, MachineLink::Watching::Handlers);
     }
     pending_call_.reset();
     ctx_.end_preview();  // first: a preview switches no output
@@ -1423,7 +1428,7 @@ void Interpreter::arm_inputs() {
   for (const auto& [key, h] : on_input_)
     triggers.push_back({key.first, key.second == 1, h.instant});
   ctx_.sync();
-  sink_.watch_inputs(triggers, MotionSink::Watching::Handlers);
+  gated_sink_->watch_inputs(triggers, MachineLink::Watching::Handlers);
 }
 
 // While handlers are armed, each statement's motion plays out before the next statement
@@ -1518,7 +1523,7 @@ MachineSnapshot Interpreter::snapshot() const {
     m.file_offset = f.transform.origin;
     m.file_proportion = f.transform.scale;
   }
-  if (std::optional<std::array<bool, 12>> in = sink_.input_switches())
+  if (std::optional<std::array<bool, 12>> in = gated_sink_->input_switches())
     m.inputs = *in;
   else if (const auto& touched = gated_sink_->touched)
     m.inputs[static_cast<size_t>(touched->first - 1)] = touched->second;

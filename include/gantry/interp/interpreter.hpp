@@ -17,6 +17,7 @@
 #include "gantry/interp/evaluator.hpp"           // EvalEnv
 #include "gantry/interp/file_reach.hpp"          // FileAccess
 #include "gantry/interp/file_system.hpp"         // FileSystem
+#include "gantry/interp/machine_link.hpp"        // MachineLink, MotionReport
 #include "gantry/interp/gcode_state.hpp"         // GcodeOffsets
 #include "gantry/interp/operator_io.hpp"         // OperatorIO
 #include "gantry/interp/persistent_store.hpp"    // PersistentStore
@@ -170,7 +171,7 @@ class CommandContext {
   // not for homing (the table base is what homing finds). `closing` false: the probe stops
   // where the switch opens instead (G38.4, G38.5), and one open already is the error.
   bool probe(const Vec6& target, double speed, int input, const SourceLoc& loc,
-             MotionSink::Watching why = MotionSink::Watching::Probe, bool closing = true);
+             MachineLink::Watching why = MachineLink::Watching::Probe, bool closing = true);
   // Homing: the tool's table base location on `axis` becomes `table_base`; working 0 keeps
   // its place on the table.
   void home_axis(int axis, double table_base);
@@ -382,8 +383,14 @@ struct InterpreterOptions {
 
 class Interpreter : private EvalEnv {
  public:
+  // No machine: a check, a preview, a list of moves.
   Interpreter(const Settings& settings, MotionSink& sink, OperatorIO& io, PersistentStore& store,
               InterpreterOptions options = {},
+              const CommandTable& table = CommandTable::standard());
+  // The moves go down `sink`; `machine` (null: none) answers where the tool is, the inputs
+  // and the keypad (the live machine: Controller).
+  Interpreter(const Settings& settings, MotionSink& sink, MachineLink* machine, OperatorIO& io,
+              PersistentStore& store, InterpreterOptions options = {},
               const CommandTable& table = CommandTable::standard());
   ~Interpreter() override;
 
