@@ -11,13 +11,13 @@
 #include <thread>
 
 #include "gantry/hal/card.hpp"
+#include "gantry/hal/word_ring.hpp"
 #include "gpiod/gpio_lines.hpp"
 #include "gpiod/gpio_map.hpp"
 #include "gpiod/pacer_schedule.hpp"
 #include "gpiod/realtime.hpp"
 #include "gpiod/tick_clock.hpp"
 #include "gpiod/tick_player.hpp"
-#include "gpiod/word_ring.hpp"
 
 namespace gantry {
 

@@ -108,7 +108,7 @@ std::uint64_t TickPlayer::next_event_tick() const {
 TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t late_ns,
                                              bool stream_may_end) {
   // The words before `tick` equal the current output on every mapped bit: nothing to drive.
-  ring_.pop(tick - ticks_played_.load(std::memory_order_relaxed));
+  ring_.drop(tick - ticks_played_.load(std::memory_order_relaxed));
   ticks_played_.store(tick, std::memory_order_release);
 
   // Inputs first: a tick that finds the E-stop active plays nothing more.
@@ -137,7 +137,7 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
     return Outcome::Faulted;
   }
   if (!write_word(ring_.peek(0))) return Outcome::Faulted;
-  ring_.pop(1);
+  ring_.drop(1);
 
   worst_late_ns_.store(std::max(worst_late_ns_.load(std::memory_order_relaxed), late_ns),
                        std::memory_order_relaxed);

@@ -9,9 +9,9 @@
 #include <optional>
 
 #include "gantry/hal/card.hpp"
+#include "gantry/hal/word_ring.hpp"
 #include "gpiod/gpio_lines.hpp"
 #include "gpiod/gpio_map.hpp"
-#include "gpiod/word_ring.hpp"
 
 namespace gantry {
 

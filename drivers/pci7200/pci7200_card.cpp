@@ -64,7 +64,7 @@ void Pci7200Card::start(double pacer_hz) {
   std::lock_guard lock(hardware_);
   if (active()) halt_output(false);
   output_.reset();
-  ring_.discard_readable();
+  ring_.clear();
   bus_->write32(Bar::Card, card::kDioCsr, card::kDioDoClearFifo | card::kDioDoUnderrun);
   bus_->write32(Bar::Card, card::kDioCsr, 0);
   // Counter 1 alone sets the rate: pacer = clock / divisor.
@@ -119,7 +119,7 @@ void Pci7200Card::stop(std::uint32_t idle_word) {
   std::lock_guard lock(hardware_);
   if (active()) halt_output(true);
   bus_->write32(Bar::Card, card::kDoPort, pump_.idle(idle_word));
-  ring_.discard_readable();
+  ring_.clear();
   phase_.store(Phase::Idle, std::memory_order_release);
 }
 
@@ -178,7 +178,7 @@ void Pci7200Card::pass() {
       fired_ = InputEdge{ticks_.load(std::memory_order_acquire), *bit, inputs};
       if ((watcher_.watch().stop >> *bit & 1u) && active()) {  // an instant stop, no fault
         halt_output(true);
-        ring_.discard_readable();
+        ring_.clear();
         phase_.store(Phase::Idle, std::memory_order_release);
         return;
       }
@@ -187,13 +187,13 @@ void Pci7200Card::pass() {
   switch (phase) {
     case Phase::Idle:
     case Phase::Faulted:
-      ring_.discard_readable();  // late writes are dropped, never played
+      ring_.clear();  // late writes are dropped, never played
       return;
     case Phase::Armed: {
       if (bus_->failed()) return trip(CardFault::Hardware, false);
       if (options_.estop.tripped(inputs)) return trip(CardFault::EStop, false);
       if (limit_closed) return trip(CardFault::Limit, false);
-      const std::size_t queued = ring_.readable();
+      const std::size_t queued = ring_.available();
       if (queued == 0) {
         if (drain_pending) acknowledge_drain(drain_request);
         return;
@@ -218,7 +218,7 @@ void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, bool limit_close
 
   // The card flags a pacer tick that found its FIFO empty.
   const bool underran = (bus_->read32(Bar::Card, card::kDioCsr) & card::kDioDoUnderrun) != 0;
-  const std::size_t queued = ring_.readable();
+  const std::size_t queued = ring_.available();
   const bool words_waiting = s.words_staged || queued > 0;  // not yet handed to the card
   const bool words_due = s.in_flight || words_waiting;
   const bool all_played = s.fifo_empty && !words_due;
@@ -305,7 +305,7 @@ void Pci7200Card::halt_output(bool play_out) {
 
 void Pci7200Card::trip(CardFault fault, bool play_out) {
   halt_output(play_out);
-  ring_.discard_readable();
+  ring_.clear();
   fault_.store(fault, std::memory_order_release);
   phase_.store(Phase::Faulted, std::memory_order_release);
 }

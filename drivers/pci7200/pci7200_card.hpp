@@ -12,13 +12,13 @@
 #include <thread>
 
 #include "gantry/hal/card.hpp"            // Card, CardFault
+#include "gantry/hal/word_ring.hpp"       // WordRing
 #include "pci7200/charge_pump.hpp"        // ChargePump
 #include "pci7200/output_feeder.hpp"      // OutputFeeder, WordSource
 #include "pci7200/pci7200_bus.hpp"        // Pci7200Bus
 #include "pci7200/pci7200_registers.hpp"  // i8254::kClockHz
 #include "pci7200/pi_mutex.hpp"           // PiMutex
 #include "pci7200/realtime_thread.hpp"    // RealtimeRequest
-#include "pci7200/spsc_word_ring.hpp"     // SpscWordRing
 
 namespace gantry::pci7200 {
 
@@ -89,7 +89,7 @@ class Pci7200Card : public Card, private WordSource {
 
   std::shared_ptr<Pci7200Bus> bus_;
   Pci7200Options options_;
-  SpscWordRing ring_;
+  WordRing ring_;
   OutputFeeder output_;
 
   PiMutex hardware_;  // held by a feeder pass and by start, stop and close

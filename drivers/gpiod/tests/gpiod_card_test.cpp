@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "gantry/hal/pin_map.hpp"
+#include "gantry/hal/word_ring.hpp"
 #include "gantry/settings/settings.hpp"
 #include "gpiod/fake_gpio_lines.hpp"
 #include "gpiod/gpio_map.hpp"
@@ -27,7 +28,6 @@
 #include "gpiod/pacer_schedule.hpp"
 #include "gpiod/tick_player.hpp"
 #include "gpiod/virtual_clock.hpp"
-#include "gpiod/word_ring.hpp"
 
 namespace gantry {
 namespace {
@@ -565,23 +565,6 @@ TEST(GpioMap, TheProfileGivesThePacerTheIdleWordAndTheFaultInputs) {
   EXPECT_TRUE(contains(validate_gpio_map(map),
                        "gpiod: E-stop/limit input bit(s) 2, 3, 6, 7 have no input line; map "
                        "a line to each, or set the profile's bit to -1 (not wired)"));
-}
-
-// --- The queue ------------------------------------------------------------------------------
-
-TEST(WordRing, KeepsOrderAcrossTheWrapAndRefusesWhatDoesNotFit) {
-  WordRing ring(16);
-  std::vector<std::uint32_t> words(20);
-  for (std::uint32_t i = 0; i < 20; ++i) words[i] = i;
-  EXPECT_EQ(ring.push(words), 16u);
-  EXPECT_EQ(ring.available(), 16u);
-  EXPECT_EQ(ring.peek(15), 15u);
-  ring.pop(10);
-  EXPECT_EQ(ring.push(std::span(words).subspan(16)), 4u);  // wraps around the end
-  EXPECT_EQ(ring.size(), 10u);
-  for (std::uint32_t i = 0; i < 10; ++i) EXPECT_EQ(ring.peek(i), 10 + i);
-  ring.clear();
-  EXPECT_EQ(ring.available(), 0u);
 }
 
 // --- Opening a chip -------------------------------------------------------------------------

@@ -1,0 +1,100 @@
+// Packing step events into the card's 32-bit pulse words: step and direction levels, the
+// charge pump, the spindle and output bits, blocks handed to the card, the card's trips.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "gantry/core/axes.hpp"            // kAxisCount
+#include "gantry/hal/card.hpp"             // Card, InputWatch
+#include "gantry/hal/input_roles.hpp"      // InputRoles
+#include "gantry/hal/pin_map.hpp"          // PinMap
+#include "gantry/step/step_timing.hpp"     // StepTiming, StepEvent
+
+namespace gantry {
+
+struct Settings;
+
+// Words go out in tick order from cursor() on: each is the levels set so far (directions,
+// idle step levels, spindle, outputs) with the step lines of pulses not yet over flipped
+// active, and the charge pump's and the spindle speed's square waves. They are collected
+// in blocks of `block_words`; each full block goes to the card, then to `on_block`.
+class WordWriter {
+ public:
+  WordWriter(const Settings& settings, const StepTiming& timing, Card& card,
+             std::size_t block_words);
+
+  // Called after every full block handed to the card (the generator checks the card).
+  void on_block(std::function<void()> f) { on_block_ = std::move(f); }
+  // New pins, the card's calibration and trips; `positive` are the axes' direction levels.
+  void settings_changed(const Settings& s, const std::array<bool, kAxisCount>& positive);
+
+  // `e` from its tick on: a direction level changes, or a step pulse starts.
+  void apply(const StepEvent& e) {
+    const AxisPins& ap = pins_.axes[e.axis];
+    if (e.is_dir)
+      level_word_ = (level_word_ & ~ap.dir_mask) | pins_.dir_bits(e.axis, e.positive);
+    else
+      pulse_end_[e.axis] = e.tick + timing_.pulse_ticks;
+  }
+  void emit(std::int64_t tick);  // words for [cursor(), tick)
+  // Plays out every pending pulse: words up to `end` and until every pulse is over (the
+  // idle word itself sent when one ends exactly there).
+  void finish_pulses(std::int64_t end);
+  // Hands the words not yet sent to the card; false when there were none.
+  bool write_block();
+
+  std::int64_t cursor() const { return cursor_; }  // next tick to emit: words emitted so far
+  // The tick each axis's step line goes idle again.
+  const std::array<std::int64_t, kAxisCount>& pulse_end() const { return pulse_end_; }
+  std::size_t block_words() const { return block_words_; }
+
+  // The spindle output bit, from the next word on.
+  void set_spindle(bool on);
+  // Output switch n (1-based, as SO numbers them), from the next word on; false when the
+  // profile does not wire it.
+  bool set_output(int n, bool on);
+  bool output_on(int n) const;  // output switch n's level in the words
+  // The spindle's speed output (spindle.pwm_bit) to `rpm`, from the next word on: a square
+  // wave of duty rpm / max_rpm, by the tick's own number like the charge pump. No-op
+  // when the profile wires none.
+  void set_spindle_speed(double rpm);
+
+  // Arms the card's input watch. While it is armed its bits do not trip the card as limit
+  // switches (homing runs onto a switch that may be one).
+  void watch(const InputWatch& w);
+
+  // E-stop: the words so far go to the card, which stops at once with its outputs idle.
+  void halt();
+  // After halt(): the card starts again, the levels as at construction, and the words go
+  // on from the tick it has played.
+  void restart();
+
+ private:
+  std::uint32_t word_at(std::int64_t tick) const;
+  void write_run(std::uint32_t word, std::int64_t count);
+  void set_card_trips();
+
+  PinMap pins_;
+  StepTiming timing_;
+  Card& card_;
+  std::size_t block_words_;
+  std::array<std::int64_t, kAxisCount> pulse_end_{};
+  std::uint32_t level_word_ = 0;  // direction levels and idle step levels
+  std::int64_t cursor_ = 0;       // next tick to emit
+  std::vector<std::uint32_t> block_;
+  std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
+  std::vector<int> aux_bits_;
+  std::int64_t pump_half_ticks_ = 1;
+  std::uint32_t pwm_mask_ = 0;
+  std::int64_t pwm_period_ticks_ = 1, pwm_high_ticks_ = 0;  // high for the first ticks of a period
+  double max_rpm_ = 0;
+  InputRoles roles_;              // the profile's and VN's, for the card's trips
+  std::uint32_t watch_mask_ = 0;  // the bits watched now
+  std::function<void()> on_block_;
+};
+
+}  // namespace gantry

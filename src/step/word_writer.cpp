@@ -1,0 +1,163 @@
+// Packing step events into pulse words and blocks for the card.
+#include "gantry/step/word_writer.hpp"
+
+#include <algorithm>  // max, min, clamp
+#include <cmath>      // llround
+
+#include "gantry/settings/settings.hpp"  // Settings
+
+namespace gantry {
+
+WordWriter::WordWriter(const Settings& settings, const StepTiming& timing, Card& card,
+                       std::size_t block_words)
+    : pins_(PinMap::from(settings.pins, settings.drivers.channel_axis)),
+      timing_(timing),
+      card_(card),
+      block_words_(block_words),
+      roles_(input_roles(settings)) {  // the card has them from the same profile
+  pulse_end_.fill(0);
+  level_word_ = pins_.idle_word();
+  block_.reserve(block_words_);
+  if (settings.outputs.charge_pump_bit >= 0) {
+    pump_mask_ = 1u << settings.outputs.charge_pump_bit;
+    pump_half_ticks_ = std::max<std::int64_t>(
+        1, std::llround(settings.card.pacer_hz() / (2 * settings.outputs.charge_pump_hz)));
+  }
+  if (settings.outputs.spindle_bit >= 0) spindle_mask_ = 1u << settings.outputs.spindle_bit;
+  if (settings.spindle.pwm_bit >= 0) {
+    pwm_mask_ = 1u << settings.spindle.pwm_bit;
+    pwm_period_ticks_ =
+        std::max<std::int64_t>(1, std::llround(settings.card.pacer_hz() / settings.spindle.pwm_hz));
+    max_rpm_ = settings.spindle.max_rpm;
+  }
+  aux_bits_ = settings.outputs.aux_bits;
+}
+
+// At rest: the channel pins change, the levels of the lines that stay are kept.
+void WordWriter::settings_changed(const Settings& s,
+                                  const std::array<bool, kAxisCount>& positive) {
+  std::uint32_t old_lines = 0;
+  for (const AxisPins& a : pins_.axes) old_lines |= a.step_mask | a.dir_mask;
+  pins_ = PinMap::from(s.pins, s.drivers.channel_axis);
+  card_.calibration_changed(s);
+  roles_ = input_roles(s);
+  set_card_trips();
+  level_word_ &= ~old_lines;
+  for (int i = 0; i < kAxisCount; ++i) {
+    if (pins_.axes[i].step_active_low) level_word_ |= pins_.axes[i].step_mask;
+    level_word_ |= pins_.dir_bits(i, positive[i]);
+  }
+}
+
+void WordWriter::set_card_trips() {
+  card_.set_trips(roles_.estop, roles_.limits.without(watch_mask_));
+}
+
+void WordWriter::watch(const InputWatch& w) {
+  watch_mask_ = w.mask;
+  set_card_trips();
+  card_.watch(w);
+}
+
+void WordWriter::set_spindle(bool on) {
+  level_word_ = on ? level_word_ | spindle_mask_ : level_word_ & ~spindle_mask_;
+}
+
+void WordWriter::set_spindle_speed(double rpm) {
+  const double duty = std::clamp(rpm / max_rpm_, 0.0, 1.0);
+  pwm_high_ticks_ = pwm_mask_ ? std::llround(duty * static_cast<double>(pwm_period_ticks_)) : 0;
+}
+
+bool WordWriter::set_output(int n, bool on) {
+  if (n < 1 || n > static_cast<int>(aux_bits_.size()) || aux_bits_[n - 1] < 0) return false;
+  const std::uint32_t mask = 1u << aux_bits_[n - 1];
+  level_word_ = on ? level_word_ | mask : level_word_ & ~mask;
+  return true;
+}
+
+bool WordWriter::output_on(int n) const {
+  if (n < 1 || n > static_cast<int>(aux_bits_.size()) || aux_bits_[n - 1] < 0) return false;
+  return (level_word_ >> aux_bits_[n - 1] & 1u) != 0;
+}
+
+void WordWriter::finish_pulses(std::int64_t end) {
+  for (std::int64_t pe : pulse_end_) end = std::max(end, pe);
+  emit(end);
+  // A pulse ending exactly here needs the idle word itself sent, or its line stays active.
+  for (std::int64_t pe : pulse_end_)
+    if (pe == cursor_ && cursor_ > 0) {
+      emit(cursor_ + 1);
+      break;
+    }
+}
+
+bool WordWriter::write_block() {
+  if (block_.empty()) return false;
+  card_.write(block_);
+  block_.clear();
+  return true;
+}
+
+void WordWriter::halt() {
+  if (!block_.empty()) card_.write(block_);
+  block_.clear();
+  card_.stop(pins_.idle_word());  // outputs off, as an E-stop must
+}
+
+void WordWriter::restart() {
+  pulse_end_.fill(0);
+  level_word_ = pins_.idle_word();
+  card_.start(1.0 / timing_.tick_s);
+  cursor_ = static_cast<std::int64_t>(card_.ticks_played());  // its new count
+}
+
+std::uint32_t WordWriter::word_at(std::int64_t tick) const {
+  std::uint32_t w = level_word_;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (tick < pulse_end_[i]) w ^= pins_.axes[i].step_mask;  // active = not idle
+  return w;
+}
+
+void WordWriter::emit(std::int64_t tick) {
+  while (cursor_ < tick) {
+    // The word only changes where a pulse ends; emit up to the next such tick in one run.
+    std::int64_t next = tick;
+    for (std::int64_t pe : pulse_end_)
+      if (pe > cursor_ && pe < next) next = pe;
+    write_run(word_at(cursor_), next - cursor_);
+    cursor_ = next;
+  }
+}
+
+// `count` words from cursor_ on. The charge pump's bit flips every pump_half_ticks_ ticks,
+// and the spindle speed's bit is high for the first pwm_high_ticks_ of each period (both by
+// the tick's own number, so the square waves are unbroken across runs and blocks).
+void WordWriter::write_run(std::uint32_t word, std::int64_t count) {
+  std::int64_t tick = cursor_;
+  while (count > 0) {
+    const auto room = static_cast<std::int64_t>(block_words_ - block_.size());
+    std::int64_t n = std::min(room, count);
+    std::uint32_t w = word;
+    if (pump_mask_) {
+      const std::int64_t phase = tick / pump_half_ticks_;
+      n = std::min(n, (phase + 1) * pump_half_ticks_ - tick);
+      if (phase & 1) w |= pump_mask_;
+    }
+    if (pwm_high_ticks_ > 0) {
+      const std::int64_t phase = tick % pwm_period_ticks_;
+      const bool high = phase < pwm_high_ticks_;
+      n = std::min(n, (high ? pwm_high_ticks_ : pwm_period_ticks_) - phase);
+      if (high) w |= pwm_mask_;
+    }
+    block_.insert(block_.end(), static_cast<std::size_t>(n), w);
+    count -= n;
+    tick += n;
+    if (block_.size() == block_words_) {
+      card_.write(block_);
+      block_.clear();
+      if (on_block_) on_block_();
+    }
+  }
+}
+
+}  // namespace gantry
