@@ -11,7 +11,9 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/convert/to_sbp.hpp"  // hpgl_to_sbp, dxf_to_sbp
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
+#include "gantry/interp/file_reach.hpp"           // FileAccess
+#include "gantry/interp/interpreter_options.hpp"  // InterpreterOptions
 #include "gantry/lang/scan.hpp"  // upper, is_word
 
 #include <spawn.h>     // posix_spawnp: FE's editor, without a shell

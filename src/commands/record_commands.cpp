@@ -13,7 +13,7 @@
 #include <variant>
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 #include "gantry/lang/parser.hpp"  // parse_line
 
 namespace gantry {

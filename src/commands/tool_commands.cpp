@@ -18,7 +18,7 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/commands/stroke_font.hpp"  // TT's letters
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {
