@@ -3,14 +3,14 @@
 // drawing (HP-GL, DXF) into a part file.
 #include <fmt/format.h>  // messages
 
-#include <algorithm>  // replace
-#include <cctype>      // tolower
+#include <algorithm>  // replace, all_of
 #include <cerrno>      // EINTR
 #include <cmath>       // round
 #include <filesystem>  // FS's folder, FC's names
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/convert/to_sbp.hpp"  // hpgl_to_sbp, dxf_to_sbp
+#include "gantry/core/text.hpp"       // lower
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/lang/scan.hpp"  // upper, is_word
 
@@ -190,8 +190,7 @@ void file_edit(CommandContext& ctx, const CommandCall& call) {
 enum class Drawing { HpGl, Dxf, GCode, Raster, Unknown };
 
 Drawing kind_of(const std::string& name) {
-  std::string ext = std::filesystem::path(name).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = ascii::lower(std::filesystem::path(name).extension().string());
   if (ext == ".plt" || ext == ".hpg" || ext == ".hpgl" || ext == ".hgl") return Drawing::HpGl;
   if (ext == ".dxf") return Drawing::Dxf;
   if (ext == ".nc" || ext == ".tap" || ext == ".ngc" || ext == ".gcode" || ext == ".cnc" ||
