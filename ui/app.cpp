@@ -184,9 +184,10 @@ void App::poll() {
       status_.state == MachineState::Keypad || (kp_file_ && status_.state == MachineState::Jogging);
   if (file_keypad && !kp_file_) {
     kp_focus_ = true;
+    std::string message = m_.io.take_keypad_message();
+    if (message.empty()) message = "SK: the file waits while you jog";
     log(LogLine::Info,
-        m_.io.take_keypad_message() +
-            "\nkeypad: jog, then Esc (or Resume) goes on with the file; Stop ends it");
+        message + "\nkeypad: jog, then Esc (or Resume) goes on with the file; Stop ends it");
   }
   if (!file_keypad && kp_file_) kp_focus_ = false, focus_line_ = true;
   kp_file_ = file_keypad;

@@ -2,7 +2,7 @@
 //
 // One thread (the caller's) reads the keys, draws the prompt and the status line, and makes
 // every request of the Controller; the controller's job thread reaches the operator only
-// through ConsoleIO, which queues PRINT text and hands questions (PAUSE, INPUT, MSGBOX) to
+// through the session's OperatorMailbox, which queues PRINT text and hands questions (PAUSE, INPUT, MSGBOX) to
 // the console thread. A watcher thread takes the termination signals and E-stops.
 #include "console.hpp"
 
@@ -27,6 +27,8 @@
 #include "gantry/commands/command_docs.hpp"  // command_help, command_list
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/session/operator_io.hpp"   // OperatorMailbox
+#include "gantry/session/source_place.hpp"  // kConsoleName, where
 #include "line_editor.hpp"                   // KeyDecoder, LineEditor
 #include "live_machine.hpp"                  // ValuesKeeper, LiveMachineArgs
 #include "machine_profile.hpp"               // load_machine_profile
@@ -39,8 +41,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
 
-// The name of the one-line scripts typed at the console: errors located there get a caret.
-const char* const kConsoleName = "console";
+using session::kConsoleName;
+using session::OperatorMailbox;
+using session::Question;
+using session::where;
 const char* const kPrompt = "gantry> ";
 const char* const kEStopPrompt = "gantry [E-stop: type ack]> ";
 
@@ -95,151 +99,6 @@ class RawTerminal {
   bool active_ = false;
 };
 
-std::string where(const SourceLoc& loc) {
-  return loc.file && *loc.file != kConsoleName ? fmt::format("{}:{}", *loc.file, loc.line)
-                                               : std::string("console");
-}
-
-// ---- the operator, as the controller's interpreter sees the console ----------------------
-
-// PRINT text and warnings: queued for the console thread when interactive, written at once
-// when piped (the console thread is waiting for the line then). Questions are answered by
-// --yes and --input when they can be; otherwise, at a terminal, the job thread waits while the
-// console thread asks the operator; piped, the line fails, saying which option would answer.
-class ConsoleIO : public OperatorIO {
- public:
-  struct Question {
-    std::string text;    // printed above the answer line
-    std::string prompt;  // the answer line's prompt
-  };
-
-  ConsoleIO(bool interactive, bool yes, std::map<std::string, std::string> inputs)
-      : interactive_(interactive), scripted_(yes, std::move(inputs)) {}
-
-  void print(std::string_view text) override {
-    if (!interactive_) return write_out(text);
-    std::lock_guard lock(m_);
-    output_ += text;
-  }
-  void warn(const Diagnostic& d) override { print(format(d) + "\n"); }
-
-  bool confirm(std::string_view message, const SourceLoc& loc) override {
-    try {
-      return scripted_.confirm(message, loc);
-    } catch (const NeedsOperator&) {
-      if (!interactive_) throw;
-    }
-    const std::optional<std::string> a =
-        ask_operator({fmt::format("[{}] {}", where(loc), message),
-                      "Enter continues, c then Enter cancels (Esc cancels): "});
-    return a && (a->empty() || std::tolower(static_cast<unsigned char>((*a)[0])) != 'c');
-  }
-
-  std::optional<std::string> ask(std::string_view prompt, std::string_view variable,
-                                 std::string_view default_value, const SourceLoc& loc) override {
-    try {
-      return scripted_.ask(prompt, variable, default_value, loc);
-    } catch (const NeedsOperator&) {
-      if (!interactive_) throw;
-    }
-    const bool several = variable.find(',') != std::string_view::npos;
-    std::optional<std::string> a = ask_operator(
-        {fmt::format("[{}] {}", where(loc), prompt.empty() ? "Input" : prompt),
-         fmt::format(
-             "{}{}{}: ", variable, several ? " (separated by commas)" : "",
-             !several && !default_value.empty() ? fmt::format(" [{}]", default_value) : "")});
-    if (a && a->empty() && !several) *a = std::string(default_value);
-    return a;
-  }
-
-  std::string choose(std::string_view text, const std::vector<std::string>& buttons,
-                     size_t default_button, std::string_view title, const SourceLoc& loc) override {
-    try {
-      return scripted_.choose(text, buttons, default_button, title, loc);
-    } catch (const NeedsOperator&) {
-      if (!interactive_) throw;
-    }
-    std::string q = fmt::format("[{}] {}: {}", where(loc), title, text);
-    for (size_t i = 0; i < buttons.size(); ++i)
-      q += fmt::format("\n  {}) {}{}", i + 1, buttons[i], i == default_button ? " (Enter)" : "");
-    while (true) {
-      const std::optional<std::string> a = ask_operator({q, "choice: "});
-      if (!a) return buttons.back();  // cancelled: the last button (Cancel or No)
-      if (a->empty()) return buttons[default_button];
-      for (size_t i = 0; i < buttons.size(); ++i)
-        if (trim(*a) == std::to_string(i + 1)) return buttons[i];
-      q = fmt::format("choose 1 to {}", buttons.size());
-    }
-  }
-
-  // SK in a file: the console opens its keypad once the controller waits (Keypad).
-  KeypadAnswer keypad(std::string_view message, const SourceLoc& loc) override {
-    if (!interactive_) return scripted_.keypad(message, loc);
-    std::lock_guard lock(m_);
-    keypad_message_ = message;
-    return KeypadAnswer::Jog;
-  }
-
-  // ---- the console thread's side ----
-
-  std::string take_keypad_message() {
-    std::lock_guard lock(m_);
-    return std::exchange(keypad_message_, {});
-  }
-
-  std::string take_output() {
-    std::lock_guard lock(m_);
-    return std::exchange(output_, {});
-  }
-  // A question waiting to be shown (once).
-  std::optional<Question> new_question() {
-    std::lock_guard lock(m_);
-    if (!question_ || shown_) return std::nullopt;
-    shown_ = true;
-    return question_;
-  }
-  void answer(std::string a) {
-    {
-      std::lock_guard lock(m_);
-      if (!question_) return;
-      answer_ = std::move(a);
-      question_.reset();
-    }
-    cv_.notify_all();
-  }
-  // Cancels the question being asked, if any (Esc, a stop, the E-stop).
-  void cancel() {
-    {
-      std::lock_guard lock(m_);
-      if (!question_) return;
-      answer_.reset();
-      question_.reset();
-    }
-    cv_.notify_all();
-  }
-
- private:
-  // Job thread: waits for the console thread to show the question and take the answer.
-  std::optional<std::string> ask_operator(Question q) {
-    std::unique_lock lock(m_);
-    question_ = std::move(q);
-    shown_ = false;
-    answer_.reset();
-    cv_.wait(lock, [&] { return !question_; });
-    return answer_;
-  }
-
-  bool interactive_;
-  ScriptedIO scripted_;
-  std::mutex m_;
-  std::condition_variable cv_;
-  std::string output_;
-  std::optional<Question> question_;
-  bool shown_ = false;
-  std::optional<std::string> answer_;
-  std::string keypad_message_;
-};
-
 // ---- what the console shows --------------------------------------------------------------
 
 double shown(double v) {
@@ -281,11 +140,36 @@ std::vector<CompletionWord> completion_words() {
   return words;
 }
 
+// A question from the running file: the text above the answer line, and its prompt.
+std::pair<std::string, std::string> question_text(const Question& q) {
+  switch (q.kind) {
+    case Question::Kind::Pause:
+      return {fmt::format("[{}] {}", q.where, q.text),
+              "Enter continues, c then Enter cancels (Esc cancels): "};
+    case Question::Kind::Input: {
+      const bool several = q.variable.find(',') != std::string::npos;
+      return {fmt::format("[{}] {}", q.where, q.text),
+              fmt::format("{}{}{}: ", q.variable, several ? " (separated by commas)" : "",
+                          !several && !q.default_value.empty()
+                              ? fmt::format(" [{}]", q.default_value)
+                              : "")};
+    }
+    case Question::Kind::MsgBox: {
+      std::string text = fmt::format("[{}] {}: {}", q.where, q.title, q.text);
+      for (size_t i = 0; i < q.buttons.size(); ++i)
+        text += fmt::format("\n  {}) {}{}", i + 1, q.buttons[i],
+                            i == q.default_button ? " (Enter)" : "");
+      return {text, "choice: "};
+    }
+  }
+  return {};
+}
+
 // ---- the console -------------------------------------------------------------------------
 
 class Console {
  public:
-  Console(Controller& c, ConsoleIO& io, ValuesKeeper& values, const ConsoleArgs& args,
+  Console(Controller& c, OperatorMailbox& io, ValuesKeeper& values, const ConsoleArgs& args,
           bool realtime, std::atomic<int>& signal)
       : c_(c),
         io_(io),
@@ -319,6 +203,8 @@ class Console {
   void prompt_key(const Key& k);
   void job_key(const Key& k);
   void answer_key(const Key& k);
+  void answer(const std::string& a);
+  void show_question(const std::string& text, const std::string& prompt);
   void keypad_key(const Key& k);
   void tick();
   void handle_line(const std::string& line);
@@ -337,7 +223,7 @@ class Console {
   std::string keypad_text() const;
 
   Controller& c_;
-  ConsoleIO& io_;
+  OperatorMailbox& io_;
   ValuesKeeper& values_;
   const ConsoleArgs& args_;
   bool realtime_;
@@ -355,6 +241,8 @@ class Console {
   Mode mode_ = Mode::Prompt;
   bool quit_ = false;
   bool asking_ = false;  // a question from the running file has the answer line
+  std::uint64_t question_shown_ = 0;  // the id of the last question shown
+  Question asked_;                    // ... and the question
   bool single_step_ = false;
   Vec6 line_start_ = Vec6::Zero();
   bool status_drawn_ = false;
@@ -631,7 +519,7 @@ void Console::answer_key(const Key& k) {
   switch (editor_.key(k)) {
     case LineEditor::Event::Submit:
       asking_ = false;
-      io_.answer(editor_.take());
+      answer(editor_.take());
       break;
     case LineEditor::Event::Escape:
       asking_ = false;
@@ -642,6 +530,36 @@ void Console::answer_key(const Key& k) {
     default:
       break;
   }
+}
+
+// The line typed at a question, as the mailbox takes it: PAUSE continues unless it starts
+// with c; INPUT's empty line is its default (of one variable); MSGBOX's is a button's number
+// (Enter: the default button), and any other line asks again.
+void Console::answer(const std::string& a) {
+  const Question& q = asked_;
+  switch (q.kind) {
+    case Question::Kind::Pause:
+      if (!a.empty() && std::tolower(static_cast<unsigned char>(a[0])) == 'c') return io_.cancel();
+      return io_.answer(a);
+    case Question::Kind::Input:
+      if (a.empty() && q.variable.find(',') == std::string::npos)
+        return io_.answer(q.default_value);
+      return io_.answer(a);
+    case Question::Kind::MsgBox:
+      if (a.empty()) return io_.answer(q.buttons[q.default_button]);
+      for (size_t i = 0; i < q.buttons.size(); ++i)
+        if (trim(a) == std::to_string(i + 1)) return io_.answer(q.buttons[i]);
+      return show_question(fmt::format("choose 1 to {}", q.buttons.size()), "choice: ");
+  }
+}
+
+void Console::show_question(const std::string& text, const std::string& prompt) {
+  editor_.erase();
+  write_out(text + "\n");
+  asking_ = true;
+  editor_.remember = false;
+  editor_.set_columns(terminal_columns());
+  editor_.start(prompt);
 }
 
 void Console::handle_line(const std::string& typed) {
@@ -691,14 +609,11 @@ void Console::handle_line(const std::string& typed) {
 void Console::tick() {
   if (std::string text = io_.take_output(); !text.empty()) print_above(text);
   if (!asking_) {
-    if (std::optional<ConsoleIO::Question> q = io_.new_question()) {
-      editor_.erase();
-      write_out(q->text + "\n");
-      asking_ = true;
-      editor_.remember = false;
-      editor_.set_columns(terminal_columns());
-      editor_.start(q->prompt);
-      return;
+    if (std::optional<Question> q = io_.question(); q && q->id != question_shown_) {
+      question_shown_ = q->id;
+      asked_ = *q;
+      const auto [text, prompt] = question_text(*q);
+      return show_question(text, prompt);
     }
   }
   if (mode_ == Mode::Job && c_.state() == MachineState::Keypad)
@@ -1052,7 +967,8 @@ int run_console(const ConsoleArgs& a) {
 
   SignalWatch signals;  // before the controller starts its threads: they inherit the mask
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
-  ConsoleIO io(interactive, a.yes, inputs);
+  OperatorMailbox io(a.yes, inputs, interactive ? std::function<void(std::string_view)>{}
+                                                : std::function<void(std::string_view)>(write_out));
   ValuesKeeper values(profile, io);
 
   std::string type;

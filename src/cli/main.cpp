@@ -2,7 +2,7 @@
 #include <fmt/format.h>  // output
 #include <CLI/CLI.hpp>   // command-line parsing
 
-#include <cctype>      // toupper
+#include <cctype>      // tolower
 #include <charconv>    // from_chars
 #include <cstdio>      // stdout, stderr
 #include <filesystem>  // exists
@@ -17,6 +17,7 @@
 #endif
 #include "gantry/commands/command_docs.hpp"  // help text
 #include "gantry/core/any_bytes.hpp"         // json_text
+#include "gantry/core/text.hpp"              // upper, lower
 #include "gantry/core/text_file.hpp"         // read_text_file
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
@@ -214,8 +215,7 @@ struct LanguageArgs {
         fmt::print(stderr, "error: --input {} must be NAME=VALUE, e.g. --input '&DEPTH=0.5'\n", kv);
         return false;
       }
-      std::string name = kv.substr(0, eq);
-      for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      std::string name = ascii::upper(kv.substr(0, eq));
       if (name[0] != '&' && name[0] != '$') name = "&" + name;
       out.inputs[name] = kv.substr(eq + 1);
     }
@@ -510,10 +510,7 @@ int cmd_preview(const PreviewArgs& args, const LanguageArgs& lang) {
 // The command table, whole or one menu group, as text or JSON (for scripts and front ends).
 int cmd_commands(const std::string& group, bool json) {
   const CommandTable& table = CommandTable::standard();
-  auto lower = [](std::string t) {
-    for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return t;
-  };
+  const auto lower = [](std::string_view t) { return ascii::lower(t); };
   std::vector<const CommandSpec*> chosen;
   std::set<std::string> groups;
   for (const CommandSpec& s : table.all()) {
@@ -548,8 +545,7 @@ int cmd_help(const std::string& code, bool markdown) {
     fmt::print("{}", command_list(table));
     return 0;
   }
-  std::string upper = code;
-  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string upper = ascii::upper(code);
   if (const CommandSpec* spec = table.find(upper)) {
     fmt::print("{}", command_help(*spec));
     return 0;

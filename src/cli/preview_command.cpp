@@ -4,12 +4,12 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
-#include <algorithm>  // transform
-#include <cctype>     // tolower
+#include <algorithm>  // max
 #include <charconv>   // from_chars
 #include <iostream>   // JSON to stdout
 
 #include "gantry/core/any_bytes.hpp"    // json_text
+#include "gantry/core/text.hpp"         // lower
 #include "gantry/core/text_file.hpp"    // write_file_atomically
 #include "gantry/preview/material.hpp"  // carve, render_material
 #include "gantry/preview/render.hpp"    // render_lines, render_svg
@@ -33,10 +33,7 @@ bool parse_size(const std::string& text, int& w, int& h) {
 
 std::string extension(const std::string& path) {
   const size_t dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
+  return ascii::lower(dot == std::string::npos ? "" : std::string_view(path).substr(dot + 1));
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/cuts/cuts.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {

@@ -3,16 +3,18 @@
 // drawing (HP-GL, DXF) into a part file.
 #include <fmt/format.h>  // messages
 
-#include <algorithm>  // replace
-#include <cctype>      // tolower
+#include <algorithm>   // replace, all_of
 #include <cerrno>      // EINTR
 #include <cmath>       // round
 #include <filesystem>  // FS's folder, FC's names
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/convert/to_sbp.hpp"  // hpgl_to_sbp, dxf_to_sbp
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/lang/scan.hpp"  // upper, is_word
+#include "gantry/core/text.hpp"       // lower
+#include "gantry/interp/command_context.hpp"
+#include "gantry/interp/file_reach.hpp"           // FileAccess
+#include "gantry/interp/interpreter_options.hpp"  // InterpreterOptions
+#include "gantry/lang/scan.hpp"                   // upper, is_word
 
 #include <spawn.h>     // posix_spawnp: FE's editor, without a shell
 #include <sys/wait.h>  // waitpid, WEXITSTATUS
@@ -25,16 +27,14 @@ namespace {
 
 // Parameter i, a file or folder name. A bare `&name` never assigned reads as its own name,
 // which as a file name is always a mistake: it is refused where it is written.
-std::optional<std::string> file_name(const CommandContext& ctx, const CommandCall& call,
-                                     size_t i) {
+std::optional<std::string> file_name(const CommandContext& ctx, const CommandCall& call, size_t i) {
   const std::string text = i < call.args.size() ? call.args[i].text : "";
   if (text.size() > 1 && text[0] == '&' &&
       std::all_of(text.begin() + 1, text.end(), scan::is_word)) {
     const std::string name = scan::upper(text.substr(1));
     const auto vars = ctx.variables();
     if (std::none_of(vars.begin(), vars.end(), [&](const auto& v) { return v.first == name; }))
-      fail(call.args[i].loc,
-           fmt::format("undefined variable &{}; set it before this line", name));
+      fail(call.args[i].loc, fmt::format("undefined variable &{}; set it before this line", name));
   }
   return call.text(i);
 }
@@ -190,8 +190,7 @@ void file_edit(CommandContext& ctx, const CommandCall& call) {
 enum class Drawing { HpGl, Dxf, GCode, Raster, Unknown };
 
 Drawing kind_of(const std::string& name) {
-  std::string ext = std::filesystem::path(name).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = ascii::lower(std::filesystem::path(name).extension().string());
   if (ext == ".plt" || ext == ".hpg" || ext == ".hpgl" || ext == ".hgl") return Drawing::HpGl;
   if (ext == ".dxf") return Drawing::Dxf;
   if (ext == ".nc" || ext == ".tap" || ext == ".ngc" || ext == ".gcode" || ext == ".cnc" ||

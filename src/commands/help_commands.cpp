@@ -8,7 +8,7 @@
 
 #include "gantry/commands/command_docs.hpp"  // command_list
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {

@@ -1,6 +1,6 @@
 // Straight moves at move speed (M…) and jog speed (J…) on one to six axes.
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {

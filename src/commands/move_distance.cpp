@@ -9,7 +9,7 @@
 #include <string>
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {

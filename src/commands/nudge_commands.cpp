@@ -7,7 +7,7 @@
 #include <cmath>      // sqrt, M_PI
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>  // round
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {
@@ -72,14 +72,14 @@ void home_on_switches(CommandContext& ctx, const SourceLoc& loc, std::string_vie
                               L, h.input, h.back_off));
     }
     const bool live =
-        ctx.probe(toward(reach), h.fast_speed, h.input, loc, MotionSink::Watching::Home);
+        ctx.probe(toward(reach), h.fast_speed, h.input, loc, MachineLink::Watching::Home);
     if (!live && ctx.input_switches())
       fail(loc, fmt::format("homing {}: input {} never closed within {} (the table's length): "
                             "check the switch and its wiring",
                             L, h.input, reach));
     back_off();
     if (!ctx.probe(toward(2 * h.back_off), h.slow_speed, h.input, loc,
-                   MotionSink::Watching::Home) &&
+                   MachineLink::Watching::Home) &&
         ctx.input_switches())
       fail(loc,
            fmt::format("homing {}: input {} did not close again on the slow approach", L, h.input));

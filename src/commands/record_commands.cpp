@@ -6,14 +6,14 @@
 #include <fmt/format.h>  // messages
 
 #include <algorithm>  // min
-#include <cctype>     // isspace
 #include <charconv>   // from_chars
 #include <cmath>      // floor
 #include <filesystem>
 #include <variant>
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/core/text.hpp"  // trim
+#include "gantry/interp/command_context.hpp"
 #include "gantry/lang/parser.hpp"  // parse_line
 
 namespace gantry {
@@ -22,10 +22,7 @@ namespace gantry {
 
 bool CommandRecorder::record(std::string_view line) {
   if (!active_) return false;
-  while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
-    line.remove_suffix(1);
-  while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
-    line.remove_prefix(1);
+  line = ascii::trim(line, " \t\n\v\f\r");  // what isspace calls a space
   static const std::shared_ptr<const std::string> kNoFile;
   const LineParse parsed = parse_line(line, kNoFile, 1);
   if (parsed.error || !parsed.statement) return false;  // a broken, blank or comment line

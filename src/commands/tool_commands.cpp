@@ -8,7 +8,7 @@
 #include <fmt/format.h>  // the part files' text, messages
 
 #include <algorithm>  // clamp
-#include <cctype>     // toupper, tolower
+#include <cctype>     // toupper
 #include <cmath>      // ceil, round, sin, cos, acos
 #include <ctime>      // the date in TH's header
 #include <numbers>    // pi
@@ -18,7 +18,8 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/commands/stroke_font.hpp"  // TT's letters
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/core/text.hpp"             // upper
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {
@@ -728,8 +729,7 @@ enum Ti { kTiFile, kTiPart, kTiAxis, kTiDivisions, kTiStart, kTiSafeZ };
 // SB3 names TI without describing it; this is what an indexer's virtual tool is for.
 void indexer(CommandContext& ctx, const CommandCall& call) {
   const std::string part = *call.text(kTiPart);
-  std::string axis = call.text(kTiAxis).value_or("B");
-  for (char& c : axis) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const std::string axis = ascii::upper(call.text(kTiAxis).value_or("B"));
   const int n = whole(call, kTiDivisions, 1, 3600);
   const double start = call.number(kTiStart).value_or(0);
   const double safe = safe_z(ctx, call, kTiSafeZ, 0);

@@ -15,7 +15,8 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/text_file.hpp"  // read_text_file
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
+#include "gantry/interp/interpreter_options.hpp"  // InterpreterOptions
 #include "gantry/settings/values_file.hpp"  // settings_text, parse_settings
 
 namespace gantry {

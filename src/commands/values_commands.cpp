@@ -7,7 +7,7 @@
 #include <functional>  // a field's setter
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 #include "gantry/interp/tool_table.hpp"  // cutter_to_tool_table
 #include "gantry/lang/expression.hpp"    // parse_lvalue: VV's names
 

@@ -1,6 +1,6 @@
 // Zero commands: the current location of some axes becomes working 0 (Z2, Z3, ZX, ...).
 #include "gantry/commands/command_table.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 
 namespace gantry {
 namespace {

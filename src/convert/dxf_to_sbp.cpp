@@ -11,6 +11,7 @@
 
 #include "gantry/convert/to_sbp.hpp"
 #include "gantry/core/diagnostic.hpp"  // fail, file_loc
+#include "gantry/core/text.hpp"        // trim_front, trim_back
 #include "part_writer.hpp"
 
 namespace gantry {
@@ -28,11 +29,9 @@ struct Group {
   int line = 0;
 };
 
+// A value without its blanks, and a line end's '\r' (only at the end: a value never starts with one).
 std::string trimmed(std::string_view s) {
-  while (!s.empty() && (s.back() == '\r' || s.back() == ' ' || s.back() == '\t'))
-    s.remove_suffix(1);
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  return std::string(s);
+  return std::string(ascii::trim_front(ascii::trim_back(s, " \t\r"), " \t"));
 }
 
 std::vector<Group> read_groups(std::string_view text, const std::string& source) {

@@ -13,7 +13,7 @@
 #include "gantry/core/bounded.hpp"  // kMaxTextBytes
 #include "persistent_path.hpp"      // describe_path
 
-#include "gantry/lang/scan.hpp"  // upper
+#include "gantry/core/text.hpp"  // upper
 
 namespace gantry {
 
@@ -22,9 +22,7 @@ namespace {
 constexpr double kTrue = -1.0;  // the handbook's truth values (002:L299)
 constexpr double kFalse = 0.0;
 
-char upper(char c) {
-  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
-}
+using ascii::upper;
 
 // Ordinal comparison of the upper-cased texts: strings compare without regard to case
 // (handbook 002:L164), whatever case they are stored in.
@@ -402,7 +400,7 @@ bool is_true(const Value& v, const SourceLoc& loc) {
         return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
       }))
     fail(loc,
-         fmt::format("undefined variable &{}; set it before this line", scan::upper(t.substr(1))));
+         fmt::format("undefined variable &{}; set it before this line", ascii::upper(t.substr(1))));
   fail(loc, "IF needs a number or a comparison");
 }
 

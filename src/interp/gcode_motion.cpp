@@ -191,7 +191,7 @@ void GcodeExecutor::probe(const Words& w, const SourceLoc& loc) {
   const bool closing = code == 382 || code == 383;
   const double speed = feed_for(w, (target - start).norm(), loc);
   probe_hit_ =
-      ctx_.probe(to_file(target), speed, kProbeInput, loc, MotionSink::Watching::Probe, closing);
+      ctx_.probe(to_file(target), speed, kProbeInput, loc, MachineLink::Watching::Probe, closing);
   probed_ = program_position();
   if (!probe_hit_ && (code == 382 || code == 384) && ctx_.input_switches())
     fail(loc,

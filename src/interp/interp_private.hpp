@@ -6,11 +6,13 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/machine_link.hpp"  // MachineLink, MotionReport
 
 namespace gantry {
 
@@ -30,12 +32,14 @@ struct Interpreter::Frame {
   std::optional<Units> saved_units;      // before this file's SU
 };
 
-// The motion stream while the lines before a start line run: closed, it passes nothing but
-// the end of the stream and the inputs' state; it notes that the values changed and which
-// inputs to watch, for open() to send.
+// The motion stream, and the machine's answers (machine_link.hpp), while the lines before a
+// start line run: closed, it passes nothing but the end of the stream and the inputs' state;
+// it notes that the values changed and which inputs to watch, for open() to send.
+// Without a machine (`machine` null: a check, a preview, a list of moves) sync flushes the
+// moves and reports nothing, and so does the keypad; no input is watched or read.
 class Interpreter::GatedSink : public MotionSink {
  public:
-  explicit GatedSink(MotionSink& out) : out_(out) {}
+  GatedSink(MotionSink& out, MachineLink* machine) : out_(out), machine_(machine) {}
   void move(const CanonMove& m) override {
     touched.reset();
     if (!closed) out_.move(m);
@@ -52,25 +56,34 @@ class Interpreter::GatedSink : public MotionSink {
       out_.settings_changed(s);
   }
   // Closed, the machine is not asked: a probe is taken to reach its target, no input fires.
-  std::optional<MotionReport> sync() override {
+  std::optional<MotionReport> sync() {
     if (closed) return std::nullopt;
-    return out_.sync();
+    if (!machine_) {
+      out_.flush();
+      return std::nullopt;
+    }
+    return machine_->sync();
   }
-  void watch_inputs(std::span<const InputTrigger> t, Watching w) override {
-    if (!closed) return out_.watch_inputs(t, w);
+  void watch_inputs(std::span<const InputTrigger> t, MachineLink::Watching w) {
+    if (!closed) {
+      if (machine_) machine_->watch_inputs(t, w);
+      return;
+    }
     watched_.emplace(std::vector<InputTrigger>(t.begin(), t.end()), w);
   }
-  std::optional<std::array<bool, 12>> input_switches() const override {
-    return out_.input_switches();
+  std::optional<std::array<bool, 12>> input_switches() const {
+    if (!machine_) return std::nullopt;
+    return machine_->input_switches();
   }
-  std::optional<MotionReport> keypad(const SourceLoc& loc) override {
+  std::optional<MotionReport> keypad(const SourceLoc& loc) {
     if (closed) return std::nullopt;
-    return out_.keypad(loc);
+    if (!machine_) return sync();
+    return machine_->keypad(loc);
   }
   // Opens the stream; the inputs the lines before last asked to watch are watched from here.
   void open() {
     closed = false;
-    if (watched_) out_.watch_inputs(watched_->first, watched_->second);
+    if (watched_ && machine_) machine_->watch_inputs(watched_->first, watched_->second);
     watched_.reset();
   }
   bool closed = false;
@@ -78,7 +91,8 @@ class Interpreter::GatedSink : public MotionSink {
 
  private:
   MotionSink& out_;
-  std::optional<std::pair<std::vector<InputTrigger>, Watching>> watched_;
+  MachineLink* machine_;  // null: no machine
+  std::optional<std::pair<std::vector<InputTrigger>, MachineLink::Watching>> watched_;
 };
 
 // The operator while the lines before a start line run: closed, nothing is shown and nobody

@@ -93,7 +93,7 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
     const int n = static_cast<int>(in) - 1;
     ctx_.sync();
     if (snapshot().inputs[n] == (state != 0)) return;
-    const bool live = sink_.input_switches().has_value();
+    const bool live = gated_sink_->input_switches().has_value();
     if (options_.unattended_inputs) {
       // Nobody is at the machine: only the simulated machine can answer, or the wait never ends.
       const int on = state != 0;
@@ -118,7 +118,7 @@ void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
     if (live) {
       // The live machine: it waits for the switch, in short dwells, so time passes on the
       // card (virtual time too) and a stop ends the wait.
-      while ((*sink_.input_switches())[n] != (state != 0)) {
+      while ((*gated_sink_->input_switches())[n] != (state != 0)) {
         ctx_.dwell(0.01, loc);
         ctx_.sync();
       }

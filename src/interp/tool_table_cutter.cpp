@@ -4,7 +4,7 @@
 #include <fmt/format.h>  // messages
 
 #include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
-#include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/command_context.hpp"
 #include "gantry/interp/tool_table.hpp"
 
 namespace gantry {

@@ -8,6 +8,7 @@
 
 #include "gantry/lang/expr_node.hpp"
 #include "gantry/core/any_bytes.hpp"  // echoed: a token quoted in a message is capped
+#include "gantry/core/text.hpp"  // upper
 #include "gantry/lang/number_literal.hpp"  // literal::scan, literal::value
 
 namespace gantry {
@@ -53,21 +54,13 @@ bool is_name_start(char c) {
 bool is_name_char(char c) {
   return is_name_start(c) || is_digit(c);
 }
-char upper(char c) {
-  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
-}
+using ascii::upper;
 
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
     if (upper(a[i]) != upper(b[i])) return false;
   return true;
-}
-
-std::string to_upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = upper(c);
-  return out;
 }
 
 enum class Tok : std::uint8_t {
@@ -144,12 +137,12 @@ class Parser {
     v.loc = loc(t.pos);
     switch (t.kind) {
       case Tok::UserVar:
-        v.name = to_upper(text_.substr(t.pos + 1, t.len - 1));
+        v.name = upper(text_.substr(t.pos + 1, t.len - 1));
         reject_user_accessor(t);
         break;
       case Tok::PersistVar:
         v.persistent = true;
-        v.name = to_upper(text_.substr(t.pos + 1, t.len - 1));
+        v.name = upper(text_.substr(t.pos + 1, t.len - 1));
         v.path = accessors();
         break;
       case Tok::SysVar:
@@ -601,7 +594,7 @@ class Parser {
       fail(loc(tok_.pos), "expected an expression");
     }
     if (tok_.kind == Tok::Word)
-      fail(loc(tok_.pos), fmt::format("expected a value before {}", to_upper(source(tok_))));
+      fail(loc(tok_.pos), fmt::format("expected a value before {}", upper(source(tok_))));
     fail(loc(tok_.pos), fmt::format("expected a value, found {}", describe(tok_)));
   }
 
@@ -620,7 +613,7 @@ class Parser {
          (text_[pos_] == '.' && pos_ + 1 < text_.size() && is_name_start(text_[pos_ + 1]))))
       fail(loc(pos_), fmt::format("{} is a plain variable: only $ variables have fields and "
                                   "indices",
-                                  to_upper(source(t))));
+                                  upper(source(t))));
   }
 
   // `.field` and `[index]` steps written right after a `$name` (pos_ is just past the name).
@@ -635,7 +628,7 @@ class Parser {
           fail(loc(pos_), "expected a field name after '.', as in $name.field");
         const size_t e = name_end(b);
         step.is_field = true;
-        step.field = to_upper(text_.substr(b, e - b));
+        step.field = upper(text_.substr(b, e - b));
         pos_ = e;
       } else {
         Token open;
@@ -660,7 +653,7 @@ class Parser {
   }
 
   int parse_call(const Token& name) {
-    const std::string up = to_upper(source(name));
+    const std::string up = upper(source(name));
     const FuncInfo* f = find_function(up);
     if (!f)
       fail(loc(name.pos),
@@ -724,7 +717,7 @@ class Parser {
         reject_user_accessor(t);
         advance();
         const int node = add(ExprOp::UserVar, t.pos);
-        set_text(node, to_upper(text_.substr(t.pos + 1, t.len - 1)));
+        set_text(node, upper(text_.substr(t.pos + 1, t.len - 1)));
         Proto& p = protos_[node];
         p.spell_off = static_cast<std::uint32_t>(strings_.size());
         p.spell_len = static_cast<std::uint32_t>(t.len);
@@ -735,7 +728,7 @@ class Parser {
         std::vector<Accessor> path = accessors();
         advance();
         const int node = add(ExprOp::PersistVar, t.pos);
-        set_text(node, to_upper(text_.substr(t.pos + 1, t.len - 1)));
+        set_text(node, upper(text_.substr(t.pos + 1, t.len - 1)));
         protos_[node].path = static_cast<int>(paths_.size());
         paths_.push_back(std::move(path));
         return node;

@@ -86,9 +86,9 @@ class Controller::QueueSink : public SegmentSink {
   bool dead_ = false;
 };
 
-// The interpreter's sink: the planner of the current activity, and the live machine's
-// answers (sync, inputs) for probes and ON INPUT.
-class Controller::ForwardSink : public MotionSink {
+// The interpreter's sink: the planner of the current activity; and its MachineLink, the
+// live machine's answers (sync, inputs, keypad) for probes, ON INPUT and SK.
+class Controller::ForwardSink : public MotionSink, public MachineLink {
  public:
   explicit ForwardSink(Controller& c) : c_(c) {}
   MotionSink* to = nullptr;
@@ -96,7 +96,7 @@ class Controller::ForwardSink : public MotionSink {
   void flush() override { to->flush(); }
   void settings_changed(const Settings& s) override { to->settings_changed(s); }
 
-  std::optional<MotionReport> sync() override {
+  MotionReport sync() override {
     to->flush();
     c_.wait_for_motion();
     if (c_.abort_.load(std::memory_order_acquire))
@@ -117,10 +117,10 @@ class Controller::ForwardSink : public MotionSink {
                   : w == Watching::Home ? MachineState::Homing
                                         : MachineState::Running;
   }
-  std::optional<std::array<bool, 12>> input_switches() const override {
+  std::array<bool, 12> input_switches() const override {
     return c_.input_switches(c_.inputs_.load(std::memory_order_acquire));
   }
-  std::optional<MotionReport> keypad(const SourceLoc&) override {
+  MotionReport keypad(const SourceLoc&) override {
     sync();
     return c_.keypad_session();
   }
@@ -143,7 +143,8 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
   planner_ = std::make_unique<LookAheadPlanner>(settings, *qsink_);
   forward_->to = planner_.get();
   options.stop_check = &abort_;  // a stop ends even a file that loops without moving
-  interp_ = std::make_unique<Interpreter>(settings, *forward_, io, store, std::move(options));
+  interp_ = std::make_unique<Interpreter>(settings, *forward_, forward_.get(), io, store,
+                                         std::move(options));
   interp_->on_progress([this](std::size_t done, std::size_t total) {
     line_.store(done, std::memory_order_relaxed);
     lines_.store(total, std::memory_order_relaxed);

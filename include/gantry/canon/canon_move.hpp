@@ -3,7 +3,6 @@
 
 #include <array>
 #include <optional>
-#include <span>
 
 #include "gantry/core/axes.hpp"          // Vec6
 #include "gantry/core/diagnostic.hpp"    // SourceLoc
@@ -71,27 +70,18 @@ const char* speed_class_name(SpeedClass c);
 
 // An input switch edge to watch for while moving (ON INPUT handlers, probes): switch
 // `input` (1-12) closing or opening; `instant`: the pulses stop at the edge, otherwise the
-// motion ramps down along the path.
+// motion ramps down along the path. The interpreter asks for it through MachineLink; the
+// machine arms it in order with the moves.
 struct InputTrigger {
   int input = 0;
   bool closing = true;
   bool instant = false;
 };
 
-// What the live machine reports once the motion has played out (MotionSink::sync).
-struct MotionReport {
-  Vec6 machine = Vec6::Zero();  // where the tool is, machine frame, from the pulses played
-  // A watched edge cut the motion: which, and where the tool was at that instant (the
-  // motion after it was dropped; the tool came to rest at `machine`).
-  std::optional<InputTrigger> fired;
-  Vec6 latched = Vec6::Zero();
-  // The machine's clock: seconds of pulses (and dwells) played since the run began, on the
-  // card's pacer (virtual time on the simulated card, %(130)).
-  double elapsed_s = 0;
-};
-
 // Receives canonical moves in order. `flush` marks the end of the stream: nothing more will
-// come, so everything buffered must be completed.
+// come, so everything buffered must be completed. The stream is one-way: what the live
+// machine answers (where the tool is, its inputs, the keypad) reaches the interpreter through
+// interp's MachineLink.
 class MotionSink {
  public:
   virtual ~MotionSink() = default;
@@ -100,24 +90,6 @@ class MotionSink {
   // New values (VR ramps, VU steps per unit, VI channels) for the moves that follow; the
   // sender has brought the machine to rest just before (a Stop move).
   virtual void settings_changed(const Settings&) {}
-
-  // The live machine only (a check, a preview or a list of moves has none: nullopt).
-  // Plays out every move sent so far and reports where the tool is and whether a watched
-  // input cut the motion.
-  virtual std::optional<MotionReport> sync() {
-    flush();
-    return std::nullopt;
-  }
-  // Replaces the edges watched from the next move on (the machine is at rest: after sync),
-  // for ON INPUT handlers, a probe or homing (what the machine's state shows).
-  enum class Watching { Handlers, Probe, Home };
-  virtual void watch_inputs(std::span<const InputTrigger>, Watching) {}
-  // The input switches 1-12 now: closed (true) or open.
-  virtual std::optional<std::array<bool, 12>> input_switches() const { return std::nullopt; }
-  // SK: plays out the moves sent so far, then the operator jogs the machine with the keypad
-  // until they close it; reports where the tool is then. A machine without a keypad reports
-  // at once.
-  virtual std::optional<MotionReport> keypad(const SourceLoc&) { return sync(); }
 };
 
 }  // namespace gantry

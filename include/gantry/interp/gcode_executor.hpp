@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "gantry/interp/interpreter.hpp"  // CommandContext
+#include "gantry/interp/command_context.hpp"  // CommandContext
 #include "gantry/interp/operator_io.hpp"  // OperatorIO
 #include "gantry/lang/gcode.hpp"          // GcodeBlock, GcodeParameters
 

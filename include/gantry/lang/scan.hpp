@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "gantry/core/text.hpp"  // upper, trim
+
 namespace gantry::scan {
 
 inline bool is_space(char c) {
@@ -14,24 +16,13 @@ inline bool is_space(char c) {
 inline bool is_letter(char c) {
   return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
 }
-inline char upper(char c) {
-  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
-}
+using ascii::upper;
 inline bool is_word(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
 }
 
-inline std::string upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
-
-inline std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
-  return s;
-}
+// Blanks are ascii::kBlanks, the characters is_space accepts.
+using ascii::trim;
 
 // Index of the first `'` outside double quotes (the start of an inline comment), or npos.
 inline size_t comment_start(std::string_view s) {

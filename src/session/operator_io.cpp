@@ -1,33 +1,27 @@
-// The console window's operator: questions handed from the job thread to the window's.
-#include "window_io.hpp"
-
-#include <fmt/format.h>
+// The operator's mailbox: questions handed from the job thread to the front end's thread.
+#include "gantry/session/operator_io.hpp"
 
 #include <utility>
 
-namespace gantry::ui {
-namespace {
+#include "gantry/session/source_place.hpp"  // where
 
-std::string where(const SourceLoc& loc) {
-  return loc.file && *loc.file != "console" ? fmt::format("{}:{}", *loc.file, loc.line)
-                                            : std::string("console");
-}
+namespace gantry::session {
 
-}  // namespace
-
-void WindowIO::print(std::string_view text) {
+void OperatorMailbox::print(std::string_view text) {
+  if (direct_) return direct_(text);
   std::lock_guard lock(m_);
   output_ += text;
 }
 
-void WindowIO::warn(const Diagnostic& d) {
+void OperatorMailbox::warn(const Diagnostic& d) {
   print(format(d) + "\n");
 }
 
-bool WindowIO::confirm(std::string_view message, const SourceLoc& loc) {
+bool OperatorMailbox::confirm(std::string_view message, const SourceLoc& loc) {
   try {
     return scripted_.confirm(message, loc);
   } catch (const NeedsOperator&) {
+    if (!has_operator()) throw;
   }
   Question q;
   q.kind = Question::Kind::Pause;
@@ -36,11 +30,14 @@ bool WindowIO::confirm(std::string_view message, const SourceLoc& loc) {
   return wait_for(std::move(q)).has_value();
 }
 
-std::optional<std::string> WindowIO::ask(std::string_view prompt, std::string_view variable,
-                                         std::string_view default_value, const SourceLoc& loc) {
+std::optional<std::string> OperatorMailbox::ask(std::string_view prompt,
+                                                std::string_view variable,
+                                                std::string_view default_value,
+                                                const SourceLoc& loc) {
   try {
     return scripted_.ask(prompt, variable, default_value, loc);
   } catch (const NeedsOperator&) {
+    if (!has_operator()) throw;
   }
   Question q;
   q.kind = Question::Kind::Input;
@@ -51,12 +48,13 @@ std::optional<std::string> WindowIO::ask(std::string_view prompt, std::string_vi
   return wait_for(std::move(q));
 }
 
-std::string WindowIO::choose(std::string_view text, const std::vector<std::string>& buttons,
-                             std::size_t default_button, std::string_view title,
-                             const SourceLoc& loc) {
+std::string OperatorMailbox::choose(std::string_view text, const std::vector<std::string>& buttons,
+                                    std::size_t default_button, std::string_view title,
+                                    const SourceLoc& loc) {
   try {
     return scripted_.choose(text, buttons, default_button, title, loc);
   } catch (const NeedsOperator&) {
+    if (!has_operator()) throw;
   }
   Question q;
   q.kind = Question::Kind::MsgBox;
@@ -69,19 +67,19 @@ std::string WindowIO::choose(std::string_view text, const std::vector<std::strin
   return a ? *a : buttons.back();  // cancelled: the last button (Cancel or No)
 }
 
-KeypadAnswer WindowIO::keypad(std::string_view message, const SourceLoc&) {
+KeypadAnswer OperatorMailbox::keypad(std::string_view message, const SourceLoc& loc) {
+  if (!has_operator()) return scripted_.keypad(message, loc);
   std::lock_guard lock(m_);
-  keypad_message_ =
-      message.empty() ? std::string("SK: the file waits while you jog") : std::string(message);
+  keypad_message_ = std::string(message);
   return KeypadAnswer::Jog;
 }
 
-std::string WindowIO::take_keypad_message() {
+std::string OperatorMailbox::take_keypad_message() {
   std::lock_guard lock(m_);
   return std::exchange(keypad_message_, {});
 }
 
-std::optional<std::string> WindowIO::wait_for(Question q) {
+std::optional<std::string> OperatorMailbox::wait_for(Question q) {
   std::unique_lock lock(m_);
   q.id = next_id_++;
   question_ = std::move(q);
@@ -90,17 +88,17 @@ std::optional<std::string> WindowIO::wait_for(Question q) {
   return answer_;
 }
 
-std::string WindowIO::take_output() {
+std::string OperatorMailbox::take_output() {
   std::lock_guard lock(m_);
   return std::exchange(output_, {});
 }
 
-std::optional<Question> WindowIO::question() const {
+std::optional<Question> OperatorMailbox::question() const {
   std::lock_guard lock(m_);
   return question_;
 }
 
-void WindowIO::answer(std::string a) {
+void OperatorMailbox::answer(std::string a) {
   {
     std::lock_guard lock(m_);
     if (!question_) return;
@@ -110,7 +108,7 @@ void WindowIO::answer(std::string a) {
   cv_.notify_all();
 }
 
-void WindowIO::cancel() {
+void OperatorMailbox::cancel() {
   {
     std::lock_guard lock(m_);
     if (!question_) return;
@@ -120,4 +118,4 @@ void WindowIO::cancel() {
   cv_.notify_all();
 }
 
-}  // namespace gantry::ui
+}  // namespace gantry::session
