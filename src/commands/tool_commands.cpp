@@ -18,19 +18,12 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/commands/stroke_font.hpp"  // TT's letters
-#include "gantry/core/text.hpp"              // upper
+#include "gantry/convert/part_file.hpp"     // PartText, part_number
+#include "gantry/core/text.hpp"             // upper
 #include "gantry/interp/interpreter.hpp"
 
 namespace gantry {
 namespace {
-
-// A number as a part file gives it: at most 4 decimals, no trailing zeros, never "-0".
-std::string num(double v) {
-  std::string s = fmt::format("{:.4f}", v);
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
-}
 
 // ---- parameters -------------------------------------------------------------------------
 
@@ -49,8 +42,9 @@ ParamSpec count(std::string_view name, std::optional<double> def, std::string_vi
 int whole(const CommandCall& call, size_t i, int lo, int hi) {
   const double v = *call.number(i);
   if (v != std::round(v) || v < lo || v > hi)
-    fail(call.param_loc(i), fmt::format("{} ({}) is {}; it must be a whole number from {} to {}",
-                                        call.spec.params[i].name, call.spec.code, num(v), lo, hi));
+    fail(call.param_loc(i),
+         fmt::format("{} ({}) is {}; it must be a whole number from {} to {}",
+                     call.spec.params[i].name, call.spec.code, part_number(v), lo, hi));
   return static_cast<int>(v);
 }
 
@@ -62,7 +56,7 @@ double positive(const CommandCall& call, size_t i, std::optional<double> fallbac
                                         call.spec.params[i].name));
   if (!(*v > 0))
     fail(call.param_loc(i), fmt::format("{} ({}) is {}; it must be above 0",
-                                        call.spec.params[i].name, call.spec.code, num(*v)));
+                                        call.spec.params[i].name, call.spec.code, part_number(*v)));
   return *v;
 }
 
@@ -72,7 +66,7 @@ double overlap(const CommandCall& call, size_t i, double fallback) {
   if (!(v >= 0 && v < 100))
     fail(call.param_loc(i),
          fmt::format("{} ({}) is {} %; it must be from 0 up to (not including) 100",
-                     call.spec.params[i].name, call.spec.code, num(v)));
+                     call.spec.params[i].name, call.spec.code, part_number(v)));
   return v;
 }
 
@@ -82,7 +76,7 @@ bool choice(const CommandCall& call, size_t i, std::string_view zero, std::strin
   if (v != 0 && v != 1)
     fail(call.param_loc(i),
          fmt::format("{} ({}) is {}; it is 0 ({}) or 1 ({})", call.spec.params[i].name,
-                     call.spec.code, num(v), zero, one));
+                     call.spec.code, part_number(v), zero, one));
   return v == 1;
 }
 
@@ -102,7 +96,7 @@ double safe_z(const CommandContext& ctx, const CommandCall& call, size_t i, doub
     fail(call.param_loc(i),
          fmt::format("safe Z ({}) is {}, not above the material surface (Z {}); the tool "
                      "would travel through the material",
-                     call.spec.code, num(z), num(surface)));
+                     call.spec.code, part_number(z), part_number(surface)));
   return z;
 }
 
@@ -115,7 +109,8 @@ std::vector<double> pass_depths(double surface, double bottom, int passes) {
 
 // ---- the part file a tool writes -----------------------------------------------------------
 
-class PartFile {
+// A tool's part file: its header, then what the tool writes through PartText.
+class PartFile : public PartText {
  public:
   // The first lines: what wrote it, for which machine and units, and the summary `about`.
   PartFile(const CommandContext& ctx, std::string_view code, std::string_view tool,
@@ -128,42 +123,16 @@ class PartFile {
     for (const std::string& a : about) comment(a);
     line("SA");
   }
-  void comment(std::string_view text) { line(fmt::format("' {}", text)); }
-  void line(std::string_view text) {
-    text_ += text;
-    text_ += '\n';
-  }
-  void jog_z(double z) { line(fmt::format("JZ, {}", num(z))); }
-  void jog_xy(double x, double y) { line(fmt::format("J2, {}, {}", num(x), num(y))); }
-  void move_z(double z) { line(fmt::format("MZ, {}", num(z))); }
-  void move_xy(double x, double y) { line(fmt::format("M2, {}, {}", num(x), num(y))); }
-  // A full circle at the current Z, clockwise from 12 o'clock (where the tool is) and back,
-  // as chords no further than `tolerance` from the circle.
-  void circle(double cx, double cy, double r, double tolerance) {
-    int n = 8;
-    if (tolerance < r)
-      n = static_cast<int>(std::ceil(std::numbers::pi / std::acos(1 - tolerance / r)));
-    n = std::clamp(n, 8, 1000);
-    for (int j = 1; j < n; ++j) {
-      const double a = 2 * std::numbers::pi * j / n;
-      move_xy(cx + r * std::sin(a), cy + r * std::cos(a));
-    }
-    move_xy(cx, cy + r);
-  }
   // Writes the file through the interpreter (a check keeps it in its sandbox) and tells the
   // operator how to run it.
   void write(CommandContext& ctx, const CommandCall& call, std::string_view what) {
     const std::string name = *call.text(0);
-    const std::string path = ctx.write_file(name, text_, call.param_loc(0));
+    const std::string path = ctx.write_file(name, text(), call.param_loc(0));
     ctx.print(
         fmt::format("{} wrote {} to {}; run it with FP, {} (`gantry moves {}` lists its "
                     "moves)\n",
                     call.spec.code, what, path, name, path));
   }
-  const std::string& text() const { return text_; }
-
- private:
-  std::string text_;
 };
 
 // ---- TD: drill press ------------------------------------------------------------------------
@@ -214,7 +183,7 @@ void drill_press(CommandContext& ctx, const CommandCall& call) {
     if (depth > surface)
       ctx.warn(call.param_loc(kTdDepth),
                fmt::format("the holes go {} below the table top (Z 0); TD drills them so",
-                           num(depth - surface)));
+                           part_number(depth - surface)));
   }
   const double bottom = surface - depth;
   const double safe = safe_z(ctx, call, kTdSafeZ, surface);
@@ -224,7 +193,7 @@ void drill_press(CommandContext& ctx, const CommandCall& call) {
     fail(call.param_loc(kTdHole),
          fmt::format("a hole of diameter {} is smaller than the bit ({}); use a bit no wider "
                      "than the hole",
-                     num(hole), num(bit)));
+                     part_number(hole), part_number(bit)));
   const bool pocket = choice(call, kTdPocket, "cut the outline", "pocket from the centre out");
   const double step = bit * (1 - overlap(call, kTdOverlap, c.overlap) / 100);
   const double r = (hole - bit) / 2;  // the radius the bit's centre follows
@@ -233,10 +202,11 @@ void drill_press(CommandContext& ctx, const CommandCall& call) {
   PartFile f(ctx, "TD", "Drill press",
              {fmt::format("{} x {} holes of diameter {}, the first at X {}, Y {}, {} apart in X "
                           "and {} in Y",
-                          nx, ny, num(hole), num(x0), num(y0), num(dx), num(dy)),
-              fmt::format("Depth {} in {} pass{}, bit {}; Z 0 is the {}; safe Z {}", num(depth),
-                          passes, passes == 1 ? "" : "es", num(bit),
-                          table_zero ? "table top" : "material surface", num(safe))});
+                          nx, ny, part_number(hole), part_number(x0), part_number(y0),
+                          part_number(dx), part_number(dy)),
+              fmt::format("Depth {} in {} pass{}, bit {}; Z 0 is the {}; safe Z {}",
+                          part_number(depth), passes, passes == 1 ? "" : "es", part_number(bit),
+                          table_zero ? "table top" : "material surface", part_number(safe))});
   f.jog_z(safe);
   const std::vector<double> levels = pass_depths(surface, bottom, passes);
   for (int j = 0; j < ny; ++j)
@@ -306,12 +276,12 @@ void fluter(CommandContext& ctx, const CommandCall& call) {
   const bool along_x = choice(call, kTfAlongX, "flutes along Y", "flutes along X");
   const double safe = safe_z(ctx, call, kTfSafeZ, 0);
 
-  PartFile f(
-      ctx, "TF", "Fluter",
-      {fmt::format("{} flute{} {} long along {}, {} apart, the first from X {}, Y {}", n,
-                   n == 1 ? "" : "s", num(len), along_x ? "X" : "Y", num(gap), num(x0), num(y0)),
-       fmt::format("Depth {} in {} pass{}; Z 0 is the material surface; safe Z {}", num(depth),
-                   passes, passes == 1 ? "" : "es", num(safe))});
+  PartFile f(ctx, "TF", "Fluter",
+             {fmt::format("{} flute{} {} long along {}, {} apart, the first from X {}, Y {}", n,
+                          n == 1 ? "" : "s", part_number(len), along_x ? "X" : "Y",
+                          part_number(gap), part_number(x0), part_number(y0)),
+              fmt::format("Depth {} in {} pass{}; Z 0 is the material surface; safe Z {}",
+                          part_number(depth), passes, passes == 1 ? "" : "es", part_number(safe))});
   // Flute i from (u, v) to (u + len, v) in its own axes; X, Y when the flutes run along X.
   auto point = [&](double u, double v, bool jog) {
     const double x = along_x ? u : v, y = along_x ? v : u;
@@ -364,7 +334,8 @@ void surfacer(CommandContext& ctx, const CommandCall& call) {
       fail(call.param_loc(i),
            fmt::format("{} ({}) is {}, less than the bit ({}): the bit cannot stay inside the "
                        "area",
-                       call.spec.params[i].name, call.spec.code, num(*call.number(i)), num(bit)));
+                       call.spec.params[i].name, call.spec.code, part_number(*call.number(i)),
+                       part_number(bit)));
   // The bit's centre stays half a bit inside the area, so its edge reaches every side.
   const double half = bit / 2;
   const double u0 = (along_y ? y0 : x0) + half, u1 = (along_y ? y0 + sy : x0 + sx) - half;
@@ -376,10 +347,10 @@ void surfacer(CommandContext& ctx, const CommandCall& call) {
       ctx, "TU", "Tabletop surfacer",
       {fmt::format(
            "Area X {} to {}, Y {} to {}: {} rows along {}, then the edge; bit {}, overlap {} %",
-           num(x0), num(x0 + sx), num(y0), num(y0 + sy), rows, along_y ? "Y" : "X", num(bit),
-           num(ov)),
-       fmt::format("Depth {} in {} pass{}; Z 0 is the surface; safe Z {}", num(depth), passes,
-                   passes == 1 ? "" : "es", num(safe))});
+           part_number(x0), part_number(x0 + sx), part_number(y0), part_number(y0 + sy), rows,
+           along_y ? "Y" : "X", part_number(bit), part_number(ov)),
+       fmt::format("Depth {} in {} pass{}; Z 0 is the surface; safe Z {}", part_number(depth),
+                   passes, passes == 1 ? "" : "es", part_number(safe))});
   auto point = [&](double u, double v, bool jog) {
     const double x = along_y ? v : u, y = along_y ? u : v;
     jog ? f.jog_xy(x, y) : f.move_xy(x, y);
@@ -442,10 +413,11 @@ void typesetter(CommandContext& ctx, const CommandCall& call) {
   PartFile f(ctx, "TT", "Typesetter",
              {fmt::format("Text \"{}\": capitals {} tall, {} wide, the baseline from X {}, Y {} "
                           "at {} degrees",
-                          text, num(height), num(width * scale), num(x0), num(y0), num(angle)),
+                          text, part_number(height), part_number(width * scale), part_number(x0),
+                          part_number(y0), part_number(angle)),
               fmt::format("Engraved {} deep in {} pass{} along the letters' centre lines "
                           "(Gantry's single-stroke font); safe Z {}",
-                          num(depth), passes, passes == 1 ? "" : "es", num(safe))});
+                          part_number(depth), passes, passes == 1 ? "" : "es", part_number(safe))});
   // Font units to working X, Y: scaled, then turned about the start of the baseline.
   auto at = [&](double pen, const std::array<double, 2>& p) {
     const double u = (pen + p[0]) * scale, v = p[1] * scale;
@@ -555,7 +527,7 @@ void header_writer(CommandContext& ctx, const CommandCall& call) {
       {"X", kThBlankX}, {"Y", kThBlankY}, {"thickness", kThThickness}};
   for (const auto& [label, i] : sizes)
     if (const std::optional<double> v = call.number(i))
-      blank += fmt::format("{}{} {}", blank.empty() ? "" : ", ", label, num(*v));
+      blank += fmt::format("{}{} {}", blank.empty() ? "" : ", ", label, part_number(*v));
   if (!blank.empty()) lines.push_back(fmt::format("' Blank: {} {}", blank, units_name(s.units)));
   field("Bit", kThBit);
   if (call.number(kThZero))
@@ -617,7 +589,7 @@ void copy_machine(CommandContext& ctx, const CommandCall& call) {
     fail(call.param_loc(kTcSpacing),
          fmt::format("a spacing of {} makes {} x {} points; TC probes at most 1,000,000 (widen "
                      "the spacing)",
-                     num(step), nx, ny));
+                     part_number(step), nx, ny));
   const std::string name = *call.text(kTcFile);
   const bool csv = name.size() > 4 && (name.ends_with(".csv") || name.ends_with(".CSV"));
   // Every point is checked before the first probe: nothing moves for a grid off the table.
@@ -656,25 +628,26 @@ void copy_machine(CommandContext& ctx, const CommandCall& call) {
   if (missed > 0)
     ctx.warn(call.loc, fmt::format("{} of {} points found nothing down to Z {}; TC put them "
                                    "there",
-                                   missed, nx * ny, num(bottom)));
+                                   missed, nx * ny, part_number(bottom)));
 
-  std::string about =
-      fmt::format("{} x {} points {} apart from X {}, Y {}", nx, ny, num(step), num(x0), num(y0));
+  std::string about = fmt::format("{} x {} points {} apart from X {}, Y {}", nx, ny,
+                                  part_number(step), part_number(x0), part_number(y0));
   std::string text;
   if (csv) {
     text = "x,y,z\n";
     for (const std::vector<Point>& row : rows)
-      for (const Point& p : row) text += fmt::format("{},{},{}\n", num(p.x), num(p.y), num(p.z));
+      for (const Point& p : row)
+        text += fmt::format("{},{},{}\n", part_number(p.x), part_number(p.y), part_number(p.z));
   } else {
     PartFile f(ctx, "TC", "Copy of a probed surface",
                {about, fmt::format("Follows the surface row by row: cut it with a ball-nose bit; "
                                    "safe Z {}",
-                                   num(safe))});
+                                   part_number(safe))});
     f.jog_z(safe);
     f.jog_xy(rows[0][0].x, rows[0][0].y);
     for (const std::vector<Point>& row : rows)
       for (const Point& p : row)
-        f.line(fmt::format("M3, {}, {}, {}", num(p.x), num(p.y), num(p.z)));
+        f.line(fmt::format("M3, {}, {}, {}", part_number(p.x), part_number(p.y), part_number(p.z)));
     f.jog_z(safe);
     text = f.text();
   }
@@ -735,12 +708,12 @@ void indexer(CommandContext& ctx, const CommandCall& call) {
   const double safe = safe_z(ctx, call, kTiSafeZ, 0);
   PartFile f(ctx, "TI", "Indexer",
              {fmt::format("Runs {} at {} position{} of {}, {} degrees apart from {}", part, n,
-                          n == 1 ? "" : "s", axis, num(360.0 / n), num(start)),
-              fmt::format("Safe Z {} before each turn", num(safe))});
+                          n == 1 ? "" : "s", axis, part_number(360.0 / n), part_number(start)),
+              fmt::format("Safe Z {} before each turn", part_number(safe))});
   for (int k = 0; k < n; ++k) {
     f.comment(fmt::format("Position {} of {}", k + 1, n));
     f.jog_z(safe);
-    f.line(fmt::format("J{}, {}", axis, num(start + 360.0 * k / n)));
+    f.line(fmt::format("J{}, {}", axis, part_number(start + 360.0 * k / n)));
     f.line(fmt::format("FP, {}", part));
   }
   f.jog_z(safe);
