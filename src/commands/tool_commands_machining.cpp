@@ -3,19 +3,11 @@
 // checks and runs with FP.
 #include <fmt/format.h>  // the part files' text, messages
 
-#include <algorithm>  // clamp
-#include <cctype>     // toupper
-#include <cmath>      // ceil, round, sin, cos, acos
-#include <ctime>      // the date in TH's header
-#include <numbers>    // pi
+#include <cmath>  // ceil
 #include <string>
-#include <utility>  // pair
 #include <vector>
 
 #include "gantry/commands/command_table.hpp"
-#include "gantry/commands/stroke_font.hpp"  // TT's letters
-#include "gantry/convert/part_file.hpp"     // PartText, part_number
-#include "gantry/core/text.hpp"             // upper
 #include "gantry/interp/interpreter.hpp"
 #include "tool_commands.hpp"  // the tools' parameters, PartFile
 
