@@ -5,7 +5,8 @@
 
 #include <cmath>  // abs, ceil
 
-#include "gantry/canon/arc_geometry.hpp"   // plane_axes
+#include "gantry/canon/arc_geometry.hpp"  // plane_axes
+#include "gantry/core/part_number.hpp"    // part_number
 #include "gantry/motion/path_limits.hpp"  // nominal_path_speed
 
 namespace gantry {
@@ -13,10 +14,7 @@ namespace {
 
 // At most 8 decimals (far below any machine's step), no trailing zeros, never "-0".
 std::string num(double v) {
-  std::string s = fmt::format("{:.8f}", v);
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
+  return part_number(v, 8);
 }
 
 constexpr std::string_view kAxes = "XYZABC";

@@ -7,27 +7,18 @@
 
 #include <cmath>  // hypot
 
+#include "gantry/convert/part_file.hpp"  // PartText, part_number
+
 namespace gantry::convert {
-namespace {
-
-// A number as a part file gives it: at most 4 decimals, no trailing zeros, never "-0".
-std::string num(double v) {
-  std::string s = fmt::format("{:.4f}", v);
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
-}
-
-}  // namespace
 
 Conversion write_part(const std::vector<Path>& paths, const ConvertOptions& o,
                       std::string_view format, double scale,
                       const std::map<std::string, int>& skipped) {
   Conversion out;
-  std::string body;
-  auto line = [&](const std::string& l) { body += l + "\n"; };
+  PartText body;
+  auto line = [&](const std::string& l) { body.line(l); };
   auto at = [&](const Point& p) {
-    return fmt::format("{}, {}", num(p.x * scale), num(p.y * scale));
+    return fmt::format("{}, {}", part_number(p.x * scale), part_number(p.y * scale));
   };
   bool down = false;
   std::string here;  // where the tool is, as written
@@ -37,9 +28,9 @@ Conversion write_part(const std::vector<Path>& paths, const ConvertOptions& o,
     for (const Segment& s : path.segments) moves |= s.arc || at(s.end) != at(path.start);
     if (!moves) continue;  // a point, or a pen-up move: nothing to cut
     if (!down || at(path.start) != here) {
-      if (down) line(fmt::format("JZ, {}", num(o.safe_z)));
+      if (down) body.jog_z(o.safe_z);
       line(fmt::format("J2, {}", at(path.start)));
-      line(fmt::format("MZ, {}", num(o.cut_z)));
+      body.move_z(o.cut_z);
       ++out.paths;
       down = true;
     }
@@ -51,8 +42,8 @@ Conversion write_part(const std::vector<Path>& paths, const ConvertOptions& o,
       if (s.arc && r > 1e-4) {
         // Parameter 13 (no pull up) keeps the tool down for what follows on the path.
         line(fmt::format("CG, , {}, {}, {}, T, {}, , , , , , 1", to,
-                         num((s.centre.x - cur.x) * scale), num((s.centre.y - cur.y) * scale),
-                         s.clockwise ? 1 : -1));
+                         part_number((s.centre.x - cur.x) * scale),
+                         part_number((s.centre.y - cur.y) * scale), s.clockwise ? 1 : -1));
       } else if (to != here) {
         line(fmt::format("M2, {}", to));
       }
@@ -60,18 +51,18 @@ Conversion write_part(const std::vector<Path>& paths, const ConvertOptions& o,
       here = to;
     }
   }
-  if (down) line(fmt::format("JZ, {}", num(o.safe_z)));
+  if (down) body.jog_z(o.safe_z);
   for (const auto& [what, n] : skipped) out.notes.push_back(fmt::format("{} {}", n, what));
 
   const char* u = units_name(o.units);
   out.text = fmt::format("' Part file converted by Gantry FC from {} ({})\n", o.source, format);
   out.text += fmt::format("' {} path{}; 1 drawing unit = {} {}; cut at Z {}, jogs at Z {}\n",
                           out.paths, out.paths == 1 ? "" : "s", fmt::format("{:.6g}", scale), u,
-                          num(o.cut_z), num(o.safe_z));
+                          part_number(o.cut_z), part_number(o.safe_z));
   for (const std::string& n : out.notes) out.text += fmt::format("' Not converted: {}\n", n);
   out.text += "' For deeper passes, run it with FP's repetitions and plunge.\n";
-  out.text += fmt::format("SA\nJZ, {}\n", num(o.safe_z));
-  out.text += body;
+  out.text += fmt::format("SA\nJZ, {}\n", part_number(o.safe_z));
+  out.text += body.text();
   return out;
 }
 
