@@ -27,7 +27,11 @@
 #include "gantry/commands/command_docs.hpp"  // command_help, command_list
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/lang/scan.hpp"               // upper, trim
+#include "gantry/session/console_words.hpp"  // read_typed_line
+#include "gantry/session/live_position.hpp"  // LivePosition
 #include "gantry/session/operator_io.hpp"   // OperatorMailbox
+#include "gantry/session/refusal.hpp"       // refusal_under_line
 #include "gantry/session/source_place.hpp"  // kConsoleName, where
 #include "line_editor.hpp"                   // KeyDecoder, LineEditor
 #include "live_machine.hpp"                  // ValuesKeeper, LiveMachineArgs
@@ -48,18 +52,9 @@ using session::where;
 const char* const kPrompt = "gantry> ";
 const char* const kEStopPrompt = "gantry [E-stop: type ack]> ";
 
-std::string upper(std::string_view s) {
-  std::string u(s);
-  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return u;
-}
-
-std::string trim(std::string_view s) {
-  const size_t b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string_view::npos) return {};
-  const size_t e = s.find_last_not_of(" \t\r\n");
-  return std::string(s.substr(b, e - b + 1));
-}
+using scan::trim;
+using scan::upper;
+using session::shown;
 
 void write_out(std::string_view s) {
   std::fwrite(s.data(), 1, s.size(), stdout);
@@ -100,10 +95,6 @@ class RawTerminal {
 };
 
 // ---- what the console shows --------------------------------------------------------------
-
-double shown(double v) {
-  return std::abs(v) < 5e-5 ? 0.0 : v;  // no "-0.0000"
-}
 
 // The position readout: state, X Y Z A B C in working coordinates, units.
 std::string readout_text(std::string_view state, const Vec6& p, Units u) {
@@ -187,13 +178,10 @@ class Console {
 
   // Shared.
   void snapshot();  // at rest: the interpreter's exact position, the frame and units
-  Vec6 live_position(const ControllerStatus& st) const;
   std::string readout(const ControllerStatus& st) const;
   std::string state_text(const ControllerStatus& st) const;
   std::string help(const std::string& arg) const;
   std::string status_report() const;
-  std::string located(const std::string& prefix, const std::string& line, const Diagnostic& d,
-                      bool echo) const;
   std::string refusal(const std::string& prefix, const std::string& line, const Outcome& o,
                       bool echo_first) const;
   std::string ended(const ControllerStatus& st) const;
@@ -229,11 +217,8 @@ class Console {
   bool realtime_;
   std::atomic<int>& signal_;
 
-  // At rest (snapshot): where working 0 is in the machine frame, the exact position, and
-  // where working 0 is in table base coordinates.
-  Vec6 offset_ = Vec6::Zero(), position_ = Vec6::Zero(), table_zero_ = Vec6::Zero();
+  session::LivePosition live_;  // the frame and exact position at the last snapshot
   Units units_ = Units::Inches;
-  std::array<double, kAxisCount> steps_per_unit_{};
   double keypad_step_ = 0.1;
 
   LineEditor editor_;
@@ -268,20 +253,9 @@ class Console {
 void Console::snapshot() {
   const ModalState m = c_.modal();
   const Settings s = values_.settings();
-  table_zero_ = m.zero + m.applied_offset;
-  offset_ = m.machine_origin + table_zero_;
-  position_ = m.position;
+  live_.snapshot(m, s);
   units_ = s.units;
-  for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = s.axes[i].steps_per_unit;
   keypad_step_ = s.display.keypad_step;
-}
-
-// While moving: the played steps in the units and frame of the last snapshot.
-Vec6 Console::live_position(const ControllerStatus& st) const {
-  Vec6 p;
-  for (int i = 0; i < kAxisCount; ++i)
-    p[i] = static_cast<double>(st.steps[i]) / steps_per_unit_[i] - offset_[i];
-  return p;
 }
 
 std::string Console::state_text(const ControllerStatus& st) const {
@@ -296,7 +270,7 @@ std::string Console::readout(const ControllerStatus& st) const {
   // under way, the pulses played say where the tool is.
   const bool rest =
       (at_rest(st.state) || st.state == MachineState::Keypad) && mode_ != Mode::Job && !kp_.active;
-  return readout_text(state_text(st), rest ? position_ : live_position(st), units_);
+  return readout_text(state_text(st), live_.at(st, rest), units_);
 }
 
 std::string Console::help(const std::string& arg) const {
@@ -310,7 +284,7 @@ std::string Console::help(const std::string& arg) const {
 std::string Console::status_report() const {
   const ControllerStatus st = c_.status();
   std::string out = readout(st) + "\n";
-  const Vec6 table = position_ + table_zero_;
+  const Vec6 table = live_.table_base();
   out += fmt::format("table base X {:.4f}  Y {:.4f}  Z {:.4f}; keypad step {:.4f} {}\n",
                      shown(table[0]), shown(table[1]), shown(table[2]), keypad_step_,
                      units_name(units_));
@@ -321,31 +295,10 @@ std::string Console::status_report() const {
   return out;
 }
 
-// A diagnostic: under the line typed with a caret at its column, when it is located there;
-// otherwise as `FILE:LINE:COL: error: ...`. `echo`: print the line again first.
-std::string Console::located(const std::string& prefix, const std::string& line,
-                             const Diagnostic& d, bool echo) const {
-  const bool here = d.loc.file && *d.loc.file == kConsoleName && d.loc.line == 1 && d.via.empty();
-  if (!here) return format(d) + "\n";
-  const char* what = d.severity == Severity::Error ? "error" : "warning";
-  if (d.loc.column <= 0) return fmt::format("{}: {}\n", what, d.message);
-  std::string out = echo ? prefix + line + "\n" : "";
-  out += std::string(prefix.size() + static_cast<size_t>(d.loc.column) - 1, ' ') + "^\n";
-  out += fmt::format("{}: column {}: {}\n", what, d.loc.column, d.message);
-  return out;
-}
-
 std::string Console::refusal(const std::string& prefix, const std::string& line, const Outcome& o,
                              bool echo_first) const {
-  if (o.errors.empty())
-    return o.reason + (c_.state() == MachineState::EStop ? " (type ack)\n" : "\n");
-  std::string out;
-  bool echo = echo_first;  // otherwise the line is on the screen just above the first caret
-  for (const Diagnostic& d : o.errors) {
-    out += located(prefix, line, d, echo);
-    echo = true;
-  }
-  return out;
+  return session::refusal_under_line(prefix, line, o, echo_first,
+                                     c_.state() == MachineState::EStop);
 }
 
 // What a line that ran says when it ended other than by running to its end.
@@ -563,36 +516,34 @@ void Console::show_question(const std::string& text, const std::string& prompt) 
 }
 
 void Console::handle_line(const std::string& typed) {
-  const std::string line = trim(typed);
-  if (line.empty()) return;
+  using Word = session::TypedLine::Word;
+  const session::TypedLine t = session::read_typed_line(typed, single_step_);
+  if (t.line.empty()) return;
   // The line runs as typed (leading blanks too), so that its columns are the screen's.
   const std::string text = typed.substr(0, typed.find_last_not_of(" \t\r\n") + 1);
-  const size_t space = line.find_first_of(" \t");
-  const std::string word = upper(line.substr(0, space));
-  const std::string rest = space == std::string::npos ? "" : trim(line.substr(space));
-  if ((word == "QUIT" || word == "EXIT") && rest.empty()) {
-    quit_ = true;
-    return;
-  }
-  if (word == "HELP") return write_out(help(rest));
-  if (word == "STATUS" && rest.empty()) return write_out(status_report());
-  if (word == "ACK" && rest.empty()) {
-    const Outcome o = c_.acknowledge();
-    if (o) snapshot();
-    return write_out(o ? "E-stop acknowledged: the machine is ready\n" : o.reason + "\n");
-  }
-  if (word == "K" && rest.empty()) return enter_keypad("");
-  if (word == "STEP" && (rest.empty() || upper(rest) == "ON" || upper(rest) == "OFF")) {
-    single_step_ = rest.empty() ? !single_step_ : upper(rest) == "ON";
-    c_.set_single_step(single_step_);
-    return write_out(single_step_ ? "single step on: each statement holds once its motion has "
-                                    "played; space or Enter runs the next, Esc ends the file\n"
-                                  : "single step off\n");
-  }
-  const std::string code = upper(line.substr(0, std::min<size_t>(2, line.size())));
-  if (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' ')) {
-    const size_t comma = line.find(',');
-    return enter_keypad(comma == std::string::npos ? "" : trim(line.substr(comma + 1)));
+  switch (t.word) {
+    case Word::Quit:
+      quit_ = true;
+      return;
+    case Word::Help:
+      return write_out(help(t.rest));
+    case Word::Status:
+      return write_out(status_report());
+    case Word::Ack: {
+      const Outcome o = c_.acknowledge();
+      if (o) snapshot();
+      return write_out(o ? "E-stop acknowledged: the machine is ready\n" : o.reason + "\n");
+    }
+    case Word::Keypad:
+      return enter_keypad(t.message);
+    case Word::Step:
+      single_step_ = t.step_on;
+      c_.set_single_step(single_step_);
+      return write_out(single_step_ ? "single step on: each statement holds once its motion has "
+                                      "played; space or Enter runs the next, Esc ends the file\n"
+                                    : "single step off\n");
+    case Word::None:
+      break;
   }
   const Outcome o = c_.run_typed(Script::from_text(text, kConsoleName));
   if (!o) {
@@ -601,7 +552,7 @@ void Console::handle_line(const std::string& typed) {
         prompt_.size() + text.size() + 1 >= static_cast<size_t>(terminal_columns());
     return write_out(refusal(prompt_, text, o, scrolled));
   }
-  line_start_ = position_;
+  line_start_ = live_.exact();
   status_drawn_ = false;
   mode_ = Mode::Job;
 }
@@ -633,7 +584,7 @@ void Console::end_job() {
   if (std::string text = io_.take_output(); !text.empty())
     write_out(text.back() == '\n' ? text : text + "\n");
   const ControllerStatus st = c_.status();
-  const bool moved = position_ != line_start_;
+  const bool moved = live_.exact() != line_start_;
   if (moved || status_drawn_ || st.state != MachineState::Idle) write_out(readout(st) + "\n");
   write_out(ended(st));
   show_prompt();
@@ -878,35 +829,32 @@ int Console::piped() {
   LineReader in(STDIN_FILENO);
   std::string typed;
   while (in.next(typed, signal_)) {
-    const std::string line = trim(typed);
+    using Word = session::TypedLine::Word;
+    const session::TypedLine t = session::read_typed_line(typed);
+    const std::string& line = t.line;
     if (line.empty()) continue;
     write_out(prefix + line + "\n");
-    const size_t space = line.find_first_of(" \t");
-    const std::string word = upper(line.substr(0, space));
-    const std::string rest = space == std::string::npos ? "" : trim(line.substr(space));
-    if ((word == "QUIT" || word == "EXIT") && rest.empty()) return 0;
-    if (word == "HELP") {
-      write_out(help(rest));
+    if (t.word == Word::Quit) return 0;
+    if (t.word == Word::Help) {
+      write_out(help(t.rest));
       continue;
     }
-    if (word == "STATUS" && rest.empty()) {
+    if (t.word == Word::Status) {
       write_out(status_report());
       continue;
     }
-    if (word == "ACK" && rest.empty()) {
+    if (t.word == Word::Ack) {
       const Outcome o = c_.acknowledge();
       if (!o) return write_out(o.reason + "\n"), 1;
       snapshot();
       write_out("E-stop acknowledged: the machine is ready\n");
       continue;
     }
-    const std::string code = upper(line.substr(0, std::min<size_t>(2, line.size())));
-    if ((word == "K" && rest.empty()) ||
-        (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' '))) {
+    if (t.word == Word::Keypad) {
       write_out("error: the keypad needs a terminal (standard input is not one)\n");
       return 1;
     }
-    if (word == "STEP") {
+    if (t.first == "STEP") {
       write_out("error: single step needs a terminal (standard input is not one)\n");
       return 1;
     }
