@@ -229,7 +229,8 @@ std::optional<std::string> App::missed_click() {
 
 void App::report(const Outcome& o, const std::string& what) {
   if (o) return;
-  for (std::string& entry : session::refusal_entries(o, what)) log(LogLine::Error, std::move(entry));
+  for (std::string& entry : session::refusal_entries(o, what))
+    log(LogLine::Error, std::move(entry));
 }
 
 void App::run_line(const std::string& typed) {

@@ -18,8 +18,8 @@
 #include "camera.hpp"
 #include "command_line.hpp"
 #include "fill_sheet.hpp"
-#include "gui.hpp"
 #include "gantry/session/live_position.hpp"  // LivePosition
+#include "gui.hpp"
 #include "preview_gl.hpp"
 
 namespace gantry::ui {

@@ -31,7 +31,8 @@ std::vector<Piece> split_params(std::string_view line) {
   for (; i <= line.size(); ++i) {
     if (i < line.size() && line[i] == '"') quoted = !quoted;
     if (i == line.size() || (line[i] == ',' && !quoted)) {
-      out.push_back({std::string(scan::trim(line.substr(start, i - start))), static_cast<int>(start) + 1});
+      out.push_back(
+          {std::string(scan::trim(line.substr(start, i - start))), static_cast<int>(start) + 1});
       start = i + 1;
     }
   }

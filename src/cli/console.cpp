@@ -21,7 +21,7 @@
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/session/console_words.hpp"  // read_typed_line
 #include "gantry/session/refusal.hpp"        // refusal_under_line
-#include "gantry/session/source_place.hpp"  // kConsoleName, where
+#include "gantry/session/source_place.hpp"   // kConsoleName, where
 
 namespace gantry::console {
 namespace {
@@ -75,11 +75,11 @@ std::pair<std::string, std::string> question_text(const Question& q) {
               "Enter continues, c then Enter cancels (Esc cancels): "};
     case Question::Kind::Input: {
       const bool several = q.variable.find(',') != std::string::npos;
-      return {fmt::format("[{}] {}", q.where, q.text),
-              fmt::format("{}{}{}: ", q.variable, several ? " (separated by commas)" : "",
-                          !several && !q.default_value.empty()
-                              ? fmt::format(" [{}]", q.default_value)
-                              : "")};
+      return {
+          fmt::format("[{}] {}", q.where, q.text),
+          fmt::format(
+              "{}{}{}: ", q.variable, several ? " (separated by commas)" : "",
+              !several && !q.default_value.empty() ? fmt::format(" [{}]", q.default_value) : "")};
     }
     case Question::Kind::MsgBox: {
       std::string text = fmt::format("[{}] {}: {}", q.where, q.title, q.text);
@@ -497,6 +497,5 @@ int Console::piped() {
   }
   return 0;
 }
-
 
 }  // namespace gantry::console

@@ -8,14 +8,14 @@
 #include <map>
 
 #include "console.hpp"
-#include "console_terminal.hpp"             // write_out
-#include "console_view.hpp"                 // Console
-#include "gantry/lang/scan.hpp"             // upper
-#include "gantry/session/operator_io.hpp"   // OperatorMailbox
-#include "live_machine.hpp"                 // ValuesKeeper, open_live_card
-#include "machine_profile.hpp"              // load_machine_profile
-#include "open_card.hpp"                    // plays_in_real_time
-#include "signal_watch.hpp"                 // SignalWatch
+#include "console_terminal.hpp"            // write_out
+#include "console_view.hpp"                // Console
+#include "gantry/lang/scan.hpp"            // upper
+#include "gantry/session/operator_io.hpp"  // OperatorMailbox
+#include "live_machine.hpp"                // ValuesKeeper, open_live_card
+#include "machine_profile.hpp"             // load_machine_profile
+#include "open_card.hpp"                   // plays_in_real_time
+#include "signal_watch.hpp"                // SignalWatch
 
 namespace gantry {
 
@@ -59,8 +59,9 @@ int run_console(const ConsoleArgs& a) {
 
   SignalWatch signals;  // before the controller starts its threads: they inherit the mask
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
-  OperatorMailbox io(a.yes, inputs, interactive ? std::function<void(std::string_view)>{}
-                                                : std::function<void(std::string_view)>(write_out));
+  OperatorMailbox io(a.yes, inputs,
+                     interactive ? std::function<void(std::string_view)>{}
+                                 : std::function<void(std::string_view)>(write_out));
   ValuesKeeper values(profile, io);
 
   std::string type;

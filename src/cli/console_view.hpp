@@ -11,12 +11,12 @@
 #include <string>
 #include <string_view>
 
-#include "console.hpp"                      // ConsoleArgs
-#include "gantry/machine/controller.hpp"    // Controller
+#include "console.hpp"                       // ConsoleArgs
+#include "gantry/machine/controller.hpp"     // Controller
 #include "gantry/session/live_position.hpp"  // LivePosition
-#include "gantry/session/operator_io.hpp"   // OperatorMailbox, Question
-#include "line_editor.hpp"                  // Key, LineEditor
-#include "live_machine.hpp"                 // ValuesKeeper
+#include "gantry/session/operator_io.hpp"    // OperatorMailbox, Question
+#include "line_editor.hpp"                   // Key, LineEditor
+#include "live_machine.hpp"                  // ValuesKeeper
 
 namespace gantry::console {
 
@@ -91,7 +91,7 @@ class Console {
   std::string prompt_ = kPrompt;  // the prompt the last line was typed at
   Mode mode_ = Mode::Prompt;
   bool quit_ = false;
-  bool asking_ = false;  // a question from the running file has the answer line
+  bool asking_ = false;               // a question from the running file has the answer line
   std::uint64_t question_shown_ = 0;  // the id of the last question shown
   Question asked_;                    // ... and the question
   bool single_step_ = false;

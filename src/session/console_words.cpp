@@ -28,7 +28,8 @@ TypedLine read_typed_line(std::string_view typed, bool single_step) {
     t.word = TypedLine::Word::Ack;
   } else if (word == "K" && bare) {
     t.word = TypedLine::Word::Keypad;
-  } else if (word == "STEP" && (bare || scan::upper(t.rest) == "ON" || scan::upper(t.rest) == "OFF")) {
+  } else if (word == "STEP" &&
+             (bare || scan::upper(t.rest) == "ON" || scan::upper(t.rest) == "OFF")) {
     t.word = TypedLine::Word::Step;
     t.step_on = bare ? !single_step : scan::upper(t.rest) == "ON";
   } else if (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' ')) {

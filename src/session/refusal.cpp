@@ -27,8 +27,8 @@ bool in_typed_line(const Diagnostic& d) {
   return d.loc.file && *d.loc.file == kConsoleName && d.loc.line == 1 && d.via.empty();
 }
 
-std::string refusal_under_line(const std::string& prompt, const std::string& line,
-                               const Outcome& o, bool echo_first, bool estop) {
+std::string refusal_under_line(const std::string& prompt, const std::string& line, const Outcome& o,
+                               bool echo_first, bool estop) {
   if (o.errors.empty()) return o.reason + (estop ? " (type ack)\n" : "\n");
   std::string out;
   bool echo = echo_first;  // otherwise the line is on the screen just above the first caret

@@ -18,10 +18,10 @@ struct TypedLine {
     Step,    // STEP [ON|OFF]: single step
   };
   Word word = Word::None;
-  std::string line;   // trimmed (empty: nothing to do)
-  std::string first;  // the first word, upper case ("STEP" even when the word is not Step)
-  std::string rest;   // after the first word, trimmed: HELP's argument, STEP's ON or OFF
-  std::string message;  // SK's message
+  std::string line;      // trimmed (empty: nothing to do)
+  std::string first;     // the first word, upper case ("STEP" even when the word is not Step)
+  std::string rest;      // after the first word, trimmed: HELP's argument, STEP's ON or OFF
+  std::string message;   // SK's message
   bool step_on = false;  // STEP: on (ON, or a bare STEP with single step off)
 };
 

@@ -4,10 +4,10 @@
 
 #include <array>
 
-#include "gantry/core/axes.hpp"               // Vec6, kAxisCount
-#include "gantry/interp/interpreter.hpp"      // ModalState
-#include "gantry/machine/controller.hpp"      // ControllerStatus
-#include "gantry/settings/settings.hpp"       // Settings, Units
+#include "gantry/core/axes.hpp"           // Vec6, kAxisCount
+#include "gantry/interp/interpreter.hpp"  // ModalState
+#include "gantry/machine/controller.hpp"  // ControllerStatus
+#include "gantry/settings/settings.hpp"   // Settings, Units
 
 namespace gantry::session {
 
@@ -20,7 +20,7 @@ class LivePosition {
   // `rest`: the front end knows the machine is at rest, so the snapshot's position is exact.
   Vec6 at(const ControllerStatus& st, bool rest) const { return rest ? position_ : from_steps(st); }
 
-  const Vec6& exact() const { return position_; }         // at the last snapshot
+  const Vec6& exact() const { return position_; }              // at the last snapshot
   Vec6 table_base() const { return position_ + table_zero_; }  // ... in table base coordinates
 
  private:

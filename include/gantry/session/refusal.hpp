@@ -17,8 +17,8 @@ bool in_typed_line(const Diagnostic& d);
 // At a terminal: under the line typed after `prompt`, a caret at each diagnostic's column.
 // `echo_first`: print the line again before the first caret (it scrolled off); `estop`: the
 // machine is E-stopped (a reason then says to type ack). Ends with a newline.
-std::string refusal_under_line(const std::string& prompt, const std::string& line,
-                               const Outcome& o, bool echo_first, bool estop);
+std::string refusal_under_line(const std::string& prompt, const std::string& line, const Outcome& o,
+                               bool echo_first, bool estop);
 
 // In a log: one entry per diagnostic, or "WHAT: reason" when the refusal has none.
 std::vector<std::string> refusal_entries(const Outcome& o, const std::string& what);
