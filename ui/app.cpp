@@ -13,7 +13,11 @@
 #include <filesystem>
 
 #include "gantry/commands/command_docs.hpp"  // command_help
+#include "gantry/lang/scan.hpp"              // trim
 #include "gantry/lang/script.hpp"            // Script
+#include "gantry/session/console_words.hpp"  // read_typed_line
+#include "gantry/session/refusal.hpp"        // refusal_entries
+#include "gantry/session/source_place.hpp"   // kConsoleName
 
 namespace gantry::ui {
 namespace {
@@ -21,26 +25,12 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // The one-line scripts typed in the window are named like the terminal console's.
-const char* const kConsoleName = "console";
+using session::kConsoleName;
+using session::shown;
 const char* const kAxes = "XYZABC";
 
 const ImVec4 kRed(1.0f, 0.35f, 0.35f, 1), kGreen(0.4f, 0.9f, 0.4f, 1), kYellow(1, 0.85f, 0.3f, 1),
     kGrey(0.6f, 0.6f, 0.6f, 1), kCyan(0.5f, 0.85f, 1, 1);
-
-std::string upper(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
-
-std::string trim(const std::string& s) {
-  const std::size_t b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return {};
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-double shown(double v) {
-  return std::abs(v) < 5e-5 ? 0.0 : v;
-}  // no "-0.0000"
 
 std::string clock_text(double s) {
   const auto t = static_cast<long>(std::lround(std::max(s, 0.0)));
@@ -112,7 +102,7 @@ App::~App() {
 void App::snapshot() {
   modal_ = c_.modal();
   settings_ = m_.settings();
-  offset_ = modal_.machine_origin + modal_.zero + modal_.applied_offset;
+  tool_.snapshot(modal_, settings_);
 }
 
 bool App::at_rest() const {
@@ -136,11 +126,7 @@ bool App::idle() const {
 Vec6 App::position(const ControllerStatus& st) const {
   // At rest the interpreter's position is exact (a step ends on its commanded point); under
   // way the pulses played say where the tool is.
-  if (rest_state(st.state)) return modal_.position;
-  Vec6 p;
-  for (int i = 0; i < kAxisCount; ++i)
-    p[i] = static_cast<double>(st.steps[i]) / settings_.axes[i].steps_per_unit - offset_[i];
-  return p;
+  return tool_.at(st, rest_state(st.state));
 }
 
 void App::log(LogLine::Kind kind, std::string text) {
@@ -243,53 +229,49 @@ std::optional<std::string> App::missed_click() {
 
 void App::report(const Outcome& o, const std::string& what) {
   if (o) return;
-  if (o.errors.empty()) return log(LogLine::Error, fmt::format("{}: {}", what, o.reason));
-  for (const Diagnostic& d : o.errors) {
-    const bool here = d.loc.file && *d.loc.file == kConsoleName && d.loc.line == 1 && d.via.empty();
-    log(LogLine::Error,
-        here ? fmt::format("error: column {}: {}", d.loc.column, d.message) : format(d));
-  }
+  for (std::string& entry : session::refusal_entries(o, what))
+    log(LogLine::Error, std::move(entry));
 }
 
 void App::run_line(const std::string& typed) {
-  const std::string line = trim(typed);
+  using Word = session::TypedLine::Word;
+  const session::TypedLine t = session::read_typed_line(typed);
+  const std::string& line = t.line;
   if (line.empty()) return;
   log(LogLine::Typed, "> " + line);
-  const std::size_t space = line.find_first_of(" \t");
-  const std::string word = upper(line.substr(0, space));
-  const std::string rest = space == std::string::npos ? "" : trim(line.substr(space));
-  if ((word == "QUIT" || word == "EXIT") && rest.empty()) {
-    quit_ = true;
-    return;
-  }
-  if (word == "HELP") {
-    if (rest.empty()) return log(LogLine::Info, kKeysHelp);
-    if (const CommandSpec* s = table_.find(upper(rest)))
-      return log(LogLine::Info, command_help(*s));
-    return log(LogLine::Error, fmt::format("unknown command '{}'", rest));
-  }
-  if (word == "STATUS" && rest.empty()) {
-    const Vec6 p = position(status_);
-    return log(LogLine::Info,
-               fmt::format("{}  X {:.4f}  Y {:.4f}  Z {:.4f}  {}{}", state_name(status_.state),
-                           shown(p[0]), shown(p[1]), shown(p[2]), units_name(settings_.units),
-                           status_.message.empty() ? "" : "; last stop: " + status_.message));
-  }
-  if (word == "ACK" && rest.empty()) {
-    const Outcome o = c_.acknowledge();
-    report(o, "ack");
-    if (o) {
-      snapshot();
-      log(LogLine::Info, "E-stop acknowledged: the machine is ready");
+  const std::string& rest = t.rest;
+  switch (t.word) {
+    case Word::Quit:
+      quit_ = true;
+      return;
+    case Word::Help:
+      if (rest.empty()) return log(LogLine::Info, kKeysHelp);
+      if (const CommandSpec* s = table_.find(scan::upper(rest)))
+        return log(LogLine::Info, command_help(*s));
+      return log(LogLine::Error, fmt::format("unknown command '{}'", rest));
+    case Word::Status: {
+      const Vec6 p = position(status_);
+      return log(LogLine::Info,
+                 fmt::format("{}  X {:.4f}  Y {:.4f}  Z {:.4f}  {}{}", state_name(status_.state),
+                             shown(p[0]), shown(p[1]), shown(p[2]), units_name(settings_.units),
+                             status_.message.empty() ? "" : "; last stop: " + status_.message));
     }
-    return;
-  }
-  const std::string code = upper(line.substr(0, std::min<std::size_t>(2, line.size())));
-  if ((word == "K" && rest.empty()) ||
-      (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' '))) {
-    kp_focus_ = true;
-    ImGui::SetWindowFocus("Keypad");
-    return log(LogLine::Info, "keypad: arrows X and Y, PageUp/PageDown Z; Esc leaves");
+    case Word::Ack: {
+      const Outcome o = c_.acknowledge();
+      report(o, "ack");
+      if (o) {
+        snapshot();
+        log(LogLine::Info, "E-stop acknowledged: the machine is ready");
+      }
+      return;
+    }
+    case Word::Keypad:
+      kp_focus_ = true;
+      ImGui::SetWindowFocus("Keypad");
+      return log(LogLine::Info, "keypad: arrows X and Y, PageUp/PageDown Z; Esc leaves");
+    case Word::Step:  // the window has no single step: the line goes to the machine
+    case Word::None:
+      break;
   }
   const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
   report(o, "refused");
@@ -823,7 +805,7 @@ void App::console_window() {
       (at_rest() ? 0 : ImGuiInputTextFlags_ReadOnly);
   if (ImGui::InputText("##line", &line_, flags, callback, this)) {
     const std::string typed = std::exchange(line_, {});
-    history_.add(trim(typed));
+    history_.add(std::string(scan::trim(typed)));
     if (enter_action(table_, typed) == EnterAction::OpenSheet)
       open_sheet(*command_of(table_, typed), typed);
     else

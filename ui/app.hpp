@@ -18,6 +18,7 @@
 #include "camera.hpp"
 #include "command_line.hpp"
 #include "fill_sheet.hpp"
+#include "gantry/session/live_position.hpp"  // LivePosition
 #include "gui.hpp"
 #include "preview_gl.hpp"
 
@@ -95,7 +96,7 @@ class App {
   Settings settings_;  // in force at the last snapshot
   ControllerStatus status_;
   ModalState modal_;
-  Vec6 offset_ = Vec6::Zero();  // where working 0 is in the machine frame
+  session::LivePosition tool_;  // the frame and exact position at the last snapshot
   bool was_at_rest_ = true;
 
   // Command line.

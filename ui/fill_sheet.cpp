@@ -7,14 +7,10 @@
 #include <charconv>
 #include <cmath>
 
+#include "gantry/lang/scan.hpp"  // trim
+
 namespace gantry::ui {
 namespace {
-
-std::string trim(std::string_view s) {
-  const std::size_t b = s.find_first_not_of(" \t");
-  if (b == std::string_view::npos) return {};
-  return std::string(s.substr(b, s.find_last_not_of(" \t") - b + 1));
-}
 
 // The parameters of a line after its code, split at the commas outside quotes, with the
 // column (1-based, in `line`) each starts at.
@@ -35,7 +31,8 @@ std::vector<Piece> split_params(std::string_view line) {
   for (; i <= line.size(); ++i) {
     if (i < line.size() && line[i] == '"') quoted = !quoted;
     if (i == line.size() || (line[i] == ',' && !quoted)) {
-      out.push_back({trim(line.substr(start, i - start)), static_cast<int>(start) + 1});
+      out.push_back(
+          {std::string(scan::trim(line.substr(start, i - start))), static_cast<int>(start) + 1});
       start = i + 1;
     }
   }
@@ -60,7 +57,7 @@ std::string unit_text(std::string_view unit, std::string_view units) {
 }  // namespace
 
 std::string field_error(const ParamSpec& p, std::string_view value) {
-  const std::string v = trim(value);
+  const std::string v(scan::trim(value));
   if (v.empty()) return p.required ? "required: this parameter has no default" : "";
   if (p.kind == ParamKind::Text) {
     if (p.choices.empty()) return "";
@@ -126,9 +123,9 @@ bool FillSheet::validate() {
 std::string FillSheet::line() const {
   std::size_t last = 0;  // fields written: up to the last one not blank
   for (std::size_t i = 0; i < fields_.size(); ++i)
-    if (!trim(fields_[i].value).empty()) last = i + 1;
+    if (!scan::trim(fields_[i].value).empty()) last = i + 1;
   std::string out(spec_->code);
-  for (std::size_t i = 0; i < last; ++i) out += ", " + trim(fields_[i].value);
+  for (std::size_t i = 0; i < last; ++i) out += ", " + std::string(scan::trim(fields_[i].value));
   return out;
 }
 

@@ -10,11 +10,11 @@
 
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
 #include "gantry/machine/controller.hpp"       // Controller
+#include "gantry/session/operator_io.hpp"      // OperatorMailbox
 #include "gui.hpp"                             // run_gui (ui/)
 #include "live_machine.hpp"                    // ValuesKeeper, open_live_card
 #include "machine_profile.hpp"                 // load_machine_profile
 #include "open_card.hpp"                       // plays_in_real_time
-#include "window_io.hpp"                       // WindowIO (ui/)
 
 namespace gantry {
 
@@ -46,7 +46,7 @@ int run_gui_command(const GuiArgs& a) {
   if (!load_machine_profile(a.profile, a.values, profile, a.tool_table)) return 1;
   const Settings& settings = profile.settings;
   PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
-  ui::WindowIO io(false, {});
+  session::OperatorMailbox io(false, {});
   ValuesKeeper values(profile, io);
 
   std::string type;

@@ -6,6 +6,8 @@
 #include <algorithm>  // min, max
 #include <cctype>     // toupper, isalnum
 
+#include "gantry/lang/scan.hpp"  // upper
+
 namespace gantry {
 namespace {
 
@@ -22,11 +24,7 @@ std::size_t utf8_length(unsigned char c) {
   return 0;
 }
 
-std::string upper(std::string_view s) {
-  std::string u(s);
-  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return u;
-}
+using scan::upper;
 
 bool alnum(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) != 0;

@@ -30,8 +30,7 @@ bool OperatorMailbox::confirm(std::string_view message, const SourceLoc& loc) {
   return wait_for(std::move(q)).has_value();
 }
 
-std::optional<std::string> OperatorMailbox::ask(std::string_view prompt,
-                                                std::string_view variable,
+std::optional<std::string> OperatorMailbox::ask(std::string_view prompt, std::string_view variable,
                                                 std::string_view default_value,
                                                 const SourceLoc& loc) {
   try {

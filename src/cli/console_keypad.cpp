@@ -1,0 +1,208 @@
+// The terminal console's keypad (K, or SK in a file): the arrows jog, S and F switch fixed
+// steps and speed; a terminal sends key repeats, not key-up, so a continuous jog is released
+// once the repeats stop.
+#include <fmt/format.h>
+
+#include "console_terminal.hpp"  // write_out
+#include "console_view.hpp"      // Console
+
+namespace gantry::console {
+
+using std::chrono::milliseconds;
+
+void Console::enter_keypad(const std::string& message, bool file) {
+  if (c_.state() == MachineState::EStop) {
+    write_out("E-stop: type ack before the keypad\n");
+    return;
+  }
+  kp_ = Keypad{};
+  kp_.file = file;
+  mode_ = Mode::Keypad;
+  if (file) snapshot();  // the file's frame, and where its moves left the tool
+  editor_.erase();
+  if (!message.empty()) write_out(message + "\n");
+  write_out(
+      fmt::format("keypad: arrows X and Y, PageUp/PageDown Z, / and \\ diagonals, Ctrl+key fast;\n"
+                  "  S fixed step or continuous, F fast or slow, space stops a jog, {}\n",
+                  file ? "Esc goes on with the file, q stops it" : "Esc leaves"));
+  if (!realtime_)
+    write_out(
+        "  (virtual time: a continuous jog would run to the soft limit at once, so it needs\n"
+        "  --realtime; fixed steps work: press S)\n");
+  draw_status(true);
+}
+
+std::string Console::keypad_text() const {
+  return fmt::format("[keypad {} {}] ",
+                     kp_.step ? fmt::format("step {:.4f}", keypad_step_) : "continuous",
+                     kp_.fast ? "fast" : "slow");
+}
+
+void Console::leave_keypad() {
+  if (kp_.file) {  // the file goes on from where the tool is (or it was stopped)
+    mode_ = Mode::Job;
+    if (c_.state() == MachineState::Keypad) {
+      const Outcome o = c_.resume();
+      if (!o) print_above(o.reason);
+    }
+    return;
+  }
+  mode_ = Mode::Prompt;
+  editor_.erase();
+  const ControllerStatus st = c_.status();
+  write_out(readout(st) + "\n");
+  write_out(ended(st));
+  show_prompt();
+}
+
+void Console::keypad_key(const Key& k) {
+  std::array<int, kAxisCount> dir{};
+  switch (k.code) {
+    case KeyCode::Left:
+      dir[0] = -1;
+      break;
+    case KeyCode::Right:
+      dir[0] = 1;
+      break;
+    case KeyCode::Up:
+      dir[1] = 1;
+      break;
+    case KeyCode::Down:
+      dir[1] = -1;
+      break;
+    case KeyCode::PageUp:
+      dir[2] = 1;
+      break;
+    case KeyCode::PageDown:
+      dir[2] = -1;
+      break;
+    default:
+      if (k.is_char('/')) dir = {1, 1, 0, 0, 0, 0};
+      if (k.is_char('\\')) dir = {-1, 1, 0, 0, 0, 0};
+      break;
+  }
+  if (dir != std::array<int, kAxisCount>{}) return jog_key(dir, kp_.fast || k.ctrl);
+  if (k.code == KeyCode::Interrupt || k.is_char('!')) {
+    estop();
+    kp_.leaving = true;
+    return;
+  }
+  // A jog from a file's SK is released (stop would end the file); at the prompt, stopped.
+  auto stop_jog = [&] {
+    kp_.queued.reset();
+    if (!kp_.active || kp_.released) return;
+    if (kp_.file)
+      c_.jog_release();
+    else
+      c_.stop();
+    kp_.released = true;
+  };
+  if (k.code == KeyCode::Escape) {
+    kp_.leaving = true;
+    return stop_jog();
+  }
+  if (k.is_char(' ')) return stop_jog();
+  if (kp_.file && (k.is_char('q') || k.is_char('Q'))) {
+    c_.stop();
+    kp_.released = true;
+    kp_.leaving = true;
+    return;
+  }
+  if (k.is_char('s') || k.is_char('S') || k.is_char('d') || k.is_char('D')) {
+    kp_.step = !kp_.step;
+  } else if (k.is_char('f') || k.is_char('F')) {
+    kp_.fast = !kp_.fast;
+  } else {
+    flash("keypad: arrows, PageUp/PageDown, / \\ jog; S step, F fast, space stops, Esc leaves");
+    return;
+  }
+  draw_status(true);
+}
+
+void Console::jog_key(const std::array<int, kAxisCount>& dir, bool fast) {
+  const Clock::time_point now = Clock::now();
+  JogRequest j;
+  j.direction = dir;
+  j.fast = fast;
+  j.step = kp_.step;
+  if (j.step) {
+    // One step per press; a press while a step is under way waits (one, not a backlog).
+    if (kp_.active)
+      kp_.queued = j;
+    else
+      start_jog(j);
+    return;
+  }
+  if (!realtime_) {
+    flash("continuous jogs need --realtime on the simulated card; S switches to fixed steps");
+    return;
+  }
+  if (kp_.active && !kp_.released && kp_.current.direction == dir && kp_.current.fast == fast) {
+    kp_.last_key = now;  // the key repeats: it is still held
+    ++kp_.repeats;
+    return;
+  }
+  if (kp_.active) {  // another key: release this jog, then start that one once at rest
+    if (!kp_.released) c_.jog_release();
+    kp_.released = true;
+    kp_.queued = j;
+    kp_.queued_at = now;
+    return;
+  }
+  start_jog(j);
+}
+
+bool Console::start_jog(const JogRequest& j) {
+  const Outcome o = c_.jog(j);
+  if (!o) {
+    flash(o.reason);
+    return false;
+  }
+  kp_.active = true;
+  kp_.released = false;
+  kp_.current = j;
+  kp_.repeats = 0;
+  kp_.last_key = Clock::now();
+  draw_status(true);
+  return true;
+}
+
+// Key release: a terminal sends key repeats, not key-up. A continuous jog is released once
+// no repeat has come for `release_ms`, or, before the first repeat, for `repeat_delay_ms`
+// (the terminal waits that long before it starts repeating a held key).
+void Console::keypad_tick(Clock::time_point now) {
+  if (kp_.active) {
+    const MachineState s = c_.state();
+    if (!at_rest(s) && s != MachineState::Keypad) {
+      if (!kp_.current.step && !kp_.released) {
+        const milliseconds window(kp_.repeats == 0 ? args_.repeat_delay_ms : args_.release_ms);
+        if (now - kp_.last_key > window) {
+          c_.jog_release();
+          kp_.released = true;
+        }
+      }
+      return;
+    }
+    c_.wait();
+    kp_.active = false;
+    snapshot();
+    const ControllerStatus st = c_.status();
+    if (st.state == MachineState::EStop) {
+      kp_.queued.reset();
+      kp_.leaving = true;  // back to the prompt, which says how to go on
+    } else if (!st.message.empty() && !kp_.released) {
+      kp_.queued.reset();  // a limit switch, say: the operator decides what next
+      print_above("jog stopped: " + st.message);
+    }
+    draw_status(true);
+  }
+  if (kp_.leaving) return leave_keypad();
+  if (kp_.queued) {
+    const JogRequest j = *kp_.queued;
+    const bool fresh = j.step || now - kp_.queued_at < milliseconds(args_.repeat_delay_ms);
+    kp_.queued.reset();
+    if (fresh) start_jog(j);
+  }
+}
+
+}  // namespace gantry::console

@@ -1,0 +1,119 @@
+// The terminal console (`gantry console`): a view over the session. It reads the keys, draws
+// the prompt and the status line, and makes every request of the Controller; the session
+// (src/session) says what a typed line is, how a refusal reads and where the tool is.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "console.hpp"                       // ConsoleArgs
+#include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/session/live_position.hpp"  // LivePosition
+#include "gantry/session/operator_io.hpp"    // OperatorMailbox, Question
+#include "line_editor.hpp"                   // Key, LineEditor
+#include "live_machine.hpp"                  // ValuesKeeper
+
+namespace gantry::console {
+
+using Clock = std::chrono::steady_clock;
+using session::OperatorMailbox;
+using session::Question;
+
+inline constexpr const char* kPrompt = "gantry> ";
+inline constexpr const char* kEStopPrompt = "gantry [E-stop: type ack]> ";
+
+inline bool at_rest(MachineState s) {
+  return s == MachineState::Idle || s == MachineState::Stopped || s == MachineState::EStop;
+}
+
+class Console {
+ public:
+  Console(Controller& c, OperatorMailbox& io, ValuesKeeper& values, const ConsoleArgs& args,
+          bool realtime, std::atomic<int>& signal);
+
+  int interactive(const std::string& banner);
+  int piped();
+
+ private:
+  enum class Mode { Prompt, Job, Keypad };
+
+  // Shared.
+  void snapshot();  // at rest: the interpreter's exact position, the frame and units
+  std::string readout(const ControllerStatus& st) const;
+  std::string state_text(const ControllerStatus& st) const;
+  std::string help(const std::string& arg) const;
+  std::string status_report() const;
+  std::string refusal(const std::string& prefix, const std::string& line, const Outcome& o,
+                      bool echo_first) const;
+  std::string ended(const ControllerStatus& st) const;
+
+  // Interactive.
+  void on_key(const Key& k);
+  void prompt_key(const Key& k);
+  void job_key(const Key& k);
+  void answer_key(const Key& k);
+  void answer(const std::string& a);
+  void show_question(const std::string& text, const std::string& prompt);
+  void keypad_key(const Key& k);
+  void tick();
+  void handle_line(const std::string& line);
+  void end_job();
+  void show_prompt();
+  void print_above(std::string_view text);  // clears the current line, prints, redraws
+  void draw_status(bool force);
+  void flash(std::string text);
+  void estop();
+  // Keypad.
+  void enter_keypad(const std::string& message, bool file = false);
+  void leave_keypad();
+  void jog_key(const std::array<int, kAxisCount>& dir, bool fast);
+  bool start_jog(const JogRequest& j);
+  void keypad_tick(Clock::time_point now);
+  std::string keypad_text() const;
+
+  Controller& c_;
+  OperatorMailbox& io_;
+  ValuesKeeper& values_;
+  const ConsoleArgs& args_;
+  bool realtime_;
+  std::atomic<int>& signal_;
+
+  session::LivePosition live_;  // the frame and exact position at the last snapshot
+  Units units_ = Units::Inches;
+  double keypad_step_ = 0.1;
+
+  LineEditor editor_;
+  std::string prompt_ = kPrompt;  // the prompt the last line was typed at
+  Mode mode_ = Mode::Prompt;
+  bool quit_ = false;
+  bool asking_ = false;               // a question from the running file has the answer line
+  std::uint64_t question_shown_ = 0;  // the id of the last question shown
+  Question asked_;                    // ... and the question
+  bool single_step_ = false;
+  Vec6 line_start_ = Vec6::Zero();
+  bool status_drawn_ = false;
+  bool warned_ = false;  // the status line showed SW's warning (its bell rang)
+  Clock::time_point last_draw_{};
+  std::string flash_;
+  Clock::time_point flash_until_{};
+
+  struct Keypad {
+    bool step = false, fast = false;
+    bool active = false;    // a jog we started has not come to rest yet
+    bool released = false;  // ... and its key has been released (or it was stopped)
+    bool leaving = false;   // Esc: leave once at rest
+    bool file = false;      // a file waits at SK: leaving resumes it
+    JogRequest current;
+    int repeats = 0;  // key repeats seen for the current jog
+    Clock::time_point last_key{};
+    std::optional<JogRequest> queued;  // the next press, while a jog is under way
+    Clock::time_point queued_at{};
+  } kp_;
+};
+
+}  // namespace gantry::console
