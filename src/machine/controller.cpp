@@ -29,63 +29,6 @@ std::string input_name(const InputSettings& in, int bit) {
 
 }  // namespace
 
-// Job thread -> feeder: pushes planned segments, waiting while the queue is full. Once the
-// activity is aborted (stop, E-stop, fault) the next push throws, which unwinds the
-// interpreter; later pushes are dropped (the run's own clean-up flushes).
-class Controller::QueueSink : public SegmentSink {
- public:
-  explicit QueueSink(Controller& c) : c_(c) {}
-  void segment(const PlannedSegment& s) override {
-    push({FeedItem::kSegment, s, nullptr, nullptr});
-  }
-  void flush() override { push({FeedItem::kFlush, {}, nullptr, nullptr}); }
-  void settings_changed(const Settings& s) override {
-    push({FeedItem::kSettings, {}, std::make_shared<const Settings>(s), nullptr});
-  }
-  void watch(std::span<const InputTrigger> t) {
-    push({FeedItem::kWatch,
-          {},
-          nullptr,
-          std::make_shared<const std::vector<InputTrigger>>(t.begin(), t.end())},
-         /*abortable=*/false);  // disarming is pushed as a run winds down
-  }
-  // The activity's last item, pushed whatever happened: once it is done the queue is empty.
-  void fence() {
-    dead_ = false;
-    push({FeedItem::kFlush, {}, nullptr, nullptr}, /*abortable=*/false);
-  }
-  // After a stop: output switches 1-12 as `mask` says (bit n-1: switch n), then a fence.
-  void outputs(std::uint32_t mask) {
-    dead_ = false;
-    for (int n = 1; n <= 12; ++n) {
-      PlannedSegment seg;
-      seg.output = n;  // one the profile does not wire switches nothing
-      seg.output_on = (mask >> (n - 1) & 1u) != 0;
-      push({FeedItem::kSegment, seg, nullptr, nullptr}, /*abortable=*/false);
-    }
-    fence();
-  }
-
- private:
-  void push(FeedItem&& item, bool abortable = true) {
-    if (dead_) return;
-    const bool flush = item.kind == FeedItem::kFlush;
-    while (true) {
-      if (abortable && c_.abort_.load(std::memory_order_acquire)) {
-        dead_ = true;
-        throw GantryError(Diagnostic{item.seg.loc, Severity::Error, "stopped"});
-      }
-      if (c_.queue_.try_push(std::move(item))) break;
-      c_.queue_.wait_for_room();
-    }
-    if (flush) ++c_.flushes_pushed_;
-    c_.wake_.fetch_add(1, std::memory_order_release);
-    c_.wake_.notify_one();
-  }
-  Controller& c_;
-  bool dead_ = false;
-};
-
 // The interpreter's sink: the planner of the current activity; and its MachineLink, the
 // live machine's answers (sync, inputs, keypad) for probes, ON INPUT and SK.
 class Controller::ForwardSink : public MotionSink, public MachineLink {
@@ -135,14 +78,16 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
       card_(card),
       io_(io),
       store_(store),
-      steps_((card.start(settings.card.pacer_hz()), settings), card),
-      feeder_(steps_),
-      queue_(256),
-      qsink_(std::make_unique<QueueSink>(*this)),
+      feed_(settings_, card, input_roles(settings).stops, *this),
+      abort_(feed_.abort_flag()),
+      inputs_(feed_.inputs_),
+      fired_(feed_.fired_),
+      latched_(feed_.latched_),
+      qsink_(&feed_.sink()),
       forward_(std::make_unique<ForwardSink>(*this)) {
   planner_ = std::make_unique<LookAheadPlanner>(settings, *qsink_);
   forward_->to = planner_.get();
-  options.stop_check = &abort_;  // a stop ends even a file that loops without moving
+  options.stop_check = &feed_.abort_flag();  // a stop ends even a file that loops without moving
   interp_ = std::make_unique<Interpreter>(settings, *forward_, forward_.get(), io, store,
                                          std::move(options));
   interp_->on_progress([this](std::size_t done, std::size_t total) {
@@ -152,12 +97,7 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
     after_statement();
   });
   roles_ = input_roles(settings);
-  stop_trip_ = roles_.stops;
-  steps_.on_block([this] {
-    publish();  // the readout moves during long segments
-    watch_stop_switches();
-  });
-  feeder_thread_ = std::thread([this] { feeder_main(); });
+  feed_.start();
   job_thread_ = std::thread([this] { job_main(); });
 }
 
@@ -166,14 +106,12 @@ Controller::~Controller() {
   {
     std::lock_guard lock(m_);
     quit_ = true;
+    feed_.quit();
   }
   cv_.notify_all();
-  wake_.fetch_add(1);
-  wake_.notify_all();
+  feed_.wake();
   job_thread_.join();
-  wake_.fetch_add(1);
-  wake_.notify_all();
-  feeder_thread_.join();
+  feed_.join();
 }
 
 // ---- requests ----------------------------------------------------------------------------
@@ -186,8 +124,7 @@ Outcome Controller::refuse_or(Request r, const std::function<void()>& accept) {
   accept();
   lock.unlock();
   cv_.notify_all();
-  wake_.fetch_add(1, std::memory_order_release);
-  wake_.notify_one();
+  feed_.wake();
   return {};
 }
 
@@ -241,13 +178,13 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
         interp_->run(script, typed);
       } catch (const GantryError& e) {
         std::lock_guard lock(m_);
-        if (message_.empty() && !abort_) message_ = e.diagnostic().message;
+        if (message_.empty() && !feed_.aborted()) message_ = e.diagnostic().message;
         // A stop that cut no motion (the file waited for the operator) names the line the
         // file had reached.
-        if (!abort_ || !stopped_at_.file) stopped_at_ = e.diagnostic().loc;
+        if (!feed_.aborted() || !stopped_at_.file) stopped_at_ = e.diagnostic().loc;
         if (!error_)
-          error_ = abort_ ? Diagnostic{stopped_at_, Severity::Error, message_} : e.diagnostic();
-        abort_ = true;
+          error_ = feed_.aborted() ? Diagnostic{stopped_at_, Severity::Error, message_} : e.diagnostic();
+        feed_.abort();
       }
     });
   });
@@ -259,8 +196,7 @@ Outcome Controller::pause() {
 
 Outcome Controller::pause(bool every_output) {
   return refuse_or(Request::Pause, [&] {
-    on_hold_ = OnHold::Wait;
-    feeder_.request_hold(0, /*pause=*/true, every_output);
+    feed_.hold(0, /*discard=*/false, /*pause=*/true, every_output);
   });
 }
 
@@ -277,25 +213,21 @@ Outcome Controller::resume() {
     else if (keypad_open_)
       keypad_open_ = false;  // the file goes on once the last jog is at rest
     else
-      cmd_resume_ = true;
+      feed_.request_resume();
     message_.clear();  // a stop switch's pause is over
   });
 }
 
 Outcome Controller::stop() {
   return refuse_or(Request::Stop, [&] {
-    on_hold_ = OnHold::Discard;
-    feeder_.request_hold(0);
-    abort_ = true;
+    feed_.request_stop();
     message_ = "stopped by the operator";
   });
 }
 
 Outcome Controller::estop() {
   return refuse_or(Request::EStop, [&] {
-    feeder_.request_halt(0);
-    cmd_halt_ = true;
-    abort_ = true;
+    feed_.request_estop();
     message_ = "E-stop";
   });
 }
@@ -305,10 +237,10 @@ Outcome Controller::acknowledge() {
     std::unique_lock lock(m_);
     cv_.wait(lock, [&] { return !busy_; });  // the aborted activity has wound down
   }
-  Outcome o = refuse_or(Request::Acknowledge, [&] { cmd_acknowledge_ = true; });
+  Outcome o = refuse_or(Request::Acknowledge, [&] { feed_.request_acknowledge(); });
   if (!o) return o;
   std::unique_lock lock(m_);
-  cv_.wait(lock, [&] { return feeder_.phase() == FeedPhase::Playing; });
+  cv_.wait(lock, [&] { return feed_.phase() == FeedPhase::Playing; });
   interp_->set_machine_position(played_machine());
   ModalState st = interp_->state();  // the E-stop switched every output off (VN modes 1, 4 too)
   st.outputs = 0;
@@ -354,8 +286,7 @@ Outcome Controller::jog(const JogRequest& j) {
 
 Outcome Controller::jog_release() {
   return refuse_or(Request::JogRelease, [&] {
-    on_hold_ = OnHold::Discard;
-    feeder_.request_hold(0);
+    feed_.hold(0, /*discard=*/true);
     if (keypad_open_) state_ = MachineState::Keypad;
   });
 }
@@ -368,7 +299,7 @@ void Controller::schedule(Request r, double at_s) {
 void Controller::wait() {
   std::unique_lock lock(m_);
   cv_.wait(lock, [&] {
-    const FeedPhase ph = feeder_.phase();
+    const FeedPhase ph = feed_.phase();
     return !busy_ || (state_ == MachineState::Paused && ph == FeedPhase::Held) ||
            (state_ == MachineState::Paused && step_waiting_) ||
            (state_ == MachineState::Keypad && !keypad_jogging_) ||
@@ -382,10 +313,10 @@ Controller::Summary Controller::summary() const {
   s.error = error_;
   if (!s.error && !message_.empty()) s.error = Diagnostic{stopped_at_, Severity::Error, message_};
   s.fault = fault_;
-  s.cut = interrupted_;
-  s.lines = s.cut ? steps_.ran().statements : interp_->statements_executed();
-  s.moves = s.cut ? steps_.ran().moves : interp_->moves_emitted();
-  s.commanded = fault_ == CardFault::None ? steps_.position() : fault_commanded_;
+  s.cut = feed_.interrupted();
+  s.lines = s.cut ? feed_.steps().ran().statements : interp_->statements_executed();
+  s.moves = s.cut ? feed_.steps().ran().moves : interp_->moves_emitted();
+  s.commanded = fault_ == CardFault::None ? feed_.steps().position() : fault_commanded_;
   s.planned_time_s = planner_->planned_time();
   return s;
 }
@@ -413,40 +344,35 @@ ControllerStatus Controller::status() const {
     s.message = message_;
     s.stopped_at = stopped_at_;
     s.step_hold = step_waiting_;
-    s.warning = busy_ && warning_.load(std::memory_order_relaxed);
+    s.warning = busy_ && feed_.warning();
   }
-  s.phase = feeder_.phase();
+  s.phase = feed_.phase();
   s.line = line_.load(std::memory_order_relaxed);
   s.lines = lines_.load(std::memory_order_relaxed);
-  s.playing_line = playing_line_.load(std::memory_order_relaxed);
+  s.playing_line = feed_.playing_line();
   s.elapsed_s = elapsed_s();
   {
     std::lock_guard lock(m_);
     s.remaining_s = std::max(0.0, estimate_s_ - s.elapsed_s);
   }
-  s.inputs = input_switches(inputs_.load(std::memory_order_acquire));
-  for (int i = 0; i < kAxisCount; ++i) s.steps[i] = played_[i].load(std::memory_order_acquire);
+  s.inputs = input_switches(feed_.inputs());
+  s.steps = feed_.played();
   s.machine = played_machine(s.steps);
   return s;
 }
 
 double Controller::elapsed_s() const {
   std::lock_guard lock(m_);
-  return static_cast<double>(tick_.load() - start_tick_) / settings_.card.pacer_hz();
+  return static_cast<double>(feed_.tick() - start_tick_) / settings_.card.pacer_hz();
 }
 
 // The played step counts in units (machine frame).
 Vec6 Controller::played_machine(const Steps6& steps) const {
-  Vec6 m = Vec6::Zero();
-  for (int i = 0; i < kAxisCount; ++i)
-    m[i] = static_cast<double>(steps[i]) / settings_.axes[i].steps_per_unit;
-  return m;
+  return steps_to_machine(settings_, steps);
 }
 
 Vec6 Controller::played_machine() const {
-  Steps6 steps{};
-  for (int i = 0; i < kAxisCount; ++i) steps[i] = played_[i].load(std::memory_order_acquire);
-  return played_machine(steps);
+  return played_machine(feed_.played());
 }
 
 MachineState Controller::state() const {
@@ -499,7 +425,7 @@ CanonMove Controller::keypad_move(const JogRequest& j) const {
 // it holds). Single step: the statement's motion plays out, then the file holds as Paused
 // until resume (the next statement) or stop.
 void Controller::after_statement() {
-  feeder_.pause_outputs(outputs_off_on_pause(interp_->settings()));  // VN may change them
+  feed_.pause_outputs(outputs_off_on_pause(interp_->settings()));  // VN may change them
   if (override_changed_.exchange(false)) {
     std::lock_guard lock(m_);
     planner_->feed_override(feed_override_);
@@ -511,9 +437,9 @@ void Controller::after_statement() {
   state_ = MachineState::Paused;
   step_waiting_ = true;
   cv_.notify_all();
-  cv_.wait(lock, [&] { return !step_waiting_ || abort_ || quit_; });
+  cv_.wait(lock, [&] { return !step_waiting_ || feed_.aborted() || quit_; });
   step_waiting_ = false;
-  if (abort_ || quit_) throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
+  if (feed_.aborted() || quit_) throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
 }
 
 // SK, with the file's motion played out: the operator's jogs play here, one at a time, as
@@ -525,8 +451,8 @@ MotionReport Controller::keypad_session() {
   state_ = MachineState::Keypad;
   cv_.notify_all();
   while (true) {
-    cv_.wait(lock, [&] { return pending_jog_ || !keypad_open_ || abort_ || quit_; });
-    if (abort_ || quit_ || (!keypad_open_ && !pending_jog_)) break;
+    cv_.wait(lock, [&] { return pending_jog_ || !keypad_open_ || feed_.aborted() || quit_; });
+    if (feed_.aborted() || quit_ || (!keypad_open_ && !pending_jog_)) break;
     const CanonMove m = *std::exchange(pending_jog_, std::nullopt);
     lock.unlock();
     bool stopped = false;
@@ -538,13 +464,10 @@ MotionReport Controller::keypad_session() {
     }
     wait_for_motion();
     lock.lock();
-    if (stopped || abort_) break;
+    if (stopped || feed_.aborted()) break;
     // At rest, the jog's requests spent (as at the end of an activity).
-    feeder_.request_hold(StepGenerator::kNever);
-    on_hold_ = OnHold::Wait;
-    dropping_ = false;
-    interp_->set_machine_position(interrupted_ ? played_machine() : m.to);  // as for a jog
-    interrupted_ = false;
+    const bool cut = feed_.spent_jog();
+    interp_->set_machine_position(cut ? played_machine() : m.to);  // as for a jog
     keypad_jogging_ = false;
     if (state_ == MachineState::Jogging) state_ = MachineState::Keypad;
     cv_.notify_all();
@@ -552,7 +475,7 @@ MotionReport Controller::keypad_session() {
   keypad_open_ = false;
   keypad_jogging_ = false;
   pending_jog_.reset();
-  if (abort_) throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
+  if (feed_.aborted()) throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
   MotionReport r;  // where the jogs left the tool, exactly (a step ends on its point)
   const ModalState& st = interp_->state();
   r.machine = st.position + st.machine_origin + st.zero + st.applied_offset;
@@ -562,35 +485,31 @@ MotionReport Controller::keypad_session() {
 void Controller::start_activity(std::function<void()> work) {
   // Called under m_ with the state changed already.
   busy_ = true;
-  interrupted_ = false;
+  feed_.new_activity();  // nothing cut yet; the step generator counts anew
   jog_target_.reset();
   error_.reset();
   fault_ = CardFault::None;
-  steps_.new_run();
-  start_tick_ = tick_.load();
+  start_tick_ = feed_.tick();
   work_ = std::move(work);
   // Scheduled requests become ticks of this activity (the feeder is idle: tick_ is settled).
   const double hz = settings_.card.pacer_hz();
   for (const auto& [r, at] : scheduled_) {
     const std::int64_t tick =
-        tick_.load() + checked_llround(at * hz).value_or(StepGenerator::kNever / 2);
+        feed_.tick() + checked_llround(at * hz).value_or(StepGenerator::kNever / 2);
     switch (r) {
       case Request::Pause:
-        on_hold_ = OnHold::Wait;
         effect_state_ = MachineState::Paused;
-        feeder_.request_hold(tick, /*pause=*/true);
+        feed_.hold(tick, /*discard=*/false, /*pause=*/true);
         break;
       case Request::Stop:
-        on_hold_ = OnHold::Discard;
         effect_state_ = MachineState::Stopping;
-        feeder_.request_hold(tick);
+        feed_.hold(tick, /*discard=*/true);
         break;
       case Request::JogRelease:
-        on_hold_ = OnHold::Discard;
-        feeder_.request_hold(tick);
+        feed_.hold(tick, /*discard=*/true);
         break;
       case Request::EStop:
-        feeder_.request_halt(tick);
+        feed_.halt(tick);
         break;
       default:
         break;
@@ -609,28 +528,25 @@ void Controller::job_main() {
       work.swap(work_);
     }
     planner_ = std::make_unique<LookAheadPlanner>(interp_->settings(), *qsink_);
-    feeder_.pause_outputs(outputs_off_on_pause(interp_->settings()));
+    feed_.pause_outputs(outputs_off_on_pause(interp_->settings()));
     planner_->feed_override(feed_override_);
     forward_->to = planner_.get();
     work();
     qsink_->fence();
     wait_for_motion();
-    if (running_file_ && (interrupted_ || abort_)) {
+    if (running_file_ && (feed_.interrupted() || feed_.aborted())) {
       // The stop dropped the file's last switchings with the rest of its motion stream: the
       // card's outputs become what the file's end left (after an E-stop the card plays
       // nothing until acknowledged, which switches everything off).
-      dropping_ = false;  // the queue is empty: what was cut is gone
+      feed_.queue_emptied();  // the queue is empty: what was cut is gone
       qsink_->outputs(interp_->state().outputs);
       wait_for_motion();
     }
     std::lock_guard lock(m_);
     // The queue is empty and the feeder idle: the activity's requests are spent.
-    feeder_.request_hold(StepGenerator::kNever);
-    on_hold_ = OnHold::Wait;
-    cmd_resume_ = false;
-    dropping_ = false;
+    feed_.end_activity();
     effect_state_.reset();
-    const bool cut = interrupted_ || abort_;
+    const bool cut = feed_.interrupted() || feed_.aborted();
     const bool jogged = jog_target_.has_value();
     if (cut && stopped_at_.file)  // FG resumes where a file stopped short
       interp_->set_last_stop(stopped_at_);
@@ -640,7 +556,7 @@ void Controller::job_main() {
       interp_->set_machine_position(played_machine());  // where the pulses brought the tool
     else if (jog_target_)
       interp_->set_machine_position(*jog_target_);  // exact: fixed steps never drift
-    abort_ = false;
+    feed_.clear_abort();
     if (state_ != MachineState::EStop)
       state_ = jogged || state_ == MachineState::Jogging ? MachineState::Idle  // released too
                : cut                                     ? MachineState::Stopped
@@ -651,156 +567,25 @@ void Controller::job_main() {
 }
 
 void Controller::wait_for_motion() {
-  while (true) {
-    const std::uint64_t done = flushes_done_.load(std::memory_order_acquire);
-    if (done >= flushes_pushed_) return;
-    flushes_done_.wait(done);
-  }
+  feed_.wait_for_motion();
 }
 
-// ---- feeder thread -----------------------------------------------------------------------
+// ---- from the feeder thread ----------------------------------------------------------------
 
-void Controller::feeder_main() {
-  while (!quit_) {
-    const unsigned seen = wake_.load(std::memory_order_acquire);
-    if (cmd_halt_.exchange(false)) feeder_.halt_now();
-    const FeedPhase ph = feeder_.phase();
-    if (ph == FeedPhase::Held && on_hold_ == OnHold::Discard) {
-      feeder_.discard();
-      interrupted_ = true;
-      dropping_ = true;
-      on_hold_ = OnHold::Wait;
-    } else if (ph == FeedPhase::Held && cmd_resume_.exchange(false)) {
-      feeder_.resume();
-    } else if (ph == FeedPhase::Halted && cmd_acknowledge_.exchange(false)) {
-      feeder_.discard();  // the card starts again
-    }
-    if (feeder_.phase() != last_phase_) on_feeder_event();
-    publish();
-    FeedItem item;
-    if (feeder_.phase() == FeedPhase::Held || !queue_.try_pop(item)) {
-      wake_.wait(seen, std::memory_order_acquire);
-      continue;
-    }
-    if (dropping_) {
-      flushes_dropped_ += item.kind == FeedItem::kFlush;
-    } else if (drop_to_flush_ && item.kind != FeedItem::kSettings) {
-      // The rest of the statement an input edge cut; what follows its flush plays.
-      if (item.kind == FeedItem::kFlush) {
-        ++flushes_dropped_;
-        drop_to_flush_ = false;
-      } else if (item.kind == FeedItem::kWatch) {
-        feed(item);
-      }
-    } else {
-      try {
-        feed(item);
-        if (input_cut_) finish_input_cut(item.kind == FeedItem::kFlush);
-      } catch (const GantryError& e) {  // the card faulted: it stopped by itself
-        const CardFault fault = card_.fault();
-        {
-          std::lock_guard lock(m_);
-          message_ = e.diagnostic().message;
-          if (fault == CardFault::Limit) message_ = active_limits(card_.inputs()) + ": " + message_;
-          stopped_at_ = e.diagnostic().loc;
-          fault_ = fault;
-          fault_commanded_ = steps_.position();  // before the card starts again
-          error_ = Diagnostic{stopped_at_, Severity::Error, message_};
-          if (fault == CardFault::EStop) state_ = MachineState::EStop;
-        }
-        interrupted_ = true;
-        abort_ = true;
-        dropping_ = true;
-        flushes_dropped_ += item.kind == FeedItem::kFlush;
-        if (fault != CardFault::EStop) {  // the card starts again: the tool can move off it
-          feeder_.halt_now();
-          feeder_.discard();
-          last_phase_ = FeedPhase::Playing;
-        }
-      }
-    }
-    if (feeder_.phase() != last_phase_) on_feeder_event();
-    publish();
-  }
+void Controller::card_faulted(const GantryError& e, CardFault fault, const Steps6& commanded) {
+  std::lock_guard lock(m_);
+  message_ = e.diagnostic().message;
+  if (fault == CardFault::Limit) message_ = active_limits(card_.inputs()) + ": " + message_;
+  stopped_at_ = e.diagnostic().loc;
+  fault_ = fault;
+  fault_commanded_ = commanded;
+  error_ = Diagnostic{stopped_at_, Severity::Error, message_};
+  if (fault == CardFault::EStop) state_ = MachineState::EStop;
 }
 
-void Controller::feed(FeedItem& item) {
-  switch (item.kind) {
-    case FeedItem::kSegment:
-      feeder_.segment(item.seg);
-      break;
-    case FeedItem::kSettings: {
-      feeder_.settings_changed(*item.settings);
-      const InputRoles roles = input_roles(*item.settings);  // VN: at rest, not real-time
-      stop_trip_ = roles.stops;
-      std::lock_guard lock(m_);
-      roles_ = roles;
-      break;
-    }
-    case FeedItem::kFlush:
-      feeder_.flush();
-      if (feeder_.phase() == FeedPhase::Playing) {  // a real card still plays its queue
-        card_.drain();
-        steps_.check_card();  // a fault in the last words
-      }
-      break;
-    case FeedItem::kWatch:
-      arm_watch(item.triggers);
-      break;
-  }
-}
-
-// ---- input edges (ON INPUT, probes, homing) ------------------------------------------------
-
-void Controller::arm_watch(std::shared_ptr<const std::vector<InputTrigger>> triggers) {
-  watched_ = std::move(triggers);  // shared: nothing allocated here
-  InputWatch w;
-  for (const InputTrigger& t : *watched_) {
-    const int bit = settings_.inputs.switch_bits[t.input - 1];
-    if (bit < 0) continue;  // the interpreter has said it never fires
-    w.mask |= 1u << bit;
-    if (t.closing) w.levels |= 1u << bit;
-    if (t.instant) w.stop |= 1u << bit;
-  }
-  fired_.reset();
-  steps_.watch_inputs(w, [this](const InputEdge& e) { on_input_edge(e); });
-}
-
-// Inside the step generator, right after the block in which the card saw the edge: the tool
-// was where the words before the edge's tick left it; the motion is cut there (instant) or
-// ramps down from the next word on.
-void Controller::on_input_edge(const InputEdge& e) {
-  const bool closed = (e.bits >> e.bit & 1u) != 0;
-  for (const InputTrigger& t : *watched_)
-    if (settings_.inputs.switch_bits[t.input - 1] == e.bit && t.closing == closed) fired_ = t;
-  if (!fired_) return;
-  const std::optional<Steps6> at = steps_.position_at(e.tick);
-  latched_ = played_machine(at ? *at : steps_.played_position());
-  input_cut_ = true;
-  if (fired_->instant)
-    feeder_.request_halt(0);
-  else
-    feeder_.request_hold(0);
-}
-
-// After each item while an edge's cut is under way. At rest, what the cut left of the
-// statement's motion is dropped (up to its flush); still slowing, it goes on.
-void Controller::finish_input_cut(bool consumed_flush) {
-  const FeedPhase ph = feeder_.phase();
-  if (ph == FeedPhase::Playing && consumed_flush) {
-    // The edge came in the statement's last words: the motion ended before the cut.
-    if (fired_->instant) {
-      feeder_.halt_now();
-      feeder_.discard();
-    }
-    feeder_.request_hold(StepGenerator::kNever);
-    feeder_.request_halt(StepGenerator::kNever);
-    input_cut_ = false;
-  } else if (ph == FeedPhase::Held || ph == FeedPhase::Halted) {
-    drop_to_flush_ = !(ph == FeedPhase::Held && feeder_.flush_kept());
-    feeder_.discard();
-    input_cut_ = false;
-  }
+void Controller::roles_changed(const InputRoles& roles) {
+  std::lock_guard lock(m_);
+  roles_ = roles;
 }
 
 std::array<bool, 12> Controller::input_switches(std::uint32_t bits) const {
@@ -867,12 +652,7 @@ std::optional<std::string> Controller::input_refusal(const Vec6& direction) cons
 // SB3's remote stop: like the space bar, a ramped stop along the path that can be resumed,
 // and the spindle stops (every output switch goes off at rest, on again at resume). Nothing
 // moves again while the switch is active. Seen after the block in which the card read it.
-void Controller::watch_stop_switches() {
-  const std::uint32_t bits = card_.inputs();
-  const bool active = stop_trip_.tripped(bits);
-  const bool pressed = active && !stop_active_;
-  stop_active_ = active;
-  if (!pressed) return;
+void Controller::stop_switch_pressed(std::uint32_t bits) {
   const bool jogging = state() == MachineState::Jogging;
   // A jog ends as if the key were let go; anything else at rest refuses the pause.
   if (!(jogging ? jog_release() : pause(/*every_output=*/true))) return;
@@ -882,37 +662,23 @@ void Controller::watch_stop_switches() {
                      : fmt::format("{} paused the file: release it, then resume", stops);
 }
 
-void Controller::publish() {
-  const Steps6 p = steps_.played_position();
-  for (int i = 0; i < kAxisCount; ++i) played_[i].store(p[i], std::memory_order_release);
-  tick_.store(steps_.tick(), std::memory_order_release);
-  inputs_.store(card_.inputs(), std::memory_order_release);
-  playing_line_.store(steps_.loc().line, std::memory_order_relaxed);
-  warning_.store(steps_.warning() && feeder_.phase() == FeedPhase::Playing,
-                 std::memory_order_relaxed);
-  flushes_done_.store(feeder_.flushes_completed() + flushes_dropped_, std::memory_order_release);
-  flushes_done_.notify_all();
-}
-
-void Controller::on_feeder_event() {
-  last_phase_ = feeder_.phase();
-  publish();
+// A hold or halt took effect (the feeder has published where the tool is).
+void Controller::feeder_phase_changed(FeedPhase phase, const SourceLoc& rest) {
   {
     std::lock_guard lock(m_);
-    if (last_phase_ == FeedPhase::Held || last_phase_ == FeedPhase::Halted)
-      stopped_at_ = feeder_.rest_loc();
-    if (last_phase_ == FeedPhase::Held && effect_state_) {
+    if (phase == FeedPhase::Held || phase == FeedPhase::Halted) stopped_at_ = rest;
+    if (phase == FeedPhase::Held && effect_state_) {
       state_ = *effect_state_;  // a scheduled pause or stop took effect
       if (state_ == MachineState::Stopping) {
-        abort_ = true;
+        feed_.abort();
         message_ = "stopped by the operator";
       }
       effect_state_.reset();
     }
-    if (last_phase_ == FeedPhase::Halted) {
+    if (phase == FeedPhase::Halted) {
       state_ = MachineState::EStop;
-      interrupted_ = true;
-      abort_ = true;
+      feed_.halted();
+      feed_.abort();
       if (message_.empty()) message_ = "E-stop";
     }
   }

@@ -11,10 +11,10 @@
 #include <thread>
 #include <vector>
 
-#include "gantry/core/spsc_queue.hpp"           // SpscQueue
 #include "gantry/hal/card.hpp"                  // Card
 #include "gantry/hal/input_roles.hpp"           // InputRoles
 #include "gantry/interp/interpreter.hpp"        // Interpreter, ModalState
+#include "gantry/machine/feeder_thread.hpp"     // FeederThread, FeederEvents
 #include "gantry/machine/machine_state.hpp"     // MachineState, Request
 #include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
 #include "gantry/step/motion_feeder.hpp"        // MotionFeeder
@@ -54,14 +54,15 @@ struct Outcome {
 };
 
 // Threads: the caller's (requests, status), the job thread (interpreter and planner), and the
-// feeder (motion feeder, step generator, card). Planned segments pass from job to feeder
-// through a bounded lock-free queue; the feeder neither locks nor allocates while it plays.
+// feeder (motion feeder, step generator, card: FeederThread). Planned segments pass from job
+// to feeder through a bounded lock-free queue; the feeder neither locks nor allocates while
+// it plays. FeederThread owns the flags between the three and documents them.
 // docs/controller.md has the states, the transition table and the behaviours.
-class Controller {
+class Controller : private FeederEvents {
  public:
   Controller(const Settings& settings, Card& card, OperatorIO& io, PersistentStore& store,
              InterpreterOptions options = {});
-  ~Controller();
+  ~Controller() override;
   Controller(const Controller&) = delete;
   Controller& operator=(const Controller&) = delete;
 
@@ -116,15 +117,7 @@ class Controller {
   ModalState modal() const;  // the interpreter's state (meaningful while idle)
 
  private:
-  struct FeedItem {
-    enum Kind { kSegment, kSettings, kFlush, kWatch } kind = kSegment;
-    PlannedSegment seg;
-    std::shared_ptr<const Settings> settings;
-    std::shared_ptr<const std::vector<InputTrigger>> triggers;  // kWatch
-  };
-  class QueueSink;
   class ForwardSink;
-  enum class OnHold { Wait, Discard };
 
   Outcome refuse_or(Request r, const std::function<void()>& accept);
   Outcome pause(bool every_output);  // every_output: a stop switch also stops the spindle
@@ -132,14 +125,12 @@ class Controller {
                     bool typed);
   void start_activity(std::function<void()> work);
   void job_main();
-  void feeder_main();
-  void feed(FeedItem& item);
   void wait_for_motion();  // job thread: every flush pushed has played (or was dropped)
-  void publish();          // feeder thread: position and phase for status()
-  void on_feeder_event();  // feeder thread: a hold or halt took effect
-  void arm_watch(std::shared_ptr<const std::vector<InputTrigger>> triggers);  // feeder thread
-  void on_input_edge(const InputEdge& e);      // feeder thread, from the card
-  void finish_input_cut(bool consumed_flush);  // feeder thread: at rest
+  // FeederEvents, on the feeder thread.
+  void feeder_phase_changed(FeedPhase phase, const SourceLoc& rest) override;
+  void card_faulted(const GantryError& e, CardFault fault, const Steps6& commanded) override;
+  void roles_changed(const InputRoles& roles) override;
+  void stop_switch_pressed(std::uint32_t bits) override;
   std::array<bool, 12> input_switches(std::uint32_t bits) const;
   // Under m_: the limit and stop switches active in `bits`, named ("X high limit switch
   // (input bit 3)", "the stop switch (input 4)").
@@ -148,7 +139,6 @@ class Controller {
   // Why nothing may move now: a limit switch towards `direction` (a jog; zero: a run,
   // refused while any is active), a stop switch for anything.
   std::optional<std::string> input_refusal(const Vec6& direction) const;
-  void watch_stop_switches();  // feeder thread, after every block: a stop switch pauses
   CanonMove keypad_move(const JogRequest& j) const;
   Vec6 played_machine(const Steps6& steps) const;
   Vec6 played_machine() const;    // the played counts now, in units
@@ -161,38 +151,21 @@ class Controller {
   OperatorIO& io_;
   PersistentStore& store_;
 
-  // Feeder side.
-  StepGenerator steps_;
-  MotionFeeder feeder_;
-  SpscQueue<FeedItem> queue_;
-  std::atomic<unsigned> wake_{0};
-  std::atomic<bool> quit_{false}, dropping_{false}, cmd_resume_{false}, cmd_halt_{false},
-      cmd_acknowledge_{false};
-  std::atomic<OnHold> on_hold_{OnHold::Wait};
-  std::atomic<std::uint64_t> flushes_done_{0};
-  std::uint64_t flushes_dropped_ = 0;
-  std::array<std::atomic<std::int64_t>, kAxisCount> played_{};
-  std::atomic<std::int64_t> tick_{0};
-  std::atomic<std::uint32_t> inputs_{0};  // the card's input bits, as last published
-  InputTrip stop_trip_;       // the stop switches, as the feeder knows them (VN may change them)
-  bool stop_active_ = false;  // one was active at the last block
-  FeedPhase last_phase_ = FeedPhase::Playing;
-  // The watched edges and what fired (feeder thread; read by the job once the motion has
-  // played out, after flushes_done_ says so).
-  std::shared_ptr<const std::vector<InputTrigger>> watched_;
-  bool input_cut_ = false;  // an edge cut the motion: stopping, then dropping to the flush
-  bool drop_to_flush_ = false;
-  std::optional<InputTrigger> fired_;
-  Vec6 latched_ = Vec6::Zero();
+  // The feeder thread (motion feeder, step generator, card) and the flags between it, the
+  // job thread and the callers: feeder_thread.hpp documents who writes and reads each.
+  FeederThread feed_;
+  // ForwardSink's names for the feeder's flags and results (read-only here; the job reads
+  // fired_ and latched_ only once the motion has played out).
+  const std::atomic<bool>& abort_;
+  const std::atomic<std::uint32_t>& inputs_;
+  std::optional<InputTrigger>& fired_;
+  const Vec6& latched_;
 
   // Job side.
-  std::unique_ptr<QueueSink> qsink_;
+  FeederThread::Sink* qsink_;  // the feeder's queue
   std::unique_ptr<ForwardSink> forward_;
   std::unique_ptr<LookAheadPlanner> planner_;
   std::unique_ptr<Interpreter> interp_;
-  std::uint64_t flushes_pushed_ = 0;
-  std::atomic<bool> abort_{false};
-  std::atomic<bool> interrupted_{false};  // a stop, release, halt or fault cut the motion
   std::optional<Vec6> jog_target_;        // the jog's commanded end (machine frame)
   // SK: the file waits on the job thread, which plays the operator's jogs (pending_jog_)
   // until resume closes the keypad (keypad_open_ false).
@@ -202,6 +175,7 @@ class Controller {
 
   mutable std::mutex m_;
   std::condition_variable cv_;
+  bool quit_ = false;  // the destructor: the job thread ends (under m_)
   MachineState state_ = MachineState::Idle;
   bool busy_ = false;  // an activity is under way on the job thread
   std::function<void()> work_;
@@ -214,18 +188,21 @@ class Controller {
   CardFault fault_ = CardFault::None;
   Steps6 fault_commanded_{};  // the steps generated when the card faulted
   double feed_override_ = 1;
+  // Caller -> job thread, read after each statement: override_changed_ (exchanged by the job,
+  // which then reads feed_override_ under m_) and single_step_ (a setting; seq_cst, no data
+  // hangs on it). Neither concerns the feeder.
   std::atomic<bool> override_changed_{false}, single_step_{false};
   bool step_waiting_ = false;  // single step: the file holds after a statement
   bool running_file_ = false;  // the activity is a file (not a jog)
   bool typed_ = false;         // ... typed at the console (not a part file of its own)
   std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
+  // Job thread -> status() (relaxed: display only). Set by start_run under m_, then by the
+  // interpreter's progress call on the job thread.
   std::atomic<std::size_t> line_{0}, lines_{0};
-  std::atomic<int> playing_line_{0};
-  std::atomic<bool> warning_{false};
   std::int64_t start_tick_ = 0;  // the activity's first tick
   double estimate_s_ = 0;
 
-  std::thread feeder_thread_, job_thread_;  // last: they start once everything exists
+  std::thread job_thread_;  // last: it starts (with the feeder's) once everything exists
 };
 
 }  // namespace gantry

@@ -1,0 +1,317 @@
+// The controller's feeder thread: plays the job's queue on the card and owns the flag protocol.
+#include "gantry/machine/feeder_thread.hpp"
+
+namespace gantry {
+
+Vec6 steps_to_machine(const Settings& settings, const Steps6& steps) {
+  Vec6 m = Vec6::Zero();
+  for (int i = 0; i < kAxisCount; ++i)
+    m[i] = static_cast<double>(steps[i]) / settings.axes[i].steps_per_unit;
+  return m;
+}
+
+// ---- job thread -> feeder ----------------------------------------------------------------
+
+void FeederThread::Sink::segment(const PlannedSegment& s) {
+  push({Item::kSegment, s, nullptr, nullptr});
+}
+
+void FeederThread::Sink::flush() {
+  push({Item::kFlush, {}, nullptr, nullptr});
+}
+
+void FeederThread::Sink::settings_changed(const Settings& s) {
+  push({Item::kSettings, {}, std::make_shared<const Settings>(s), nullptr});
+}
+
+void FeederThread::Sink::watch(std::span<const InputTrigger> t) {
+  push({Item::kWatch,
+        {},
+        nullptr,
+        std::make_shared<const std::vector<InputTrigger>>(t.begin(), t.end())},
+       /*abortable=*/false);  // disarming is pushed as a run winds down
+}
+
+void FeederThread::Sink::fence() {
+  dead_ = false;
+  push({Item::kFlush, {}, nullptr, nullptr}, /*abortable=*/false);
+}
+
+void FeederThread::Sink::outputs(std::uint32_t mask) {
+  dead_ = false;
+  for (int n = 1; n <= 12; ++n) {
+    PlannedSegment seg;
+    seg.output = n;  // one the profile does not wire switches nothing
+    seg.output_on = (mask >> (n - 1) & 1u) != 0;
+    push({Item::kSegment, seg, nullptr, nullptr}, /*abortable=*/false);
+  }
+  fence();
+}
+
+void FeederThread::Sink::push(Item&& item, bool abortable) {
+  if (dead_) return;
+  const bool flush = item.kind == Item::kFlush;
+  while (true) {
+    if (abortable && f_.abort_.load(std::memory_order_acquire)) {
+      dead_ = true;
+      throw GantryError(Diagnostic{item.seg.loc, Severity::Error, "stopped"});
+    }
+    if (f_.queue_.try_push(std::move(item))) break;
+    f_.queue_.wait_for_room();
+  }
+  if (flush) ++f_.flushes_pushed_;
+  f_.wake_.fetch_add(1, std::memory_order_release);
+  f_.wake_.notify_one();
+}
+
+void FeederThread::wait_for_motion() {
+  while (true) {
+    const std::uint64_t done = flushes_done_.load(std::memory_order_acquire);
+    if (done >= flushes_pushed_) return;
+    flushes_done_.wait(done);
+  }
+}
+
+// ---- life ----------------------------------------------------------------------------------
+
+FeederThread::FeederThread(const Settings& settings, Card& card, const InputTrip& stops,
+                           FeederEvents& events)
+    : settings_(settings),
+      card_(card),
+      events_(events),
+      steps_((card.start(settings.card.pacer_hz()), settings), card),
+      feeder_(steps_),
+      queue_(256),
+      stop_trip_(stops) {
+  steps_.on_block([this] {
+    publish();  // the readout moves during long segments
+    watch_stop_switches();
+  });
+}
+
+void FeederThread::start() {
+  thread_ = std::thread([this] { main(); });
+}
+
+void FeederThread::quit() {
+  quit_ = true;
+}
+
+void FeederThread::join() {
+  wake_.fetch_add(1);
+  wake_.notify_all();
+  thread_.join();
+}
+
+// ---- requests --------------------------------------------------------------------------------
+
+void FeederThread::hold(std::int64_t tick, bool discard, bool pause, bool every_output) {
+  on_hold_ = discard ? OnHold::Discard : OnHold::Wait;
+  feeder_.request_hold(tick, pause, every_output);
+}
+
+void FeederThread::request_stop() {
+  hold(0, /*discard=*/true);
+  abort_ = true;
+}
+
+void FeederThread::request_estop() {
+  feeder_.request_halt(0);
+  cmd_halt_ = true;
+  abort_ = true;
+}
+
+void FeederThread::wake() {
+  wake_.fetch_add(1, std::memory_order_release);
+  wake_.notify_one();
+}
+
+void FeederThread::new_activity() {
+  interrupted_ = false;
+  steps_.new_run();
+}
+
+bool FeederThread::spent_jog() {
+  feeder_.request_hold(StepGenerator::kNever);
+  on_hold_ = OnHold::Wait;
+  dropping_ = false;
+  return interrupted_.exchange(false);
+}
+
+void FeederThread::end_activity() {
+  feeder_.request_hold(StepGenerator::kNever);
+  on_hold_ = OnHold::Wait;
+  cmd_resume_ = false;
+  dropping_ = false;
+}
+
+Steps6 FeederThread::played() const {
+  Steps6 steps{};
+  for (int i = 0; i < kAxisCount; ++i) steps[i] = played_[i].load(std::memory_order_acquire);
+  return steps;
+}
+
+// ---- the thread ------------------------------------------------------------------------------
+
+void FeederThread::main() {
+  while (!quit_) {
+    const unsigned seen = wake_.load(std::memory_order_acquire);
+    if (cmd_halt_.exchange(false)) feeder_.halt_now();
+    const FeedPhase ph = feeder_.phase();
+    if (ph == FeedPhase::Held && on_hold_ == OnHold::Discard) {
+      feeder_.discard();
+      interrupted_ = true;
+      dropping_ = true;
+      on_hold_ = OnHold::Wait;
+    } else if (ph == FeedPhase::Held && cmd_resume_.exchange(false)) {
+      feeder_.resume();
+    } else if (ph == FeedPhase::Halted && cmd_acknowledge_.exchange(false)) {
+      feeder_.discard();  // the card starts again
+    }
+    if (feeder_.phase() != last_phase_) on_feeder_event();
+    publish();
+    Item item;
+    if (feeder_.phase() == FeedPhase::Held || !queue_.try_pop(item)) {
+      wake_.wait(seen, std::memory_order_acquire);
+      continue;
+    }
+    if (dropping_) {
+      flushes_dropped_ += item.kind == Item::kFlush;
+    } else if (drop_to_flush_ && item.kind != Item::kSettings) {
+      // The rest of the statement an input edge cut; what follows its flush plays.
+      if (item.kind == Item::kFlush) {
+        ++flushes_dropped_;
+        drop_to_flush_ = false;
+      } else if (item.kind == Item::kWatch) {
+        feed(item);
+      }
+    } else {
+      try {
+        feed(item);
+        if (input_cut_) finish_input_cut(item.kind == Item::kFlush);
+      } catch (const GantryError& e) {  // the card faulted: it stopped by itself
+        const CardFault fault = card_.fault();
+        events_.card_faulted(e, fault, steps_.position());  // before the card starts again
+        interrupted_ = true;
+        abort_ = true;
+        dropping_ = true;
+        flushes_dropped_ += item.kind == Item::kFlush;
+        if (fault != CardFault::EStop) {  // the card starts again: the tool can move off it
+          feeder_.halt_now();
+          feeder_.discard();
+          last_phase_ = FeedPhase::Playing;
+        }
+      }
+    }
+    if (feeder_.phase() != last_phase_) on_feeder_event();
+    publish();
+  }
+}
+
+void FeederThread::feed(Item& item) {
+  switch (item.kind) {
+    case Item::kSegment:
+      feeder_.segment(item.seg);
+      break;
+    case Item::kSettings: {
+      feeder_.settings_changed(*item.settings);
+      const InputRoles roles = input_roles(*item.settings);  // VN: at rest, not real-time
+      stop_trip_ = roles.stops;
+      events_.roles_changed(roles);
+      break;
+    }
+    case Item::kFlush:
+      feeder_.flush();
+      if (feeder_.phase() == FeedPhase::Playing) {  // a real card still plays its queue
+        card_.drain();
+        steps_.check_card();  // a fault in the last words
+      }
+      break;
+    case Item::kWatch:
+      arm_watch(item.triggers);
+      break;
+  }
+}
+
+// ---- input edges (ON INPUT, probes, homing) ------------------------------------------------
+
+void FeederThread::arm_watch(std::shared_ptr<const std::vector<InputTrigger>> triggers) {
+  watched_ = std::move(triggers);  // shared: nothing allocated here
+  InputWatch w;
+  for (const InputTrigger& t : *watched_) {
+    const int bit = settings_.inputs.switch_bits[t.input - 1];
+    if (bit < 0) continue;  // the interpreter has said it never fires
+    w.mask |= 1u << bit;
+    if (t.closing) w.levels |= 1u << bit;
+    if (t.instant) w.stop |= 1u << bit;
+  }
+  fired_.reset();
+  steps_.watch_inputs(w, [this](const InputEdge& e) { on_input_edge(e); });
+}
+
+// Inside the step generator, right after the block in which the card saw the edge: the tool
+// was where the words before the edge's tick left it; the motion is cut there (instant) or
+// ramps down from the next word on.
+void FeederThread::on_input_edge(const InputEdge& e) {
+  const bool closed = (e.bits >> e.bit & 1u) != 0;
+  for (const InputTrigger& t : *watched_)
+    if (settings_.inputs.switch_bits[t.input - 1] == e.bit && t.closing == closed) fired_ = t;
+  if (!fired_) return;
+  const std::optional<Steps6> at = steps_.position_at(e.tick);
+  latched_ = steps_to_machine(settings_, at ? *at : steps_.played_position());
+  input_cut_ = true;
+  if (fired_->instant)
+    feeder_.request_halt(0);
+  else
+    feeder_.request_hold(0);
+}
+
+// After each item while an edge's cut is under way. At rest, what the cut left of the
+// statement's motion is dropped (up to its flush); still slowing, it goes on.
+void FeederThread::finish_input_cut(bool consumed_flush) {
+  const FeedPhase ph = feeder_.phase();
+  if (ph == FeedPhase::Playing && consumed_flush) {
+    // The edge came in the statement's last words: the motion ended before the cut.
+    if (fired_->instant) {
+      feeder_.halt_now();
+      feeder_.discard();
+    }
+    feeder_.request_hold(StepGenerator::kNever);
+    feeder_.request_halt(StepGenerator::kNever);
+    input_cut_ = false;
+  } else if (ph == FeedPhase::Held || ph == FeedPhase::Halted) {
+    drop_to_flush_ = !(ph == FeedPhase::Held && feeder_.flush_kept());
+    feeder_.discard();
+    input_cut_ = false;
+  }
+}
+
+// SB3's remote stop: seen after the block in which the card read it; the controller pauses
+// (or ends a jog) on the switch's closing edge.
+void FeederThread::watch_stop_switches() {
+  const std::uint32_t bits = card_.inputs();
+  const bool active = stop_trip_.tripped(bits);
+  const bool pressed = active && !stop_active_;
+  stop_active_ = active;
+  if (pressed) events_.stop_switch_pressed(bits);
+}
+
+void FeederThread::publish() {
+  const Steps6 p = steps_.played_position();
+  for (int i = 0; i < kAxisCount; ++i) played_[i].store(p[i], std::memory_order_release);
+  tick_.store(steps_.tick(), std::memory_order_release);
+  inputs_.store(card_.inputs(), std::memory_order_release);
+  playing_line_.store(steps_.loc().line, std::memory_order_relaxed);
+  warning_.store(steps_.warning() && feeder_.phase() == FeedPhase::Playing,
+                 std::memory_order_relaxed);
+  flushes_done_.store(feeder_.flushes_completed() + flushes_dropped_, std::memory_order_release);
+  flushes_done_.notify_all();
+}
+
+void FeederThread::on_feeder_event() {
+  last_phase_ = feeder_.phase();
+  publish();
+  events_.feeder_phase_changed(last_phase_, feeder_.rest_loc());
+}
+
+}  // namespace gantry
