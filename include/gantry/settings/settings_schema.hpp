@@ -26,16 +26,16 @@ struct SettingRange {
 };
 
 struct SettingRow {
-  std::string_view section;          // the TOML table: "ramps"
-  std::string_view key;              // the key in it: "move_ramp_rate"
-  double& (*member)(Settings&);      // the field it sets
-  SettingRange range;                // checked by the profile, values-file and V-command readers
-  SettingUnit unit;                  // how convert_units scales it
-  std::string_view help;             // one line, as docs/settings.md says it
+  std::string_view section;      // the TOML table: "ramps"
+  std::string_view key;          // the key in it: "move_ramp_rate"
+  double& (*member)(Settings&);  // the field it sets
+  SettingRange range;            // checked by the profile, values-file and V-command readers
+  SettingUnit unit;              // how convert_units scales it
+  std::string_view help;         // one line, as docs/settings.md says it
 
   std::string path() const;  // "ramps.move_ramp_rate"
   double get(const Settings& s) const { return member(const_cast<Settings&>(s)); }
-  double fallback() const;   // the value a default-constructed Settings holds
+  double fallback() const;  // the value a default-constructed Settings holds
 };
 
 // Every row, in the order the profile is written.
