@@ -10,6 +10,7 @@
 #include "gantry/interp/command_context.hpp"
 #include "gantry/interp/tool_table.hpp"  // cutter_to_tool_table
 #include "gantry/lang/expression.hpp"    // parse_lvalue: VV's names
+#include "gantry/settings/settings_schema.hpp"  // ranges and members of schema settings
 
 namespace gantry {
 namespace {
@@ -35,6 +36,15 @@ ParamSpec word(std::string_view name, std::string_view choices, std::string_view
 Field obsolete(int n) {
   static const std::string names[] = {"obsolete 1", "obsolete 2", "obsolete 3", "obsolete 4"};
   return {num(names[n], "", "No longer used; leave it blank."), nullptr};
+}
+
+// A parameter that sets a schema setting (settings_schema.hpp): the schema gives its range
+// (checked before the handler runs, so the schema's own check in set_setting always passes)
+// and its member; the sheet's name, unit and help stay the command's.
+Field schema_field(std::string_view path, ParamSpec spec) {
+  const SettingRow& row = setting_row(path);
+  return {spec.range(row.range.lo, row.range.hi),
+          [&row](Settings& s, const Value& v) { set_setting(s, row, v.num()); }};
 }
 
 bool on(const Value& v) {
@@ -511,26 +521,24 @@ const std::vector<Field>& vr_sb3() {
       ramp_speed(true, 1),
       ramp_speed(true, 2),
       ramp_speed(true, 3),
-      {num("move ramp rate", "units", "Distance over which move speed changes by 2 units/s.")
-           .range(1e-6, 1e6),
-       [](Settings& s, const Value& v) { s.ramps.move_ramp_rate = v.num(); }},
-      {num("jog ramp rate", "units", "The same for jogs.").range(1e-6, 1e6),
-       [](Settings& s, const Value& v) { s.ramps.jog_ramp_rate = v.num(); }},
-      {num("3D threshold", "%", "Sensitivity of 3D ramping; lower is more sensitive.")
-           .range(0, 1000),
-       [](Settings& s, const Value& v) { s.ramps.threshold_3d = v.num(); }},
-      {num("minimum distance", "units", "Shortest distance looked at for a ramp decision.")
-           .range(0, 1e3),
-       [](Settings& s, const Value& v) { s.ramps.min_distance = v.num(); }},
-      {num("slow corner speed", "%", "Share of speed kept through a slight corner.").range(0, 100),
-       [](Settings& s, const Value& v) { s.ramps.slow_corner = v.num(); }},
+      schema_field("ramps.move_ramp_rate",
+                   num("move ramp rate", "units",
+                       "Distance over which move speed changes by 2 units/s.")),
+      schema_field("ramps.jog_ramp_rate", num("jog ramp rate", "units", "The same for jogs.")),
+      schema_field("ramps.threshold_3d",
+                   num("3D threshold", "%", "Sensitivity of 3D ramping; lower is more sensitive.")),
+      schema_field("ramps.min_distance",
+                   num("minimum distance", "units",
+                       "Shortest distance looked at for a ramp decision.")),
+      schema_field("ramps.slow_corner",
+                   num("slow corner speed", "%", "Share of speed kept through a slight corner.")),
       obsolete(0),
       obsolete(1),
-      {num("keypad ramp rate", "units", "Ramp rate of keypad jogs.").range(1e-6, 1e6),
-       [](Settings& s, const Value& v) { s.ramps.keypad_ramp_rate = v.num(); }},
-      {num("small circle", "units", "Circles of smaller diameter run at ramp speed (AMB-22).")
-           .range(0, 1e3),
-       [](Settings& s, const Value& v) { s.ramps.small_circle = v.num(); }}};
+      schema_field("ramps.keypad_ramp_rate",
+                   num("keypad ramp rate", "units", "Ramp rate of keypad jogs.")),
+      schema_field("ramps.small_circle",
+                   num("small circle", "units",
+                       "Circles of smaller diameter run at ramp speed (AMB-22)."))};
   return f;
 }
 

@@ -11,22 +11,15 @@
 #include <filesystem>  // tool_table from the profile's folder
 #include <set>         // keys seen, to reject unknown ones
 
-#include "gantry/core/text_file.hpp"  // read_text_file
+#include "gantry/core/text_file.hpp"            // read_text_file
+#include "gantry/settings/settings_schema.hpp"  // the numeric keys
 #include "settings_private.hpp"       // parse_settings_table
 
 namespace gantry {
 namespace {
 
-// Allowed values of one numeric key.
-struct Range {
-  double lo, hi;
-  bool lo_open = false;  // lo itself not allowed
-
-  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && v <= hi; }
-  std::string describe() const {
-    return fmt::format("{} {} and <= {}", lo_open ? ">" : ">=", lo, hi);
-  }
-};
+// Allowed values of one numeric key (the schema's rows carry theirs).
+using Range = SettingRange;
 
 // Reads one TOML table against its schema: each read marks a key as known; `finish`
 // reports the keys nobody asked for. Errors accumulate so a load reports all of them.
@@ -309,7 +302,6 @@ GroupSpeeds read_speeds(TableReader t, Range range) {
   return s;
 }
 
-constexpr Range kPositive{0, 1e6, true};
 constexpr Range kSpeed{0, 1e5, true};
 
 // "a, b, c": exactly `count` whole numbers in [lo, hi].
@@ -337,10 +329,8 @@ void read_values(TableReader& root, Settings& s) {
   cutter.finish();
 
   TableReader tabs = root.table("tabs");
-  s.tabs.pull_up = tabs.number("pull_up", {0, 1e4}, 0.1);
-  s.tabs.spacing = tabs.number("spacing", {0, 1e6, true}, 4);
-  s.tabs.size = tabs.number("size", {0, 1e6}, 1);
-  s.tabs.leads = tabs.number("leads", {0, 1e6}, 0.5);
+  for (const SettingRow& row : settings_schema("tabs"))
+    row.member(s) = tabs.number(row.key, row.range, row.fallback());
   tabs.finish();
 
   TableReader display = root.table("display");
@@ -469,13 +459,8 @@ void read_profile(TableReader root, Settings& s) {
 
   TableReader ramps = root.table("ramps");
   RampSettings& r = s.ramps;
-  r.move_ramp_rate = ramps.number("move_ramp_rate", kPositive, 0.2);
-  r.jog_ramp_rate = ramps.number("jog_ramp_rate", kPositive, 0.2);
-  r.threshold_3d = ramps.number("threshold_3d", {0, 1000}, 100);
-  r.min_distance = ramps.number("min_distance", {0, 1e3}, 0.15);
-  r.slow_corner = ramps.number("slow_corner", {0, 100}, 65);
-  r.keypad_ramp_rate = ramps.number("keypad_ramp_rate", kPositive, 0.2);
-  r.small_circle = ramps.number("small_circle", {0, 1e3}, 0.25);
+  for (const SettingRow& row : settings_schema("ramps"))
+    row.member(s) = ramps.number(row.key, row.range, row.fallback());
   r.move_ramp_speed = read_speeds(ramps.table("move_speed"), kSpeed);
   r.jog_ramp_speed = read_speeds(ramps.table("jog_speed"), kSpeed);
   ramps.finish();

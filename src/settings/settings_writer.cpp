@@ -1,6 +1,7 @@
 // The TOML form of a profile: every key, in the schema parse_settings_table reads.
 #include <fmt/format.h>
 
+#include "gantry/settings/settings_schema.hpp"  // the numeric keys
 #include "settings_private.hpp"
 
 namespace gantry {
@@ -59,15 +60,11 @@ toml::table settings_table(const Settings& s) {
   root.insert("speeds",
               toml::table{{"move", groups(s.speeds.move)}, {"jog", groups(s.speeds.jog)}});
   const RampSettings& r = s.ramps;
-  root.insert("ramps", toml::table{{"move_ramp_rate", r.move_ramp_rate},
-                                   {"jog_ramp_rate", r.jog_ramp_rate},
-                                   {"threshold_3d", r.threshold_3d},
-                                   {"min_distance", r.min_distance},
-                                   {"slow_corner", r.slow_corner},
-                                   {"keypad_ramp_rate", r.keypad_ramp_rate},
-                                   {"small_circle", r.small_circle},
-                                   {"move_speed", groups(r.move_ramp_speed)},
-                                   {"jog_speed", groups(r.jog_ramp_speed)}});
+  toml::table ramps;
+  for (const SettingRow& row : settings_schema("ramps")) ramps.insert(row.key, row.get(s));
+  ramps.insert("move_speed", groups(r.move_ramp_speed));
+  ramps.insert("jog_speed", groups(r.jog_ramp_speed));
+  root.insert("ramps", std::move(ramps));
   const PlannerSettings& pl = s.planner;
   root.insert("planner", toml::table{{"mode", planner_mode_name(pl.mode)},
                                      {"corner_jump", pl.corner_jump},
@@ -128,10 +125,9 @@ toml::table settings_table(const Settings& s) {
                                     {"trigger_off", k.trigger_off},
                                     {"trigger_axis", k.trigger_axis == 3 ? "a" : "z"},
                                     {"trigger_output", k.trigger_output}});
-  root.insert("tabs", toml::table{{"pull_up", s.tabs.pull_up},
-                                  {"spacing", s.tabs.spacing},
-                                  {"size", s.tabs.size},
-                                  {"leads", s.tabs.leads}});
+  toml::table tabs;
+  for (const SettingRow& row : settings_schema("tabs")) tabs.insert(row.key, row.get(s));
+  root.insert("tabs", std::move(tabs));
   const DisplaySettings& d = s.display;
   root.insert("display", toml::table{{"axes", d.axes},
                                      {"units_a", axis_unit_name(d.rotary_units[0])},

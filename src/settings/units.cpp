@@ -2,6 +2,7 @@
 #include <cmath>  // pow, log10, round
 
 #include "gantry/settings/settings.hpp"
+#include "gantry/settings/settings_schema.hpp"  // the length settings
 
 namespace gantry {
 
@@ -57,20 +58,13 @@ void convert_units(Settings& s, Units to) {
   RampSettings& r = s.ramps;
   for (GroupSpeeds* g : {&s.speeds.move, &s.speeds.jog, &r.move_ramp_speed, &r.jog_ramp_speed})
     scale_speeds(*g, scale);
-  for (double* v : {&r.move_ramp_rate,
-                    &r.jog_ramp_rate,
-                    &r.min_distance,
-                    &r.keypad_ramp_rate,
-                    &r.small_circle,
-                    &s.planner.junction_deviation,
+  for (const SettingRow& row : settings_schema())
+    if (row.unit == SettingUnit::Length) row.member(s) = round12(row.member(s) * f);
+  for (double* v : {&s.planner.junction_deviation,
                     &s.planner.chord_tolerance,
                     &s.planner.jerk,
                     &s.cutter.diameter,
                     &s.cutter.safe_z,
-                    &s.tabs.pull_up,
-                    &s.tabs.spacing,
-                    &s.tabs.size,
-                    &s.tabs.leads,
                     &s.display.keypad_step,
                     &s.homing.fast_speed,
                     &s.homing.slow_speed,

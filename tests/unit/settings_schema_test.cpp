@@ -1,0 +1,83 @@
+// The settings schema: its rows drive the readers, the writer, the unit change, VR and the docs.
+#include "gantry/settings/settings_schema.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "gantry/settings/settings.hpp"
+
+namespace gantry {
+namespace {
+
+std::string settings_doc() {
+  std::ifstream in(std::string(GANTRY_SOURCE_DIR) + "/docs/settings.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Each schema row is a line of docs/settings.md's key table, with the schema's range and help.
+TEST(SettingsSchemaDocs, EveryRowIsInTheKeyTable) {
+  const std::string doc = settings_doc();
+  ASSERT_FALSE(doc.empty());
+  for (const SettingRow& row : settings_schema()) {
+    const std::string line = "| `" + row.path() + "` | number | " + row.range.docs() + " | " +
+                             std::string(row.help) + " |\n";
+    EXPECT_NE(doc.find(line), std::string::npos) << "docs/settings.md lacks the line\n" << line;
+    if (row.unit == SettingUnit::Length) {
+      EXPECT_NE(row.help.find("(a length)"), std::string::npos) << row.path();
+    }
+  }
+}
+
+TEST(SettingsSchema, PathsAreUniqueAndFound) {
+  for (const SettingRow& row : settings_schema()) {
+    EXPECT_EQ(&setting_row(row.path()), &row);
+    EXPECT_TRUE(row.range.contains(row.fallback())) << row.path();
+  }
+  EXPECT_THROW(setting_row("ramps.no_such_key"), std::out_of_range);
+  EXPECT_EQ(settings_schema("ramps").size(), 7u);
+  EXPECT_EQ(settings_schema("tabs").size(), 4u);
+}
+
+// The ramp rates have one range in the profile and in VR (issue 24: they had drifted).
+TEST(SettingsSchema, RampRateRangeIsOne) {
+  for (const char* key :
+       {"ramps.move_ramp_rate", "ramps.jog_ramp_rate", "ramps.keypad_ramp_rate"}) {
+    const SettingRow& row = setting_row(key);
+    EXPECT_EQ(row.range.docs(), "1e-06 to 1000000") << key;
+    Settings s;
+    EXPECT_FALSE(set_setting(s, row, 0));
+    EXPECT_FALSE(set_setting(s, row, 5e-7));
+    EXPECT_DOUBLE_EQ(row.get(s), 0.2);
+    EXPECT_TRUE(set_setting(s, row, 1e-6));
+    EXPECT_DOUBLE_EQ(row.get(s), 1e-6);
+  }
+}
+
+TEST(SettingsSchema, ProfileRejectsARampRateBelowTheRange) {
+  std::string text = default_profile_text();
+  const size_t at = text.find("move_ramp_rate");
+  ASSERT_NE(at, std::string::npos);
+  const size_t eol = text.find('\n', at);
+  text.replace(at, eol - at, "move_ramp_rate = 1e-7");
+  const SettingsLoad l = parse_settings(text, "p.toml");
+  ASSERT_EQ(l.errors.size(), 1u);
+  EXPECT_EQ(l.errors[0].message,
+            "ramps.move_ramp_rate = 1e-07 is out of range; allowed: >= 1e-06 and <= 1000000");
+}
+
+TEST(SettingsSchema, LengthRowsFollowTheUnits) {
+  Settings s;
+  s.ramps.move_ramp_rate = 1;
+  s.ramps.threshold_3d = 50;
+  convert_units(s, Units::Millimetres);
+  EXPECT_DOUBLE_EQ(s.ramps.move_ramp_rate, 25.4);
+  EXPECT_DOUBLE_EQ(s.ramps.threshold_3d, 50);  // a percent: unchanged
+}
+
+}  // namespace
+}  // namespace gantry
