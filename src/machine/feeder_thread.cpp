@@ -164,7 +164,11 @@ void FeederThread::main() {
       dropping_ = true;
       on_hold_ = OnHold::Wait;
     } else if (ph == FeedPhase::Held && cmd_resume_.exchange(false)) {
-      feeder_.resume();
+      try {
+        feeder_.resume();  // replays the kept path: the card may fault as it plays
+      } catch (const GantryError& e) {
+        card_faulted(e, false);
+      }
     } else if (ph == FeedPhase::Halted && cmd_acknowledge_.exchange(false)) {
       feeder_.discard();  // the card starts again
     }
@@ -189,22 +193,28 @@ void FeederThread::main() {
       try {
         feed(item);
         if (input_cut_) finish_input_cut(item.kind == Item::kFlush);
-      } catch (const GantryError& e) {  // the card faulted: it stopped by itself
-        const CardFault fault = card_.fault();
-        events_.card_faulted(e, fault, steps_.position());  // before the card starts again
-        interrupted_ = true;
-        abort_ = true;
-        dropping_ = true;
-        flushes_dropped_ += item.kind == Item::kFlush;
-        if (fault != CardFault::EStop) {  // the card starts again: the tool can move off it
-          feeder_.halt_now();
-          feeder_.discard();
-          last_phase_ = FeedPhase::Playing;
-        }
+      } catch (const GantryError& e) {
+        card_faulted(e, item.kind == Item::kFlush);
       }
     }
     if (feeder_.phase() != last_phase_) on_feeder_event();
     publish();
+  }
+}
+
+// The card faulted and stopped by itself, while playing `item` (a lost flush is counted
+// here) or while replaying a kept path on resume.
+void FeederThread::card_faulted(const GantryError& e, bool flush_lost) {
+  const CardFault fault = card_.fault();
+  events_.card_faulted(e, fault, steps_.position());  // before the card starts again
+  interrupted_ = true;
+  abort_ = true;
+  dropping_ = true;
+  flushes_dropped_ += flush_lost;
+  if (fault != CardFault::EStop) {  // the card starts again: the tool can move off it
+    feeder_.halt_now();
+    feeder_.discard();
+    last_phase_ = FeedPhase::Playing;
   }
 }
 

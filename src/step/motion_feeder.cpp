@@ -220,17 +220,23 @@ void MotionFeeder::resume() {
   switch_outputs(std::exchange(paused_off_, 0), true);  // on again before anything moves
   set_phase(FeedPhase::Playing);
   // A new hold while replaying keeps the rest again, in order (segment() and the others
-  // keep what arrives while held).
-  for (const Kept& k : replay) switch (k.kind) {
-      case Kept::kSegment:
-        segment(k.seg);
-        break;
-      case Kept::kSettings:
-        settings_changed(*k.settings);
-        break;
-      case Kept::kFlush:
-        flush();
-        break;
+  // keep what arrives while held). A card fault part-way abandons what was not played,
+  // the item that threw included (its flush was not counted), as a fault in play does.
+  for (auto k = replay.begin(); k != replay.end(); ++k) try {
+      switch (k->kind) {
+        case Kept::kSegment:
+          segment(k->seg);
+          break;
+        case Kept::kSettings:
+          settings_changed(*k->settings);
+          break;
+        case Kept::kFlush:
+          flush();
+          break;
+      }
+    } catch (...) {
+      for (; k != replay.end(); ++k) flushes_ += k->kind == Kept::kFlush;
+      throw;
     }
 }
 

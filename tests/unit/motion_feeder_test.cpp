@@ -7,6 +7,8 @@
 #include <random>
 #include <vector>
 
+#include "gantry/core/diagnostic.hpp"  // GantryError
+#include "gantry/hal/input_roles.hpp"  // InputTrip
 #include "gantry/motion/lookahead_planner.hpp"
 #include "gantry/settings/settings.hpp"
 #include "sim/sim_card.hpp"
@@ -245,6 +247,25 @@ TEST(MotionFeeder, DiscardAfterAHoldLeavesTheToolWhereItStopped) {
   EXPECT_EQ(h.steps->played_position(), stopped);
   EXPECT_EQ(h.card.steps()[0], stopped[0]);
   EXPECT_EQ(h.feeder->phase(), FeedPhase::Playing);
+}
+
+// A card that faults while a resume replays the kept path: the rest is abandoned and its
+// flush counted, so the job waiting for it is released (before, the fault escaped the
+// feeder thread and ended the process).
+TEST(MotionFeeder, ACardFaultWhileResumingAbandonsTheRestAndCountsItsFlush) {
+  Rig h;
+  h.feeder->request_hold(h.tick(0.2));
+  h.line(at(2, 0));
+  h.planner->flush();
+  ASSERT_EQ(h.feeder->phase(), FeedPhase::Held);
+  const std::uint64_t flushes = h.feeder->flushes_completed();
+  const InputTrip estop{1u << 5, 1u << 5};  // input bit 5, active high
+  h.card.set_trips(estop, {});
+  h.card.set_switch(5, true);
+  EXPECT_THROW(h.feeder->resume(), GantryError);
+  EXPECT_EQ(h.card.fault(), CardFault::EStop);
+  EXPECT_EQ(h.feeder->flushes_completed(), flushes + 1);
+  EXPECT_LT(h.card.steps()[0], h.steps_of(2, 0));
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// The controller's feeder thread and the one owner of the flags between it, the job thread and the callers.
+// The controller's feeder thread and the one owner of the flags between it, the job thread and the
+// callers.
 #pragma once
 
 #include <array>
@@ -10,12 +11,12 @@
 #include <thread>
 #include <vector>
 
-#include "gantry/core/spsc_queue.hpp"           // SpscQueue
-#include "gantry/hal/card.hpp"                  // Card
-#include "gantry/hal/input_roles.hpp"           // InputRoles, InputTrip
-#include "gantry/interp/interpreter.hpp"        // InputTrigger
-#include "gantry/step/motion_feeder.hpp"        // MotionFeeder
-#include "gantry/step/step_generator.hpp"       // StepGenerator
+#include "gantry/canon/canon_move.hpp"     // InputTrigger
+#include "gantry/core/spsc_queue.hpp"      // SpscQueue
+#include "gantry/hal/card.hpp"             // Card
+#include "gantry/hal/input_roles.hpp"      // InputRoles, InputTrip
+#include "gantry/step/motion_feeder.hpp"   // MotionFeeder
+#include "gantry/step/step_generator.hpp"  // StepGenerator
 
 namespace gantry {
 
@@ -147,12 +148,12 @@ class FeederThread {
   const std::atomic<bool>& abort_flag() const { return abort_; }  // the interpreter's stop_check
   bool interrupted() const { return interrupted_; }
   void halted() { interrupted_ = true; }  // feeder, from feeder_phase_changed (a halt)
-  void new_activity();        // under the mutex, the feeder idle: nothing cut yet
+  void new_activity();                    // under the mutex, the feeder idle: nothing cut yet
   // Job, at rest after an SK jog: its requests are spent. Returns whether it was cut.
   bool spent_jog();
   void queue_emptied() { dropping_ = false; }  // job: what was cut is gone
-  void end_activity();        // job, the queue empty and the feeder idle
-  void wait_for_motion();     // job: every flush pushed has played (or was dropped)
+  void end_activity();                         // job, the queue empty and the feeder idle
+  void wait_for_motion();  // job: every flush pushed has played (or was dropped)
 
   // ---- state out (any thread) ----
   FeedPhase phase() const { return feeder_.phase(); }
@@ -168,6 +169,7 @@ class FeederThread {
   friend class Controller;  // ForwardSink reads inputs_, fired_, latched_ by name
   void main();
   void feed(Item& item);
+  void card_faulted(const GantryError& e, bool flush_lost);
   void publish();          // position and phase for status()
   void on_feeder_event();  // a hold or halt took effect
   void arm_watch(std::shared_ptr<const std::vector<InputTrigger>> triggers);
