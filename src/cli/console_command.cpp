@@ -12,9 +12,8 @@
 #include "console_view.hpp"                // Console
 #include "gantry/lang/scan.hpp"            // upper
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
-#include "live_machine.hpp"                // ValuesKeeper, open_live_card
+#include "live_machine.hpp"                // LiveMachine
 #include "machine_profile.hpp"             // load_machine_profile
-#include "open_card.hpp"                   // plays_in_real_time
 #include "signal_watch.hpp"                // SignalWatch
 
 namespace gantry {
@@ -58,19 +57,12 @@ int run_console(const ConsoleArgs& a) {
   const bool interactive = isatty(STDIN_FILENO) && isatty(STDOUT_FILENO);
 
   SignalWatch signals;  // before the controller starts its threads: they inherit the mask
-  PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   OperatorMailbox io(a.yes, inputs,
                      interactive ? std::function<void(std::string_view)>{}
                                  : std::function<void(std::string_view)>(write_out));
-  ValuesKeeper values(profile, io);
-
-  std::string type;
-  const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
-  if (!card) return 1;
-  const bool sim = type == "sim";
-  const bool real_time = plays_in_real_time(type, a.realtime);
-  Controller controller(settings, *card, io, store,
-                        live_interpreter_options(profile, values, a, real_time));
+  const std::unique_ptr<LiveMachine> live = LiveMachine::open(a, profile, io);
+  if (!live) return 1;
+  Controller& controller = *live->controller;
   std::atomic<int> signal{0};
   signals.start([&](int sig) {
     signal = sig;
@@ -82,12 +74,12 @@ int run_console(const ConsoleArgs& a) {
     ~StopFirst() { w.stop(); }
   } stop_first{signals};
 
-  console::Console console(controller, io, values, a, real_time, signal);
+  console::Console console(controller, io, live->values, a, live->real_time, signal);
   if (!interactive) return console.piped();
   const std::string banner = fmt::format(
       "gantry console: profile \"{}\" on the {}{}\nhelp lists the keys; quit leaves.\n",
-      settings.name, sim ? "simulated card" : type + " card",
-      !sim         ? ""
+      settings.name, live->sim() ? "simulated card" : live->card_type + " card",
+      !live->sim() ? ""
       : a.realtime ? " (real time)"
                    : " (virtual time: moves end at once; --realtime plays them in real time)");
   return console.interactive(banner);

@@ -8,13 +8,11 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "gantry/interp/persistent_store.hpp"  // PersistentStore
-#include "gantry/machine/controller.hpp"       // Controller
-#include "gantry/session/operator_io.hpp"      // OperatorMailbox
-#include "gui.hpp"                             // run_gui (ui/)
-#include "live_machine.hpp"                    // ValuesKeeper, open_live_card
-#include "machine_profile.hpp"                 // load_machine_profile
-#include "open_card.hpp"                       // plays_in_real_time
+#include "gantry/machine/controller.hpp"   // Controller
+#include "gantry/session/operator_io.hpp"  // OperatorMailbox
+#include "gui.hpp"                         // run_gui (ui/)
+#include "live_machine.hpp"                // LiveMachine
+#include "machine_profile.hpp"             // load_machine_profile
 
 namespace gantry {
 
@@ -44,27 +42,18 @@ int run_gui_command(const GuiArgs& a) {
   }
   MachineProfile profile;
   if (!load_machine_profile(a.profile, a.values, profile, a.tool_table)) return 1;
-  const Settings& settings = profile.settings;
-  PersistentStore store(a.persistent.empty() ? PersistentStore::default_path() : a.persistent);
   session::OperatorMailbox io(false, {});
-  ValuesKeeper values(profile, io);
-
-  std::string type;
-  const std::unique_ptr<Card> card = open_live_card(a, settings, &type);
-  if (!card) return 1;
-  const bool sim = type == "sim";
-  const bool real_time = plays_in_real_time(type, a.realtime);
-  Controller controller(settings, *card, io, store,
-                        live_interpreter_options(profile, values, a, real_time));
+  const std::unique_ptr<LiveMachine> live = LiveMachine::open(a, profile, io);
+  if (!live) return 1;
   ui::GuiOptions o;
   o.file = a.file;
   o.script = a.script;
   o.bench = a.bench;
-  o.realtime = real_time;
-  o.card = sim ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : type;
+  o.realtime = live->real_time;
+  o.card = live->sim() ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : live->card_type;
   o.width = a.width;
   o.height = a.width * 10 / 16;
-  ui::Machine m{controller, io, [&values] { return values.settings(); }};
+  ui::Machine m{*live->controller, io, [&live] { return live->values.settings(); }};
   return ui::run_gui(o, m);
 }
 

@@ -5,7 +5,7 @@
 
 #include "gantry/core/text_file.hpp"        // read_text_file, write_file_atomically
 #include "gantry/settings/values_file.hpp"  // values_text
-#include "open_card.hpp"                    // open_card
+#include "open_card.hpp"                    // open_card, plays_in_real_time
 
 namespace gantry {
 
@@ -71,6 +71,23 @@ std::unique_ptr<Card> open_live_card(const LiveMachineArgs& a, const Settings& s
   std::unique_ptr<Card> card = open_card(choice, settings, &why);
   if (!card) fmt::print(stderr, "error: cannot open the {} card: {}\n", choice.type, why);
   return card;
+}
+
+std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineArgs& a, const MachineProfile& p,
+                                               OperatorIO& io) {
+  auto m = std::unique_ptr<LiveMachine>(new LiveMachine{
+      PersistentStore(a.persistent.empty() ? PersistentStore::default_path() : a.persistent),
+      ValuesKeeper(p, io),
+      {},
+      nullptr,
+      false,
+      nullptr});
+  m->card = open_live_card(a, p.settings, &m->card_type);
+  if (!m->card) return nullptr;
+  m->real_time = plays_in_real_time(m->card_type, a.realtime);
+  m->controller = std::make_unique<Controller>(
+      p.settings, *m->card, io, m->store, live_interpreter_options(p, m->values, a, m->real_time));
+  return m;
 }
 
 }  // namespace gantry

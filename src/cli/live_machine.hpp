@@ -7,10 +7,12 @@
 #include <mutex>
 #include <string>
 
-#include "gantry/hal/card.hpp"            // Card
-#include "gantry/interp/interpreter.hpp"  // InterpreterOptions
-#include "gantry/interp/operator_io.hpp"  // OperatorIO
-#include "machine_profile.hpp"            // MachineProfile
+#include "gantry/hal/card.hpp"                 // Card
+#include "gantry/interp/interpreter.hpp"       // InterpreterOptions
+#include "gantry/interp/operator_io.hpp"       // OperatorIO
+#include "gantry/interp/persistent_store.hpp"  // PersistentStore
+#include "gantry/machine/controller.hpp"       // Controller
+#include "machine_profile.hpp"                 // MachineProfile
 
 namespace gantry {
 
@@ -56,5 +58,23 @@ class ValuesKeeper {
 // SW's warning when the card plays in real time.
 InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeeper& values,
                                             const LiveMachineArgs& a, bool real_time);
+
+// The live machine both front ends drive, built in the order it needs: the persistent
+// store, the values kept, the card, then the controller (last: it starts the threads, and it
+// is destroyed first).
+struct LiveMachine {
+  // Null, with the card's reason printed, when the card cannot be opened.
+  static std::unique_ptr<LiveMachine> open(const LiveMachineArgs& a, const MachineProfile& p,
+                                           OperatorIO& io);
+
+  PersistentStore store;
+  ValuesKeeper values;
+  std::string card_type;  // "sim", "pci7200", ...
+  std::unique_ptr<Card> card;
+  bool real_time = false;
+  std::unique_ptr<Controller> controller;
+
+  bool sim() const { return card_type == "sim"; }
+};
 
 }  // namespace gantry
