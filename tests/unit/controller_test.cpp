@@ -235,6 +235,35 @@ TEST(Controller, EStopStopsThePulsesAtOnceAndNeedsAcknowledging) {
   EXPECT_EQ(m.card.steps()[0], m.steps(1.0));
 }
 
+// Issue 25: on the real-time card, the move after an acknowledged E-stop plays at once. It
+// froze for as long as the card had played before (the readout said "running" with X still):
+// SimCard::start() must carry the wall clock's origin with the tick count. The two times are
+// compared in one run, never against a fixed figure.
+TEST(Controller, InRealTimeTheMoveAfterAnAcknowledgedEStopPlaysAtOnce) {
+  Settings settings = default_settings();
+  SimCard card{settings, true};
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  ASSERT_TRUE(c.run(Script::from_text("MS, 2\nMX, 4\n", "part.sbp")));  // about 2 s
+  c.wait();
+  ASSERT_TRUE(c.run(Script::from_text("MX, 0\n", "part.sbp")));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_TRUE(c.estop());
+  c.wait();
+  ASSERT_EQ(c.state(), MachineState::EStop);
+  ASSERT_TRUE(c.acknowledge());
+  const double played_before_s = card.time_s();
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(c.run(Script::from_text("MX, 3.9\n", "part.sbp")));  // a few tenths of an inch
+  c.wait();
+  const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(c.state(), MachineState::Idle);
+  EXPECT_EQ(c.status().steps[0], std::llround(3.9 * settings.axes[0].steps_per_unit));
+  EXPECT_GT(played_before_s, 2.0);
+  EXPECT_LT(took_s, played_before_s / 2) << "the move waited for the ticks before the E-stop";
+}
+
 TEST(Controller, AContinuousJogRampsDownOnReleaseAtTheKeypadRampRate) {
   Machine m;
   const double hold_s = 1.0;
