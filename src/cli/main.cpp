@@ -20,6 +20,7 @@
 #include "gantry/core/text.hpp"              // upper, lower
 #include "gantry/core/text_file.hpp"         // read_text_file
 #include "gantry/lang/script.hpp"            // Script
+#include "gantry/interp/interpreter_options.hpp"  // the macro folders help looks in
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
 #include "gantry/motion/cycle_timer.hpp"     // estimate
 #include "gantry/settings/values_file.hpp"   // the values file
@@ -545,12 +546,13 @@ int cmd_help(const std::string& code, bool markdown) {
     fmt::print("{}", command_list(table));
     return 0;
   }
-  const std::string upper = ascii::upper(code);
-  if (const CommandSpec* spec = table.find(upper)) {
-    fmt::print("{}", command_help(*spec));
+  const InterpreterOptions defaults;  // the folders a part file's C<n> looks in, --macros aside
+  if (const std::optional<std::string> help = help_topic(
+          code, {defaults.user_macro_dir, defaults.shipped_macro_dir})) {
+    fmt::print("{}", *help);
     return 0;
   }
-  fmt::print(stderr, "error: unknown command '{}'; `gantry help` lists them all\n", code);
+  fmt::print(stderr, "error: '{}' is no command, statement or custom cut; `gantry help` lists the commands\n", code);
   return 1;
 }
 

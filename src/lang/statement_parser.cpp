@@ -3,19 +3,12 @@
 #include <fmt/format.h>  // messages
 
 #include "line_parser.hpp"  // LineParser
-#include "gantry/lang/scan.hpp"         // character helpers
+#include "gantry/lang/scan.hpp"             // character helpers
+#include "gantry/lang/statement_table.hpp"  // the keywords
 
 namespace gantry {
 
 using namespace scan;
-
-namespace {
-
-constexpr std::string_view kRegistry[] = {"SETUSRVAL",  "SETUSRVALCLRD",   "SETSPINDLESTATUS",
-                                          "GETUSRVAL",  "GETUSRVALCLRD",   "GETUSRPATH",
-                                          "GETAPPPATH", "GETPARTFILENAME", "GETSPINDLESTATUS"};
-
-}  // namespace
 
 std::optional<Statement> LineParser::program_statement(const std::string& word, size_t b, size_t w,
                                                        size_t e) const {
@@ -29,69 +22,85 @@ std::optional<Statement> LineParser::program_statement(const std::string& word, 
     const size_t p = skip_space(w, e);
     if (p < e) error(p, fmt::format("{} takes no parameters", what));
   };
-  if (word == "GOTO" || word == "GOSUB") return jump(word == "GOSUB", b, w, e);
-  if (word == "RETURN") return nothing_after("RETURN"), Statement{at, ReturnStmt{}};
-  if (word == "END") {
-    EndStmt st{EndStmt::Scope::File, std::nullopt};
-    if (skip_space(w, e) < e) {  // FabMo: END "message" says why the file ended
-      st.message = arg(w, e);
-      const char first = st.message->text[0];
-      if (!st.message->is_expression() || (first != '"' && first != '&' && first != '$'))
-        error(skip_space(w, e), "END takes no parameters, or a message in quotes");
+  const StatementSpec* spec = find_statement(word);
+  if (!spec) return std::nullopt;
+  switch (spec->keyword) {  // every Keyword has its case: the table and the parser agree
+    case Keyword::Goto:
+    case Keyword::Gosub:
+      return jump(spec->keyword == Keyword::Gosub, b, w, e);
+    case Keyword::Return:
+      return nothing_after("RETURN"), Statement{at, ReturnStmt{}};
+    case Keyword::End: {
+      EndStmt st{EndStmt::Scope::File, std::nullopt};
+      if (skip_space(w, e) < e) {  // FabMo: END "message" says why the file ended
+        st.message = arg(w, e);
+        const char first = st.message->text[0];
+        if (!st.message->is_expression() || (first != '"' && first != '&' && first != '$'))
+          error(skip_space(w, e), "END takes no parameters, or a message in quotes");
+      }
+      return Statement{at, std::move(st)};
     }
-    return Statement{at, std::move(st)};
+    case Keyword::EndAll:
+      return nothing_after("ENDALL"), Statement{at, EndStmt{EndStmt::Scope::All, std::nullopt}};
+    case Keyword::Exit: {
+      const size_t p = skip_space(w, e);
+      if (upper(line_.substr(p, e - p)) != "SHOPBOT") error(p, "write EXIT SHOPBOT");
+      return Statement{at, EndStmt{EndStmt::Scope::Exit, std::nullopt}};
+    }
+    case Keyword::If:
+      return if_statement(b, w, e);
+    case Keyword::On:
+      return on_input(b, w, e);
+    case Keyword::Pause:
+      return pause(b, w, e);
+    case Keyword::Print:
+    case Keyword::Write:
+      return print(b, w, e, spec->keyword == Keyword::Write);
+    case Keyword::Input:
+      return input(b, w, e);
+    case Keyword::Msgbox:
+      return msgbox(b, w, e);
+    case Keyword::Dialog:
+      return dialog(b, w, e);
+    case Keyword::Fail:
+      return Statement{at, FailStmt{arg(w, e)}};
+    case Keyword::Open:
+      return open(b, w, e);
+    case Keyword::Close: {
+      CloseStmt st;
+      size_t p = skip_space(w, e);
+      if (p < e) st.number = file_number(&p, e);
+      if (skip_space(p, e) < e) error(p, "CLOSE takes at most one file number, like CLOSE #1");
+      return Statement{at, std::move(st)};
+    }
+    case Keyword::Shell: {
+      size_t p = w;
+      if (p < e && line_[p] == ',') ++p;
+      auto fields = split_commas(p, e);
+      ShellStmt st;
+      st.command = arg(fields[0].first, fields[0].second);
+      for (size_t i = 1; i < fields.size(); ++i)
+        st.options.push_back(arg(fields[i].first, fields[i].second));
+      if (st.command.blank()) error(p, "SHELL needs a command line in quotes");
+      return Statement{at, std::move(st)};
+    }
+    case Keyword::Warning: {
+      const size_t p = skip_space(w, e);
+      if (upper(line_.substr(p, e - p)) != "OFF") error(p, "write WARNING OFF");
+      return Statement{at, WarningOffStmt{}};
+    }
+    case Keyword::Play: {
+      Arg path = arg(w, e);
+      if (path.blank()) error(w, "PLAY needs the path of a sound file");
+      return Statement{at, PlayStmt{std::move(path)}};
+    }
+    case Keyword::Registry:
+      return registry(word, b, w, e);
+    case Keyword::DataSend:
+      error(b,
+            "DATA_SEND is a FabMo statement that sends data to its web dashboard; Gantry has "
+            "no dashboard: use PRINT or WRITE #n to record values");
   }
-  if (word == "ENDALL")
-    return nothing_after("ENDALL"), Statement{at, EndStmt{EndStmt::Scope::All, std::nullopt}};
-  if (word == "EXIT") {
-    const size_t p = skip_space(w, e);
-    if (upper(line_.substr(p, e - p)) != "SHOPBOT") error(p, "write EXIT SHOPBOT");
-    return Statement{at, EndStmt{EndStmt::Scope::Exit, std::nullopt}};
-  }
-  if (word == "IF") return if_statement(b, w, e);
-  if (word == "ON") return on_input(b, w, e);
-  if (word == "PAUSE") return pause(b, w, e);
-  if (word == "PRINT") return print(b, w, e, false);
-  if (word == "WRITE") return print(b, w, e, true);
-  if (word == "INPUT") return input(b, w, e);
-  if (word == "MSGBOX") return msgbox(b, w, e);
-  if (word == "DIALOG") return dialog(b, w, e);
-  if (word == "FAIL") return Statement{at, FailStmt{arg(w, e)}};
-  if (word == "OPEN") return open(b, w, e);
-  if (word == "CLOSE") {
-    CloseStmt st;
-    size_t p = skip_space(w, e);
-    if (p < e) st.number = file_number(&p, e);
-    if (skip_space(p, e) < e) error(p, "CLOSE takes at most one file number, like CLOSE #1");
-    return Statement{at, std::move(st)};
-  }
-  if (word == "SHELL") {
-    size_t p = w;
-    if (p < e && line_[p] == ',') ++p;
-    auto fields = split_commas(p, e);
-    ShellStmt st;
-    st.command = arg(fields[0].first, fields[0].second);
-    for (size_t i = 1; i < fields.size(); ++i)
-      st.options.push_back(arg(fields[i].first, fields[i].second));
-    if (st.command.blank()) error(p, "SHELL needs a command line in quotes");
-    return Statement{at, std::move(st)};
-  }
-  if (word == "WARNING") {
-    const size_t p = skip_space(w, e);
-    if (upper(line_.substr(p, e - p)) != "OFF") error(p, "write WARNING OFF");
-    return Statement{at, WarningOffStmt{}};
-  }
-  if (word == "PLAY") {
-    Arg path = arg(w, e);
-    if (path.blank()) error(w, "PLAY needs the path of a sound file");
-    return Statement{at, PlayStmt{std::move(path)}};
-  }
-  for (std::string_view r : kRegistry)
-    if (word == r) return registry(word, b, w, e);
-  if (word == "DATA_SEND")
-    error(b,
-          "DATA_SEND is a FabMo statement that sends data to its web dashboard; Gantry has "
-          "no dashboard: use PRINT or WRITE #n to record values");
   return std::nullopt;
 }
 
