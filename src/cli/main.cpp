@@ -27,7 +27,7 @@
 #include "machine_profile.hpp"               // MachineProfile, load_machine_profile
 #include "open_card.hpp"                     // open_card
 #include "preview_command.hpp"               // PreviewArgs, run_preview
-#include "progress.hpp"                      // ProgressBar
+#include "progress.hpp"                      // StatusLine
 #include "report.hpp"                        // RunReport, to_json, to_text
 #include "signal_watch.hpp"                  // SignalWatch
 #include "sim/sim_card.hpp"                  // SimCard
@@ -310,9 +310,14 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   JobResult job;
   int stops = 0;  // the operator's: 1 a stop, 2 or more an E-stop
   {
-    ProgressBar bar;
-    if (bar.enabled() && !a.json && !interactive)
-      opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
+    // At a terminal, a progress line under the file's output; its questions and PRINT text
+    // clear it and it comes back after them.
+    StatusLine line(stderr);
+    const bool show_progress = line.enabled() && !a.json;
+    StatusLineIO around_line(io, line);
+    std::function<void(const ControllerStatus&)> watch;
+    if (show_progress)
+      watch = [&](const ControllerStatus& st) { line.show(progress_line(session::run_progress(st))); };
     opt.profile = &profile.bare;
     opt.values_path = profile.values_path;
     // Ctrl-C (or SIGTERM, a closed terminal) stops the run in order: the check before it
@@ -330,7 +335,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       SignalWatch& w;
       ~StopFirst() { w.stop(); }
     } stop_first{signals};
-    job = run_job(script, settings, *card, io, store, opt, &control);
+    job = run_job(script, settings, *card, show_progress ? around_line : io, store, opt, &control,
+                  watch);
     stops = control.stops();
   }
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));

@@ -296,15 +296,22 @@ void Controller::schedule(Request r, double at_s) {
   scheduled_.emplace_back(r, at_s);
 }
 
+bool Controller::settled() const {
+  const FeedPhase ph = feed_.phase();
+  return !busy_ || (state_ == MachineState::Paused && ph == FeedPhase::Held) ||
+         (state_ == MachineState::Paused && step_waiting_) ||
+         (state_ == MachineState::Keypad && !keypad_jogging_) ||
+         (state_ == MachineState::EStop && ph == FeedPhase::Halted && !busy_);
+}
+
 void Controller::wait() {
   std::unique_lock lock(m_);
-  cv_.wait(lock, [&] {
-    const FeedPhase ph = feed_.phase();
-    return !busy_ || (state_ == MachineState::Paused && ph == FeedPhase::Held) ||
-           (state_ == MachineState::Paused && step_waiting_) ||
-           (state_ == MachineState::Keypad && !keypad_jogging_) ||
-           (state_ == MachineState::EStop && ph == FeedPhase::Halted && !busy_);
-  });
+  cv_.wait(lock, [&] { return settled(); });
+}
+
+bool Controller::wait_for(std::chrono::milliseconds timeout) {
+  std::unique_lock lock(m_);
+  return cv_.wait_for(lock, timeout, [&] { return settled(); });
 }
 
 Controller::Summary Controller::summary() const {

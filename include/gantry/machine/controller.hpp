@@ -4,6 +4,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <functional>
 #include <memory>
@@ -90,6 +91,8 @@ class Controller : private FeederEvents {
   // Returns once nothing is under way: the activity ended, or it is held at rest (paused),
   // or halted (E-stop).
   void wait();
+  // wait() for at most `timeout`: true when nothing is under way.
+  bool wait_for(std::chrono::milliseconds timeout);
   ControllerStatus status() const;
   // What the last activity did; read once it has ended (wait()).
   struct Summary {
@@ -125,6 +128,7 @@ class Controller : private FeederEvents {
                     bool typed);
   void start_activity(std::function<void()> work);
   void job_main();
+  bool settled() const;     // what wait() waits for; under m_
   void wait_for_motion();  // job thread: every flush pushed has played (or was dropped)
   // FeederEvents, on the feeder thread.
   void feeder_phase_changed(FeedPhase phase, const SourceLoc& rest) override;
