@@ -27,6 +27,7 @@
 #include "machine_profile.hpp"               // MachineProfile, load_machine_profile
 #include "open_card.hpp"                     // open_card
 #include "preview_command.hpp"               // PreviewArgs, run_preview
+#include "man_page.hpp"                      // man_page
 #include "progress.hpp"                      // StatusLine
 #include "report.hpp"                        // RunReport, to_json, to_text
 #include "signal_watch.hpp"                  // SignalWatch
@@ -657,8 +658,10 @@ int main(int argc, char** argv) {
   std::string help_code;
   bool help_markdown = false;
   CLI::App* help_cmd = app.add_subcommand("help", "List the commands, or describe one");
-  help_cmd->add_option("code", help_code, "A two-letter command, such as MX");
+  help_cmd->add_option("code", help_code, "A two-letter command (MX), a statement (PAUSE) or a custom cut (C2)");
   help_cmd->add_flag("--markdown", help_markdown, "Print the command reference (docs/commands.md)");
+  bool help_man = false;
+  help_cmd->add_flag("--man", help_man, "Print the manual page gantry(1), in roff");
 
   ConsoleArgs console_args;
   CLI::App* console_cmd = add_console_command(app, console_args);
@@ -683,6 +686,7 @@ int main(int argc, char** argv) {
       return cmd_moves(moves_file, moves_settings, moves_format, moves_svg_file, moves_lang);
     if (*estimate_cmd)
       return cmd_estimate(estimate_file, estimate_settings, estimate_json, estimate_lang);
+    if (*help_cmd && help_man) return fmt::print("{}", man_page(app)), 0;
     if (*help_cmd) return cmd_help(help_code, help_markdown);
     if (*export_cmd) return cmd_export_gcode(export_file, export_out, export_settings, export_lang);
     if (*console_cmd) return run_console(console_args);
