@@ -18,6 +18,7 @@
 #include "gantry/session/console_words.hpp"  // read_typed_line
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
+#include "gantry/session/spindle_text.hpp"   // spindle_text
 
 namespace gantry::ui {
 namespace {
@@ -520,7 +521,8 @@ void App::readout_window() {
     }
   };
   leds("inputs", [&](int i) { return st.inputs[static_cast<std::size_t>(i)]; });
-  leds("outputs", [&](int i) { return ((modal_.outputs >> i) & 1u) != 0; });
+  leds("outputs", [&](int i) { return ((status_.outputs >> i) & 1u) != 0; });  // as played
+  ImGui::TextUnformatted(session::spindle_text(status_, modal_.spindle_rpm).c_str());
   if (!st.message.empty() && at_rest()) ImGui::TextWrapped("last stop: %s", st.message.c_str());
   ImGui::End();
 }
@@ -1020,7 +1022,8 @@ nlohmann::json App::state() const {
   s["group_menu"] = group_showing_ ? menus_[static_cast<std::size_t>(group_menu_)].title : "";
   s["card"] = opt_.card;
   s["inputs"] = status_.inputs;
-  s["outputs"] = modal_.outputs;
+  s["outputs"] = status_.outputs;
+  s["spindle"] = session::spindle_text(status_, modal_.spindle_rpm);
   s["message"] = status_.message;
   s["command_line"] = line_;
   s["history"] = history_.lines();

@@ -357,6 +357,9 @@ ControllerStatus Controller::status() const {
   s.line = line_.load(std::memory_order_relaxed);
   s.lines = lines_.load(std::memory_order_relaxed);
   s.playing_line = feed_.playing_line();
+  const OutputLevels out = feed_.outputs();
+  s.outputs = out.switches;
+  s.spindle_rpm = out.spindle_rpm;
   s.elapsed_s = elapsed_s();
   {
     std::lock_guard lock(m_);

@@ -259,6 +259,25 @@ TEST_F(GuiWindow, RunsAFileOnTheSimCardWithItsPreview) {
   EXPECT_GT(im.count(kPx0, kPy0, kPx1, kPy1, blue), 50);
 }
 
+// Issue 25: "SO, 1, 1" in a running file left the output lights dark (they showed the
+// interpreter's state); they and the spindle line follow what the card plays.
+TEST_F(GuiWindow, TheOutputLightsAndSpindleFollowTheRunningFile) {
+  write("spin.sbp", "SW, 0\nMS, 2\nTR, 15000\nSO, 1, 1\nSO, 4, 1\nMX, 3\nSO, 4, 0\nMX, 0\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait frames 40\nkey Space\nwait frames 40\n"
+                "dump paused.json\nkey Space\nwait idle\ndump after.json\n",
+                "spin.sbp --realtime"),
+            0)
+      << out_;
+  const json paused = state("paused.json");
+  ASSERT_EQ(paused["state"], "paused") << paused.dump();
+  EXPECT_EQ(paused["outputs"], 0b1001) << paused.dump();  // switches 1 and 4, as played
+  // No speed output in the default profile: TR's RPM is only recorded, and shown at rest.
+  EXPECT_EQ(paused["spindle"], "spindle on");
+  const json after = state("after.json");
+  EXPECT_EQ(after["outputs"], 0);  // the file's end switched them off
+  EXPECT_EQ(after["spindle"], "spindle off, 15000 RPM (set on the spindle; TR recorded it)");
+}
+
 TEST_F(GuiWindow, KeypadButtonsAndKeysJogInFixedSteps) {
   ASSERT_EQ(gui("click X+\nwait idle\nclick X+\nwait idle\nclick Y+\nwait idle\n"
                 "type K\nkey Enter\nwait frames 2\nkey Right\nwait idle\nkey PageUp\nwait idle\n"

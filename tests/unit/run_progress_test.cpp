@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "gantry/session/spindle_text.hpp"
+
 namespace gantry::session {
 namespace {
 
@@ -58,6 +60,16 @@ TEST(RunProgress, NothingRunYet) {
   const RunProgress p = run_progress(ControllerStatus{});
   EXPECT_EQ(p.label(), "line 0 of 0 (0 %)");
   EXPECT_EQ(clock_text(3725), "1:02:05");
+}
+
+TEST(SpindleText, OnOffAndTheSpeedPlayedOrRecorded) {
+  ControllerStatus s;
+  EXPECT_EQ(spindle_text(s, 0), "spindle off");
+  s.outputs = 0b101;
+  s.spindle_rpm = 18000;
+  EXPECT_EQ(spindle_text(s, 12000), "spindle on, 18000 RPM");  // the card's, not the file's
+  s.spindle_rpm = 0;
+  EXPECT_EQ(spindle_text(s, 12000), "spindle on, 12000 RPM (set on the spindle; TR recorded it)");
 }
 
 }  // namespace

@@ -32,6 +32,10 @@ struct ControllerStatus {
   std::array<bool, 12> inputs{};  // input switches 1-12: closed
   bool step_hold = false;         // paused by single step, after a statement (at rest)
   bool warning = false;           // SW's warning: the machine is about to move
+  // The outputs as the card plays them (not as the file last set them): switches bit n-1 is
+  // output switch n (1 runs the spindle on ShopBot's wiring), and TR's speed.
+  std::uint32_t outputs = 0;
+  double spindle_rpm = 0;
   // Progress of the file running (or the last one run).
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
