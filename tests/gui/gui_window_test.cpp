@@ -352,6 +352,23 @@ TEST_F(GuiWindow, SpacePausesAndResumesAndF12IsTheEStop) {
   EXPECT_TRUE(has_line(ack["log"], "E-stop acknowledged"));
 }
 
+// Issue 25: after F12 and ack, `MZ, 1` stayed "running" with no motion (the simulated card
+// waited for the ticks played before the E-stop). The move plays at once and ends at Z 1.
+TEST_F(GuiWindow, AfterAnAcknowledgedEStopTheNextMovePlays) {
+  ASSERT_EQ(gui("type SW, 0\nkey Enter\nwait idle\ntype MX, 4\nkey Enter\nwait idle\n"
+                "type MX, 0\nkey Enter\nwait frames 20\nkey F12\nwait frames 3\n"
+                "type ack\nkey Enter\nwait idle\ntype MZ, 1\nkey Enter\nwait frames 30\n"
+                "dump moving.json\nwait idle\ndump done.json\n",
+                "--realtime"),
+            0)
+      << out_;
+  const json moving = state("moving.json");  // half a second later: Z on its way, or there
+  EXPECT_GT(moving["position"][2].get<double>(), 0.1) << moving.dump();
+  const json done = state("done.json");
+  EXPECT_EQ(done["state"], "idle");
+  EXPECT_NEAR(done["position"][2].get<double>(), 1, 1e-9);
+}
+
 TEST_F(GuiWindow, ThePointerShowsTheLineUnderIt) {
   // A raster over the table, 0.1 in apart: in the top view some line is always within the
   // pick's few pixels. Line 2k+1 runs along Y = 0.1 k.
