@@ -364,6 +364,7 @@ ControllerStatus Controller::status() const {
   {
     std::lock_guard lock(m_);
     s.remaining_s = std::max(0.0, estimate_s_ - s.elapsed_s);
+    s.feed_override = feed_override_;
   }
   s.inputs = input_switches(feed_.inputs());
   s.steps = feed_.played();

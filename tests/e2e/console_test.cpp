@@ -257,7 +257,9 @@ TEST(ConsolePiped, RunsEachLineInTurnAndPrintsTheExactPosition) {
                            "> SR\n" + readout("idle", {1.5, 2.25, -0.5, 0, 0, 0}) + "\n" +
                            "> MY, 0.25\n" + readout("idle", {1.5, 2.5, -0.5, 0, 0, 0}) + "\n" +  //
                            "> status\n" + readout("idle", {1.5, 2.5, -0.5, 0, 0, 0}) + "\n" +
-                           "table base X 1.5000  Y 2.5000  Z -0.5000; keypad step 0.1000 in\n";
+                           "table base X 1.5000  Y 2.5000  Z -0.5000; keypad step 0.1000 in\n"
+                           // Issue 25: status shows the speeds, the override and the spindle.
+                           "move XY 2, Z 0.5  jog XY 6, Z 3 in/s; feed 100 %; spindle off\n";
   EXPECT_EQ(r.out, want);
 }
 

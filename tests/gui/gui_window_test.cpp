@@ -278,6 +278,25 @@ TEST_F(GuiWindow, TheOutputLightsAndSpindleFollowTheRunningFile) {
   EXPECT_EQ(after["spindle"], "spindle off, 15000 RPM (set on the spindle; TR recorded it)");
 }
 
+// Issue 25: no live feed override in the window. + and - step it by 10 % while a file runs,
+// within 10 % to 200 %, and the readout and the log say it. (What the planner has already
+// planned keeps its speed: docs/controller.md.)
+TEST_F(GuiWindow, PlusAndMinusStepTheFeedOverrideWhileAFileRuns) {
+  write("long.sbp", "SW, 0\nMS, 1\nMX, 1\nMX, 2\nMX, 3\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait frames 10\nkey Equal\nkey Equal\nkey Equal\n"
+                "key Minus\nwait frames 2\ndump faster.json\nwait idle\ndump after.json\n",
+                "long.sbp --realtime"),
+            0)
+      << out_;
+  const json faster = state("faster.json");
+  EXPECT_DOUBLE_EQ(faster["feed_override"].get<double>(), 1.2) << faster.dump();
+  EXPECT_TRUE(has_line(faster["log"], "feed 120 % (moves already planned keep their speed)"))
+      << faster.dump();
+  const json after = state("after.json");
+  EXPECT_EQ(after["state"], "idle");
+  EXPECT_DOUBLE_EQ(after["feed_override"].get<double>(), 1.2);  // it stays for the next run
+}
+
 TEST_F(GuiWindow, KeypadButtonsAndKeysJogInFixedSteps) {
   ASSERT_EQ(gui("click X+\nwait idle\nclick X+\nwait idle\nclick Y+\nwait idle\n"
                 "type K\nkey Enter\nwait frames 2\nkey Right\nwait idle\nkey PageUp\nwait idle\n"

@@ -4,7 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gantry/session/spindle_text.hpp"
+#include "gantry/session/feed_override.hpp"
+#include "gantry/session/readout_lines.hpp"
 
 namespace gantry::session {
 namespace {
@@ -70,6 +71,23 @@ TEST(SpindleText, OnOffAndTheSpeedPlayedOrRecorded) {
   EXPECT_EQ(spindle_text(s, 12000), "spindle on, 18000 RPM");  // the card's, not the file's
   s.spindle_rpm = 0;
   EXPECT_EQ(spindle_text(s, 12000), "spindle on, 12000 RPM (set on the spindle; TR recorded it)");
+}
+
+TEST(FeedOverride, StepsOfTenPercentWithinTenToTwoHundred) {
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.0, 1), 1.1);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.0, -3), 0.7);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.04, 1), 1.1);  // to a whole ten
+  EXPECT_DOUBLE_EQ(stepped_feed_override(0.1, -1), 0.1);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(2.0, 1), 2.0);
+  EXPECT_DOUBLE_EQ(clamped_feed_override(5), 2.0);
+  EXPECT_EQ(feed_override_text(1.2), "feed 120 %");
+}
+
+TEST(SpeedsText, VsSpeedsAndTheOverride) {
+  SpeedSettings v;
+  v.move = {2, 0.5, 0, 0, 0};
+  v.jog = {6, 3, 0, 0, 0};
+  EXPECT_EQ(speeds_text(v, Units::Inches, 0.9), "move XY 2, Z 0.5  jog XY 6, Z 3 in/s; feed 90 %");
 }
 
 }  // namespace

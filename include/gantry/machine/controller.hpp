@@ -36,6 +36,7 @@ struct ControllerStatus {
   // output switch n (1 runs the spindle on ShopBot's wiring), and TR's speed.
   std::uint32_t outputs = 0;
   double spindle_rpm = 0;
+  double feed_override = 1;  // the operator's, 0.1 to 2 (set_feed_override)
   // Progress of the file running (or the last one run).
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
