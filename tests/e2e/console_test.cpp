@@ -646,11 +646,12 @@ TEST(RunAtATerminal, AProgressLineFollowsTheRunAndAQuestionDoesNotBreakIt) {
   TmuxConsole t("ask.sbp --realtime", "run",
                 {{"ask.sbp", "MS, 2\nMX, 3\nMX, 0\nINPUT \"Depth?\" &d\nMX, 1\n"}});
   ASSERT_TRUE(t.started());
-  // During the moves (after SW's 2 s warning): the line under way, of 5, and the times.
+  // During the moves (after SW's 2 s warning, 1.5 s each): a line under way, of 5, and the
+  // times.
   ASSERT_TRUE(t.wait_for([&] {
     const std::string l = t.last_line();
-    return l.find("  line 2 of 5  elapsed 0:00:0") != std::string::npos ||
-           l.find("  line 3 of 5  elapsed 0:00:0") != std::string::npos;
+    return l.find(" of 5  elapsed 0:00:0") != std::string::npos &&
+           (l.find("  line 2 ") != std::string::npos || l.find("  line 3 ") != std::string::npos);
   })) << t.text();
   EXPECT_NE(t.last_line().find(" %  line "), std::string::npos) << t.text();
   EXPECT_TRUE(t.last_line().starts_with("[#")) << t.text();
