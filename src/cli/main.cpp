@@ -559,7 +559,7 @@ int cmd_help(const std::string& code, bool markdown) {
     fmt::print("{}", *help);
     return 0;
   }
-  fmt::print(stderr, "error: '{}' is no command, statement or custom cut; `gantry help` lists the commands\n", code);
+  fmt::print(stderr, "error: unknown command '{}': no command, statement or custom cut is called so; `gantry help` lists them all\n", code);
   return 1;
 }
 
