@@ -82,28 +82,28 @@ bool channels_read(Settings& s, std::string_view channels) {
   .choice_get = [](const Settings& s, int i) { (void)i; return static_cast<int>(s.expr); }, \
   .choice_set = [](Settings& s, int i, int v) { (void)i; s.expr = static_cast<T>(v); }
 
-#define NUM(sec_, key_, expr, range_, unit_, help_)                                          \
+#define NUM(sec_, key_, expr, range_, unit_, help_, ...)                                          \
   {.section = sec_, .key = key_, .kind = SettingKind::Number,                             \
    .field = GANTRY_FIELD(double, expr), .range = range_, .unit = SettingUnit::unit_, \
-   .help = help_}
-#define AXIS_NUM(sec_, key_, expr, range_, unit_, help_)                                     \
+   .help = help_, __VA_ARGS__}
+#define AXIS_NUM(sec_, key_, expr, range_, unit_, help_, ...)                                     \
   {.section = sec_, .key = key_, .kind = SettingKind::Number,                             \
    .field = GANTRY_FIELD(double, expr), .range = range_, .unit = SettingUnit::unit_, \
-   .help = help_, .family = SettingFamily::Axes}
+   .help = help_, .family = SettingFamily::Axes, __VA_ARGS__}
 #define GROUP(sec_, expr, help_)                                                       \
   {.section = sec_, .key = "<xy,z,a,b,c>", .kind = SettingKind::Number,               \
    .field = [](Settings& s, int i) -> void* { return &group(s.expr, i); }, .range = kSpeed, \
    .unit = SettingUnit::Axis, .help = help_, .family = SettingFamily::Groups}
-#define INT(sec_, key_, expr, lo_, hi_, help_)                                            \
+#define INT(sec_, key_, expr, lo_, hi_, help_, ...)                                            \
   {.section = sec_, .key = key_, .kind = SettingKind::Integer, .field = GANTRY_FIELD(int, expr), \
-   .range = {lo_, hi_}, .help = help_}
-#define AXIS_INT(sec_, key_, expr, lo_, hi_, help_)                                       \
+   .range = {lo_, hi_}, .help = help_, __VA_ARGS__}
+#define AXIS_INT(sec_, key_, expr, lo_, hi_, help_, ...)                                       \
   {.section = sec_, .key = key_, .kind = SettingKind::Integer, .field = GANTRY_FIELD(int, expr), \
-   .range = {lo_, hi_}, .help = help_, .family = SettingFamily::Axes}
-#define BOOL(sec_, key_, expr, help_)                                                     \
+   .range = {lo_, hi_}, .help = help_, .family = SettingFamily::Axes, __VA_ARGS__}
+#define BOOL(sec_, key_, expr, help_, ...)                                                     \
   {.section = sec_, .key = key_, .kind = SettingKind::Bool, .field = GANTRY_FIELD(bool, expr), \
-   .help = help_}
-#define AXIS_BOOL(sec_, key_, expr, help_)                                                \
+   .help = help_, __VA_ARGS__}
+#define AXIS_BOOL(sec_, key_, expr, help_, ...)                                                \
   {.section = sec_, .key = key_, .kind = SettingKind::Bool, .field = GANTRY_FIELD(bool, expr), \
    .help = help_, .family = SettingFamily::Axes}
 
@@ -113,13 +113,13 @@ bool channels_read(Settings& s, std::string_view channels) {
 // clang-format off
 const SettingRow kRows[] = {
   {.section = "", .key = "name", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, name),
-   .help = "shown in reports", .docs_allowed = "any"},
+   .help = "shown in reports", .docs_allowed = "any", .owner = SettingOwner::MachineTable},
   {.section = "", .key = "units", .kind = SettingKind::Choice,
    .help = "unit of every length, speed and acceleration in the profile and in part files",
    .names = kUnits, GANTRY_ENUM(units, Units)},
   {.section = "", .key = "dialect", .kind = SettingKind::Choice,
    .help = "the OpenSBP dialect of part files: trigonometric functions take and give radians (SB3) or degrees (FabMo)",
-   .names = kDialects, GANTRY_ENUM(dialect, Dialect)},
+   .names = kDialects, GANTRY_ENUM(dialect, Dialect), .owner = SettingOwner::MachineTable},
   {.section = "", .key = "gcode_dialect", .kind = SettingKind::Choice,
    .help = "the G-code dialect of G-code files and lines: LinuxCNC's (standard) or WinCNC's (G21 centimetres, G22 millimetres, G4 without X waits for the operator...; docs/gcode.md). Optional: `\"standard\"` when left out",
    .names = kGcodeDialects, .optional = true, GANTRY_ENUM(gcode_dialect, GcodeDialect)},
@@ -133,9 +133,9 @@ const SettingRow kRows[] = {
 
   AXIS_NUM("axes.<x..c>", "steps_per_unit", axes[i].steps_per_unit, (SettingRange{-1e6, 1e6}), PerAxis,
            "motor steps per unit (per degree for rotary axes); negative reverses the axis; not 0"),
-  AXIS_NUM("axes.<x..c>", "max_speed", axes[i].max_speed, kSpeed, Axis, "hardware speed limit, units/s"),
+  AXIS_NUM("axes.<x..c>", "max_speed", axes[i].max_speed, kSpeed, Axis, "hardware speed limit, units/s", .owner = SettingOwner::MachineKey),
   AXIS_NUM("axes.<x..c>", "max_accel", axes[i].max_accel, (SettingRange{0, 1e7, true}), Axis,
-           "hardware acceleration limit, units/s^2"),
+           "hardware acceleration limit, units/s^2", .owner = SettingOwner::MachineKey),
   AXIS_NUM("axes.<x..c>", "min", axes[i].min, kAny, Axis,
            "soft limit: no move may take the axis below it; below `max`"),
   AXIS_NUM("axes.<x..c>", "max", axes[i].max, kAny, Axis,
@@ -164,43 +164,43 @@ const SettingRow kRows[] = {
 
   {.section = "planner", .key = "mode", .kind = SettingKind::Choice,
    .help = "how moves are joined (docs/planner.md)", .names = kPlannerModes,
-   GANTRY_ENUM(planner.mode, PlannerMode)},
+   GANTRY_ENUM(planner.mode, PlannerMode), .owner = SettingOwner::MachineKey},
   NUM("planner", "corner_jump", planner.corner_jump, (SettingRange{0, 1}), None,
-      "the largest speed change an axis makes at once (corners, starts from rest), as a fraction of its `max_speed`"),
+      "the largest speed change an axis makes at once (corners, starts from rest), as a fraction of its `max_speed`", .owner = SettingOwner::MachineKey),
   NUM("planner", "junction_deviation", planner.junction_deviation, (SettingRange{0, 1e3}), Length,
-      "junction mode: how far from a corner its speed's arc may pass (a length)"),
+      "junction mode: how far from a corner its speed's arc may pass (a length)", .owner = SettingOwner::MachineKey),
   NUM("planner", "chord_tolerance", planner.chord_tolerance, (SettingRange{0, 1e3, true}), Length,
-      "arcs run as chords at most this far from the arc (a length)"),
+      "arcs run as chords at most this far from the arc (a length)", .owner = SettingOwner::MachineKey),
   NUM("planner", "jerk", planner.jerk, (SettingRange{0, 1e9}), Rate,
       "above 0: S-curve speed ramps within this jerk, units/s^3; 0: linear ramps"),
   INT("planner", "lookahead", planner.lookahead, 2, 1 << 20,
-      "moves planned ahead, at least (more when stopping needs more path)"),
+      "moves planned ahead, at least (more when stopping needs more path)", .owner = SettingOwner::MachineKey),
 
   {.section = "card", .key = "type", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, card.type),
-   .help = "the card to drive (`gantry run --card` overrides); docs/hardware.md", .names = kCardTypes},
-  NUM("card", "clock_hz", card.clock_hz, (SettingRange{1e3, 1e9}), None, "timer clock (PCI-7200: 4 MHz)"),
+   .help = "the card to drive (`gantry run --card` overrides); docs/hardware.md", .names = kCardTypes, .owner = SettingOwner::MachineTable},
+  NUM("card", "clock_hz", card.clock_hz, (SettingRange{1e3, 1e9}), None, "timer clock (PCI-7200: 4 MHz)", .owner = SettingOwner::MachineTable),
   INT("card", "pacer_divisor", card.pacer_divisor, 2, 65535,
-      "pacer = clock_hz / pacer_divisor; one output word per pacer tick"),
+      "pacer = clock_hz / pacer_divisor; one output word per pacer tick", .owner = SettingOwner::MachineTable),
   NUM("card", "step_pulse_us", card.step_pulse_us, (SettingRange{0, 1e4, true}), None,
-      "step pulse width, rounded up to whole ticks"),
+      "step pulse width, rounded up to whole ticks", .owner = SettingOwner::MachineTable),
   NUM("card", "dir_setup_us", card.dir_setup_us, (SettingRange{0, 1e4}), None,
-      "direction set this long before each step, rounded up to whole ticks"),
+      "direction set this long before each step, rounded up to whole ticks", .owner = SettingOwner::MachineTable),
   {.section = "card", .key = "gpiod_chip", .kind = SettingKind::Text,
    .field = GANTRY_FIELD(std::string, card.gpiod_chip),
-   .help = "type gpiod: the GPIO chip (`/dev/gpiochip0`)", .docs_allowed = "a path"},
+   .help = "type gpiod: the GPIO chip (`/dev/gpiochip0`)", .docs_allowed = "a path", .owner = SettingOwner::MachineTable},
   {.section = "card", .key = "gpiod_outputs", .kind = SettingKind::LineBits,
    .field = GANTRY_FIELD(std::vector<GpioLineBit>, card.gpiod_outputs),
    .help = "type gpiod: which line carries each output-word bit", .names = kBitLine,
-   .docs_allowed = "`\"BIT:LINE, ...\"`"},
+   .docs_allowed = "`\"BIT:LINE, ...\"`", .owner = SettingOwner::MachineTable},
   {.section = "card", .key = "gpiod_inputs", .kind = SettingKind::LineBits,
    .field = GANTRY_FIELD(std::vector<GpioLineBit>, card.gpiod_inputs),
    .help = "type gpiod: which line sets each input-word bit", .names = kLineBit,
-   .docs_allowed = "`\"LINE:BIT, ...\"`"},
+   .docs_allowed = "`\"LINE:BIT, ...\"`", .owner = SettingOwner::MachineTable},
 
-  AXIS_INT("pins.<x..c>", "step_bit", pins[i].step_bit, 0, 31, "the step bit of the output word; each bit used once"),
-  AXIS_INT("pins.<x..c>", "dir_bit", pins[i].dir_bit, 0, 31, "the direction bit of the output word; each bit used once"),
-  AXIS_BOOL("pins.<x..c>", "invert_dir", pins[i].invert_dir, "direction line high means positive travel"),
-  AXIS_BOOL("pins.<x..c>", "step_active_low", pins[i].step_active_low, "the step line idles high and pulses low"),
+  AXIS_INT("pins.<x..c>", "step_bit", pins[i].step_bit, 0, 31, "the step bit of the output word; each bit used once", .owner = SettingOwner::MachineTable),
+  AXIS_INT("pins.<x..c>", "dir_bit", pins[i].dir_bit, 0, 31, "the direction bit of the output word; each bit used once", .owner = SettingOwner::MachineTable),
+  AXIS_BOOL("pins.<x..c>", "invert_dir", pins[i].invert_dir, "direction line high means positive travel", .owner = SettingOwner::MachineTable),
+  AXIS_BOOL("pins.<x..c>", "step_active_low", pins[i].step_active_low, "the step line idles high and pulses low", .owner = SettingOwner::MachineTable),
 
   NUM("cutter", "diameter", cutter.diameter, (SettingRange{0, 1e4}), Length,
       "VC cutter diameter, for the O and I (outside, inside) cut offsets (a length)"),
@@ -310,12 +310,12 @@ const SettingRow kRows[] = {
    .optional = true, .check = folder_rule,
    .docs_allowed = "absolute paths or `~/...`; the `[files]` table is optional"},
 
-  INT("outputs", "charge_pump_bit", outputs.charge_pump_bit, -1, 31, "a square wave while pulses flow (-1: none)"),
-  NUM("outputs", "charge_pump_hz", outputs.charge_pump_hz, kPositive, None, "its frequency"),
-  INT("outputs", "spindle_bit", outputs.spindle_bit, -1, 31, "on while the spindle runs"),
+  INT("outputs", "charge_pump_bit", outputs.charge_pump_bit, -1, 31, "a square wave while pulses flow (-1: none)", .owner = SettingOwner::MachineTable),
+  NUM("outputs", "charge_pump_hz", outputs.charge_pump_hz, kPositive, None, "its frequency", .owner = SettingOwner::MachineTable),
+  INT("outputs", "spindle_bit", outputs.spindle_bit, -1, 31, "on while the spindle runs", .owner = SettingOwner::MachineTable),
   {.section = "outputs", .key = "aux_bits", .kind = SettingKind::IntList,
    .field = GANTRY_FIELD(std::vector<int>, outputs.aux_bits), .range = kBit,
-   .help = "output switches 1, 2, ... (SO numbers)"},
+   .help = "output switches 1, 2, ... (SO numbers)", .owner = SettingOwner::MachineTable},
 
   INT("spindle", "pwm_bit", spindle.pwm_bit, -1, 31,
       "the output bit carrying TR's spindle speed as a square wave of duty rpm / `max_rpm` (-1: none; TR only records the RPM and warns once a run); the `[spindle]` table is optional (none: no speed output)"),
@@ -324,18 +324,18 @@ const SettingRow kRows[] = {
   NUM("spindle", "max_rpm", spindle.max_rpm, kPositive, None,
       "the RPM at 100 % duty; with `pwm_bit` wired, TR above it is refused"),
 
-  INT("inputs", "estop_bit", inputs.estop_bit, -1, 31, "the E-stop's input-word bit (-1: not wired)"),
-  BOOL("inputs", "estop_active_low", inputs.estop_active_low, "the E-stop input reads 0 when active"),
-  INT("inputs", "probe_bit", inputs.probe_bit, -1, 31, "the probe's input-word bit (-1: not wired)"),
-  BOOL("inputs", "limits_active_low", inputs.limits_active_low, "the limit inputs read 0 when active"),
-  AXIS_INT("inputs.<x..c>", "min_bit", inputs.min_bit[i], -1, 31, "the axis's min limit switch bit"),
-  AXIS_INT("inputs.<x..c>", "max_bit", inputs.max_bit[i], -1, 31, "the axis's max limit switch bit"),
+  INT("inputs", "estop_bit", inputs.estop_bit, -1, 31, "the E-stop's input-word bit (-1: not wired)", .owner = SettingOwner::MachineTable),
+  BOOL("inputs", "estop_active_low", inputs.estop_active_low, "the E-stop input reads 0 when active", .owner = SettingOwner::MachineTable),
+  INT("inputs", "probe_bit", inputs.probe_bit, -1, 31, "the probe's input-word bit (-1: not wired)", .owner = SettingOwner::MachineTable),
+  BOOL("inputs", "limits_active_low", inputs.limits_active_low, "the limit inputs read 0 when active", .owner = SettingOwner::MachineTable),
+  AXIS_INT("inputs.<x..c>", "min_bit", inputs.min_bit[i], -1, 31, "the axis's min limit switch bit", .owner = SettingOwner::MachineTable),
+  AXIS_INT("inputs.<x..c>", "max_bit", inputs.max_bit[i], -1, 31, "the axis's max limit switch bit", .owner = SettingOwner::MachineTable),
   AXIS_INT("inputs.<x..c>", "home_bit", inputs.home_bit[i], -1, 31,
-           "the axis's proximity switch bit; several axes may share one"),
+           "the axis's proximity switch bit; several axes may share one", .owner = SettingOwner::MachineTable),
   {.section = "inputs", .key = "switch_bits", .kind = SettingKind::IntList,
    .field = GANTRY_DATA(int, inputs.switch_bits), .range = kBit,
    .help = "the bit of input switches 1-12 that part files read and watch (`%(51)`, `ON INPUT`, probes)",
-   .count = 12},
+   .count = 12, .owner = SettingOwner::MachineTable},
 
   INT("homing", "input", homing.input, 1, 12, "the input switch the proximity switches close (C3)"),
   {.section = "homing", .key = "order", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, homing.order),

@@ -43,6 +43,10 @@ enum class SettingFamily {
   Groups,  // xy z a b c (GroupSpeeds): "speeds.move.<xy,z,a,b,c>"
 };
 
+// Whose a key is: the operator's (a V command's, UR may load it from a values file) or the
+// machine's, which UR refuses to change (machine_key_changed names the key or its table).
+enum class SettingOwner { Operator, MachineKey, MachineTable };
+
 // Allowed values of one numeric setting.
 struct SettingRange {
   double lo = 0, hi = 0;
@@ -79,6 +83,7 @@ struct SettingRow {
   std::string_view rule;
   std::string_view docs_allowed;  // docs/settings.md's "allowed" cell when the kind cannot say it
   std::string_view docs_type;     // docs/settings.md's "type" cell when the kind's is not it
+  SettingOwner owner = SettingOwner::Operator;
 
   std::string path() const;            // "ramps.move_ramp_rate", "axes.<x..c>.max_speed"
   std::string path(int i) const;       // with the family's letter: "axes.x.max_speed"
