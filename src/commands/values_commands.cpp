@@ -38,20 +38,33 @@ Field obsolete(int n) {
   return {num(names[n], "", "No longer used; leave it blank."), nullptr};
 }
 
-// A parameter that sets a schema setting (settings_schema.hpp): the schema gives its range
-// (checked before the handler runs, so the schema's own check in set_setting always passes)
-// and its member; the sheet's name, unit and help stay the command's.
-Field schema_field(std::string_view path, ParamSpec spec) {
-  const SettingRow& row = setting_row(path);
-  return {spec.range(row.range.lo, row.range.hi),
-          [&row](Settings& s, const Value& v) { set_setting(s, row, v.num()); }};
-}
-
 bool on(const Value& v) {
   return v.num() != 0;
 }
 int whole(const Value& v) {
   return static_cast<int>(std::lround(v.num()));
+}
+
+// A parameter that sets a schema setting (settings_schema.hpp; `i`: a family's index, the
+// axis): the schema gives its range (checked before the handler runs, so the schema's own
+// check in set_setting always passes) and its member; the sheet's name, unit and help stay
+// the command's. The table's ranges are inclusive: a range open at 0 starts at 1e-6 here.
+Field schema_field(std::string_view path, ParamSpec spec, int i = 0) {
+  const SettingRow& row = setting_row(path);
+  const double lo = row.range.lo_open ? row.range.lo + 1e-6 : row.range.lo;
+  switch (row.kind) {
+    case SettingKind::Integer:
+      return {spec.integer(row.range.lo, row.range.hi), [&row, i](Settings& s, const Value& v) {
+                *static_cast<int*>(row.field(s, i)) = whole(v);
+              }};
+    case SettingKind::Bool:
+      return {spec.integer(0, 1), [&row, i](Settings& s, const Value& v) {
+                *static_cast<bool*>(row.field(s, i)) = on(v);
+              }};
+    default:
+      return {spec.range(lo, row.range.hi),
+              [&row, i](Settings& s, const Value& v) { set_setting(s, row, v.num(), i); }};
+  }
 }
 
 std::vector<ParamSpec> params_of(const std::vector<Field>& fields) {
@@ -85,22 +98,22 @@ void apply(CommandContext& ctx, const CommandCall& call, const std::vector<Field
 // ---- VC: cutter -----------------------------------------------------------------------
 
 Field diameter() {
-  return {num("cutter diameter", "units", "Used by the O and I offsets of the cut commands.")
-              .at_least(0),
-          [](Settings& s, const Value& v) { s.cutter.diameter = v.num(); }};
+  return schema_field("cutter.diameter", num("cutter diameter", "units",
+                                              "Used by the O and I offsets of the cut commands."));
 }
 Field safe_z() {
-  return {num("safe Z pull-up", "units", "Working Z that MH and JH raise the tool to first."),
-          [](Settings& s, const Value& v) { s.cutter.safe_z = v.num(); }};
+  return schema_field("cutter.safe_z", num("safe Z pull-up", "units",
+                                            "Working Z that MH and JH raise the tool to first."));
 }
 Field pocket_overlap() {
-  return {num("pocket overlap", "%", "Overlap of pocketing passes, % of the cutter diameter.")
-              .range(0, 99),
-          [](Settings& s, const Value& v) { s.cutter.pocket_overlap = v.num(); }};
+  return schema_field(
+      "cutter.pocket_overlap",
+      num("pocket overlap", "%", "Overlap of pocketing passes, % of the cutter diameter."));
 }
 Field safe_a() {
-  return {num("safe A pull-up", "A units", "The same height for an A axis used as a second Z."),
-          [](Settings& s, const Value& v) { s.cutter.safe_a = v.num(); }};
+  return schema_field(
+      "cutter.safe_a",
+      num("safe A pull-up", "A units", "The same height for an A axis used as a second Z."));
 }
 
 const std::vector<Field>& vc_sb3() {
@@ -119,16 +132,15 @@ const std::vector<Field>& vc_sb3() {
       safe_a(),
       {flag("triggered output", "1 turns the Z/A-triggered output switch on for this file."),
        nullptr, "the Z/A-triggered output switch is stored, not switched by Gantry"},
-      {num("trigger ON level", "units", "Z or A level at which the switch comes on."),
-       [](Settings& s, const Value& v) { s.cutter.trigger_on = v.num(); }},
-      {num("trigger OFF level", "units", "Z or A level at which the switch goes off."),
-       [](Settings& s, const Value& v) { s.cutter.trigger_off = v.num(); }},
+      schema_field("cutter.trigger_on",
+                   num("trigger ON level", "units", "Z or A level at which the switch comes on.")),
+      schema_field("cutter.trigger_off",
+                   num("trigger OFF level", "units", "Z or A level at which the switch goes off.")),
       {word("trigger axis", "Z A", "The axis watched: Z or A."),
        [](Settings& s, const Value& v) {
          s.cutter.trigger_axis = (v.to_string() == "A" || v.to_string() == "a") ? 3 : 2;
        }},
-      {num("triggered switch", "", "Output switch 3-12 (not 4).").integer(3, 12),
-       [](Settings& s, const Value& v) { s.cutter.trigger_output = whole(v); }}};
+      schema_field("cutter.trigger_output", num("triggered switch", "", "Output switch 3-12 (not 4)."))};
   return f;
 }
 const std::vector<Field>& vc_fabmo() {
@@ -156,14 +168,11 @@ void values_cutter(CommandContext& ctx, const CommandCall& call) {
 
 const std::vector<Field>& vb_fields() {
   static const std::vector<Field> f = {
-      {num("tab height", "units", "How far the cutter lifts for a tab.").at_least(0),
-       [](Settings& s, const Value& v) { s.tabs.pull_up = v.num(); }},
-      {num("tab spacing", "units", "Distance from one tab to the next.").at_least(0),
-       [](Settings& s, const Value& v) { s.tabs.spacing = v.num(); }},
-      {num("tab size", "units", "Tab length along the path.").at_least(0),
-       [](Settings& s, const Value& v) { s.tabs.size = v.num(); }},
-      {num("lead length", "units", "Length of the incline up to and down from a tab.").at_least(0),
-       [](Settings& s, const Value& v) { s.tabs.leads = v.num(); }},
+      schema_field("tabs.pull_up", num("tab height", "units", "How far the cutter lifts for a tab.")),
+      schema_field("tabs.spacing", num("tab spacing", "units", "Distance from one tab to the next.")),
+      schema_field("tabs.size", num("tab size", "units", "Tab length along the path.")),
+      schema_field("tabs.leads",
+                   num("lead length", "units", "Length of the incline up to and down from a tab.")),
       {flag("tabs on", "1 starts tab insertion in this file, 0 ends it."), nullptr},
       {num("tab count", "", "How many tabs after an ON (then no OFF is needed).").integer(0, 1e6),
        nullptr},
@@ -212,32 +221,30 @@ constexpr std::string_view kScreen =
 const std::vector<Field>& vd_sb3() {
   static const std::vector<Field> f = {
       obsolete(0),
-      {num("number of axes", "", "Axes in use: 3 XYZ, 4 adds A, 5 adds B, 6 adds C.").integer(3, 6),
-       [](Settings& s, const Value& v) { s.display.axes = whole(v); }},
+      schema_field("display.axes",
+                   num("number of axes", "", "Axes in use: 3 XYZ, 4 adds A, 5 adds B, 6 adds C.")),
       linear_units(),
       units_of(0),
       units_of(1),
       obsolete(1),
-      {flag("show comments", "1 shows part-file comments as the file runs."),
-       [](Settings& s, const Value& v) { s.display.show_comments = on(v); }},
-      {num("keypad step", "units", "Fixed-distance keypad step.").range(1e-6, 1e4),
-       [](Settings& s, const Value& v) { s.display.keypad_step = v.num(); }},
-      {num("keypad remote", "", "0 keyboard, 1 pendant on the inputs, 2 other.").integer(0, 2),
-       [](Settings& s, const Value& v) { s.display.keypad_remote = whole(v); }},
-      {flag("part file log", "1 logs each part file run."),
-       [](Settings& s, const Value& v) { s.display.part_file_log = on(v); }},
-      {flag("system log", "1 keeps a system log."),
-       [](Settings& s, const Value& v) { s.display.system_log = on(v); }},
+      schema_field("display.show_comments",
+                   flag("show comments", "1 shows part-file comments as the file runs.")),
+      schema_field("display.keypad_step", num("keypad step", "units", "Fixed-distance keypad step.")),
+      schema_field("display.keypad_remote",
+                   num("keypad remote", "", "0 keyboard, 1 pendant on the inputs, 2 other.")),
+      schema_field("display.part_file_log", flag("part file log", "1 logs each part file run.")),
+      schema_field("display.system_log", flag("system log", "1 keeps a system log.")),
       {num("message X", "twips", "Message screen left."), nullptr, kScreen},
       {num("message Y", "twips", "Message screen top."), nullptr, kScreen},
       {num("message width", "twips", "Message screen width."), nullptr, kScreen},
       {num("message height", "twips", "Message screen height."), nullptr, kScreen},
-      {flag("show progress", "1 shows a progress bar while a file runs."),
-       [](Settings& s, const Value& v) { s.display.show_progress = on(v); }},
-      {flag("keypad outputs off", "1 turns the output switches off when the keypad closes."),
-       [](Settings& s, const Value& v) { s.display.keypad_outputs_off = on(v); }},
-      {flag("show progress (again)", "The same as parameter 16 (SB3 lists it twice)."),
-       [](Settings& s, const Value& v) { s.display.show_progress = on(v); }},
+      schema_field("display.show_progress",
+                   flag("show progress", "1 shows a progress bar while a file runs.")),
+      schema_field("display.keypad_outputs_off",
+                   flag("keypad outputs off",
+                        "1 turns the output switches off when the keypad closes.")),
+      schema_field("display.show_progress",
+                   flag("show progress (again)", "The same as parameter 16 (SB3 lists it twice).")),
       {num("display type", "", "SB3's EASY or full screen."), nullptr,
        "Gantry has one console; ignored"}};
   return f;
@@ -261,20 +268,19 @@ void values_display(CommandContext& ctx, const CommandCall& call) {
 
 const std::vector<Field>& vh_fields() {
   static const std::vector<Field> f = {
-      {flag("control mode", "1 turns the accessory on, 0 off (VN parameter 3 enables it)."),
-       [](Settings& s, const Value& v) { s.accessories.mode = whole(v); }},
-      {num("plasma height rate", "", "Pull-up rate as a share of the XY speed.").range(0, 10),
-       [](Settings& s, const Value& v) { s.accessories.plasma_rate = v.num(); }},
-      {num("laser PWM low", "%", "Background PWM level.").range(0, 100),
-       [](Settings& s, const Value& v) { s.accessories.pwm_low = v.num(); }},
-      {num("laser PWM high", "%", "Peak PWM level, reached at full speed.").range(0, 100),
-       [](Settings& s, const Value& v) { s.accessories.pwm_high = v.num(); }},
-      {num("laser pulse frequency", "kHz", "PWM frequency.").range(0, 1000),
-       [](Settings& s, const Value& v) { s.accessories.pulse_khz = v.num(); }},
-      {num("low cycle time", "", "Share of time at low PWM for heater control, 1-10.").range(1, 10),
-       [](Settings& s, const Value& v) { s.accessories.low_cycle = v.num(); }},
-      {num("set temperature", "", "Heater target on analog input 1.").range(0, 1e4),
-       [](Settings& s, const Value& v) { s.accessories.temperature = v.num(); }}};
+      schema_field("accessories.mode",
+                   num("control mode", "",
+                       "1 turns the accessory on, 0 off (VN parameter 3 enables it).")),
+      schema_field("accessories.plasma_rate",
+                   num("plasma height rate", "", "Pull-up rate as a share of the XY speed.")),
+      schema_field("accessories.pwm_low", num("laser PWM low", "%", "Background PWM level.")),
+      schema_field("accessories.pwm_high",
+                   num("laser PWM high", "%", "Peak PWM level, reached at full speed.")),
+      schema_field("accessories.pulse_khz", num("laser pulse frequency", "kHz", "PWM frequency.")),
+      schema_field("accessories.low_cycle",
+                   num("low cycle time", "", "Share of time at low PWM for heater control, 1-10.")),
+      schema_field("accessories.temperature",
+                   num("set temperature", "", "Heater target on analog input 1."))};
   return f;
 }
 
@@ -355,12 +361,11 @@ Field limit(int axis, bool high) {
   static const std::string names[2][6] = {
       {"low X", "low Y", "low Z", "low A", "low B", "low C"},
       {"high X", "high Y", "high Z", "high A", "high B", "high C"}};
-  return {num(names[high][axis], "units",
-              high ? "Highest location allowed, table base coordinates."
-                   : "Lowest location allowed, table base coordinates."),
-          [axis, high](Settings& s, const Value& v) {
-            (high ? s.axes[axis].max : s.axes[axis].min) = v.num();
-          }};
+  return schema_field(high ? "axes.<x..c>.max" : "axes.<x..c>.min",
+                      num(names[high][axis], "units",
+                          high ? "Highest location allowed, table base coordinates."
+                               : "Lowest location allowed, table base coordinates."),
+                      axis);
 }
 
 const std::vector<Field>& vl_sb3() {
@@ -373,8 +378,8 @@ const std::vector<Field>& vl_sb3() {
       limit(2, true),
       limit(3, false),
       limit(3, true),
-      {flag("limit checking", "1 checks moves against the limits, 0 does not (as SF)."),
-       [](Settings& s, const Value& v) { s.machine.limit_checking = on(v); }},
+      schema_field("machine.limit_checking",
+                   flag("limit checking", "1 checks moves against the limits, 0 does not (as SF).")),
       limit(4, false),
       limit(4, true)};
   return f;
@@ -399,12 +404,13 @@ void values_limits(CommandContext& ctx, const CommandCall& call) {
 const std::vector<Field>& vn_fields() {
   static const std::vector<Field> f = [] {
     std::vector<Field> v = {
-        {flag("limit switches", "1 limit switches stop the machine, 0 they do not."),
-         [](Settings& s, const Value& x) { s.switches.limits = on(x); }},
-        {flag("stop switch wiring", "Input 4, the stop switch: 0 normally closed, 1 open."),
-         [](Settings& s, const Value& x) { s.switches.stop_normally_open = on(x); }},
-        {num("accessory", "", "0 none, 1 torch height, 2 laser, 3 analog (VH).").integer(0, 3),
-         [](Settings& s, const Value& x) { s.switches.accessory = whole(x); }}};
+        schema_field("switches.limits",
+                     flag("limit switches", "1 limit switches stop the machine, 0 they do not.")),
+        schema_field("switches.stop_normally_open",
+                     flag("stop switch wiring",
+                          "Input 4, the stop switch: 0 normally closed, 1 open.")),
+        schema_field("switches.accessory",
+                     num("accessory", "", "0 none, 1 torch height, 2 laser, 3 analog (VH)."))};
     static std::deque<std::string> names;
     for (int n : {1, 2, 3, 5, 6, 7, 8, 9, 10, 11, 12}) {  // input 4 is the stop switch
       names.push_back(fmt::format("input {} mode", n));
@@ -471,22 +477,16 @@ void values_offset(CommandContext& ctx, const CommandCall& call) {
 
 const std::vector<Field>& vp_fields() {
   static const std::vector<Field> f = {
-      {num("grid", "units", "Grid spacing in the preview.").at_least(0),
-       [](Settings& s, const Value& v) { s.preview.grid = v.num(); }},
-      {num("table X", "units", "Table size in X.").range(1e-6, 1e6),
-       [](Settings& s, const Value& v) { s.preview.table_x = v.num(); }},
-      {num("table Y", "units", "Table size in Y.").range(1e-6, 1e6),
-       [](Settings& s, const Value& v) { s.preview.table_y = v.num(); }},
-      {num("table Z", "units", "Table size in Z.").range(1e-6, 1e6),
-       [](Settings& s, const Value& v) { s.preview.table_z = v.num(); }},
-      {flag("simulate cutting", "1 runs the preview as a fast simulated cut."),
-       [](Settings& s, const Value& v) { s.preview.simulate_cutting = on(v); }},
-      {flag("draw tool", "1 draws the cutter."),
-       [](Settings& s, const Value& v) { s.preview.draw_tool = on(v); }},
-      {flag("start at tool", "1 starts the preview where the tool is, 0 at 0,0."),
-       [](Settings& s, const Value& v) { s.preview.start_at_location = on(v); }},
-      {flag("show jogs", "1 draws jogs (in another colour)."),
-       [](Settings& s, const Value& v) { s.preview.show_jogs = on(v); }}};
+      schema_field("preview.grid", num("grid", "units", "Grid spacing in the preview.")),
+      schema_field("preview.table_x", num("table X", "units", "Table size in X.")),
+      schema_field("preview.table_y", num("table Y", "units", "Table size in Y.")),
+      schema_field("preview.table_z", num("table Z", "units", "Table size in Z.")),
+      schema_field("preview.simulate_cutting",
+                   flag("simulate cutting", "1 runs the preview as a fast simulated cut.")),
+      schema_field("preview.draw_tool", flag("draw tool", "1 draws the cutter.")),
+      schema_field("preview.start_at_location",
+                   flag("start at tool", "1 starts the preview where the tool is, 0 at 0,0.")),
+      schema_field("preview.show_jogs", flag("show jogs", "1 draws jogs (in another colour)."))};
   return f;
 }
 
@@ -500,15 +500,9 @@ Field ramp_speed(bool jog, int group) {
   static const std::string names[2][4] = {
       {"XY move ramp speed", "Z move ramp speed", "A move ramp speed", "B move ramp speed"},
       {"XY jog ramp speed", "Z jog ramp speed", "A jog ramp speed", "B jog ramp speed"}};
-  static constexpr double GroupSpeeds::*fields[] = {&GroupSpeeds::xy, &GroupSpeeds::z,
-                                                    &GroupSpeeds::a, &GroupSpeeds::b};
-  return {
-      num(names[jog][group], "units/s", "Speed a ramp starts from and ends at.").range(1e-6, 1e5),
-      [jog, field = fields[group]](Settings& s, const Value& v) {
-        // Through a reference: GCC 12 drops `(c ? x : y).*field = v` (a prvalue copy).
-        GroupSpeeds& g = jog ? s.ramps.jog_ramp_speed : s.ramps.move_ramp_speed;
-        g.*field = v.num();
-      }};
+  return schema_field(jog ? "ramps.jog_speed.<xy,z,a,b,c>" : "ramps.move_speed.<xy,z,a,b,c>",
+                      num(names[jog][group], "units/s", "Speed a ramp starts from and ends at."),
+                      group);
 }
 
 const std::vector<Field>& vr_sb3() {
@@ -572,19 +566,19 @@ void values_ramps(CommandContext& ctx, const CommandCall& call) {
 Field steps(int axis) {
   static const std::string names[] = {"X steps per unit", "Y steps per unit", "Z steps per unit",
                                       "A steps per unit", "B steps per unit", "C steps per unit"};
-  return {num(names[axis], "steps/unit",
-              "Motor steps per unit of travel; negative reverses the "
-              "axis.")
-              .range(-1e7, 1e7),
-          [axis](Settings& s, const Value& v) { s.axes[axis].steps_per_unit = v.num(); }};
+  return schema_field("axes.<x..c>.steps_per_unit",
+                      num(names[axis], "steps/unit",
+                          "Motor steps per unit of travel; negative reverses the axis."),
+                      axis);
 }
 Field multiplier(int axis) {
   static const std::string names[] = {"X resolution multiplier", "Y resolution multiplier",
                                       "Z resolution multiplier", "A resolution multiplier",
                                       "B resolution multiplier"};
-  return {
-      num(names[axis], "", "Jog resolution shift of SB3's alpha drives.").range(0, 10),
-      [axis](Settings& s, const Value& v) { s.calibration.resolution_multiplier[axis] = v.num(); }};
+  const SettingRow& row = setting_row("calibration.resolution_multipliers");
+  return {num(names[axis], "", "Jog resolution shift of SB3's alpha drives.")
+              .range(row.range.lo, row.range.hi),
+          [axis](Settings& s, const Value& v) { s.calibration.resolution_multiplier[axis] = v.num(); }};
 }
 
 const std::vector<Field>& vu_fields() {
@@ -593,9 +587,8 @@ const std::vector<Field>& vu_fields() {
       steps(1),
       steps(2),
       steps(3),
-      {num("circle resolution", "units", "Segment length of arcs in the cut commands.")
-           .range(1e-6, 1e3),
-       [](Settings& s, const Value& v) { s.calibration.circle_resolution = v.num(); }},
+      schema_field("calibration.circle_resolution",
+                   num("circle resolution", "units", "Segment length of arcs in the cut commands.")),
       obsolete(0),
       obsolete(1),
       obsolete(2),
@@ -605,10 +598,10 @@ const std::vector<Field>& vu_fields() {
       multiplier(2),
       multiplier(3),
       multiplier(4),
-      {num("step divider", "", "1-100: every speed runs at 1/n of its value.").integer(1, 100),
-       [](Settings& s, const Value& v) { s.calibration.step_divider = whole(v); }},
-      {flag("no resolution shift", "1 turns off the jog resolution shift."),
-       [](Settings& s, const Value& v) { s.calibration.no_resolution_shift = on(v); }}};
+      schema_field("calibration.step_divider",
+                   num("step divider", "", "1-100: every speed runs at 1/n of its value.")),
+      schema_field("calibration.no_resolution_shift",
+                   flag("no resolution shift", "1 turns off the jog resolution shift."))};
   return f;
 }
 

@@ -9,10 +9,13 @@
 #include <cmath>       // ceil for tick counts
 #include <cstdlib>     // getenv: ~/ in subroutine folders
 #include <filesystem>  // tool_table from the profile's folder
+#include <functional>  // the table finder
+#include <map>         // the tables read
 #include <set>         // keys seen, to reject unknown ones
+#include <span>
 
 #include "gantry/core/text_file.hpp"            // read_text_file
-#include "gantry/settings/settings_schema.hpp"  // the numeric keys
+#include "gantry/settings/settings_schema.hpp"  // the keys
 #include "settings_private.hpp"       // parse_settings_table
 
 namespace gantry {
@@ -156,7 +159,7 @@ class TableReader {
     return ok ? out : std::vector<GpioLineBit>{};
   }
 
-  std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed,
+  std::string choice(std::string_view key, std::span<const std::string_view> allowed,
                      std::string fallback) {
     const toml::node* node = find(key);
     if (!node) return fallback;
@@ -291,274 +294,120 @@ class TableReader {
   bool absent_;  // the table itself is missing (already reported)
 };
 
-GroupSpeeds read_speeds(TableReader t, Range range) {
-  GroupSpeeds s;
-  s.xy = t.number("xy", range, 1);
-  s.z = t.number("z", range, 1);
-  s.a = t.number("a", range, 1);
-  s.b = t.number("b", range, 1);
-  s.c = t.number("c", range, 1);
-  t.finish();
-  return s;
+// Reads one row's key (`i`: the family's index) from its table into `s`.
+void read_row(TableReader& t, const SettingRow& row, int i, Settings& s) {
+  const std::string key = row.key_at(i);
+  void* field = row.field ? row.field(s, i) : nullptr;
+  switch (row.kind) {
+    case SettingKind::Number: {
+      double& v = *static_cast<double*>(field);
+      if (!row.optional) {
+        v = t.number(key, row.range, v);
+      } else if (const std::optional<double> got = t.optional_number(key, row.range)) {
+        v = *got;
+      }
+      return;
+    }
+    case SettingKind::OptionalNumber:
+      *static_cast<std::optional<double>*>(field) = t.optional_number(key, row.range);
+      return;
+    case SettingKind::Integer: {
+      int& v = *static_cast<int*>(field);
+      v = t.integer(key, static_cast<int>(row.range.lo), static_cast<int>(row.range.hi), v);
+      return;
+    }
+    case SettingKind::Bool: {
+      bool& v = *static_cast<bool*>(field);
+      v = t.boolean(key, v);
+      return;
+    }
+    case SettingKind::Choice: {
+      const std::string fallback(row.names[static_cast<size_t>(row.choice_get(s, i))]);
+      std::string v;
+      if (row.optional) {  // a key added after profiles were written
+        v = t.optional_text(key, fallback);
+        std::string list;
+        for (std::string_view n : row.names) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", n);
+        if (std::find(row.names.begin(), row.names.end(), v) == row.names.end())
+          t.fail(key, fmt::format("is not allowed; use one of {}", list));
+      } else {
+        v = t.choice(key, row.names, fallback);
+      }
+      const auto at = std::find(row.names.begin(), row.names.end(), v);
+      if (at != row.names.end()) row.choice_set(s, i, static_cast<int>(at - row.names.begin()));
+      return;
+    }
+    case SettingKind::Text: {
+      std::string& v = *static_cast<std::string*>(field);
+      v = row.optional ? t.optional_text(key, v) : t.choice(key, row.names, v);
+      if (row.check)
+        if (const std::string why = row.check(v); !why.empty()) t.fail(key, why);
+      return;
+    }
+    case SettingKind::Texts: {
+      auto& v = *static_cast<std::vector<std::string>*>(field);
+      v = t.optional_texts(key);
+      if (row.check)
+        for (const std::string& item : v)
+          if (const std::string why = row.check(item); !why.empty()) t.fail(key, why);
+      return;
+    }
+    case SettingKind::IntList: {
+      const std::vector<int> v = t.int_list(key, static_cast<int>(row.range.lo),
+                                            static_cast<int>(row.range.hi), row.count);
+      if (row.count == 0)
+        *static_cast<std::vector<int>*>(field) = v;
+      else if (v.size() == static_cast<size_t>(row.count))
+        std::copy(v.begin(), v.end(), static_cast<int*>(field));
+      return;
+    }
+    case SettingKind::NumberList: {
+      const std::vector<double> v = t.number_list(key, row.count, row.range);
+      std::copy(v.begin(), v.end(), static_cast<double*>(field));
+      return;
+    }
+    case SettingKind::LineBits:
+      *static_cast<std::vector<GpioLineBit>*>(field) = t.line_bits(key, row.names[0]);
+      return;
+    case SettingKind::Coded:
+      if (!row.decode(s, t.choice(key, {}, row.encode(s)))) t.fail(key, row.rule);
+      return;
+  }
 }
 
-constexpr Range kSpeed{0, 1e5, true};
-
-// "a, b, c": exactly `count` whole numbers in [lo, hi].
-std::array<int, 12> twelve_ints(TableReader& t, std::string_view key, int lo, int hi) {
-  std::array<int, 12> out{};
-  const std::vector<int> v = t.int_list(key, lo, hi, 12);
-  std::copy(v.begin(), v.end(), out.begin());
-  return out;
+// The tables a profile may leave out (the keys in them are then not asked for).
+bool optional_table(std::string_view path) {
+  return path == "spindle" || path == "simulator" || path == "files";
 }
 
-// The operator's values: what the V commands set (docs/values.md).
-void read_values(TableReader& root, Settings& s) {
-  constexpr Range kAny{-1e9, 1e9};
-  TableReader cutter = root.table("cutter");
-  CutterSettings& c = s.cutter;
-  c.diameter = cutter.number("diameter", {0, 1e4}, 0.25);
-  c.safe_z = cutter.number("safe_z", kAny, 1);
-  c.safe_a = cutter.number("safe_a", kAny, 1);
-  c.plunge_negative = cutter.choice("plunge_direction", {"-", "+"}, "-") == "-";
-  c.pocket_overlap = cutter.number("pocket_overlap", {0, 99}, 10);
-  c.trigger_on = cutter.number("trigger_on", kAny, 0);
-  c.trigger_off = cutter.number("trigger_off", kAny, 0);
-  c.trigger_axis = cutter.choice("trigger_axis", {"z", "a"}, "z") == "a" ? 3 : 2;
-  c.trigger_output = cutter.integer("trigger_output", 3, 12, 3);
-  cutter.finish();
-
-  TableReader tabs = root.table("tabs");
-  for (const SettingRow& row : settings_schema("tabs"))
-    row.member(s) = tabs.number(row.key, row.range, row.fallback());
-  tabs.finish();
-
-  TableReader display = root.table("display");
-  DisplaySettings& d = s.display;
-  d.axes = display.integer("axes", 3, 6, 3);
-  for (int i = 0; i < 3; ++i) {
-    const std::string u = display.choice(
-        std::string("units_") + "abc" [i], { "in", "mm", "deg" }, "deg");
-    d.rotary_units[i] = u == "in"   ? AxisUnit::Inches
-                        : u == "mm" ? AxisUnit::Millimetres
-                                    : AxisUnit::Degrees;
+// Reads every row of the schema, in its order; a family's consecutive rows in one table are
+// read axis by axis (axes.x's keys, then axes.y's), as the tables are written.
+void read_profile(TableReader& root, Settings& s) {
+  std::map<std::string, TableReader> tables;  // by path; nodes do not move
+  std::vector<std::string> order;             // to finish each table once, inner ones first
+  std::function<TableReader&(const std::string&)> table = [&](const std::string& path) -> TableReader& {
+    if (path.empty()) return root;
+    if (auto it = tables.find(path); it != tables.end()) return it->second;
+    const size_t dot = path.rfind('.');
+    TableReader& parent = table(dot == std::string::npos ? "" : path.substr(0, dot));
+    const std::string key = dot == std::string::npos ? path : path.substr(dot + 1);
+    TableReader child = optional_table(path) ? parent.optional_table(key) : parent.table(key);
+    order.push_back(path);
+    return tables.emplace(path, std::move(child)).first->second;
+  };
+  const std::span<const SettingRow> rows = settings_schema();
+  for (size_t r = 0; r < rows.size();) {
+    // A run of rows of one family in one table.
+    size_t end = r + 1;
+    if (rows[r].family != SettingFamily::None)
+      while (end < rows.size() && rows[end].family == rows[r].family &&
+             rows[end].section == rows[r].section)
+        ++end;
+    for (int i = 0; i < rows[r].size(); ++i)
+      for (size_t k = r; k < end; ++k) read_row(table(rows[k].section_at(i)), rows[k], i, s);
+    r = end;
   }
-  d.show_comments = display.boolean("show_comments", false);
-  d.keypad_step = display.number("keypad_step", {0, 1e4, true}, 0.1);
-  d.keypad_remote = display.integer("keypad_remote", 0, 2, 0);
-  d.part_file_log = display.boolean("part_file_log", true);
-  d.system_log = display.boolean("system_log", true);
-  d.show_progress = display.boolean("show_progress", false);
-  d.keypad_outputs_off = display.boolean("keypad_outputs_off", false);
-  display.finish();
-
-  TableReader preview = root.table("preview");
-  PreviewSettings& p = s.preview;
-  p.grid = preview.number("grid", {0, 1e6}, 6);
-  p.table_x = preview.number("table_x", {0, 1e6, true}, 24);
-  p.table_y = preview.number("table_y", {0, 1e6, true}, 18);
-  p.table_z = preview.number("table_z", {0, 1e6, true}, 6);
-  p.simulate_cutting = preview.boolean("simulate_cutting", false);
-  p.draw_tool = preview.boolean("draw_tool", true);
-  p.start_at_location = preview.boolean("start_at_location", true);
-  p.show_jogs = preview.boolean("show_jogs", true);
-  preview.finish();
-
-  TableReader acc = root.table("accessories");
-  AccessorySettings& a = s.accessories;
-  a.mode = acc.integer("mode", 0, 1, 0);
-  a.plasma_rate = acc.number("plasma_rate", {0, 10}, 0.25);
-  a.pwm_low = acc.number("pwm_low", {0, 100}, 0);
-  a.pwm_high = acc.number("pwm_high", {0, 100}, 0);
-  a.pulse_khz = acc.number("pulse_khz", {0, 1e3}, 5.4);
-  a.low_cycle = acc.number("low_cycle", {1, 10}, 3);
-  a.temperature = acc.number("temperature", {0, 1e4}, 0);
-  acc.finish();
-
-  TableReader sw = root.table("switches");
-  SwitchSettings& w = s.switches;
-  w.limits = sw.boolean("limits", true);
-  w.stop_normally_open = sw.boolean("stop_normally_open", false);
-  w.accessory = sw.integer("accessory", 0, 3, 0);
-  w.input_modes = twelve_ints(sw, "input_modes", 0, 4);
-  w.output_modes = twelve_ints(sw, "output_modes", 0, 5);
-  sw.finish();
-
-  TableReader drivers = root.table("drivers");
-  const std::string channels = drivers.choice("channels", {}, "XYZABC");
-  s.drivers.channel_axis = {0, 1, 2, 3, 4, 5};
-  bool channels_ok = channels.size() == kAxisCount;
-  for (size_t k = 0; channels_ok && k < channels.size(); ++k) {
-    const size_t axis =
-        std::string_view("XYZABC").find(static_cast<char>(std::toupper(channels[k])));
-    channels_ok = axis != std::string_view::npos;
-    if (channels_ok) s.drivers.channel_axis[k] = static_cast<int>(axis);
-  }
-  if (!channels_ok)
-    drivers.fail("channels", "must name six axes, one per driver channel, such as \"XYZABC\"");
-  drivers.finish();
-
-  TableReader cal = root.table("calibration");
-  CalibrationSettings& k = s.calibration;
-  k.circle_resolution = cal.number("circle_resolution", {0, 1e3, true}, 0.05);
-  const std::vector<double> res = cal.number_list("resolution_multipliers", 5, {0, 10});
-  std::copy(res.begin(), res.end(), k.resolution_multiplier.begin());
-  k.step_divider = cal.integer("step_divider", 1, 100, 1);
-  k.no_resolution_shift = cal.boolean("no_resolution_shift", false);
-  cal.finish();
-
-  TableReader machine = root.table("machine");
-  s.machine.limit_checking = machine.boolean("limit_checking", true);
-  s.machine.warning_s = machine.number("warning_s", {0, 3600}, 2);
-  // A key added after profiles were written: a profile may leave it out (24 h).
-  s.machine.max_dwell_s =
-      machine.optional_number("max_dwell_s", {0, 2592000, true}).value_or(86400);
-  s.machine.switch4_mode = machine.integer("switch4_mode", -4, -1, -1);
-  s.machine.editor = machine.optional_text("editor", "");
-  machine.finish();
-
-  TableReader files = root.optional_table("files");  // profiles before it have none
-  s.files.allow = files.optional_texts("allow");
-  for (const std::string& folder : s.files.allow)
-    if (!(folder.starts_with("/") || folder.starts_with("~/")))
-      files.fail("allow",
-                 fmt::format("must list folders as absolute paths or ~/..., not \"{}\"", folder));
-  files.finish();
-}
-
-void read_profile(TableReader root, Settings& s) {
-  s.name = root.choice("name", {}, "");
-  s.units = root.choice("units", {"in", "mm"}, "in") == "mm" ? Units::Millimetres : Units::Inches;
-  s.dialect =
-      root.choice("dialect", {"sb3", "fabmo"}, "sb3") == "fabmo" ? Dialect::FabMo : Dialect::SB3;
-  // A key added after profiles were written: a profile may leave it out.
-  const std::string gcode = root.optional_text("gcode_dialect", "standard");
-  if (gcode != "standard" && gcode != "wincnc")
-    root.fail("gcode_dialect", "is not allowed; use one of \"standard\", \"wincnc\"");
-  s.gcode_dialect = gcode == "wincnc" ? GcodeDialect::WinCNC : GcodeDialect::Standard;
-  s.tool_table = root.optional_text("tool_table", "");
-  s.subroutines = root.optional_texts("subroutines");
-
-  TableReader axes = root.table("axes");
-  for (int i = 0; i < kAxisCount; ++i) {
-    TableReader ax = axes.table(std::string(1, kAxisLetters[i]));
-    AxisSettings& a = s.axes[i];
-    a.steps_per_unit = ax.number("steps_per_unit", {-1e6, 1e6}, 1);
-    a.max_speed = ax.number("max_speed", kSpeed, 1);
-    a.max_accel = ax.number("max_accel", {0, 1e7, true}, 1);
-    a.min = ax.number("min", {-1e9, 1e9}, 0);
-    a.max = ax.number("max", {-1e9, 1e9}, 0);
-    ax.finish();
-  }
-  axes.finish();
-
-  TableReader speeds = root.table("speeds");
-  s.speeds.move = read_speeds(speeds.table("move"), kSpeed);
-  s.speeds.jog = read_speeds(speeds.table("jog"), kSpeed);
-  speeds.finish();
-
-  TableReader ramps = root.table("ramps");
-  RampSettings& r = s.ramps;
-  for (const SettingRow& row : settings_schema("ramps"))
-    row.member(s) = ramps.number(row.key, row.range, row.fallback());
-  r.move_ramp_speed = read_speeds(ramps.table("move_speed"), kSpeed);
-  r.jog_ramp_speed = read_speeds(ramps.table("jog_speed"), kSpeed);
-  ramps.finish();
-
-  TableReader planner = root.table("planner");
-  PlannerSettings& pl = s.planner;
-  const std::string mode = planner.choice("mode", {"sb3", "junction", "stop"}, "sb3");
-  pl.mode = mode == "junction" ? PlannerMode::Junction
-            : mode == "stop"   ? PlannerMode::Stop
-                               : PlannerMode::SB3;
-  pl.corner_jump = planner.number("corner_jump", {0, 1}, 0.11);
-  pl.junction_deviation = planner.number("junction_deviation", {0, 1e3}, 0.002);
-  pl.chord_tolerance = planner.number("chord_tolerance", {0, 1e3, true}, 0.0005);
-  pl.jerk = planner.number("jerk", {0, 1e9}, 0);
-  pl.lookahead = planner.integer("lookahead", 2, 1 << 20, 1024);
-  planner.finish();
-
-  TableReader card = root.table("card");
-  CardSettings& c = s.card;
-  c.type = card.choice("type", {"sim", "pci7200", "gpiod"}, "sim");
-  c.clock_hz = card.number("clock_hz", {1e3, 1e9}, 4e6);
-  c.pacer_divisor = card.integer("pacer_divisor", 2, 65535, 20);
-  c.step_pulse_us = card.number("step_pulse_us", {0, 1e4, true}, 5);
-  c.dir_setup_us = card.number("dir_setup_us", {0, 1e4}, 5);
-  c.gpiod_chip = card.choice("gpiod_chip", {}, "/dev/gpiochip0");
-  c.gpiod_outputs = card.line_bits("gpiod_outputs", "BIT:LINE");
-  c.gpiod_inputs = card.line_bits("gpiod_inputs", "LINE:BIT");
-  card.finish();
-
-  TableReader pins = root.table("pins");
-  for (int i = 0; i < kAxisCount; ++i) {
-    TableReader p = pins.table(std::string(1, kAxisLetters[i]));
-    PinSettings& pin = s.pins[i];
-    pin.step_bit = p.integer("step_bit", 0, 31, i);
-    pin.dir_bit = p.integer("dir_bit", 0, 31, 8 + i);
-    pin.invert_dir = p.boolean("invert_dir", false);
-    pin.step_active_low = p.boolean("step_active_low", false);
-    p.finish();
-  }
-  pins.finish();
-
-  read_values(root, s);
-
-  TableReader outputs = root.table("outputs");
-  OutputSettings& o = s.outputs;
-  o.charge_pump_bit = outputs.integer("charge_pump_bit", -1, 31, 16);
-  o.charge_pump_hz = outputs.number("charge_pump_hz", {0, 1e6, true}, 10000);
-  o.spindle_bit = outputs.integer("spindle_bit", -1, 31, 17);
-  o.aux_bits = outputs.int_list("aux_bits", -1, 31);
-  outputs.finish();
-
-  TableReader spindle = root.optional_table("spindle");  // profiles before TR have none
-  SpindleSettings& sp = s.spindle;
-  sp.pwm_bit = spindle.integer("pwm_bit", -1, 31, -1);
-  sp.pwm_hz = spindle.number("pwm_hz", {0, 1e6, true}, 1000);
-  sp.max_rpm = spindle.number("max_rpm", {0, 1e6, true}, 24000);
-  spindle.finish();
-
-  TableReader inputs = root.table("inputs");
-  InputSettings& in = s.inputs;
-  in.estop_bit = inputs.integer("estop_bit", -1, 31, 0);
-  in.estop_active_low = inputs.boolean("estop_active_low", true);
-  in.probe_bit = inputs.integer("probe_bit", -1, 31, 1);
-  in.limits_active_low = inputs.boolean("limits_active_low", false);
-  for (int i = 0; i < kAxisCount; ++i) {
-    TableReader ax = inputs.table(std::string(1, kAxisLetters[i]));
-    in.min_bit[i] = ax.integer("min_bit", -1, 31, -1);
-    in.max_bit[i] = ax.integer("max_bit", -1, 31, -1);
-    in.home_bit[i] = ax.integer("home_bit", -1, 31, -1);
-    ax.finish();
-  }
-  const std::vector<int> switches = inputs.int_list("switch_bits", -1, 31, 12);
-  if (switches.size() == 12) std::copy(switches.begin(), switches.end(), in.switch_bits.begin());
-  inputs.finish();
-
-  TableReader homing = root.table("homing");
-  HomingSettings& h = s.homing;
-  h.input = homing.integer("input", 1, 12, 3);
-  h.order = homing.choice("order", {}, "zxy");
-  if (h.order.empty() || h.order.find_first_not_of("xyzabc") != std::string::npos)
-    homing.fail("order", "must list the axes to home, in order, as letters x y z a b c");
-  h.fast_speed = homing.number("fast_speed", {0, 1e6, true}, 1);
-  h.slow_speed = homing.number("slow_speed", {0, 1e6, true}, 0.1);
-  h.back_off = homing.number("back_off", {0, 1e6, true}, 0.25);
-  for (int i = 0; i < kAxisCount; ++i) {
-    TableReader ax = homing.table(std::string(1, kAxisLetters[i]));
-    h.direction[i] = ax.choice("direction", {"-", "+"}, i == 2 ? "+" : "-") == "+" ? 1 : -1;
-    h.at[i] = ax.number("at", {-1e9, 1e9}, 0);
-    ax.finish();
-  }
-  homing.finish();
-
-  // The simulated card's switches (optional: a real card's profile has none).
-  TableReader sim = root.optional_table("simulator");
-  for (int i = 0; i < kAxisCount; ++i)
-    s.simulator.home[i] = sim.optional_number(std::string("home_") + kAxisLetters[i], {-1e9, 1e9});
-  s.simulator.plate_z = sim.optional_number("plate_z", {-1e9, 1e9});
-  sim.finish();
+  for (auto it = order.rbegin(); it != order.rend(); ++it) tables.at(*it).finish();
   root.finish();
 }
 
@@ -715,7 +564,8 @@ void resolve_subroutine_folders(const toml::table& table, const std::string& ori
 
 SettingsLoad parse_settings_table(const toml::table& table, const std::string& origin) {
   SettingsLoad out;
-  read_profile(TableReader(table, "", origin, out.errors), out.settings);
+  TableReader root(table, "", origin, out.errors);
+  read_profile(root, out.settings);
   if (const std::string& t = out.settings.tool_table; !t.empty())  // from the profile's folder
     out.settings.tool_table_path =
         (std::filesystem::path(origin).parent_path() / std::filesystem::path(t)).string();

@@ -1,9 +1,10 @@
-// The settings schema table: each numeric setting's key, member, range, unit kind and help.
+// The settings schema table: each profile key's path, member, kind, range, unit kind and help.
 #include "gantry/settings/settings_schema.hpp"
 
 #include <fmt/format.h>  // describe, docs
 
 #include <algorithm>  // find_if
+#include <cctype>     // toupper
 #include <stdexcept>  // out_of_range
 
 #include "gantry/settings/settings.hpp"
@@ -15,37 +16,384 @@ namespace {
 // drift between the profile's (0, 1e6] and VR's [1e-6, 1e6] to VR's closed range, which the
 // command table's inclusive ParamSpec ranges can state).
 constexpr SettingRange kRampRate{1e-6, 1e6};
+constexpr SettingRange kSpeed{0, 1e5, true};
+constexpr SettingRange kAny{-1e9, 1e9};
+constexpr SettingRange kBit{-1, 31};      // an input or output bit; -1: not wired
+constexpr SettingRange kPinBit{0, 31};    // a step or direction bit: always wired
+constexpr SettingRange kPositive{0, 1e6, true};
 
-#define GANTRY_MEMBER(expr) [](Settings& s) -> double& { return s.expr; }
+constexpr std::string_view kUnits[] = {"in", "mm"};
+constexpr std::string_view kDialects[] = {"sb3", "fabmo"};
+constexpr std::string_view kGcodeDialects[] = {"standard", "wincnc"};
+constexpr std::string_view kPlannerModes[] = {"sb3", "junction", "stop"};
+constexpr std::string_view kCardTypes[] = {"sim", "pci7200", "gpiod"};
+constexpr std::string_view kBitLine[] = {"BIT:LINE"};
+constexpr std::string_view kLineBit[] = {"LINE:BIT"};
+constexpr std::string_view kSigns[] = {"-", "+"};
+constexpr std::string_view kTriggerAxes[] = {"z", "a"};
+constexpr std::string_view kAxisUnits[] = {"in", "mm", "deg"};  // AxisUnit's order
 
+double& group(GroupSpeeds& g, int i) {
+  switch (i) {
+    case 0: return g.xy;
+    case 1: return g.z;
+    case 2: return g.a;
+    case 3: return g.b;
+    default: return g.c;
+  }
+}
+
+std::string homing_order_rule(std::string_view order) {
+  if (order.empty() || order.find_first_not_of("xyzabc") != std::string_view::npos)
+    return "must list the axes to home, in order, as letters x y z a b c";
+  return "";
+}
+
+std::string folder_rule(std::string_view folder) {
+  if (folder.starts_with("/") || folder.starts_with("~/")) return "";
+  return fmt::format("must list folders as absolute paths or ~/..., not \"{}\"", folder);
+}
+
+std::string channels_text(const Settings& s) {
+  std::string channels;
+  for (int axis : s.drivers.channel_axis) channels += "XYZABC"[axis];
+  return channels;
+}
+
+bool channels_read(Settings& s, std::string_view channels) {
+  s.drivers.channel_axis = {0, 1, 2, 3, 4, 5};
+  bool ok = channels.size() == kAxisCount;
+  for (size_t k = 0; ok && k < channels.size(); ++k) {
+    const size_t axis =
+        std::string_view("XYZABC").find(static_cast<char>(std::toupper(channels[k])));
+    ok = axis != std::string_view::npos;
+    if (ok) s.drivers.channel_axis[k] = static_cast<int>(axis);
+  }
+  return ok;
+}
+
+// The member a row sets, typed: a row of the wrong kind's type does not compile.
+#define GANTRY_FIELD(T, expr) \
+  [](Settings& s, int i) -> void* { (void)i; T* p = &(s.expr); return p; }
+#define GANTRY_DATA(T, expr) \
+  [](Settings& s, int i) -> void* { (void)i; T* p = s.expr.data(); return p; }
+// An enum member held as the index of its names (the enum's order is the names').
+#define GANTRY_ENUM(expr, T)                                                             \
+  .choice_get = [](const Settings& s, int i) { (void)i; return static_cast<int>(s.expr); }, \
+  .choice_set = [](Settings& s, int i, int v) { (void)i; s.expr = static_cast<T>(v); }
+
+#define NUM(sec_, key_, expr, range_, unit_, help_, ...)                                          \
+  {.section = sec_, .key = key_, .kind = SettingKind::Number,                             \
+   .field = GANTRY_FIELD(double, expr), .range = range_, .unit = SettingUnit::unit_, \
+   .help = help_, __VA_ARGS__}
+#define AXIS_NUM(sec_, key_, expr, range_, unit_, help_, ...)                                     \
+  {.section = sec_, .key = key_, .kind = SettingKind::Number,                             \
+   .field = GANTRY_FIELD(double, expr), .range = range_, .unit = SettingUnit::unit_, \
+   .help = help_, .family = SettingFamily::Axes, __VA_ARGS__}
+#define GROUP(sec_, expr, help_)                                                       \
+  {.section = sec_, .key = "<xy,z,a,b,c>", .kind = SettingKind::Number,               \
+   .field = [](Settings& s, int i) -> void* { return &group(s.expr, i); }, .range = kSpeed, \
+   .unit = SettingUnit::Axis, .help = help_, .family = SettingFamily::Groups}
+#define INT(sec_, key_, expr, lo_, hi_, help_, ...)                                            \
+  {.section = sec_, .key = key_, .kind = SettingKind::Integer, .field = GANTRY_FIELD(int, expr), \
+   .range = {lo_, hi_}, .help = help_, __VA_ARGS__}
+#define AXIS_INT(sec_, key_, expr, lo_, hi_, help_, ...)                                       \
+  {.section = sec_, .key = key_, .kind = SettingKind::Integer, .field = GANTRY_FIELD(int, expr), \
+   .range = {lo_, hi_}, .help = help_, .family = SettingFamily::Axes, __VA_ARGS__}
+#define BOOL(sec_, key_, expr, help_, ...)                                                     \
+  {.section = sec_, .key = key_, .kind = SettingKind::Bool, .field = GANTRY_FIELD(bool, expr), \
+   .help = help_, __VA_ARGS__}
+#define AXIS_BOOL(sec_, key_, expr, help_, ...)                                                \
+  {.section = sec_, .key = key_, .kind = SettingKind::Bool, .field = GANTRY_FIELD(bool, expr), \
+   .help = help_, .family = SettingFamily::Axes}
+
+// Each row names only the fields it needs; the others keep their defaults.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 // clang-format off
 const SettingRow kRows[] = {
-  {"ramps", "move_ramp_rate", GANTRY_MEMBER(ramps.move_ramp_rate), kRampRate, SettingUnit::Length,
-   "VR move ramp rate: distance over which the speed changes by 2 units/s (a length)"},
-  {"ramps", "jog_ramp_rate", GANTRY_MEMBER(ramps.jog_ramp_rate), kRampRate, SettingUnit::Length,
-   "VR jog ramp rate, as the move ramp rate (a length)"},
-  {"ramps", "threshold_3d", GANTRY_MEMBER(ramps.threshold_3d), {0, 1000}, SettingUnit::None,
-   "VR 3D ramp threshold, percent"},
-  {"ramps", "min_distance", GANTRY_MEMBER(ramps.min_distance), {0, 1e3}, SettingUnit::Length,
-   "VR minimum distance to check (a length)"},
-  {"ramps", "slow_corner", GANTRY_MEMBER(ramps.slow_corner), {0, 100}, SettingUnit::None,
-   "VR slow corner speed, percent"},
-  {"ramps", "keypad_ramp_rate", GANTRY_MEMBER(ramps.keypad_ramp_rate), kRampRate,
-   SettingUnit::Length, "VR keypad ramp rate (a length)"},
-  {"ramps", "small_circle", GANTRY_MEMBER(ramps.small_circle), {0, 1e3}, SettingUnit::Length,
-   "VR small-circle diameter (a length)"},
-  {"tabs", "pull_up", GANTRY_MEMBER(tabs.pull_up), {0, 1e4}, SettingUnit::Length,
-   "VB tab height: how far the cutter lifts for a tab (a length)"},
-  {"tabs", "spacing", GANTRY_MEMBER(tabs.spacing), {0, 1e6, true}, SettingUnit::Length,
-   "VB distance from one tab to the next (a length)"},
-  {"tabs", "size", GANTRY_MEMBER(tabs.size), {0, 1e6}, SettingUnit::Length,
-   "VB tab length along the path (a length)"},
-  {"tabs", "leads", GANTRY_MEMBER(tabs.leads), {0, 1e6}, SettingUnit::Length,
-   "VB length of the incline up to and down from a tab (a length)"},
+  {.section = "", .key = "name", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, name),
+   .help = "shown in reports", .docs_allowed = "any", .owner = SettingOwner::MachineTable},
+  {.section = "", .key = "units", .kind = SettingKind::Choice,
+   .help = "unit of every length, speed and acceleration in the profile and in part files",
+   .names = kUnits, GANTRY_ENUM(units, Units)},
+  {.section = "", .key = "dialect", .kind = SettingKind::Choice,
+   .help = "the OpenSBP dialect of part files: trigonometric functions take and give radians (SB3) or degrees (FabMo)",
+   .names = kDialects, GANTRY_ENUM(dialect, Dialect), .owner = SettingOwner::MachineTable},
+  {.section = "", .key = "gcode_dialect", .kind = SettingKind::Choice,
+   .help = "the G-code dialect of G-code files and lines: LinuxCNC's (standard) or WinCNC's (G21 centimetres, G22 millimetres, G4 without X waits for the operator...; docs/gcode.md). Optional: `\"standard\"` when left out",
+   .names = kGcodeDialects, .optional = true, GANTRY_ENUM(gcode_dialect, GcodeDialect)},
+  {.section = "", .key = "tool_table", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, tool_table),
+   .help = "G-code's tool table, LinuxCNC's file (`T1 P1 D0.25 Z+1.5 ;comment`, lengths in `units`; docs/gcode.md, \"Tool table\"): a relative path is from the profile's folder; G10 L1/L10/L11 write it back. Left out: no table, every tool has length 0 (Z is zeroed after each tool change). `--tool-table FILE` overrides it for one command. Read from the profile only: a values file's is ignored",
+   .optional = true, .omit_empty = true, .docs_allowed = "a path; optional"},
+  {.section = "", .key = "subroutines", .kind = SettingKind::Texts,
+   .field = GANTRY_FIELD(std::vector<std::string>, subroutines),
+   .help = "where G-code's `o<name> call` finds `name.ngc` when the calling file does not define it, after the calling file's folder and the folders given with `--subroutines DIR` (docs/gcode.md, \"O-words\"); a relative path is from the profile's folder, `~/` is the home folder. A folder that is not there is an error at this key. Read-only to part files. Read from the profile only: a values file's is ignored",
+   .optional = true, .omit_empty = true, .docs_allowed = "folders that exist; optional"},
+
+  AXIS_NUM("axes.<x..c>", "steps_per_unit", axes[i].steps_per_unit, (SettingRange{-1e6, 1e6}), PerAxis,
+           "motor steps per unit (per degree for rotary axes); negative reverses the axis; not 0"),
+  AXIS_NUM("axes.<x..c>", "max_speed", axes[i].max_speed, kSpeed, Axis, "hardware speed limit, units/s", .owner = SettingOwner::MachineKey),
+  AXIS_NUM("axes.<x..c>", "max_accel", axes[i].max_accel, (SettingRange{0, 1e7, true}), Axis,
+           "hardware acceleration limit, units/s^2", .owner = SettingOwner::MachineKey),
+  AXIS_NUM("axes.<x..c>", "min", axes[i].min, kAny, Axis,
+           "soft limit: no move may take the axis below it; below `max`"),
+  AXIS_NUM("axes.<x..c>", "max", axes[i].max, kAny, Axis,
+           "soft limit: no move may take the axis above it"),
+
+  GROUP("speeds.move", speeds.move,
+        "move (cutting) speeds, as VS/MS set them; XY is the vector speed; at most the axis max_speed"),
+  GROUP("speeds.jog", speeds.jog, "jog (rapid) speeds, as VS/JS set them; at most the axis max_speed"),
+
+  NUM("ramps", "move_ramp_rate", ramps.move_ramp_rate, kRampRate, Length,
+      "VR move ramp rate: distance over which the speed changes by 2 units/s (a length)"),
+  NUM("ramps", "jog_ramp_rate", ramps.jog_ramp_rate, kRampRate, Length,
+      "VR jog ramp rate, as the move ramp rate (a length)"),
+  NUM("ramps", "threshold_3d", ramps.threshold_3d, (SettingRange{0, 1000}), None,
+      "VR 3D ramp threshold, percent"),
+  NUM("ramps", "min_distance", ramps.min_distance, (SettingRange{0, 1e3}), Length,
+      "VR minimum distance to check (a length)"),
+  NUM("ramps", "slow_corner", ramps.slow_corner, (SettingRange{0, 100}), None,
+      "VR slow corner speed, percent"),
+  NUM("ramps", "keypad_ramp_rate", ramps.keypad_ramp_rate, kRampRate, Length,
+      "VR keypad ramp rate (a length)"),
+  NUM("ramps", "small_circle", ramps.small_circle, (SettingRange{0, 1e3}), Length,
+      "VR small-circle diameter (a length)"),
+  GROUP("ramps.move_speed", ramps.move_ramp_speed, "VR move ramp (start and end) speeds"),
+  GROUP("ramps.jog_speed", ramps.jog_ramp_speed, "VR jog ramp (start and end) speeds"),
+
+  {.section = "planner", .key = "mode", .kind = SettingKind::Choice,
+   .help = "how moves are joined (docs/planner.md)", .names = kPlannerModes,
+   GANTRY_ENUM(planner.mode, PlannerMode), .owner = SettingOwner::MachineKey},
+  NUM("planner", "corner_jump", planner.corner_jump, (SettingRange{0, 1}), None,
+      "the largest speed change an axis makes at once (corners, starts from rest), as a fraction of its `max_speed`", .owner = SettingOwner::MachineKey),
+  NUM("planner", "junction_deviation", planner.junction_deviation, (SettingRange{0, 1e3}), Length,
+      "junction mode: how far from a corner its speed's arc may pass (a length)", .owner = SettingOwner::MachineKey),
+  NUM("planner", "chord_tolerance", planner.chord_tolerance, (SettingRange{0, 1e3, true}), Length,
+      "arcs run as chords at most this far from the arc (a length)", .owner = SettingOwner::MachineKey),
+  NUM("planner", "jerk", planner.jerk, (SettingRange{0, 1e9}), Rate,
+      "above 0: S-curve speed ramps within this jerk, units/s^3; 0: linear ramps"),
+  INT("planner", "lookahead", planner.lookahead, 2, 1 << 20,
+      "moves planned ahead, at least (more when stopping needs more path)", .owner = SettingOwner::MachineKey),
+
+  {.section = "card", .key = "type", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, card.type),
+   .help = "the card to drive (`gantry run --card` overrides); docs/hardware.md", .names = kCardTypes, .owner = SettingOwner::MachineTable},
+  NUM("card", "clock_hz", card.clock_hz, (SettingRange{1e3, 1e9}), None, "timer clock (PCI-7200: 4 MHz)", .owner = SettingOwner::MachineTable),
+  INT("card", "pacer_divisor", card.pacer_divisor, 2, 65535,
+      "pacer = clock_hz / pacer_divisor; one output word per pacer tick", .owner = SettingOwner::MachineTable),
+  NUM("card", "step_pulse_us", card.step_pulse_us, (SettingRange{0, 1e4, true}), None,
+      "step pulse width, rounded up to whole ticks", .owner = SettingOwner::MachineTable),
+  NUM("card", "dir_setup_us", card.dir_setup_us, (SettingRange{0, 1e4}), None,
+      "direction set this long before each step, rounded up to whole ticks", .owner = SettingOwner::MachineTable),
+  {.section = "card", .key = "gpiod_chip", .kind = SettingKind::Text,
+   .field = GANTRY_FIELD(std::string, card.gpiod_chip),
+   .help = "type gpiod: the GPIO chip (`/dev/gpiochip0`)", .docs_allowed = "a path", .owner = SettingOwner::MachineTable},
+  {.section = "card", .key = "gpiod_outputs", .kind = SettingKind::LineBits,
+   .field = GANTRY_FIELD(std::vector<GpioLineBit>, card.gpiod_outputs),
+   .help = "type gpiod: which line carries each output-word bit", .names = kBitLine,
+   .docs_allowed = "`\"BIT:LINE, ...\"`", .owner = SettingOwner::MachineTable},
+  {.section = "card", .key = "gpiod_inputs", .kind = SettingKind::LineBits,
+   .field = GANTRY_FIELD(std::vector<GpioLineBit>, card.gpiod_inputs),
+   .help = "type gpiod: which line sets each input-word bit", .names = kLineBit,
+   .docs_allowed = "`\"LINE:BIT, ...\"`", .owner = SettingOwner::MachineTable},
+
+  AXIS_INT("pins.<x..c>", "step_bit", pins[i].step_bit, 0, 31, "the step bit of the output word; each bit used once", .owner = SettingOwner::MachineTable),
+  AXIS_INT("pins.<x..c>", "dir_bit", pins[i].dir_bit, 0, 31, "the direction bit of the output word; each bit used once", .owner = SettingOwner::MachineTable),
+  AXIS_BOOL("pins.<x..c>", "invert_dir", pins[i].invert_dir, "direction line high means positive travel", .owner = SettingOwner::MachineTable),
+  AXIS_BOOL("pins.<x..c>", "step_active_low", pins[i].step_active_low, "the step line idles high and pulses low", .owner = SettingOwner::MachineTable),
+
+  NUM("cutter", "diameter", cutter.diameter, (SettingRange{0, 1e4}), Length,
+      "VC cutter diameter, for the O and I (outside, inside) cut offsets (a length)"),
+  NUM("cutter", "safe_z", cutter.safe_z, kAny, Length,
+      "VC safe Z: the working Z that MH and JH raise the tool to first; AMB-4: default 1 in (a length)"),
+  NUM("cutter", "safe_a", cutter.safe_a, kAny, AxisA, "VC safe A, for an A axis used as a second Z"),
+  {.section = "cutter", .key = "plunge_direction", .kind = SettingKind::Choice,
+   .help = "VC plunge direction: `\"-\"`, a negative Z goes into the material", .names = kSigns,
+   .choice_get = [](const Settings& s, int) { return s.cutter.plunge_negative ? 0 : 1; },
+   .choice_set = [](Settings& s, int, int v) { s.cutter.plunge_negative = v == 0; }},
+  NUM("cutter", "pocket_overlap", cutter.pocket_overlap, (SettingRange{0, 99}), None,
+      "VC pocket overlap, percent of the cutter diameter"),
+  NUM("cutter", "trigger_on", cutter.trigger_on, kAny, TriggerAxis,
+      "VC Z (or A) below which the triggered output switch comes on"),
+  NUM("cutter", "trigger_off", cutter.trigger_off, kAny, TriggerAxis,
+      "VC Z (or A) above which the triggered output switch goes off"),
+  {.section = "cutter", .key = "trigger_axis", .kind = SettingKind::Choice,
+   .help = "VC the axis the triggered output switch follows", .names = kTriggerAxes,
+   .choice_get = [](const Settings& s, int) { return s.cutter.trigger_axis == 3 ? 1 : 0; },
+   .choice_set = [](Settings& s, int, int v) { s.cutter.trigger_axis = v ? 3 : 2; }},
+  INT("cutter", "trigger_output", cutter.trigger_output, 3, 12, "VC the triggered output switch (not 4)"),
+
+  NUM("tabs", "pull_up", tabs.pull_up, (SettingRange{0, 1e4}), Length,
+      "VB tab height: how far the cutter lifts for a tab (a length)"),
+  NUM("tabs", "spacing", tabs.spacing, (SettingRange{0, 1e6, true}), Length,
+      "VB distance from one tab to the next (a length)"),
+  NUM("tabs", "size", tabs.size, (SettingRange{0, 1e6}), Length,
+      "VB tab length along the path (a length)"),
+  NUM("tabs", "leads", tabs.leads, (SettingRange{0, 1e6}), Length,
+      "VB length of the incline up to and down from a tab (a length)"),
+
+  INT("display", "axes", display.axes, 3, 6, "VD axes shown and used: 3 XYZ, 4 adds A, 5 adds B, 6 adds C"),
+  {.section = "display", .key = "units_a", .kind = SettingKind::Choice, .help = "VD unit of A",
+   .names = kAxisUnits, GANTRY_ENUM(display.rotary_units[0], AxisUnit)},
+  {.section = "display", .key = "units_b", .kind = SettingKind::Choice, .help = "VD unit of B",
+   .names = kAxisUnits, GANTRY_ENUM(display.rotary_units[1], AxisUnit)},
+  {.section = "display", .key = "units_c", .kind = SettingKind::Choice, .help = "VD unit of C",
+   .names = kAxisUnits, GANTRY_ENUM(display.rotary_units[2], AxisUnit)},
+  BOOL("display", "show_comments", display.show_comments, "VD part-file comments shown as the file runs"),
+  NUM("display", "keypad_step", display.keypad_step, (SettingRange{0, 1e4, true}), Length,
+      "VD SK fixed-distance step (a length)"),
+  INT("display", "keypad_remote", display.keypad_remote, 0, 2,
+      "VD 0 keyboard, 1 pendant on the inputs, 2 other"),
+  BOOL("display", "part_file_log", display.part_file_log, "VD a log line per part file run"),
+  BOOL("display", "system_log", display.system_log, "VD a system log for diagnostics"),
+  BOOL("display", "show_progress", display.show_progress, "VD a progress bar while a file runs"),
+  BOOL("display", "keypad_outputs_off", display.keypad_outputs_off,
+       "VD output switches off when the keypad closes"),
+
+  NUM("preview", "grid", preview.grid, (SettingRange{0, 1e6}), Length, "VP grid spacing (a length)"),
+  NUM("preview", "table_x", preview.table_x, (SettingRange{0, 1e6, true}), Length, "VP table size in X (a length)"),
+  NUM("preview", "table_y", preview.table_y, (SettingRange{0, 1e6, true}), Length, "VP table size in Y (a length)"),
+  NUM("preview", "table_z", preview.table_z, (SettingRange{0, 1e6, true}), Length, "VP table size in Z (a length)"),
+  BOOL("preview", "simulate_cutting", preview.simulate_cutting, "VP simulate cutting"),
+  BOOL("preview", "draw_tool", preview.draw_tool, "VP draw the tool"),
+  BOOL("preview", "start_at_location", preview.start_at_location, "VP start at the current location"),
+  BOOL("preview", "show_jogs", preview.show_jogs, "VP show jogs"),
+
+  INT("accessories", "mode", accessories.mode, 0, 1, "VH 1 on, 0 off (needs switches.accessory)"),
+  NUM("accessories", "plasma_rate", accessories.plasma_rate, (SettingRange{0, 10}), None, "VH plasma rate"),
+  NUM("accessories", "pwm_low", accessories.pwm_low, (SettingRange{0, 100}), None, "VH PWM low, percent"),
+  NUM("accessories", "pwm_high", accessories.pwm_high, (SettingRange{0, 100}), None, "VH PWM high, percent"),
+  NUM("accessories", "pulse_khz", accessories.pulse_khz, (SettingRange{0, 1e3}), None, "VH pulse frequency, kHz"),
+  NUM("accessories", "low_cycle", accessories.low_cycle, (SettingRange{1, 10}), None, "VH low cycle"),
+  NUM("accessories", "temperature", accessories.temperature, (SettingRange{0, 1e4}), None, "VH temperature"),
+
+  BOOL("switches", "limits", switches.limits, "VN limit switches stop the machine"),
+  BOOL("switches", "stop_normally_open", switches.stop_normally_open,
+       "VN input 4 (stop) wiring; false: normally closed"),
+  INT("switches", "accessory", switches.accessory, 0, 3, "VN 0 none, 1 torch height, 2 laser, 3 analog"),
+  {.section = "switches", .key = "input_modes", .kind = SettingKind::IntList,
+   .field = GANTRY_DATA(int, switches.input_modes), .range = {0, 4},
+   .help = "VN input switch modes 1-12: 0 standard, 1 NO limit, 2 NC limit, 3 NO stop, 4 NC stop", .count = 12},
+  {.section = "switches", .key = "output_modes", .kind = SettingKind::IntList,
+   .field = GANTRY_DATA(int, switches.output_modes), .range = {0, 5},
+   .help = "VN output switch modes 1-12, SB3's", .count = 12},
+
+  {.section = "drivers", .key = "channels", .kind = SettingKind::Coded,
+   .help = "VI the axis each driver channel 1-6 drives (`\"XYZABC\"`)", .encode = channels_text,
+   .decode = channels_read, .rule = "must name six axes, one per driver channel, such as \"XYZABC\"",
+   .docs_allowed = "six axis letters, each once"},
+
+  NUM("calibration", "circle_resolution", calibration.circle_resolution, (SettingRange{0, 1e3, true}), Length,
+      "VU arc segment length (a length)"),
+  {.section = "calibration", .key = "resolution_multipliers", .kind = SettingKind::NumberList,
+   .field = GANTRY_DATA(double, calibration.resolution_multiplier), .range = {0, 10},
+   .help = "VU X..B jog resolution shift", .count = 5},
+  INT("calibration", "step_divider", calibration.step_divider, 1, 100, "VU speeds run at 1/n of their value"),
+  BOOL("calibration", "no_resolution_shift", calibration.no_resolution_shift, "VU no resolution shift"),
+
+  BOOL("machine", "limit_checking", machine.limit_checking, "SF, VL 9: moves are checked against the soft limits"),
+  NUM("machine", "warning_s", machine.warning_s, (SettingRange{0, 3600}), None,
+      "SW warning before movement starts, s"),
+  {.section = "machine", .key = "max_dwell_s", .kind = SettingKind::Number,
+   .field = GANTRY_FIELD(double, machine.max_dwell_s), .range = {0, 2592000, true},
+   .help = "the longest wait a part file may ask for (`PAUSE 5`, `G4 P5`, a DIALOG's TIMER), s (2592000: 30 days); a longer one, a negative one or one that is not a number is an error at check time (docs/reliability.md). Left out: 86400 (24 h)",
+   .optional = true},
+  INT("machine", "switch4_mode", machine.switch4_mode, -4, -1,
+      "SO 4: -1 to -3: output switch 4 is on while a run moves the tool (from the warning on); -4: an ordinary switch"),
+  {.section = "machine", .key = "editor", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, machine.editor),
+   .help = "FE: the program FE opens files in, with its options, split at spaces and started without a shell; `\"\"`: `$VISUAL`, then `$EDITOR`, then `vi`. Read from the profile only: a values file's is ignored (docs/security.md)",
+   .optional = true, .docs_allowed = "any; optional"},
+
+  {.section = "files", .key = "allow", .kind = SettingKind::Texts,
+   .field = GANTRY_FIELD(std::vector<std::string>, files.allow),
+   .help = "folders part files may read and write in besides their job's folder and Gantry's data folder (`--allow-path DIR` adds one for a run). Read from the profile only (docs/security.md)",
+   .optional = true, .check = folder_rule,
+   .docs_allowed = "absolute paths or `~/...`; the `[files]` table is optional"},
+
+  INT("outputs", "charge_pump_bit", outputs.charge_pump_bit, -1, 31, "a square wave while pulses flow (-1: none)", .owner = SettingOwner::MachineTable),
+  NUM("outputs", "charge_pump_hz", outputs.charge_pump_hz, kPositive, None, "its frequency", .owner = SettingOwner::MachineTable),
+  INT("outputs", "spindle_bit", outputs.spindle_bit, -1, 31, "on while the spindle runs", .owner = SettingOwner::MachineTable),
+  {.section = "outputs", .key = "aux_bits", .kind = SettingKind::IntList,
+   .field = GANTRY_FIELD(std::vector<int>, outputs.aux_bits), .range = kBit,
+   .help = "output switches 1, 2, ... (SO numbers)", .owner = SettingOwner::MachineTable},
+
+  INT("spindle", "pwm_bit", spindle.pwm_bit, -1, 31,
+      "the output bit carrying TR's spindle speed as a square wave of duty rpm / `max_rpm` (-1: none; TR only records the RPM and warns once a run); the `[spindle]` table is optional (none: no speed output)"),
+  NUM("spindle", "pwm_hz", spindle.pwm_hz, kPositive, None,
+      "the square wave's frequency; at most the pacer / 100 when `pwm_bit` is wired"),
+  NUM("spindle", "max_rpm", spindle.max_rpm, kPositive, None,
+      "the RPM at 100 % duty; with `pwm_bit` wired, TR above it is refused"),
+
+  INT("inputs", "estop_bit", inputs.estop_bit, -1, 31, "the E-stop's input-word bit (-1: not wired)", .owner = SettingOwner::MachineTable),
+  BOOL("inputs", "estop_active_low", inputs.estop_active_low, "the E-stop input reads 0 when active", .owner = SettingOwner::MachineTable),
+  INT("inputs", "probe_bit", inputs.probe_bit, -1, 31, "the probe's input-word bit (-1: not wired)", .owner = SettingOwner::MachineTable),
+  BOOL("inputs", "limits_active_low", inputs.limits_active_low, "the limit inputs read 0 when active", .owner = SettingOwner::MachineTable),
+  AXIS_INT("inputs.<x..c>", "min_bit", inputs.min_bit[i], -1, 31, "the axis's min limit switch bit", .owner = SettingOwner::MachineTable),
+  AXIS_INT("inputs.<x..c>", "max_bit", inputs.max_bit[i], -1, 31, "the axis's max limit switch bit", .owner = SettingOwner::MachineTable),
+  AXIS_INT("inputs.<x..c>", "home_bit", inputs.home_bit[i], -1, 31,
+           "the axis's proximity switch bit; several axes may share one", .owner = SettingOwner::MachineTable),
+  {.section = "inputs", .key = "switch_bits", .kind = SettingKind::IntList,
+   .field = GANTRY_DATA(int, inputs.switch_bits), .range = kBit,
+   .help = "the bit of input switches 1-12 that part files read and watch (`%(51)`, `ON INPUT`, probes)",
+   .count = 12, .owner = SettingOwner::MachineTable},
+
+  INT("homing", "input", homing.input, 1, 12, "the input switch the proximity switches close (C3)"),
+  {.section = "homing", .key = "order", .kind = SettingKind::Text, .field = GANTRY_FIELD(std::string, homing.order),
+   .help = "the axes C3 homes, in order", .check = homing_order_rule, .docs_allowed = "letters `xyzabc`"},
+  NUM("homing", "fast_speed", homing.fast_speed, kPositive, Rate, "the first approach's speed, units/s"),
+  NUM("homing", "slow_speed", homing.slow_speed, kPositive, Rate, "the measured approach's speed, units/s"),
+  NUM("homing", "back_off", homing.back_off, kPositive, Length,
+      "off the switch between the approaches and at the end (a length)"),
+  {.section = "homing.<x..c>", .key = "direction", .kind = SettingKind::Choice,
+   .help = "towards the switch", .family = SettingFamily::Axes, .names = kSigns,
+   .choice_get = [](const Settings& s, int i) { return s.homing.direction[i] > 0 ? 1 : 0; },
+   .choice_set = [](Settings& s, int i, int v) { s.homing.direction[i] = v ? 1 : -1; }},
+  AXIS_NUM("homing.<x..c>", "at", homing.at[i], kAny, Axis,
+           "the table base location where the switch closes"),
+
+  {.section = "simulator", .key = "home_<x..c>", .kind = SettingKind::OptionalNumber,
+   .field = GANTRY_FIELD(std::optional<double>, simulator.home[i]), .range = kAny, .unit = SettingUnit::Axis,
+   .help = "the simulated card's proximity switch of that axis: closed at or beyond this position on the side `homing.<axis>.direction` points to. In the card's own coordinates: the table base at power-up, before any homing",
+   .family = SettingFamily::Axes, .optional = true},
+  {.section = "simulator", .key = "plate_z", .kind = SettingKind::OptionalNumber,
+   .field = GANTRY_FIELD(std::optional<double>, simulator.plate_z), .range = kAny, .unit = SettingUnit::Length,
+   .help = "the simulated Z zero plate's top: the probe input (`inputs.probe_bit`, input 1) closes at or below this Z (a length)",
+   .optional = true},
 };
 // clang-format on
+#pragma GCC diagnostic pop
 
-#undef GANTRY_MEMBER
+#undef NUM
+#undef AXIS_NUM
+#undef GROUP
+#undef INT
+#undef AXIS_INT
+#undef BOOL
+#undef AXIS_BOOL
+#undef GANTRY_ENUM
+#undef GANTRY_DATA
+#undef GANTRY_FIELD
+
+constexpr std::string_view kAxesPlaceholder = "<x..c>";
+constexpr std::string_view kGroupsPlaceholder = "<xy,z,a,b,c>";
+constexpr std::string_view kGroupNames[] = {"xy", "z", "a", "b", "c"};
+
+std::string substitute(std::string_view text, SettingFamily f, int i) {
+  std::string out(text);
+  if (f == SettingFamily::None) return out;
+  const std::string_view ph = f == SettingFamily::Axes ? kAxesPlaceholder : kGroupsPlaceholder;
+  const size_t at = out.find(ph);
+  if (at == std::string::npos) return out;
+  const std::string name =
+      f == SettingFamily::Axes ? std::string(1, kAxisLetters[i]) : std::string(kGroupNames[i]);
+  return out.replace(at, ph.size(), name);
+}
+
+std::string quoted_names(std::span<const std::string_view> names) {
+  std::string out;
+  for (std::string_view n : names) out += fmt::format("{}`\"{}\"`", out.empty() ? "" : ", ", n);
+  return out;
+}
 
 }  // namespace
 
@@ -58,12 +406,58 @@ std::string SettingRange::docs() const {
 }
 
 std::string SettingRow::path() const {
-  return fmt::format("{}.{}", section, key);
+  return section.empty() ? std::string(key) : fmt::format("{}.{}", section, key);
+}
+
+std::string SettingRow::section_at(int i) const {
+  return substitute(section, family, i);
+}
+
+std::string SettingRow::key_at(int i) const {
+  return substitute(key, family, i);
+}
+
+std::string SettingRow::path(int i) const {
+  return section.empty() ? key_at(i) : fmt::format("{}.{}", section_at(i), key_at(i));
+}
+
+int SettingRow::size() const {
+  return family == SettingFamily::Axes ? kAxisCount : family == SettingFamily::Groups ? 5 : 1;
 }
 
 double SettingRow::fallback() const {
   static const Settings defaults;
   return get(defaults);
+}
+
+std::string SettingRow::type_name() const {
+  if (!docs_type.empty()) return std::string(docs_type);
+  switch (kind) {
+    case SettingKind::Number:
+    case SettingKind::OptionalNumber: return "number";
+    case SettingKind::Integer: return "integer";
+    case SettingKind::Bool: return "bool";
+    case SettingKind::Texts: return "array of strings";
+    default: return "string";
+  }
+}
+
+std::string SettingRow::allowed() const {
+  if (!docs_allowed.empty()) return std::string(docs_allowed);
+  const std::string opt = optional ? "; optional" : "";
+  switch (kind) {
+    case SettingKind::Number:
+    case SettingKind::OptionalNumber:
+    case SettingKind::Integer: return range.docs() + opt;
+    case SettingKind::Bool: return "`true`, `false`" + opt;
+    case SettingKind::Choice:
+    case SettingKind::Text: return quoted_names(names) + opt;
+    case SettingKind::IntList:
+    case SettingKind::NumberList:
+      return count ? fmt::format("{} values, each {}", count, range.docs())
+                   : fmt::format("`\"a, b, ...\"`, each {}", range.docs());
+    default: return "any" + opt;
+  }
 }
 
 std::span<const SettingRow> settings_schema() {
@@ -84,10 +478,15 @@ const SettingRow& setting_row(std::string_view path) {
   throw std::out_of_range(fmt::format("no setting {}", path));
 }
 
-bool set_setting(Settings& s, const SettingRow& row, double v) {
+bool set_setting(Settings& s, const SettingRow& row, double v, int i) {
   if (!row.range.contains(v)) return false;
-  row.member(s) = v;
+  row.number(s, i) = v;
   return true;
+}
+
+int setting_axis(SettingFamily f, int i) {
+  if (f == SettingFamily::Groups) return i == 0 ? 0 : i + 1;
+  return i;
 }
 
 }  // namespace gantry

@@ -40,45 +40,30 @@ void scale_speeds(GroupSpeeds& g, const Vec6& scale) {
 }
 
 void convert_units(Settings& s, Units to) {
-  const Vec6 scale = units_scale(s, to);
+  const auto scale = units_scale(s, to);
   const double f = scale[0];
   s.units = to;
   if (f == 1) return;
-  for (int i = 0; i < kAxisCount; ++i) {
-    AxisSettings& a = s.axes[i];
-    a.steps_per_unit = round12(a.steps_per_unit / scale[i]);
-    a.max_speed = round12(a.max_speed * scale[i]);
-    a.max_accel = round12(a.max_accel * scale[i]);
-    a.min = round12(a.min * scale[i]);
-    a.max = round12(a.max * scale[i]);
-    s.homing.at[i] = round12(s.homing.at[i] * scale[i]);
-    if (std::optional<double>& h = s.simulator.home[i]) *h = round12(*h * scale[i]);
+  for (const SettingRow& row : settings_schema()) {
+    if (row.unit == SettingUnit::None) continue;
+    for (int i = 0; i < row.size(); ++i) {
+      double factor = f;
+      switch (row.unit) {
+        case SettingUnit::Axis:
+        case SettingUnit::PerAxis: factor = scale[setting_axis(row.family, i)]; break;
+        case SettingUnit::AxisA: factor = scale[3]; break;
+        case SettingUnit::TriggerAxis: factor = scale[s.cutter.trigger_axis]; break;
+        default: break;
+      }
+      if (row.kind == SettingKind::OptionalNumber) {
+        if (auto& v = *static_cast<std::optional<double>*>(row.field(s, i))) *v = round12(*v * factor);
+      } else {
+        double& v = row.number(s, i);
+        v = round12(row.unit == SettingUnit::PerAxis ? v / scale[setting_axis(row.family, i)]
+                                                     : v * factor);
+      }
+    }
   }
-  if (s.simulator.plate_z) *s.simulator.plate_z = round12(*s.simulator.plate_z * f);
-  RampSettings& r = s.ramps;
-  for (GroupSpeeds* g : {&s.speeds.move, &s.speeds.jog, &r.move_ramp_speed, &r.jog_ramp_speed})
-    scale_speeds(*g, scale);
-  for (const SettingRow& row : settings_schema())
-    if (row.unit == SettingUnit::Length) row.member(s) = round12(row.member(s) * f);
-  for (double* v : {&s.planner.junction_deviation,
-                    &s.planner.chord_tolerance,
-                    &s.planner.jerk,
-                    &s.cutter.diameter,
-                    &s.cutter.safe_z,
-                    &s.display.keypad_step,
-                    &s.homing.fast_speed,
-                    &s.homing.slow_speed,
-                    &s.homing.back_off,
-                    &s.preview.grid,
-                    &s.preview.table_x,
-                    &s.preview.table_y,
-                    &s.preview.table_z,
-                    &s.calibration.circle_resolution})
-    *v = round12(*v * f);
-  s.cutter.safe_a = round12(s.cutter.safe_a * scale[3]);
-  const double trigger_f = scale[s.cutter.trigger_axis];
-  s.cutter.trigger_on = round12(s.cutter.trigger_on * trigger_f);
-  s.cutter.trigger_off = round12(s.cutter.trigger_off * trigger_f);
 }
 
 }  // namespace gantry

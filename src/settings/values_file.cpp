@@ -9,6 +9,7 @@
 #include <sstream>  // the formatter writes to a stream
 
 #include "gantry/core/text_file.hpp"  // user_config_dir
+#include "gantry/settings/settings_schema.hpp"  // the machine's keys
 #include "settings_private.hpp"       // settings_table, parse_settings_table
 
 namespace gantry {
@@ -147,32 +148,32 @@ std::string default_values_path(const std::string& profile_name) {
   return fmt::format("{}/values/{}.toml", user_config_dir(), file.empty() ? "profile" : file);
 }
 
-static std::string section_text(const toml::table& t, std::string_view key) {
-  const toml::node* n = t.get(key);
-  if (!n) return "";
-  toml::table one;
-  n->visit([&](const auto& v) { one.insert(key, v); });
-  std::ostringstream text;
-  text << toml::toml_formatter(one);
-  return text.str();
-}
-
-// The first key describing the machine itself (not an operator's value) that differs:
-// the card, its wiring, the axes' hardware limits, the planner; "" when none does.
+// The first key describing the machine itself (not an operator's value) that differs: the
+// schema's machine rows, the tables whose every key is the machine's (card, pins, outputs,
+// inputs: named by the table) before the single keys (axes' limits, the planner); "" when
+// none does.
 std::string machine_key_changed(const Settings& now, const Settings& next) {
   const toml::table a = settings_table(now), b = settings_table(next);
-  for (const char* key : {"name", "dialect", "card", "pins", "outputs", "inputs"})
-    if (section_text(a, key) != section_text(b, key)) return key;
-  for (int i = 0; i < kAxisCount; ++i)
-    for (const char* key : {"max_speed", "max_accel"}) {
-      const std::string axis(1, kAxisLetters[i]);
-      if (a["axes"][axis][key].value<double>() != b["axes"][axis][key].value<double>())
-        return fmt::format("axes.{}.{}", axis, key);
+  for (const SettingOwner owner : {SettingOwner::MachineTable, SettingOwner::MachineKey}) {
+    const std::span<const SettingRow> rows = settings_schema();
+    for (size_t r = 0; r < rows.size();) {
+      // A family's consecutive rows in one table are compared axis by axis.
+      size_t end = r + 1;
+      if (rows[r].family != SettingFamily::None)
+        while (end < rows.size() && rows[end].family == rows[r].family &&
+               rows[end].section == rows[r].section)
+          ++end;
+      for (int i = 0; i < rows[r].size(); ++i)
+        for (size_t k = r; k < end; ++k) {
+          if (rows[k].owner != owner) continue;
+          const std::string path = rows[k].path(i);
+          const toml::node* x = a.at_path(path).node();
+          const toml::node* y = b.at_path(path).node();
+          if (!x || !y ? x != y : !same_leaf(*x, *y))
+            return owner == SettingOwner::MachineKey ? path : path.substr(0, path.find('.'));
+        }
+      r = end;
     }
-  for (const char* key :
-       {"mode", "corner_jump", "junction_deviation", "chord_tolerance", "lookahead"}) {
-    const toml::table pa = *a["planner"].as_table(), pb = *b["planner"].as_table();
-    if (section_text(pa, key) != section_text(pb, key)) return fmt::format("planner.{}", key);
   }
   return "";
 }

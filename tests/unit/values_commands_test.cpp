@@ -149,6 +149,17 @@ TEST_F(ValuesTest, AValueOutOfRangeIsLocatedAndChangesNothing) {
   EXPECT_DOUBLE_EQ(values().ramps.move_ramp_speed.xy, .4);  // the good first value too
 }
 
+// A V command's range is its schema row's (issue 24): VB allowed any spacing >= 0 and VU
+// steps per unit to 1e7, values the profile (and so the values file) refuses.
+TEST_F(ValuesTest, VCommandRangesAreTheProfiles) {
+  EXPECT_EQ(run_error("VB, , 0\n").message,
+            "VB parameter 2 (tab spacing) is 0; allowed: 1e-06 to 1000000");
+  EXPECT_EQ(run_error("VU, 5000000\n").message,
+            "VU parameter 1 (X steps per unit) is 5000000; allowed: -1000000 to 1000000");
+  EXPECT_EQ(run_error("VB, 20000\n").message,
+            "VB parameter 1 (tab height) is 20000; allowed: 0 to 10000");
+}
+
 TEST_F(ValuesTest, ARuleOfTheProfileIsCheckedAcrossFields) {
   const Diagnostic d = run_error("VL, 10, 5\n");
   EXPECT_EQ(d.message,
