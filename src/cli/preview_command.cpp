@@ -41,11 +41,13 @@ std::optional<Eigen::AlignedBox3f> parse_stock(const std::string& text, double t
     const auto r = std::from_chars(p, end, v[i]);
     if (r.ec != std::errc{}) return std::nullopt;
     p = r.ptr;
-    if (i == 2 && p == end) break;
-    if (p == end) return std::nullopt;
+    if (p == end) {
+      if (i == 2 || i == 5) break;
+      return std::nullopt;
+    }
     const char want = i < 2 ? 'x' : i == 2 ? '@' : ',';
     if (i < 2 ? (*p != 'x' && *p != 'X') : *p != want) return std::nullopt;
-    if (++p == end || i == 5) return std::nullopt;
+    if (i == 5 || ++p == end) return std::nullopt;
   }
   if (v[0] <= 0 || v[1] <= 0 || v[2] <= 0) return std::nullopt;
   const Eigen::Vector3f lo(static_cast<float>(v[3]), static_cast<float>(v[4]),
