@@ -2,6 +2,8 @@
 // bounding box, cycle-time estimate, move count and soft-limit violations (docs/preview.md).
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
@@ -21,6 +23,9 @@ struct PreviewArgs {
   bool material = false;
   std::string cutter = "flat";  // flat, ball, v or v<angle>
   double stock_top = 0;         // Z of the uncut material's surface
+  std::string stock;            // WxHxD[@X,Y,Z]; "": the profile's VP table size at 0,0
+  std::optional<double> play_s;          // --play T: as it stands at machine time T
+  std::optional<std::uint32_t> play_line;  // --play-line N: after line N's first run
   bool json = false;
 };
 

@@ -14,6 +14,7 @@ std::string moves_svg(const std::vector<CanonMove>& moves, const Settings& setti
   opts.height = 0;  // from the drawing's aspect
   opts.table = false;
   opts.leading_jogs = false;
+  opts.dimensions = false;  // a figure: no scale bar
   return render_svg(path, settings, opts);
 }
 

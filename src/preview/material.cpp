@@ -83,10 +83,58 @@ std::optional<float> HeightMap::height(float x, float y) const {
   return at(static_cast<int>(i), static_cast<int>(j));
 }
 
-HeightMap carve(const Toolpath& path, const Cutter& cutter, float top, int max_cells) {
+namespace {
+
+// Sweeps the cutter (and the tool changes of `path`) along every segment below the top.
+void carve_into(HeightMap& m, const Toolpath& path, const Cutter& cutter) {
+  const float top = m.top;
   const auto slope = static_cast<float>(1 / std::tan(cutter.v_angle / 2 * kPi / 180));
   Profile profile{cutter.shape, static_cast<float>(cutter.diameter / 2), slope};
-  float r = profile.radius;  // the largest cutter's, for the margin
+  // A sloped segment is swept as pieces that each fall at most a cell, at the lower end of
+  // each: the depth is exact to a cell, and every piece is a flat sweep.
+  Eigen::Vector3f from = path.start;
+  auto change = path.cutter_changes.begin();
+  for (std::size_t i = 0; i < path.segments.size(); ++i) {
+    for (; change != path.cutter_changes.end() && change->first <= i; ++change)
+      profile.radius = static_cast<float>(change->diameter / 2);  // a tool change (M6, VC)
+    const ToolpathSegment& s = path.segments[i];
+    const Eigen::Vector3f to(s.x, s.y, s.z);
+    if (std::min(from.z(), to.z()) < top) {
+      const float flat = (to - from).head<2>().norm();
+      const int pieces =
+          flat < m.cell
+              ? 1
+              : std::max(1, static_cast<int>(std::ceil(std::abs(to.z() - from.z()) / m.cell)));
+      for (int k = 0; k < pieces; ++k) {
+        const Eigen::Vector3f a = from + (to - from) * (static_cast<float>(k) / pieces);
+        const Eigen::Vector3f b = from + (to - from) * (static_cast<float>(k + 1) / pieces);
+        sweep(m, profile, a.head<2>(), b.head<2>(), std::min(a.z(), b.z()));
+      }
+    }
+    from = to;
+  }
+}
+
+}  // namespace
+
+HeightMap carve(const Toolpath& path, const Cutter& cutter, const Eigen::AlignedBox3f& stock,
+                int max_cells) {
+  HeightMap m;
+  m.top = stock.max().z();
+  m.bottom = stock.min().z();
+  const Eigen::Vector2f size = stock.sizes().head<2>().cwiseMax(Eigen::Vector2f::Constant(1e-6f));
+  m.cell = size.maxCoeff() / static_cast<float>(std::max(2, max_cells) - 1);
+  m.nx = static_cast<int>(std::lround(size.x() / m.cell)) + 1;
+  m.ny = static_cast<int>(std::lround(size.y() / m.cell)) + 1;
+  m.x0 = stock.min().x();
+  m.y0 = stock.min().y();
+  m.z.assign(static_cast<std::size_t>(m.nx) * m.ny, m.top);
+  carve_into(m, path, cutter);
+  return m;
+}
+
+HeightMap carve(const Toolpath& path, const Cutter& cutter, float top, int max_cells) {
+  float r = static_cast<float>(cutter.diameter / 2);  // the largest cutter's, for the margin
   for (const Toolpath::CutterChange& c : path.cutter_changes)
     r = std::max(r, static_cast<float>(c.diameter / 2));
   // The stock: the XY extent of what goes below its top.
@@ -114,30 +162,7 @@ HeightMap carve(const Toolpath& path, const Cutter& cutter, float top, int max_c
   m.y0 = area.min().y();
   m.bottom = lowest - std::max(0.25f * (top - lowest), 2 * m.cell);
   m.z.assign(static_cast<std::size_t>(m.nx) * m.ny, top);
-
-  // A sloped segment is swept as pieces that each fall at most a cell, at the lower end of
-  // each: the depth is exact to a cell, and every piece is a flat sweep.
-  from = path.start;
-  auto change = path.cutter_changes.begin();
-  for (std::size_t i = 0; i < path.segments.size(); ++i) {
-    for (; change != path.cutter_changes.end() && change->first <= i; ++change)
-      profile.radius = static_cast<float>(change->diameter / 2);  // a tool change (M6)
-    const ToolpathSegment& s = path.segments[i];
-    const Eigen::Vector3f to(s.x, s.y, s.z);
-    if (std::min(from.z(), to.z()) < top) {
-      const float flat = (to - from).head<2>().norm();
-      const int pieces =
-          flat < m.cell
-              ? 1
-              : std::max(1, static_cast<int>(std::ceil(std::abs(to.z() - from.z()) / m.cell)));
-      for (int k = 0; k < pieces; ++k) {
-        const Eigen::Vector3f a = from + (to - from) * (static_cast<float>(k) / pieces);
-        const Eigen::Vector3f b = from + (to - from) * (static_cast<float>(k + 1) / pieces);
-        sweep(m, profile, a.head<2>(), b.head<2>(), std::min(a.z(), b.z()));
-      }
-    }
-    from = to;
-  }
+  carve_into(m, path, cutter);
   return m;
 }
 

@@ -6,7 +6,7 @@
 #include <stb_image_write.h>
 
 #include <algorithm>  // max, min
-#include <cmath>      // sqrt
+#include <cmath>      // sqrt, pow, log10
 #include <limits>
 
 #include "canvas.hpp"                 // Canvas
@@ -78,10 +78,21 @@ constexpr Style kDrawOrder[] = {Style::Jog, Style::Upper, Style::Deep, Style::Ke
 
 // The table envelope's outline: its XY rectangle at Z 0 (the material surface by the usual
 // zeroing), in machine coordinates.
-std::array<Eigen::Vector3f, 4> table_corners(const Settings& s) {
-  const auto x0 = static_cast<float>(s.axes[0].min), x1 = static_cast<float>(s.axes[0].max);
-  const auto y0 = static_cast<float>(s.axes[1].min), y1 = static_cast<float>(s.axes[1].max);
+// The soft limits are in the profile's units; the path in the units the file left in force.
+std::array<Eigen::Vector3f, 4> table_corners(const Settings& s, Units units) {
+  const double k = units_factor(s.units, units);
+  const auto x0 = static_cast<float>(k * s.axes[0].min), x1 = static_cast<float>(k * s.axes[0].max);
+  const auto y0 = static_cast<float>(k * s.axes[1].min), y1 = static_cast<float>(k * s.axes[1].max);
   return {{{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}}};
+}
+
+// The stock's top rectangle, counter-clockwise from its front left corner.
+std::array<Eigen::Vector3f, 4> stock_corners(const Eigen::AlignedBox3f& b) {
+  const float z = b.max().z();
+  return {{{b.min().x(), b.min().y(), z},
+           {b.max().x(), b.min().y(), z},
+           {b.max().x(), b.max().y(), z},
+           {b.min().x(), b.max().y(), z}}};
 }
 
 float stroke(const Projection& p) {
@@ -89,21 +100,22 @@ float stroke(const Projection& p) {
 }
 
 Eigen::AlignedBox3f drawn_box(const Toolpath& path, const std::vector<Style>& style,
-                              const Settings& settings, bool table) {
+                              const Settings& settings, const PreviewOptions& opts) {
   Eigen::AlignedBox3f box;
   Eigen::Vector3f from = path.start;
   for (std::size_t i = 0; i < style.size(); ++i) {
     if (style[i] != Style::Hidden) box.extend(from).extend(end_of(path.segments[i]));
     from = end_of(path.segments[i]);
   }
-  if (table)
-    for (const Eigen::Vector3f& c : table_corners(settings)) box.extend(c);
+  if (opts.table)
+    for (const Eigen::Vector3f& c : table_corners(settings, path.units)) box.extend(c);
+  if (opts.stock) box.extend(*opts.stock);
   return box;
 }
 
 Projection line_projection(const Toolpath& path, const std::vector<Style>& style,
                            const Settings& settings, const PreviewOptions& opts) {
-  return Projection(opts.view, drawn_box(path, style, settings, opts.table), opts.width,
+  return Projection(opts.view, drawn_box(path, style, settings, opts), opts.width,
                     opts.height);
 }
 
@@ -118,6 +130,15 @@ std::optional<std::pair<Eigen::Vector3f, Eigen::Vector3f>> drawn_ends(
       ends->second = end_of(path.segments[i]);
     }
   return ends;
+}
+
+// The scale bar's length: 1, 2 or 5 times a power of ten, at most a quarter of the picture.
+double bar_length(const Projection& p) {
+  const double most = 0.25 * p.width() / p.pixels_per_unit();
+  double step = std::pow(10.0, std::floor(std::log10(most)));
+  for (double k : {5.0, 2.0, 1.0})
+    if (k * step <= most) return k * step;
+  return step;
 }
 
 }  // namespace
@@ -189,7 +210,7 @@ Eigen::Vector3f Projection::operator()(const Eigen::Vector3f& p) const {
 
 Eigen::AlignedBox3f preview_box(const Toolpath& path, const Settings& settings,
                                 const PreviewOptions& opts) {
-  return drawn_box(path, styles(path, opts.leading_jogs), settings, opts.table);
+  return drawn_box(path, styles(path, opts.leading_jogs), settings, opts);
 }
 
 Rgb Image::at(int x, int y) const {
@@ -205,8 +226,12 @@ Image render_lines(const Toolpath& path, const Settings& settings, const Preview
   const int px = static_cast<int>(std::lround(w));
   auto at = [&](const Eigen::Vector3f& p) -> Eigen::Vector2f { return proj(p).head<2>(); };
   if (opts.table) {
-    const auto c = table_corners(settings);
+    const auto c = table_corners(settings, path.units);
     for (int i = 0; i < 4; ++i) canvas.line(at(c[i]), at(c[(i + 1) % 4]), palette::table, 1);
+  }
+  if (opts.stock) {
+    const auto c = stock_corners(*opts.stock);
+    for (int i = 0; i < 4; ++i) canvas.line(at(c[i]), at(c[(i + 1) % 4]), palette::stock, px);
   }
   for (Style pass : kDrawOrder) {
     Eigen::Vector2f from = at(path.start);
@@ -239,10 +264,17 @@ std::string render_svg(const Toolpath& path, const Settings& settings, const Pre
       proj.width(), proj.height(), hex(palette::background), w);
   if (opts.table) {
     std::string points;
-    for (const Eigen::Vector3f& c : table_corners(settings))
+    for (const Eigen::Vector3f& c : table_corners(settings, path.units))
       points += fmt::format("{}{:.2f},{:.2f}", points.empty() ? "" : " ", at(c).x(), at(c).y());
     out += fmt::format("<polygon stroke=\"{}\" stroke-width=\"1\" points=\"{}\"/>\n",
                        hex(palette::table), points);
+  }
+  if (opts.stock) {
+    std::string points;
+    for (const Eigen::Vector3f& c : stock_corners(*opts.stock))
+      points += fmt::format("{}{:.2f},{:.2f}", points.empty() ? "" : " ", at(c).x(), at(c).y());
+    out += fmt::format("<polygon class=\"stock\" stroke=\"{}\" points=\"{}\"/>\n",
+                       hex(palette::stock), points);
   }
   // One path per run of one style; the runs of each style drawn in kDrawOrder's order.
   for (Style pass : kDrawOrder) {
@@ -272,7 +304,31 @@ std::string render_svg(const Toolpath& path, const Settings& settings, const Pre
     out += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.3g}\" fill=\"{}\"/>\n",
                        at(ends->second).x(), at(ends->second).y(), 2 * w, hex(palette::end));
   }
-  out += "</g>\n</svg>\n";
+  out += "</g>\n";
+  if (!opts.dimensions) return out + "</svg>\n";
+  // The scale bar (lengths in the picture's plane) and the path's bounding dimensions, in
+  // the units the file left in force.
+  const char* units = units_name(path.units);
+  const double bar = bar_length(proj);
+  const float bar_px = static_cast<float>(bar) * proj.pixels_per_unit();
+  const float y = static_cast<float>(proj.height()) - 8;
+  out += fmt::format(
+      "<g class=\"scale\" stroke=\"#000000\" stroke-width=\"1\">"
+      "<polyline fill=\"none\" points=\"8,{2:.2f} 8,{0:.2f} {1:.2f},{0:.2f} {1:.2f},{2:.2f}\"/>"
+      "<text x=\"{3:.2f}\" y=\"{0:.2f}\" font-family=\"sans-serif\" font-size=\"11\" "
+      "stroke=\"none\" fill=\"#000000\">{4:g} {5}</text></g>\n",
+      y, 8 + bar_px, y - 6, 12 + bar_px, bar, units);
+  if (!path.bounds.isEmpty()) {
+    const Eigen::AlignedBox3f& b = path.bounds;
+    const Eigen::Vector3f size = b.sizes();
+    out += fmt::format(
+        "<text class=\"dimensions\" x=\"8\" y=\"16\" font-family=\"sans-serif\" "
+        "font-size=\"11\" fill=\"#000000\">X {:.4f} to {:.4f} ({:.4f} {}), Y {:.4f} to {:.4f} "
+        "({:.4f} {}), Z {:.4f} to {:.4f} ({:.4f} {})</text>\n",
+        b.min().x(), b.max().x(), size.x(), units, b.min().y(), b.max().y(), size.y(), units,
+        b.min().z(), b.max().z(), size.z(), units);
+  }
+  out += "</svg>\n";
   return out;
 }
 

@@ -2,12 +2,13 @@
 #include "gantry/preview/toolpath.hpp"
 
 #include <algorithm>  // any_of
+#include <cmath>      // cos, sin, ceil
 #include <optional>
 
 #include "gantry/commands/command_table.hpp"  // CommandTable::is_command
 #include "gantry/lang/script.hpp"             // Script
 #include "gantry/canon/arc_geometry.hpp"      // arc_chords
-#include "gantry/motion/cycle_timer.hpp"      // the estimate
+#include "gantry/motion/lookahead_planner.hpp"  // the estimate and its timeline
 
 namespace gantry {
 
@@ -33,7 +34,16 @@ class ToolpathSink : public MotionSink {
         opts_(opts) {}
   void move(const CanonMove& m) override {
     if (opts_.cancel && opts_.cancel->load(std::memory_order_relaxed)) throw Cancelled{};
+    const auto line = static_cast<std::uint32_t>(std::max(m.loc.line, 0));
+    if (m.kind == MoveKind::SpindleSpeed)
+      path_.spindle_changes.push_back({path_.segments.size(), m.spindle_rpm, line});
+    if (cutter_line_pending_ && (m.kind == MoveKind::Line || m.kind == MoveKind::Arc)) {
+      path_.cutter_changes.back().line = line;
+      cutter_line_pending_ = false;
+    }
+    const std::size_t before = path_.segments.size();
     path_.add(m, tolerance_);
+    if (path_.segments.size() > before) ends_.push_back({m.count.moves, path_.segments.size()});
     if (opts_.progress && path_.segments.size() >= next_report_) {
       opts_.progress(path_);
       next_report_ = path_.segments.size() + kReportEvery;
@@ -44,9 +54,15 @@ class ToolpathSink : public MotionSink {
   // and a tool change the cutter (VC's diameter).
   void settings_changed(const Settings& s) override {
     tolerance_ = s.planner.chord_tolerance;
-    if (s.cutter.diameter != cutter_)
+    path_.wrap_a = s.display.rotary_units[0] == AxisUnit::Degrees;
+    path_.wrap_b = s.display.rotary_units[1] == AxisUnit::Degrees;
+    if (s.cutter.diameter != cutter_) {
       path_.cutter_changes.push_back({path_.segments.size(), cutter_ = s.cutter.diameter});
+      cutter_line_pending_ = true;
+    }
   }
+  // Each move that made segments: its RunCount::moves and the segment after its last.
+  std::vector<std::pair<std::size_t, std::size_t>> ends_;
 
  private:
   static constexpr std::size_t kReportEvery = 1 << 16;
@@ -55,19 +71,76 @@ class ToolpathSink : public MotionSink {
   double cutter_;
   const ToolpathOptions& opts_;
   std::size_t next_report_ = kReportEvery;
+  bool cutter_line_pending_ = false;
+};
+
+// The planner's segments' end times, by their move's RunCount::moves.
+class TimelineSink : public SegmentSink {
+ public:
+  void segment(const PlannedSegment& s) override {
+    if (s.count.moves >= end_s.size()) end_s.resize(s.count.moves + 1, -1);
+    end_s[s.count.moves] = planner->planned_time();
+  }
+  void flush() override {}
+  const LookAheadPlanner* planner = nullptr;
+  std::vector<double> end_s;  // -1: no segment
+};
+
+// Plans every move (the cycle time, as CycleTimer does) and passes it on to the preview.
+class TimedSink : public MotionSink {
+ public:
+  TimedSink(const Settings& settings, double feed_override, MotionSink& also)
+      : planner_(settings, timeline_), also_(also) {
+    timeline_.planner = &planner_;
+    planner_.feed_override(feed_override);
+  }
+  void move(const CanonMove& m) override {
+    planner_.move(m);
+    also_.move(m);
+  }
+  void flush() override {
+    planner_.flush();
+    also_.flush();
+  }
+  void settings_changed(const Settings& s) override {
+    planner_.settings_changed(s);
+    also_.settings_changed(s);
+  }
+  double seconds() const { return planner_.planned_time(); }
+  const std::vector<double>& end_s() const { return timeline_.end_s; }
+
+ private:
+  TimelineSink timeline_;
+  LookAheadPlanner planner_;
+  MotionSink& also_;
 };
 
 }  // namespace
 
+Eigen::Vector3f Toolpath::drawn(const Vec6& p) const {
+  Eigen::Vector3d q = p.head<3>();
+  constexpr double kRad = 3.14159265358979323846 / 180;
+  if (wrap_a && p[3] != 0) {  // turned back by -A about X
+    const double c = std::cos(p[3] * kRad), s = std::sin(p[3] * kRad);
+    q = Eigen::Vector3d(q.x(), c * q.y() + s * q.z(), -s * q.y() + c * q.z());
+  }
+  if (wrap_b && p[4] != 0) {  // turned back by -B about Y
+    const double c = std::cos(p[4] * kRad), s = std::sin(p[4] * kRad);
+    q = Eigen::Vector3d(c * q.x() - s * q.z(), q.y(), s * q.x() + c * q.z());
+  }
+  return q.cast<float>();
+}
+
 void Toolpath::add(const CanonMove& m, double chord_tolerance) {
   ++moves;
   if (m.kind != MoveKind::Line && m.kind != MoveKind::Arc) return;
-  const Eigen::Vector3f from = m.from.head<3>().cast<float>();
+  const Eigen::Vector3f from = drawn(m.from);
   const auto line = static_cast<std::uint32_t>(std::max(m.loc.line, 0));
   if (segments.empty()) {
     start = from;
     bounds.extend(start);
-  } else if (const ToolpathSegment& e = segments.back(); Eigen::Vector3f(e.x, e.y, e.z) != from) {
+  } else if (const ToolpathSegment& e = segments.back();
+             (Eigen::Vector3f(e.x, e.y, e.z) - from).norm() > 1e-5f) {
     // The tool was moved outside the moves (a keypad jog on the live machine): a jog joins
     // the two ends, so each segment still starts where the previous ended.
     segments.push_back({from.x(), from.y(), from.z(), line, PathKind::Jog});
@@ -75,14 +148,22 @@ void Toolpath::add(const CanonMove& m, double chord_tolerance) {
   }
   const PathKind kind = path_kind(m);
   auto push = [&](const Vec6& p) {
-    const Eigen::Vector3f q = p.head<3>().cast<float>();
+    const Eigen::Vector3f q = drawn(p);
     segments.push_back({q.x(), q.y(), q.z(), line, kind});
     bounds.extend(q);
   };
-  if (m.kind == MoveKind::Line)
+  // A line that turns a wrapped axis is a helix on the work: pieces of 2 degrees at most.
+  const double turn = std::max(wrap_a ? std::abs(m.to[3] - m.from[3]) : 0.0,
+                               wrap_b ? std::abs(m.to[4] - m.from[4]) : 0.0);
+  if (m.kind == MoveKind::Line && turn > 2) {
+    const int pieces = static_cast<int>(std::ceil(turn / 2));
+    for (int k = 1; k <= pieces; ++k)
+      push(m.from + (m.to - m.from) * (static_cast<double>(k) / pieces));
+  } else if (m.kind == MoveKind::Line) {
     push(m.to);
-  else
+  } else {
     for (const Vec6& p : arc_chords(m, chord_tolerance)) push(p);
+  }
 }
 
 bool Toolpath::has_errors() const {
@@ -93,10 +174,13 @@ bool Toolpath::has_errors() const {
 Toolpath load_toolpath(const std::string& path, const Settings& settings,
                        const ToolpathOptions& opts) {
   Toolpath out;
+  out.units = settings.units;
+  out.wrap_a = settings.display.rotary_units[0] == AxisUnit::Degrees;
+  out.wrap_b = settings.display.rotary_units[1] == AxisUnit::Degrees;
   ToolpathSink sink(out, settings, opts);
   JobOptions job = opts.job;
-  std::optional<CycleTimer> timer;
-  if (opts.estimate) timer.emplace(settings, job.feed_override, &sink);
+  std::optional<TimedSink> timer;
+  if (opts.estimate) timer.emplace(settings, job.feed_override, sink);
   job.check_moves = timer ? static_cast<MotionSink*>(&*timer) : &sink;
   const PersistentStore none;
   try {
@@ -105,13 +189,73 @@ Toolpath load_toolpath(const std::string& path, const Settings& settings,
     out.violations =
         std::move(check_program(std::move(script), settings, opts.store ? *opts.store : none, job)
                       .kept());
-    if (timer) out.estimated_time_s = timer->seconds();
+    if (timer) {
+      out.estimated_time_s = timer->seconds();
+      // A move the planner made nothing of (too short) ends when the one before it did.
+      double t = 0;
+      for (const auto& [count, end] : sink.ends_) {
+        if (count < timer->end_s().size() && timer->end_s()[count] >= 0)
+          t = std::max(t, timer->end_s()[count]);
+        out.timeline.push_back({end, t});
+      }
+    }
   } catch (const GantryError& e) {
     out.violations.push_back(e.diagnostic());
   } catch (const Cancelled&) {
     out.cancelled = true;
   }
   return out;
+}
+
+namespace {
+
+// The first `n` segments of `path`, with the changes, timeline and bounds that go with them.
+Toolpath first_segments(const Toolpath& path, std::size_t n) {
+  Toolpath out;
+  out.start = path.start;
+  out.moves = path.moves;
+  out.estimated_time_s = path.estimated_time_s;
+  out.violations = path.violations;
+  out.units = path.units;
+  out.wrap_a = path.wrap_a;
+  out.wrap_b = path.wrap_b;
+  out.segments.assign(path.segments.begin(),
+                      path.segments.begin() + static_cast<std::ptrdiff_t>(n));
+  if (!out.segments.empty()) out.bounds.extend(out.start);
+  for (const ToolpathSegment& s : out.segments) out.bounds.extend(Eigen::Vector3f(s.x, s.y, s.z));
+  for (const auto& c : path.cutter_changes)
+    if (c.first <= n) out.cutter_changes.push_back(c);
+  for (const auto& c : path.spindle_changes)
+    if (c.first <= n) out.spindle_changes.push_back(c);
+  for (const auto& m : path.timeline)
+    if (m.end <= n) out.timeline.push_back(m);
+  return out;
+}
+
+}  // namespace
+
+Toolpath played_to_time(const Toolpath& path, double seconds) {
+  std::size_t begin = 0;
+  double begin_s = 0;
+  for (const Toolpath::TimeMark& m : path.timeline) {
+    if (m.end_s > seconds) {
+      // Part-way through this move: its segments share its time evenly.
+      const double share = m.end_s > begin_s ? (seconds - begin_s) / (m.end_s - begin_s) : 1;
+      const auto n = static_cast<std::size_t>(share * static_cast<double>(m.end - begin));
+      return first_segments(path, begin + n);
+    }
+    begin = m.end;
+    begin_s = m.end_s;
+  }
+  return first_segments(path, path.timeline.empty() ? path.segments.size() : begin);
+}
+
+Toolpath played_to_line(const Toolpath& path, std::uint32_t line) {
+  const std::vector<ToolpathSegment>& seg = path.segments;
+  std::size_t i = 0;
+  while (i < seg.size() && seg[i].line != line && seg[i].line < line) ++i;
+  while (i < seg.size() && seg[i].line == line) ++i;
+  return first_segments(path, i);
 }
 
 }  // namespace gantry

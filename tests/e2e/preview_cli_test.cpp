@@ -145,7 +145,9 @@ TEST_F(PreviewCli, MissingAndBadFilesGiveLocatedErrors) {
 TEST_F(PreviewCli, BadOptionsAreRefusedBeforeAnythingIsWritten) {
   for (const char* opts : {"--size 10x10 -o {}/a.png", "--size 800 -o {}/a.png", "-o {}/a.jpg",
                            "--material -o {}/a.svg", "--cutter v200 --material -o {}/a.png",
-                           "--view left -o {}/a.png"}) {
+                           "--view left -o {}/a.png", "--stock 10x8 -o {}/a.png",
+                           "--stock 10x8x0@1,1,0 -o {}/a.png", "--stock 10x8x1@1,1 -o {}/a.png",
+                           "--play 1 --play-line 3 -o {}/a.png", "--play -1 -o {}/a.png"}) {
     const Result r =
         gantry("preview parts/demo.sbp " + fmt::format(fmt::runtime(opts), dir_.string()));
     EXPECT_EQ(r.exit_code, 1) << opts;
@@ -161,6 +163,42 @@ TEST_F(PreviewCli, MovesSvgDrawsTheFigureWithThePreview) {
   EXPECT_NE(svg.find("width=\"440\""), std::string::npos);
   EXPECT_NE(svg.find("stroke=\"#e08020\""), std::string::npos);  // the tabs stand out
   EXPECT_EQ(svg.find("<polygon"), std::string::npos);            // no table in a figure
+}
+
+// Issue 25: the stock given, tools followed, units as the file sets them, play.
+TEST_F(PreviewCli, StockToolsSpindleAndPlayAreInTheSummary) {
+  const std::string file = write(
+      "tools.sbp",
+      "TR, 12000\nJZ, 0.5\nJ2, 1, 1\nMZ, -0.2\nMX, 5\nJZ, 0.5\nVC, 0.5\nTR, 18000\n"
+      "J2, 6, 2\nMZ, -0.2\nMY, 6\nJZ, 0.5\n");
+  const Result r = gantry(fmt::format("preview {} --json --stock 10x8x0.75@-1,-1,0 -o {}", file,
+                                      path("t.svg")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["stock"]["min"], json::parse("[-1.0, -1.0, -0.75]"));
+  EXPECT_EQ(j["stock"]["max"], json::parse("[9.0, 7.0, 0.0]"));
+  ASSERT_GE(j["tools"].size(), 1u) << j.dump();  // VC's cutter from the first segment
+  EXPECT_EQ(j["tools"][0]["first_segment"], 0);
+  EXPECT_TRUE(j["spindle"].is_array());
+  EXPECT_NE(read(path("t.svg")).find("<polygon class=\"stock\""), std::string::npos);
+
+  // Without --stock: the profile's VP table size (24 x 18 x 6 by default) at the origin.
+  const Result d = gantry(fmt::format("preview {} --json -o {}", file, path("d.png")));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_EQ(json::parse(d.out)["stock"]["max"], json::parse("[24.0, 18.0, 0.0]"));
+
+  // At half the cycle time fewer segments are drawn, and the summary says so.
+  const double total = j["estimated_time_s"].get<double>();
+  const Result half = gantry(fmt::format("preview {} --json --play {} -o {}", file, total / 2,
+                                         path("h.png")));
+  ASSERT_EQ(half.exit_code, 0) << half.err;
+  const json h = json::parse(half.out);
+  EXPECT_LT(h["played"]["segments"].get<int>(), j["segments"].get<int>());
+  EXPECT_LE(h["played"]["time_s"].get<double>(), total / 2 + 1e-9);
+  const Result text =
+      gantry(fmt::format("preview {} --play-line 5 -o {}", file, path("l.png")));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("played: "), std::string::npos) << text.out;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <unistd.h>  // getpid
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -383,6 +384,126 @@ TEST(Material, DemoCutIsDarkerThanItsStock) {
   const Eigen::Vector3f cut = proj({5, 1, -0.125f}), stock = proj({5.2f, 4, 0});
   EXPECT_LT(luminance(image.at(static_cast<int>(cut.x()), static_cast<int>(cut.y()))),
             luminance(image.at(static_cast<int>(stock.x()), static_cast<int>(stock.y()))));
+}
+
+// Issue 25: stock, tool changes, units and play ------------------------------------------
+
+TEST(Material, StockIsTheBlockGivenNotFittedToTheCuts) {
+  // Two grooves from X 1 to 5 in a 10 x 8 x 0.5 block at the origin: the map covers the
+  // block (its far corner uncut), not the grooves plus a margin.
+  TempPart f("grooves.sbp", kGrooves);
+  const Toolpath path = load_toolpath(f.path(), default_settings());
+  const Eigen::AlignedBox3f stock(Eigen::Vector3f(0, 0, -0.5f), Eigen::Vector3f(10, 8, 0));
+  const HeightMap map = carve(path, Cutter{}, stock, 801);
+  EXPECT_FLOAT_EQ(map.x0, 0);
+  EXPECT_FLOAT_EQ(map.y0, 0);
+  EXPECT_NEAR(map.x0 + map.cell * static_cast<float>(map.nx - 1), 10, map.cell);
+  EXPECT_NEAR(map.y0 + map.cell * static_cast<float>(map.ny - 1), 8, map.cell);
+  EXPECT_FLOAT_EQ(map.bottom, -0.5f);
+  EXPECT_EQ(*map.height(9.9f, 7.9f), 0.0f);  // the block's far corner: uncut stock
+  EXPECT_NEAR(*map.height(3, 3), -0.3f, map.cell);
+  EXPECT_FALSE(map.height(10.5f, 4));  // off the block
+}
+
+TEST(Render, SvgDrawsTheStockRectangleAtItsCorners) {
+  // Top view, 800 x 600, a 10 x 8 block with the path inside it and no table: the view fits
+  // the block, 67.5 pixels a unit (90 % of 600 / 8), centred.
+  TempPart f("grooves.sbp", kGrooves);
+  const Settings s = default_settings();
+  const Toolpath path = load_toolpath(f.path(), s);
+  PreviewOptions opts;
+  opts.table = false;
+  opts.stock = Eigen::AlignedBox3f(Eigen::Vector3f(0, 0, -0.5f), Eigen::Vector3f(10, 8, 0));
+  const std::string svg = render_svg(path, s, opts);
+  EXPECT_NE(svg.find("<polygon class=\"stock\" stroke=\"#a06428\" "
+                     "points=\"62.50,570.00 737.50,570.00 737.50,30.00 62.50,30.00\"/>"),
+            std::string::npos)
+      << svg;
+  // The scale bar: 2 in (at most a quarter of the width: 200 / 67.5 = 2.96 in), 135 pixels,
+  // and the path's bounding dimensions.
+  EXPECT_NE(svg.find("points=\"8,586.00 8,592.00 143.00,592.00 143.00,586.00\""),
+            std::string::npos);
+  EXPECT_NE(svg.find(">2 in</text>"), std::string::npos);
+  EXPECT_NE(svg.find("X 0.0000 to 5.0000 (5.0000 in), Y 0.0000 to 3.0000 (3.0000 in), "
+                     "Z -0.3000 to 0.5000 (0.8000 in)"),
+            std::string::npos);
+  // The PNG draws the same rectangle: its right side is stock-coloured.
+  const Image image = render_lines(path, s, opts);
+  EXPECT_EQ(image.at(737, 300), palette::stock);
+}
+
+
+TEST(Toolpath, SpindleSpeedsAreListedWithTheirSegment) {
+  TempPart f("tr.sbp", "TR, 12000\nMX, 1\nTR, 18000\nMX, 2\n");
+  Settings s = default_settings();
+  s.spindle.pwm_bit = 5;  // TR sends the speed only to a machine with a speed output
+  const Toolpath path = load_toolpath(f.path(), s);
+  ASSERT_EQ(path.spindle_changes.size(), 2u);
+  EXPECT_EQ(path.spindle_changes[0].rpm, 12000);
+  EXPECT_EQ(path.spindle_changes[0].first, 0u);
+  EXPECT_EQ(path.spindle_changes[1].rpm, 18000);
+  EXPECT_EQ(path.spindle_changes[1].line, 3u);
+  EXPECT_EQ(path.spindle_changes[1].first, 1u);
+}
+
+TEST(Toolpath, PlayAtHalfTheCycleTimeLeavesTheSecondHalfUncut) {
+  // Two equal grooves along X, one after the other: at half the cycle time the first is cut
+  // (about), the second not begun.
+  TempPart f("halves.sbp", "JZ, 0.5\nJ2, 1, 1\nMZ, -0.2\nMX, 4\nJZ, 0.5\nJ2, 1, 3\n"
+                           "MZ, -0.2\nMX, 4\nJZ, 0.5\n");
+  ToolpathOptions topts;
+  topts.estimate = true;
+  const Toolpath path = load_toolpath(f.path(), default_settings(), topts);
+  ASSERT_GT(path.estimated_time_s, 0);
+  ASSERT_FALSE(path.timeline.empty());
+  EXPECT_EQ(path.timeline.back().end, path.segments.size());
+  EXPECT_NEAR(path.timeline.back().end_s, path.estimated_time_s, 1e-6);
+  const Toolpath half = played_to_time(path, path.estimated_time_s / 2);
+  EXPECT_LT(half.segments.size(), path.segments.size());
+  const Eigen::AlignedBox3f stock(Eigen::Vector3f(0, 0, -1), Eigen::Vector3f(5, 4, 0));
+  const HeightMap map = carve(half, Cutter{}, stock, 501);
+  EXPECT_NEAR(*map.height(2, 1), -0.2f, map.cell);  // the first groove: cut
+  EXPECT_EQ(*map.height(2, 3), 0.0f);                // the second: not yet
+  EXPECT_EQ(*map.height(3.5f, 3), 0.0f);
+  // The whole time: both cut; line 4 (the first MX): the first groove and no more.
+  const HeightMap all = carve(played_to_time(path, 1e9), Cutter{}, stock, 501);
+  EXPECT_NEAR(*all.height(2, 3), -0.2f, all.cell);
+  const Toolpath line4 = played_to_line(path, 4);
+  EXPECT_EQ(line4.segments.back().line, 4u);
+  EXPECT_FLOAT_EQ(line4.segments.back().x, 4);
+  const HeightMap at4 = carve(line4, Cutter{}, stock, 501);
+  EXPECT_NEAR(*at4.height(3.9f, 1), -0.2f, at4.cell);
+  EXPECT_EQ(*at4.height(2, 3), 0.0f);
+}
+
+TEST(Toolpath, RotaryAMovesAreWrappedOnACylinderAboutX) {
+  // At Z 1 on the axis' centre line, A turns 90 degrees: drawn as a quarter circle of
+  // radius 1 about the X axis, in pieces of 2 degrees, ending at (0, 1, 0).
+  TempPart f("rotary.sbp", "JZ, 1\nMA, 90\nMX, 2\n");
+  Settings s = default_settings();
+  s.axes[3].min = -1000;
+  s.axes[3].max = 1000;
+  const Toolpath path = load_toolpath(f.path(), s);
+  ASSERT_TRUE(path.violations.empty()) << format(path.violations.front());
+  ASSERT_TRUE(path.wrap_a);
+  ASSERT_EQ(path.segments.size(), 1u + 45 + 1);
+  for (std::size_t i = 1; i <= 45; ++i) {
+    const ToolpathSegment& p = path.segments[i];
+    EXPECT_NEAR(std::hypot(p.y, p.z), 1.0f, 1e-5f) << i;  // on the cylinder
+    EXPECT_FLOAT_EQ(p.x, 0);
+  }
+  EXPECT_NEAR(path.segments[45].y, 1.0f, 1e-5f);
+  EXPECT_NEAR(path.segments[45].z, 0.0f, 1e-5f);
+  EXPECT_NEAR(path.segments[23].y, std::sin(46 * 3.14159265f / 180), 1e-5f);  // 23 pieces in
+  // Then X at A 90: along the cylinder's side at (x, 1, 0).
+  EXPECT_FLOAT_EQ(path.segments[46].x, 2);
+  EXPECT_NEAR(path.segments[46].y, 1.0f, 1e-5f);
+  // With A in inches (VD's rotary unit a length) it is a flat axis: Z stays 1.
+  s.display.rotary_units[0] = AxisUnit::Inches;
+  const Toolpath flat = load_toolpath(f.path(), s);
+  EXPECT_FALSE(flat.wrap_a);
+  EXPECT_FLOAT_EQ(flat.segments.back().z, 1);
+  EXPECT_FLOAT_EQ(flat.segments.back().y, 0);
 }
 
 }  // namespace

@@ -37,6 +37,10 @@ struct HeightMap {
 // margin, in at most `max_cells` cells along its longer side. Every segment below the top
 // removes material, jogs too: a jog through the stock is a crash the picture must show.
 HeightMap carve(const Toolpath& path, const Cutter& cutter, float top, int max_cells);
+// The same cut into a given block of stock (--stock, or the profile's VP table size): its
+// XY rectangle, its top (max Z) and bottom (min Z); cuts outside it remove nothing.
+HeightMap carve(const Toolpath& path, const Cutter& cutter, const Eigen::AlignedBox3f& stock,
+                int max_cells);
 
 // The carved stock, lit from the viewer's upper left, darker where deeper; the view fits
 // the stock block.

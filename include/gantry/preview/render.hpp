@@ -28,6 +28,7 @@ using Rgb = std::array<std::uint8_t, 3>;
 namespace palette {
 inline constexpr Rgb background{255, 255, 255};
 inline constexpr Rgb table{110, 110, 110};     // the table envelope's outline
+inline constexpr Rgb stock{160, 100, 40};      // the stock's top rectangle
 inline constexpr Rgb cut_deep{31, 95, 191};    // a cut at its command's deepest Z
 inline constexpr Rgb cut_upper{224, 128, 32};  // a cut above it (tabs, upper passes, ramps)
 inline constexpr Rgb jog{150, 150, 150};       // dashed
@@ -62,6 +63,12 @@ struct PreviewOptions {
   bool table = true;              // draw the table envelope's outline (the view then fits it too)
   // The jogs before the first cut only place the tool; `gantry moves --svg` leaves them out.
   bool leading_jogs = true;
+  // The block of stock (machine frame, the file's units): its top rectangle is drawn and
+  // the view fits it too; its size and origin are listed (docs/preview.md, "Stock").
+  std::optional<Eigen::AlignedBox3f> stock;
+  // SVG: a scale bar (bottom left) and the path's bounding dimensions (top left), in the
+  // file's units. Figures for the docs leave them out.
+  bool dimensions = true;
 };
 
 // The box the picture fits: the drawn segments and, with `table`, the table envelope's

@@ -46,14 +46,43 @@ struct Toolpath {
   bool cancelled = false;  // ToolpathOptions::cancel stopped the load part-way
   // Where the cutter changed (G-code's M6 to a tool of the table with a diameter, which VC
   // follows): from segment `first` on, the cutter is `diameter` across.
+  // Where the cutter changed (G-code's M6, a VC in the file, an &Tool + C9 tool change):
+  // from segment `first` on, the cutter is `diameter` across; `line` is the statement at
+  // which it changed (the next move's line).
   struct CutterChange {
     std::size_t first;
     double diameter;
+    std::uint32_t line = 0;
   };
   std::vector<CutterChange> cutter_changes;
+  // Spindle speeds (TR, G-code's S): from segment `first` on, `rpm`.
+  struct SpindleChange {
+    std::size_t first;
+    double rpm;
+    std::uint32_t line;
+  };
+  std::vector<SpindleChange> spindle_changes;
+  // The planner's timeline (with ToolpathOptions::estimate): each move that made segments,
+  // by the segment after its last (`end`) and the machine time when it ends, in order.
+  struct TimeMark {
+    std::size_t end;
+    double end_s;
+  };
+  std::vector<TimeMark> timeline;
+  // The units of the coordinates: the profile's (the interpreter's canonical moves stay in
+  // them whatever VD or G20/G21 the file sets; following the file's needs an interp hook).
+  Units units = Units::Inches;
+  // Rotary axes wrapped on a cylinder (VD's rotary unit degrees; load_toolpath sets them):
+  // A turns about the X axis (a ShopBot indexer lies along X), B about the Y axis, each
+  // through the machine origin's Y and Z (Z zeroed on the axis' centre line). A point is
+  // drawn where it is on the turning work: (X, Y, Z) turned back by -A about X (and -B
+  // about Y), so a move of A alone at Z = r draws an arc of radius r about the X axis.
+  bool wrap_a = false, wrap_b = false;
 
   // Appends the segments of one canonical move (lines and arcs; the others only count).
   void add(const CanonMove& m, double chord_tolerance);
+  // Where a machine position is drawn: X, Y, Z, wrapped by A and B (wrap_a, wrap_b).
+  Eigen::Vector3f drawn(const Vec6& p) const;
   bool has_errors() const;  // any violation of Severity::Error
 };
 
@@ -69,6 +98,14 @@ struct ToolpathOptions {
   std::function<void(const Toolpath& so_far)> progress;
   const std::atomic<bool>* cancel = nullptr;  // set: the load stops soon, `cancelled` set
 };
+
+// The toolpath as it stands at machine time `seconds` (from the timeline; a move under way
+// is cut at the segment its share of the move's time reaches), or after line `line`'s first
+// run (every segment up to the last of the first run of segments from that line; a line that
+// makes no segment: up to the first segment of a later line). The tool and spindle changes
+// and the bounds follow the shorter path.
+Toolpath played_to_time(const Toolpath& path, double seconds);
+Toolpath played_to_line(const Toolpath& path, std::uint32_t line);
 
 // Interprets a part file with no machine (as `gantry moves` does) into its toolpath.
 // Never throws on a bad file: a file that cannot be read or parsed gives violations (and
