@@ -72,8 +72,10 @@ struct JobResult {
 // the persistent store; only a clean file reaches the card, so a bad file never moves the
 // machine. Then runs it, asking `io` for operator answers.
 // `control`: stops the check and the run from another thread (null: nothing does).
+// `prepare`: called with the machine before it runs (the state kept across sessions).
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options = {},
-                  RunControl* control = nullptr);
+                  RunControl* control = nullptr,
+                  const std::function<void(Controller&)>& prepare = {});
 
 }  // namespace gantry
