@@ -93,7 +93,7 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineArgs& a, const M
   m->memory = std::make_unique<session::MachineMemory>(session::machine_state_path(p.values_path));
   m->part_log = std::make_unique<session::RunLogger>(session::run_log_path(p.values_path));
   m->restored = m->memory->load(p.settings.units);
-  io.warn({file_loc(m->memory->path()), Severity::Warning, m->restored});
+  if (!m->memory->first_start()) io.warn({SourceLoc{}, Severity::Warning, m->restored});
   LiveMachine& live = *m;
   m->memory->attach(*m->controller, [&live](const Controller::Activity& act) {
     if (live.values.settings().display.part_file_log) live.part_log->activity(act);

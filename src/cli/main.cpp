@@ -309,7 +309,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   // The position, zero and units the last session left (docs/machine_state.md), and the
   // part-file log (VD), both next to the values file.
   session::MachineMemory memory(session::machine_state_path(profile.values_path));
-  fmt::print(stderr, "gantry: {}\n", memory.load(settings.units));
+  if (const std::string said = memory.load(settings.units); !memory.first_start())
+    fmt::print(stderr, "gantry: {}\n", said);
   ModalState restored;  // the check starts from it too
   restored.speeds = settings.speeds;
   if (memory.restoring()) {

@@ -151,7 +151,8 @@ std::string MachineMemory::load(Units units_now) {
   now_.units = units_now;
   now_.confirmed = true;  // nothing suspect: the tool is where the operator left it, at 0
   std::error_code ec;
-  if (!std::filesystem::exists(path_, ec))
+  first_start_ = !std::filesystem::exists(path_, ec);
+  if (first_start_)
     return fmt::format("no machine state saved yet ({}): the position starts at 0; home (C3) "
                        "to set it",
                        path_);

@@ -49,6 +49,12 @@ class MachineMemory {
   // Reads the file: the operator's message (restored, unconfirmed and why, or a fresh start
   // and why). A missing or unreadable file is a fresh start, never an error.
   std::string load(Units units_now);
+  // load() found no file (the first start): the position starts at 0 as it always did, and
+  // the front ends say nothing.
+  bool first_start() const {
+    std::lock_guard lock(m_);
+    return first_start_;
+  }
   // The loaded position and offsets written into `st`, the card's counts at `machine` (the
   // check before a run starts from them too). Nothing when nothing was loaded.
   void restore(ModalState& st, const Vec6& machine) const;
@@ -74,6 +80,7 @@ class MachineMemory {
   mutable std::mutex m_;
   SavedMachine now_;
   std::optional<SavedMachine> loaded_;  // to restore at attach
+  bool first_start_ = false;
   Vec6 origin_at_start_ = Vec6::Zero();  // the activity's machine_origin when it began
   Units units_at_start_ = Units::Inches;  // ... and its units
 };
