@@ -87,8 +87,8 @@ std::string machine_state_text(const SavedMachine& m) {
   g.insert("g92", axes_table(m.g92));
   t.insert("gcode", g);
   std::ostringstream out;
-  out << "# Gantry's machine state, kept across sessions (docs/machine_state.md). Written at\n"
-         "# every start of motion (motion = \"moving\") and every rest (\"at rest\"); lengths in\n"
+  out << "# Gantry's machine state, kept across sessions (docs/machine_state.md). Written\n"
+         "# before each motion (motion: moving) and at every rest (at rest); lengths in\n"
          "# `units`, positions in table base coordinates. Delete it to start at 0.\n"
       << toml::toml_formatter(t, toml::format_flags::none) << "\n";
   return out.str();
