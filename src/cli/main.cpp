@@ -313,6 +313,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
     fmt::print(stderr, "gantry: {}\n", said);
   ModalState restored;  // the check starts from it too
   restored.speeds = settings.speeds;
+  const Vec6 start_table = memory.state().table;  // the card counts from here (0: a fresh start)
   if (memory.restoring()) {
     memory.restore(restored, Vec6::Zero());  // the card counts from 0
     opt.start_state = &restored;
@@ -378,7 +379,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   // In the calibration and units the run left in force (VU, VD may have changed them).
   report.units = job.settings.units;
   for (int i = 0; i < kAxisCount; ++i)
-    report.position[i] = static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
+    report.position[i] =
+        start_table[i] + static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
   report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
   if (sim) add_card_checks(report, *sim);
 

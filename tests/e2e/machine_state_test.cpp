@@ -131,6 +131,8 @@ TEST(MachineState, SigkillMidMoveRestoresThePositionUnconfirmed) {
   EXPECT_NE(back.err.find("UNCONFIRMED"), std::string::npos) << back.err;
   const nlohmann::json j = nlohmann::json::parse(back.out);
   EXPECT_EQ(j["steps"]["x"].get<long>(), std::lround(-0.5 * e2e::kStepsPerUnit[0])) << back.out;
+  // The report's position is the table base position: the restored one plus the steps played.
+  EXPECT_NEAR(j["position"]["x"].get<double>(), 1.0, 1e-3) << back.out;
   state = slurp(s.state());
   EXPECT_NE(state.find("\nmotion = \"at rest\""), std::string::npos) << state;
   EXPECT_NE(state.find("confirmed = false"), std::string::npos) << state;
