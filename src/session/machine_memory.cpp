@@ -176,6 +176,9 @@ std::string MachineMemory::load(Units units_now) {
   }
   loaded_ = *m;
   now_ = *m;
+  SavedMachine as_read = *m;
+  as_read.saved_at.clear();
+  last_written_ = machine_state_text(as_read);  // an exit with nothing changed writes nothing
   if (m->moving) {
     now_.confirmed = false;
     now_.why = "the last session ended mid-move (killed, crashed or powered off while moving)";
@@ -256,10 +259,19 @@ bool MachineMemory::save(std::string* why) {
 
 bool MachineMemory::write(const SavedMachine& m, std::string* why) {
   SavedMachine out = m;
+  out.saved_at.clear();
+  std::string same = machine_state_text(out);
+  {
+    std::lock_guard lock(m_);
+    if (same == last_written_) return true;  // unchanged since the last save: no write
+  }
   out.saved_at = now_utc();
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(path_).parent_path(), ec);
-  return write_file_atomically(path_, machine_state_text(out), why);
+  if (!write_file_atomically(path_, machine_state_text(out), why)) return false;
+  std::lock_guard lock(m_);
+  last_written_ = std::move(same);
+  return true;
 }
 
 SavedMachine MachineMemory::state() const {

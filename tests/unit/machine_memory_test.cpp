@@ -3,7 +3,8 @@
 #include "gantry/session/machine_memory.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>  // getpid
+#include <sys/stat.h>  // stat: a file replaced or not
+#include <unistd.h>    // getpid
 
 #include <cmath>
 #include <filesystem>
@@ -140,6 +141,17 @@ TEST(MachineMemory, SavesAtomicallyAndSaysWhenItCannot) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(f.dir)) names.push_back(e.path().filename());
   EXPECT_EQ(names, std::vector<std::string>{"profile.state.toml"});
+  // Unchanged: not written again (the same inode).
+  auto inode = [&] {
+    struct stat st {};
+    ::stat(f.state().c_str(), &st);
+    return st.st_ino;
+  };
+  const auto before = inode();
+  ASSERT_TRUE(m.save());
+  EXPECT_EQ(inode(), before);
+  m.confirm();  // already confirmed: nothing changes
+  EXPECT_EQ(inode(), before);
   // A folder that cannot be made (its parent is a file): false with the reason, no throw.
   std::ofstream(f.dir / "file") << "x";
   MachineMemory nowhere((f.dir / "file" / "s.state.toml").string());

@@ -81,6 +81,7 @@ class MachineMemory {
   SavedMachine now_;
   std::optional<SavedMachine> loaded_;  // to restore at attach
   bool first_start_ = false;
+  std::string last_written_;  // the last save's text without its time (unchanged: no write)
   Vec6 origin_at_start_ = Vec6::Zero();  // the activity's machine_origin when it began
   Units units_at_start_ = Units::Inches;  // ... and its units
 };
