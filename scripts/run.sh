@@ -5,7 +5,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/setup.sh"
-"$root/scripts/build.sh" >&2
+GANTRY_BUILD_TARGETS=gantry "$root/scripts/build.sh" >&2  # the program only, not the tests
 file="${1:-$root/parts/demo.sbp}"
 shift || true
 exec "$root/build/gantry" run "$file" "$@"

@@ -16,6 +16,8 @@ PACKAGES=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
   # the console's terminal tests drive it under tmux
   tmux
+  # the .deb (cpack's dpkg-shlibdeps) and its test
+  dpkg-dev
   # console window, pendants, GPIO (the optional backends)
   libglfw3-dev libimgui-dev libusb-1.0-0-dev libgpiod-dev xvfb
 )

@@ -16,8 +16,10 @@
 #include "gantry/lang/scan.hpp"              // trim
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/session/console_words.hpp"  // read_typed_line
+#include "gantry/session/feed_override.hpp"  // stepped_feed_override
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
+#include "gantry/session/readout_lines.hpp"  // spindle_text
 
 namespace gantry::ui {
 namespace {
@@ -400,7 +402,19 @@ void App::global_keys() {
     if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false))
       report(status_.state == MachineState::Paused ? c_.resume() : c_.pause(), "space");
     if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) report(c_.stop(), "stop");
+    // + and - step the feed override (the command line is read-only while a file runs).
+    if (ImGui::IsKeyPressed(GLFW_KEY_KP_ADD, false) || ImGui::IsKeyPressed(GLFW_KEY_EQUAL, false))
+      set_feed_override(session::stepped_feed_override(status_.feed_override, 1));
+    if (ImGui::IsKeyPressed(GLFW_KEY_KP_SUBTRACT, false) ||
+        ImGui::IsKeyPressed(GLFW_KEY_MINUS, false))
+      set_feed_override(session::stepped_feed_override(status_.feed_override, -1));
   }
+}
+
+void App::set_feed_override(double factor) {
+  c_.set_feed_override(factor);
+  status_.feed_override = factor;  // shown at once; the next poll confirms it
+  log(LogLine::Info, session::feed_override_text(factor) + " (moves already planned keep their speed)");
 }
 
 // ---- the frame -------------------------------------------------------------------------------
@@ -509,9 +523,8 @@ void App::readout_window() {
   ImGui::Text("%s   %s   %s", units_name(settings_.units),
               modal_.absolute ? "absolute (SA)" : "relative (SR)",
               modal_.preview ? "preview mode (SP)" : "move mode");
-  ImGui::Text("move %.3g, %.3g   jog %.3g, %.3g  (XY, Z %s/s)", modal_.speeds.move.xy,
-              modal_.speeds.move.z, modal_.speeds.jog.xy, modal_.speeds.jog.z,
-              units_name(settings_.units));
+  ImGui::TextUnformatted(
+      session::speeds_text(modal_.speeds, settings_.units, status_.feed_override).c_str());
   auto leds = [](const char* label, auto on) {
     ImGui::TextDisabled("%s", label);
     for (int i = 0; i < 12; ++i) {
@@ -520,7 +533,8 @@ void App::readout_window() {
     }
   };
   leds("inputs", [&](int i) { return st.inputs[static_cast<std::size_t>(i)]; });
-  leds("outputs", [&](int i) { return ((modal_.outputs >> i) & 1u) != 0; });
+  leds("outputs", [&](int i) { return ((status_.outputs >> i) & 1u) != 0; });  // as played
+  ImGui::TextUnformatted(session::spindle_text(status_, modal_.spindle_rpm).c_str());
   if (!st.message.empty() && at_rest()) ImGui::TextWrapped("last stop: %s", st.message.c_str());
   ImGui::End();
 }
@@ -596,6 +610,13 @@ void App::job_window() {
     ImGui::SameLine();
     if (button("Ack")) run_line("ack");
   }
+  // The live feed override, 10 % to 200 % (+ and - while a file runs).
+  int percent = static_cast<int>(std::lround(status_.feed_override * 100));
+  ImGui::SetNextItemWidth(200);
+  if (ImGui::SliderInt("feed %", &percent, 10, 200, "%d %%"))
+    set_feed_override(session::clamped_feed_override(percent / 100.0));
+  ImGui::SameLine();
+  if (button("100 %")) set_feed_override(1.0);
   ImGui::SetNextItemWidth(110);
   ImGui::InputInt("##from", &start_line_);
   start_line_ = std::max(start_line_, 1);
@@ -1020,7 +1041,9 @@ nlohmann::json App::state() const {
   s["group_menu"] = group_showing_ ? menus_[static_cast<std::size_t>(group_menu_)].title : "";
   s["card"] = opt_.card;
   s["inputs"] = status_.inputs;
-  s["outputs"] = modal_.outputs;
+  s["outputs"] = status_.outputs;
+  s["spindle"] = session::spindle_text(status_, modal_.spindle_rpm);
+  s["feed_override"] = status_.feed_override;
   s["message"] = status_.message;
   s["command_line"] = line_;
   s["history"] = history_.lines();

@@ -85,6 +85,7 @@ class App {
   void poll();      // once a frame: output, questions, the end of an activity, a finished load
   Vec6 position(const ControllerStatus& st) const;
   bool at_rest() const;
+  void set_feed_override(double factor);  // the controller's, shown and logged
   bool can_jog() const;  // at rest, or a file waits at SK
   void stop_jog();
 

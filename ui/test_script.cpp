@@ -40,7 +40,9 @@ int key_code(const std::string& name) {
                                                       {"pageup", GLFW_KEY_PAGE_UP},
                                                       {"pagedown", GLFW_KEY_PAGE_DOWN},
                                                       {"home", GLFW_KEY_HOME},
-                                                      {"end", GLFW_KEY_END}};
+                                                      {"end", GLFW_KEY_END},
+                                                      {"minus", GLFW_KEY_MINUS},
+                                                      {"equal", GLFW_KEY_EQUAL}};
   const std::string n = lower(name);
   for (const auto& [k, code] : named)
     if (n == k) return code;

@@ -34,7 +34,8 @@ bool parse_script(const std::string& text, const std::string& name, std::vector<
                   std::string& error);
 
 // The GLFW key code of a key's name (Enter, Escape, Tab, Space, Backspace, Delete, Up, Down,
-// Left, Right, PageUp, PageDown, Home, End, F1-F12, a letter or a digit); -1 if none.
+// Left, Right, PageUp, PageDown, Home, End, Minus, Equal, F1-F12, a letter or a digit); -1 if
+// none.
 int key_code(const std::string& name);
 
 }  // namespace gantry::ui

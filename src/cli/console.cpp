@@ -20,6 +20,8 @@
 #include "gantry/lang/scan.hpp"              // upper, trim
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/session/console_words.hpp"  // read_typed_line
+#include "gantry/session/feed_override.hpp"  // stepped_feed_override
+#include "gantry/session/readout_lines.hpp"  // speeds_text, spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_under_line
 #include "gantry/session/source_place.hpp"   // kConsoleName, where
 
@@ -142,6 +144,9 @@ std::string Console::status_report() const {
   out += fmt::format("table base X {:.4f}  Y {:.4f}  Z {:.4f}; keypad step {:.4f} {}\n",
                      shown(table[0]), shown(table[1]), shown(table[2]), keypad_step_,
                      units_name(units_));
+  const ModalState m = c_.modal();  // at rest: the values in force
+  out += session::speeds_text(m.speeds, units_, st.feed_override) + "; " +
+         session::spindle_text(st, m.spindle_rpm) + "\n";
   if (!st.message.empty())
     out += fmt::format("last stop: {}{}\n", st.message,
                        st.stopped_at.file ? " at " + where(st.stopped_at) : "");
@@ -309,8 +314,14 @@ void Console::job_key(const Key& k) {
   } else if (k.code == KeyCode::Escape ||
              (s == MachineState::Paused && (k.is_char('q') || k.is_char('Q')))) {
     o = c_.stop();
+  } else if (k.is_char('+') || k.is_char('=') || k.is_char('-') || k.is_char('0')) {
+    const double now = c_.status().feed_override;
+    const double next = k.is_char('0') ? 1.0 : session::stepped_feed_override(now, k.is_char('-') ? -1 : 1);
+    c_.set_feed_override(next);
+    flash(session::feed_override_text(next) + " (moves already planned keep their speed)");
+    return;
   } else {
-    flash("a line runs: space pauses, Esc stops, ! or Ctrl-C is the E-stop");
+    flash("a line runs: space pauses, Esc stops, + and - the feed, ! or Ctrl-C is the E-stop");
     return;
   }
   if (!o) flash(o.reason);

@@ -29,7 +29,8 @@
 #include "machine_profile.hpp"               // MachineProfile, load_machine_profile
 #include "open_card.hpp"                     // open_card
 #include "preview_command.hpp"               // PreviewArgs, run_preview
-#include "progress.hpp"                      // ProgressBar
+#include "man_page.hpp"                      // man_page
+#include "progress.hpp"                      // StatusLine
 #include "report.hpp"                        // RunReport, to_json, to_text
 #include "signal_watch.hpp"                  // SignalWatch
 #include "sim/sim_card.hpp"                  // SimCard
@@ -331,9 +332,14 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   JobResult job;
   int stops = 0;  // the operator's: 1 a stop, 2 or more an E-stop
   {
-    ProgressBar bar;
-    if (bar.enabled() && !a.json && !interactive)
-      opt.progress = [&](size_t d, size_t t) { bar.update(d, t); };
+    // At a terminal, a progress line under the file's output; its questions and PRINT text
+    // clear it and it comes back after them.
+    StatusLine line(stderr);
+    const bool show_progress = line.enabled() && !a.json;
+    StatusLineIO around_line(io, line);
+    std::function<void(const ControllerStatus&)> watch;
+    if (show_progress)
+      watch = [&](const ControllerStatus& st) { line.show(progress_line(session::run_progress(st))); };
     opt.profile = &profile.bare;
     opt.values_path = profile.values_path;
     // Ctrl-C (or SIGTERM, a closed terminal) stops the run in order: the check before it
@@ -351,7 +357,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       SignalWatch& w;
       ~StopFirst() { w.stop(); }
     } stop_first{signals};
-    job = run_job(script, settings, *card, io, store, opt, &control, keep);
+    job = run_job(script, settings, *card, show_progress ? around_line : io, store, opt, &control,
+                  watch, keep);
     stops = control.stops();
   }
   if (std::string why; !memory.save(&why))  // at exit
@@ -717,8 +724,10 @@ int main(int argc, char** argv) {
   std::string help_code;
   bool help_markdown = false;
   CLI::App* help_cmd = app.add_subcommand("help", "List the commands, or describe one");
-  help_cmd->add_option("code", help_code, "A two-letter command, such as MX");
+  help_cmd->add_option("code", help_code, "A two-letter command (MX), a statement (PAUSE) or a custom cut (C2)");
   help_cmd->add_flag("--markdown", help_markdown, "Print the command reference (docs/commands.md)");
+  bool help_man = false;
+  help_cmd->add_flag("--man", help_man, "Print the manual page gantry(1), in roff");
 
   ConsoleArgs console_args;
   CLI::App* console_cmd = add_console_command(app, console_args);
@@ -763,6 +772,7 @@ int main(int argc, char** argv) {
       return cmd_moves(moves_file, moves_settings, moves_format, moves_svg_file, moves_lang);
     if (*estimate_cmd)
       return cmd_estimate(estimate_file, estimate_settings, estimate_json, estimate_lang);
+    if (*help_cmd && help_man) return fmt::print("{}", man_page(app)), 0;
     if (*help_cmd) return cmd_help(help_code, help_markdown);
     if (*export_cmd) return cmd_export_gcode(export_file, export_out, export_settings, export_lang);
     if (*console_cmd) return run_console(console_args);

@@ -8,6 +8,7 @@
 #include <filesystem>  // is_regular_file, directory_iterator
 #include <fstream>     // ifstream, ofstream
 
+#include "gantry/core/data_folder.hpp"   // shipped_data_folder
 #include "gantry/core/file_problem.hpp"  // read_problem, write_problem
 #include "gantry/core/text_file.hpp"     // user_config_dir
 
@@ -149,13 +150,7 @@ std::string user_macro_folder() {
 // An installed gantry (<prefix>/bin/gantry) finds <prefix>/share/gantry/macros beside it;
 // one run from its build tree finds the source tree's folder, compiled in.
 std::string shipped_macro_folder() {
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const std::filesystem::path installed = exe.parent_path().parent_path() / "share/gantry/macros";
-    if (std::filesystem::is_directory(installed, ec)) return installed.string();
-  }
-  return GANTRY_SOURCE_MACROS_DIR;
+  return shipped_data_folder("macros", GANTRY_SOURCE_MACROS_DIR);
 }
 
 }  // namespace gantry

@@ -297,15 +297,22 @@ void Controller::schedule(Request r, double at_s) {
   scheduled_.emplace_back(r, at_s);
 }
 
+bool Controller::settled() const {
+  const FeedPhase ph = feed_.phase();
+  return !busy_ || (state_ == MachineState::Paused && ph == FeedPhase::Held) ||
+         (state_ == MachineState::Paused && step_waiting_) ||
+         (state_ == MachineState::Keypad && !keypad_jogging_) ||
+         (state_ == MachineState::EStop && ph == FeedPhase::Halted && !busy_);
+}
+
 void Controller::wait() {
   std::unique_lock lock(m_);
-  cv_.wait(lock, [&] {
-    const FeedPhase ph = feed_.phase();
-    return !busy_ || (state_ == MachineState::Paused && ph == FeedPhase::Held) ||
-           (state_ == MachineState::Paused && step_waiting_) ||
-           (state_ == MachineState::Keypad && !keypad_jogging_) ||
-           (state_ == MachineState::EStop && ph == FeedPhase::Halted && !busy_);
-  });
+  cv_.wait(lock, [&] { return settled(); });
+}
+
+bool Controller::wait_for(std::chrono::milliseconds timeout) {
+  std::unique_lock lock(m_);
+  return cv_.wait_for(lock, timeout, [&] { return settled(); });
 }
 
 Controller::Summary Controller::summary() const {
@@ -351,10 +358,14 @@ ControllerStatus Controller::status() const {
   s.line = line_.load(std::memory_order_relaxed);
   s.lines = lines_.load(std::memory_order_relaxed);
   s.playing_line = feed_.playing_line();
+  const OutputLevels out = feed_.outputs();
+  s.outputs = out.switches;
+  s.spindle_rpm = out.spindle_rpm;
   s.elapsed_s = elapsed_s();
   {
     std::lock_guard lock(m_);
     s.remaining_s = std::max(0.0, estimate_s_ - s.elapsed_s);
+    s.feed_override = feed_override_;
   }
   s.inputs = input_switches(feed_.inputs());
   s.steps = feed_.played();

@@ -312,6 +312,9 @@ void FeederThread::publish() {
   tick_.store(steps_.tick(), std::memory_order_release);
   inputs_.store(card_.inputs(), std::memory_order_release);
   playing_line_.store(steps_.loc().line, std::memory_order_relaxed);
+  const OutputLevels out = steps_.played_levels();
+  outputs_.store(out.switches, std::memory_order_relaxed);
+  spindle_rpm_.store(out.spindle_rpm, std::memory_order_relaxed);
   warning_.store(steps_.warning() && feeder_.phase() == FeedPhase::Playing,
                  std::memory_order_relaxed);
   flushes_done_.store(feeder_.flushes_completed() + flushes_dropped_, std::memory_order_release);

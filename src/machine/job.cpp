@@ -34,7 +34,9 @@ void RunControl::detach() {
 
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options,
-                  RunControl* control, const std::function<void(Controller&)>& prepare) {
+                  RunControl* control,
+                  const std::function<void(const ControllerStatus&)>& watch,
+                  const std::function<void(Controller&)>& prepare) {
   JobResult result;
   result.settings = settings;
   CycleTimer timer(settings, options.feed_override, options.check_moves);
@@ -87,6 +89,10 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   if (!started) {
     result.errors.push_back({file_loc(name), Severity::Error, started.reason});
     return result;
+  }
+  if (watch) {
+    while (!machine.wait_for(std::chrono::milliseconds(250))) watch(machine.status());
+    watch(machine.status());
   }
   machine.wait();
   const Controller::Summary s = machine.summary();

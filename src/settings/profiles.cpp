@@ -4,12 +4,14 @@
 #include <algorithm>   // sort
 #include <filesystem>  // directory_iterator
 
+#include "gantry/core/data_folder.hpp"  // installed or in the source tree
+
 namespace gantry {
 
 namespace fs = std::filesystem;
 
 const std::string& shipped_profiles_dir() {
-  static const std::string dir = GANTRY_PROFILES_DIR;
+  static const std::string dir = shipped_data_folder("profiles", GANTRY_PROFILES_DIR);
   return dir;
 }
 

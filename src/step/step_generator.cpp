@@ -46,6 +46,9 @@ void StepGenerator::watch_inputs(const InputWatch& w, std::function<void(const I
 void StepGenerator::check_card() {
   const std::uint64_t played = card_.ticks_played();
   log_.confirm(played);
+  while (level_changes_.size() > 1 &&
+         level_changes_[1].first <= static_cast<std::int64_t>(played))
+    level_changes_.pop_front();
   if (on_block_) on_block_();
   if (on_edge_)
     if (const std::optional<InputEdge> e = card_.watch_fired()) {
@@ -153,6 +156,37 @@ void StepGenerator::start_independent(const IndependentMotion& m) {
 void StepGenerator::halt() {
   if (placement_.independent()) placement_.end_independent();  // E-stop: every axis stops at once
   writer_.halt();
+  levels_.switches = 0;  // the card idles with every output off; the next words too (restart)
+  level_changes_.clear();
+  level_changed();
+}
+
+bool StepGenerator::set_output(int n, bool on) {
+  if (!writer_.set_output(n, on)) return false;
+  const std::uint32_t bit = 1u << (n - 1);
+  levels_.switches = on ? levels_.switches | bit : levels_.switches & ~bit;
+  level_changed();
+  return true;
+}
+
+void StepGenerator::set_spindle_speed(double rpm) {
+  writer_.set_spindle_speed(rpm);
+  levels_.spindle_rpm = rpm;
+  level_changed();
+}
+
+void StepGenerator::level_changed() {
+  level_changes_.emplace_back(writer_.cursor(), levels_);
+}
+
+OutputLevels StepGenerator::played_levels() const {
+  const auto played = static_cast<std::int64_t>(card_.ticks_played());
+  OutputLevels at;  // before the first change: as the card started, all off
+  for (const auto& [tick, l] : level_changes_) {
+    if (tick > played) break;
+    at = l;
+  }
+  return at;
 }
 
 void StepGenerator::restart() {

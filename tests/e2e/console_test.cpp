@@ -260,7 +260,9 @@ TEST(ConsolePiped, RunsEachLineInTurnAndPrintsTheExactPosition) {
                            "> SR\n" + readout("idle", {1.5, 2.25, -0.5, 0, 0, 0}) + "\n" +
                            "> MY, 0.25\n" + readout("idle", {1.5, 2.5, -0.5, 0, 0, 0}) + "\n" +  //
                            "> status\n" + readout("idle", {1.5, 2.5, -0.5, 0, 0, 0}) + "\n" +
-                           "table base X 1.5000  Y 2.5000  Z -0.5000; keypad step 0.1000 in\n";
+                           "table base X 1.5000  Y 2.5000  Z -0.5000; keypad step 0.1000 in\n"
+                           // Issue 25: status shows the speeds, the override and the spindle.
+                           "move XY 2, Z 0.5  jog XY 6, Z 3 in/s; feed 100 %; spindle off\n";
   EXPECT_EQ(r.out, want);
 }
 
@@ -638,6 +640,33 @@ TEST(RunAtATerminal, CtrlCRampsTheMoveDownAndTheReportSaysWhereTheToolIs) {
   EXPECT_GT(x, 1.0) << text;
   EXPECT_LT(x, 9.0) << text;
   EXPECT_NE(text.find("Y=0.0000"), std::string::npos) << text;
+}
+
+// Issue 25: at a terminal `gantry run` showed no progress. It shows the playing line, the
+// percent and the times on one line, and a question clears it and gets the terminal.
+TEST(RunAtATerminal, AProgressLineFollowsTheRunAndAQuestionDoesNotBreakIt) {
+  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed";
+  TmuxConsole t("ask.sbp --realtime", "run",
+                {{"ask.sbp", "MS, 2\nMX, 3\nMX, 0\nINPUT \"Depth?\" &d\nMX, 1\n"}});
+  ASSERT_TRUE(t.started());
+  // During the moves (after SW's 2 s warning, 1.5 s each): a line under way, of 5, and the
+  // times.
+  ASSERT_TRUE(t.wait_for([&] {
+    const std::string l = t.last_line();
+    return l.find(" of 5  elapsed 0:00:0") != std::string::npos &&
+           (l.find("  line 2 ") != std::string::npos || l.find("  line 3 ") != std::string::npos);
+  })) << t.text();
+  EXPECT_NE(t.last_line().find(" %  line "), std::string::npos) << t.text();
+  EXPECT_TRUE(t.last_line().starts_with("[#")) << t.text();
+  // The question stands alone on its line: the progress line was cleared for it.
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("[ask.sbp:4] Depth? (&D)"); }))
+      << t.text();
+  t.line("0.5");
+  ASSERT_TRUE(t.wait_for_line("[run exited: 0]")) << t.text();
+  const std::string text = t.text();
+  EXPECT_NE(text.find("[ask.sbp:4] Depth? (&D): 0.5\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("] 100 %  line 5 of 5  elapsed "), std::string::npos) << text;
+  EXPECT_NE(text.find("position   X=1.000"), std::string::npos) << text;
 }
 
 TEST(RunAtATerminal, CtrlCDuringTheWarningEndsTheRunBeforeAnythingMoves) {

@@ -259,6 +259,44 @@ TEST_F(GuiWindow, RunsAFileOnTheSimCardWithItsPreview) {
   EXPECT_GT(im.count(kPx0, kPy0, kPx1, kPy1, blue), 50);
 }
 
+// Issue 25: "SO, 1, 1" in a running file left the output lights dark (they showed the
+// interpreter's state); they and the spindle line follow what the card plays.
+TEST_F(GuiWindow, TheOutputLightsAndSpindleFollowTheRunningFile) {
+  write("spin.sbp", "SW, 0\nMS, 2\nTR, 15000\nSO, 1, 1\nSO, 4, 1\nMX, 3\nSO, 4, 0\nMX, 0\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait frames 40\nkey Space\nwait frames 40\n"
+                "dump paused.json\nkey Space\nwait idle\ndump after.json\n",
+                "spin.sbp --realtime"),
+            0)
+      << out_;
+  const json paused = state("paused.json");
+  ASSERT_EQ(paused["state"], "paused") << paused.dump();
+  EXPECT_EQ(paused["outputs"], 0b1001) << paused.dump();  // switches 1 and 4, as played
+  // No speed output in the default profile: TR's RPM is only recorded, and shown at rest.
+  EXPECT_EQ(paused["spindle"], "spindle on");
+  const json after = state("after.json");
+  EXPECT_EQ(after["outputs"], 0);  // the file's end switched them off
+  EXPECT_EQ(after["spindle"], "spindle off, 15000 RPM (set on the spindle; TR recorded it)");
+}
+
+// Issue 25: no live feed override in the window. + and - step it by 10 % while a file runs,
+// within 10 % to 200 %, and the readout and the log say it. (What the planner has already
+// planned keeps its speed: docs/controller.md.)
+TEST_F(GuiWindow, PlusAndMinusStepTheFeedOverrideWhileAFileRuns) {
+  write("long.sbp", "SW, 0\nMS, 1\nMX, 1\nMX, 2\nMX, 3\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait frames 10\nkey Equal\nkey Equal\nkey Equal\n"
+                "key Minus\nwait frames 2\ndump faster.json\nwait idle\ndump after.json\n",
+                "long.sbp --realtime"),
+            0)
+      << out_;
+  const json faster = state("faster.json");
+  EXPECT_DOUBLE_EQ(faster["feed_override"].get<double>(), 1.2) << faster.dump();
+  EXPECT_TRUE(has_line(faster["log"], "feed 120 % (moves already planned keep their speed)"))
+      << faster.dump();
+  const json after = state("after.json");
+  EXPECT_EQ(after["state"], "idle");
+  EXPECT_DOUBLE_EQ(after["feed_override"].get<double>(), 1.2);  // it stays for the next run
+}
+
 TEST_F(GuiWindow, KeypadButtonsAndKeysJogInFixedSteps) {
   ASSERT_EQ(gui("click X+\nwait idle\nclick X+\nwait idle\nclick Y+\nwait idle\n"
                 "type K\nkey Enter\nwait frames 2\nkey Right\nwait idle\nkey PageUp\nwait idle\n"
@@ -331,6 +369,23 @@ TEST_F(GuiWindow, SpacePausesAndResumesAndF12IsTheEStop) {
   const json ack = state("ack.json");
   EXPECT_EQ(ack["state"], "idle");
   EXPECT_TRUE(has_line(ack["log"], "E-stop acknowledged"));
+}
+
+// Issue 25: after F12 and ack, `MZ, 1` stayed "running" with no motion (the simulated card
+// waited for the ticks played before the E-stop). The move plays at once and ends at Z 1.
+TEST_F(GuiWindow, AfterAnAcknowledgedEStopTheNextMovePlays) {
+  ASSERT_EQ(gui("type SW, 0\nkey Enter\nwait idle\ntype MX, 4\nkey Enter\nwait idle\n"
+                "type MX, 0\nkey Enter\nwait frames 20\nkey F12\nwait frames 3\n"
+                "type ack\nkey Enter\nwait idle\ntype MZ, 1\nkey Enter\nwait frames 30\n"
+                "dump moving.json\nwait idle\ndump done.json\n",
+                "--realtime"),
+            0)
+      << out_;
+  const json moving = state("moving.json");  // half a second later: Z on its way, or there
+  EXPECT_GT(moving["position"][2].get<double>(), 0.1) << moving.dump();
+  const json done = state("done.json");
+  EXPECT_EQ(done["state"], "idle");
+  EXPECT_NEAR(done["position"][2].get<double>(), 1, 1e-9);
 }
 
 TEST_F(GuiWindow, ThePointerShowsTheLineUnderIt) {

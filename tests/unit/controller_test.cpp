@@ -22,6 +22,8 @@ namespace gantry {
 namespace {
 
 struct Machine {
+  Machine() = default;
+  explicit Machine(Settings s) : settings(std::move(s)) {}
   Settings settings = default_settings();
   SimCard card{settings};
   ScriptedIO io{true, {}};
@@ -262,6 +264,35 @@ TEST(Controller, InRealTimeTheMoveAfterAnAcknowledgedEStopPlaysAtOnce) {
   EXPECT_EQ(c.status().steps[0], std::llround(3.9 * settings.axes[0].steps_per_unit));
   EXPECT_GT(played_before_s, 2.0);
   EXPECT_LT(took_s, played_before_s / 2) << "the move waited for the ticks before the E-stop";
+}
+
+// Issue 25: the window's output lights never changed while a file ran (they showed the
+// interpreter's state, which runs ahead). The status carries the outputs and TR's speed as the
+// card plays them.
+TEST(Controller, TheStatusShowsTheOutputsAndSpindleSpeedTheCardPlays) {
+  Settings settings = default_settings();
+  settings.spindle.pwm_bit = 30;  // TR's speed goes to the card (without: only recorded)
+  Machine m(settings);
+  m.c.schedule(Request::Pause, 1.0);
+  ASSERT_TRUE(m.run("MS, 2\nTR, 12000\nSO, 1, 1\nSO, 3, 1\nMX, 4\nSO, 3, 0\nTR, 18000\nMX, 0\n"));
+  m.c.wait();
+  ControllerStatus s = m.c.status();
+  ASSERT_EQ(s.state, MachineState::Paused);
+  EXPECT_LT(s.machine[0], 4.0);  // held part-way along the first move
+  EXPECT_EQ(s.outputs, 0b101u);  // switches 1 (the spindle) and 3, as played
+  EXPECT_DOUBLE_EQ(s.spindle_rpm, 12000);
+  ASSERT_TRUE(m.c.resume());
+  m.c.wait();
+  s = m.c.status();
+  EXPECT_EQ(s.state, MachineState::Idle);
+  EXPECT_EQ(s.outputs, 0u);  // a file's end switches its outputs and the speed output off
+  EXPECT_DOUBLE_EQ(s.spindle_rpm, 0);
+  // An E-stop switches every output off, as the card's idle word does.
+  m.c.schedule(Request::EStop, 0.5);
+  ASSERT_TRUE(m.run("MX, 2\n"));
+  m.c.wait();
+  EXPECT_EQ(m.c.status().state, MachineState::EStop);
+  EXPECT_EQ(m.c.status().outputs, 0u);
 }
 
 TEST(Controller, AContinuousJogRampsDownOnReleaseAtTheKeypadRampRate) {

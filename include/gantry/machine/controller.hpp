@@ -4,6 +4,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <functional>
 #include <memory>
@@ -31,6 +32,11 @@ struct ControllerStatus {
   std::array<bool, 12> inputs{};  // input switches 1-12: closed
   bool step_hold = false;         // paused by single step, after a statement (at rest)
   bool warning = false;           // SW's warning: the machine is about to move
+  // The outputs as the card plays them (not as the file last set them): switches bit n-1 is
+  // output switch n (1 runs the spindle on ShopBot's wiring), and TR's speed.
+  std::uint32_t outputs = 0;
+  double spindle_rpm = 0;
+  double feed_override = 1;  // the operator's, 0.1 to 2 (set_feed_override)
   // Progress of the file running (or the last one run).
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
@@ -109,6 +115,8 @@ class Controller : private FeederEvents {
   // Returns once nothing is under way: the activity ended, or it is held at rest (paused),
   // or halted (E-stop).
   void wait();
+  // wait() for at most `timeout`: true when nothing is under way.
+  bool wait_for(std::chrono::milliseconds timeout);
   ControllerStatus status() const;
   // What the last activity did; read once it has ended (wait()).
   struct Summary {
@@ -144,6 +152,7 @@ class Controller : private FeederEvents {
                     bool typed);
   void start_activity(std::function<void()> work);
   void job_main();
+  bool settled() const;     // what wait() waits for; under m_
   void wait_for_motion();  // job thread: every flush pushed has played (or was dropped)
   // FeederEvents, on the feeder thread.
   void feeder_phase_changed(FeedPhase phase, const SourceLoc& rest) override;

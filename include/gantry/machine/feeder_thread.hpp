@@ -84,7 +84,8 @@ class FeederEvents {
 // State out (feeder -> everyone), stored by publish() after every block and every item:
 //   played_, tick_ (release; read acquire): the card's played counts and clock.
 //   inputs_ (release/acquire): the card's input bits.
-//   playing_line_, warning_ (relaxed): display only, no data depend on them.
+//   playing_line_, warning_, outputs_, spindle_rpm_ (relaxed): display only, no data depend
+//     on them.
 //   flushes_done_ (release, then notify_all): flushes played or dropped. The job waits on it
 //     (acquire) against flushes_pushed_ (job-only): its acquire makes everything the feeder
 //     wrote before (interrupted_, fired_, latched_, the phase) visible to the job.
@@ -162,6 +163,10 @@ class FeederThread {
   std::uint32_t inputs() const { return inputs_.load(std::memory_order_acquire); }
   int playing_line() const { return playing_line_.load(std::memory_order_relaxed); }
   bool warning() const { return warning_.load(std::memory_order_relaxed); }
+  // The outputs in the words the card has played (StepGenerator::played_levels).
+  OutputLevels outputs() const {
+    return {outputs_.load(std::memory_order_relaxed), spindle_rpm_.load(std::memory_order_relaxed)};
+  }
   StepGenerator& steps() { return steps_; }
   const StepGenerator& steps() const { return steps_; }
 
@@ -201,6 +206,8 @@ class FeederThread {
   std::atomic<std::uint32_t> inputs_{0};  // the card's input bits, as last published
   std::atomic<int> playing_line_{0};
   std::atomic<bool> warning_{false};
+  std::atomic<std::uint32_t> outputs_{0};
+  std::atomic<double> spindle_rpm_{0};
 
   // Feeder thread only.
   std::uint64_t flushes_dropped_ = 0;

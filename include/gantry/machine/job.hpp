@@ -22,6 +22,7 @@
 namespace gantry {
 
 class Controller;
+struct ControllerStatus;
 
 // The operator's stop and E-stop for a run, from another thread (gantry run's Ctrl-C).
 class RunControl {
@@ -72,10 +73,13 @@ struct JobResult {
 // the persistent store; only a clean file reaches the card, so a bad file never moves the
 // machine. Then runs it, asking `io` for operator answers.
 // `control`: stops the check and the run from another thread (null: nothing does).
+// `watch`: called with the controller's status about four times a second while the run
+// plays (gantry run's progress line).
 // `prepare`: called with the machine before it runs (the state kept across sessions).
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options = {},
                   RunControl* control = nullptr,
+                  const std::function<void(const ControllerStatus&)>& watch = {},
                   const std::function<void(Controller&)>& prepare = {});
 
 }  // namespace gantry

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -17,6 +18,13 @@
 #include "gantry/step/word_writer.hpp"        // WordWriter
 
 namespace gantry {
+
+// What the outputs are: the output switches (bit n-1: switch n, as SO numbers them; switch 1
+// runs the spindle on ShopBot's wiring) and TR's speed on the spindle's speed output.
+struct OutputLevels {
+  std::uint32_t switches = 0;
+  double spindle_rpm = 0;
+};
 
 // Converts each segment's straight path into step events and streams the words to a card.
 // It owns and wires three parts, split as Klipper splits itersolve from stepcompress:
@@ -79,12 +87,16 @@ class StepGenerator : public SegmentSink {
   void set_spindle(bool on) { writer_.set_spindle(on); }
   // Output switch n (1-based, as SO numbers them), from the next word on; false when the
   // profile does not wire it.
-  bool set_output(int n, bool on) { return writer_.set_output(n, on); }
+  bool set_output(int n, bool on);
   bool output_on(int n) const { return writer_.output_on(n); }  // its level in the words
   // The spindle's speed output (spindle.pwm_bit) to `rpm`, from the next word on: a square
   // wave of duty rpm / max_rpm, by the tick's own number like the charge pump. No-op
   // when the profile wires none.
-  void set_spindle_speed(double rpm) { writer_.set_spindle_speed(rpm); }
+  void set_spindle_speed(double rpm);
+  // The output switches and the spindle speed in the words the card has played (at its
+  // ticks_played()): what the machine's outputs are now. The words emitted lead the card by
+  // its queue (a second on a real card), so output_on() is not that.
+  OutputLevels played_levels() const;
   // At rest: one word at the levels set since (outputs switched between segments).
   void emit_levels();
   bool faulted() const { return faulted_; }
@@ -108,6 +120,7 @@ class StepGenerator : public SegmentSink {
   void emit_until(std::int64_t tick);  // words for [tick(), tick), independent steps merged
   void play(const StepEvent& e);       // a path step or direction change into the words
   void play_independent(const StepEvent& e);
+  void level_changed();  // levels_ holds from the next word on
 
   StepTiming timing_;
   Card& card_;
@@ -121,6 +134,10 @@ class StepGenerator : public SegmentSink {
   SourceLoc current_loc_;  // the segment being generated, for the fault message
   RunCount ran_;
   bool warning_ = false;
+  OutputLevels levels_;  // in the words emitted
+  // Each change of levels_ and the tick it takes effect from; the front is in force at the
+  // card's played tick (check_card drops what the card has played past).
+  std::deque<std::pair<std::int64_t, OutputLevels>> level_changes_;
 };
 
 }  // namespace gantry

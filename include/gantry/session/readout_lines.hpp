@@ -1,0 +1,20 @@
+// Lines of the readout the console's status and the window both show: the spindle, the
+// speeds and the feed override.
+#pragma once
+
+#include <string>
+
+#include "gantry/machine/controller.hpp"  // ControllerStatus
+#include "gantry/settings/settings.hpp"   // SpeedSettings, Units
+
+namespace gantry::session {
+
+// "spindle on, 18000 RPM", "spindle off". `recorded_rpm`: TR's value when the profile wires
+// no speed output (the card then carries none, and the RPM is only what TR recorded).
+// The spindle: on or off (output switch 1, ShopBot's wiring) and its speed, as the card
+// plays them.
+std::string spindle_text(const ControllerStatus& s, double recorded_rpm);
+// "move XY 2, Z 0.5  jog XY 6, Z 3 in/s; feed 100 %": VS's speeds and the live override.
+std::string speeds_text(const SpeedSettings& v, Units u, double feed_override);
+
+}  // namespace gantry::session
