@@ -81,13 +81,29 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineArgs& a, const M
       {},
       nullptr,
       false,
+      nullptr,
+      nullptr,
+      {},
       nullptr});
   m->card = open_live_card(a, p.settings, &m->card_type);
   if (!m->card) return nullptr;
   m->real_time = plays_in_real_time(m->card_type, a.realtime);
   m->controller = std::make_unique<Controller>(
       p.settings, *m->card, io, m->store, live_interpreter_options(p, m->values, a, m->real_time));
+  m->memory = std::make_unique<session::MachineMemory>(session::machine_state_path(p.values_path));
+  m->part_log = std::make_unique<session::RunLogger>(session::run_log_path(p.values_path));
+  m->restored = m->memory->load(p.settings.units);
+  if (!m->memory->first_start()) io.warn({SourceLoc{}, Severity::Warning, m->restored});
+  LiveMachine& live = *m;
+  m->memory->attach(*m->controller, [&live](const Controller::Activity& act) {
+    if (live.values.settings().display.part_file_log) live.part_log->activity(act);
+  });
   return m;
+}
+
+LiveMachine::~LiveMachine() {
+  controller.reset();  // its threads end: nothing moves after the last save
+  if (memory) memory->save();
 }
 
 }  // namespace gantry

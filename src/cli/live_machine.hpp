@@ -12,6 +12,8 @@
 #include "gantry/interp/operator_io.hpp"       // OperatorIO
 #include "gantry/interp/persistent_store.hpp"  // PersistentStore
 #include "gantry/machine/controller.hpp"       // Controller
+#include "gantry/session/machine_memory.hpp"   // MachineMemory
+#include "gantry/session/run_log.hpp"          // RunLogger
 #include "machine_profile.hpp"                 // MachineProfile
 
 namespace gantry {
@@ -72,7 +74,14 @@ struct LiveMachine {
   std::string card_type;  // "sim", "pci7200", ...
   std::unique_ptr<Card> card;
   bool real_time = false;
+  // The state kept across sessions and the part-file log (docs/machine_state.md); `restored`:
+  // what load said (the operator is told it at start).
+  std::unique_ptr<session::MachineMemory> memory;
+  std::unique_ptr<session::RunLogger> part_log;
+  std::string restored;
   std::unique_ptr<Controller> controller;
+
+  ~LiveMachine();  // the controller first, then the state saved at exit
 
   bool sim() const { return card_type == "sim"; }
 };

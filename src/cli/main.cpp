@@ -23,6 +23,8 @@
 #include "gantry/interp/interpreter_options.hpp"  // the macro folders help looks in
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
 #include "gantry/motion/cycle_timer.hpp"     // estimate
+#include "gantry/session/machine_memory.hpp"  // MachineMemory: the state kept across sessions
+#include "gantry/session/run_log.hpp"         // RunLogger, the part-file log; gantry log
 #include "gantry/settings/values_file.hpp"   // the values file
 #include "machine_profile.hpp"               // MachineProfile, load_machine_profile
 #include "open_card.hpp"                     // open_card
@@ -305,6 +307,25 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   // Nobody at the simulated machine: its events and switches answer PAUSE UNTIL, or nothing.
   if (sim && !interactive)
     opt.interpreter.unattended_inputs = unattended_inputs(choice.world, settings.inputs, sim);
+  // The position, zero and units the last session left (docs/machine_state.md), and the
+  // part-file log (VD), both next to the values file.
+  session::MachineMemory memory(session::machine_state_path(profile.values_path));
+  if (const std::string said = memory.load(settings.units); !memory.first_start())
+    fmt::print(stderr, "gantry: {}\n", said);
+  ModalState restored;  // the check starts from it too
+  restored.speeds = settings.speeds;
+  const Vec6 start_table = memory.state().table;  // the card counts from here (0: a fresh start)
+  if (memory.restoring()) {
+    memory.restore(restored, Vec6::Zero());  // the card counts from 0
+    opt.start_state = &restored;
+  }
+  session::RunLogger part_log(session::run_log_path(profile.values_path));
+  const bool logging = settings.display.part_file_log;
+  auto keep = [&](Controller& c) {
+    memory.attach(c, [&](const Controller::Activity& act) {
+      if (logging) part_log.activity(act);
+    });
+  };
   if (!a.json)
     fmt::print(stderr, "gantry: running {} on the {} card, profile \"{}\"\n", a.file,
                sim ? "simulated" : choice.type, settings.name);
@@ -337,9 +358,13 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       ~StopFirst() { w.stop(); }
     } stop_first{signals};
     job = run_job(script, settings, *card, show_progress ? around_line : io, store, opt, &control,
-                  watch);
+                  watch, keep);
     stops = control.stops();
   }
+  if (std::string why; !memory.save(&why))  // at exit
+    fmt::print(stderr, "gantry: cannot save the machine state to {}: {}\n", memory.path(), why);
+  if (const std::string why = part_log.failure(); !why.empty())
+    fmt::print(stderr, "gantry: cannot append to the part-file log {}: {}\n", part_log.path(), why);
   for (const Diagnostic& w : job.warnings) fmt::print(stderr, "{}\n", format(w));
   for (const Diagnostic& w : scripted.warnings()) fmt::print(stderr, "{}\n", format(w));
   report.errors = job.errors;
@@ -361,7 +386,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   // In the calibration and units the run left in force (VU, VD may have changed them).
   report.units = job.settings.units;
   for (int i = 0; i < kAxisCount; ++i)
-    report.position[i] = static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
+    report.position[i] =
+        start_table[i] + static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
   report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
   if (sim) add_card_checks(report, *sim);
 
@@ -563,6 +589,46 @@ int cmd_help(const std::string& code, bool markdown) {
   return 1;
 }
 
+// The part-file log (VD): the last runs, oldest first (docs/machine_state.md).
+int cmd_log(const std::string& profile_arg, const std::string& values, std::size_t last,
+            bool json) {
+  MachineProfile profile;
+  if (!load_machine_profile(profile_arg, values, profile)) return 1;
+  const std::string path = session::run_log_path(profile.values_path);
+  std::size_t bad = 0;
+  const std::vector<session::RunRecord> runs = session::read_run_log(path, last, &bad);
+  if (json) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const session::RunRecord& r : runs)
+      out.push_back(nlohmann::ordered_json::parse(session::run_record_line(r)));
+    std::cout << json_text(out) << "\n";
+  } else if (runs.empty()) {
+    fmt::print("no part file runs logged in {}\n", path);
+  } else {
+    for (const session::RunRecord& r : runs) fmt::print("{}\n", session::run_record_text(r));
+  }
+  if (bad)
+    fmt::print(stderr, "gantry: {} line{} of {} {} not a run record (skipped)\n", bad,
+               bad == 1 ? "" : "s", path, bad == 1 ? "is" : "are");
+  return 0;
+}
+
+// The machine state kept across sessions; --confirm: the operator vouches for the position.
+int cmd_state(const std::string& profile_arg, const std::string& values, bool confirm) {
+  MachineProfile profile;
+  if (!load_machine_profile(profile_arg, values, profile)) return 1;
+  session::MachineMemory memory(session::machine_state_path(profile.values_path));
+  fmt::print("{}\n", memory.load(profile.settings.units));
+  if (!confirm) return 0;
+  if (!memory.restoring()) {
+    fmt::print(stderr, "error: no position to confirm in {}\n", memory.path());
+    return 1;
+  }
+  memory.confirm();
+  fmt::print("the position is confirmed in {}\n", memory.path());
+  return 0;
+}
+
 }  // namespace
 }  // namespace gantry
 
@@ -669,6 +735,26 @@ int main(int argc, char** argv) {
   LanguageArgs preview_lang;
   CLI::App* preview_cmd = add_preview_command(app, preview_args);
   preview_lang.add_to(preview_cmd);
+  std::string log_profile, log_values;
+  std::size_t log_last = 20;
+  bool log_json = false;
+  CLI::App* log_cmd =
+      app.add_subcommand("log", "List the part files run: start, cycle time, how each ended");
+  add_profile_option(log_cmd, log_profile);
+  log_cmd->add_option("--values", log_values,
+                      "The values file the log sits beside (default: the profile's)");
+  log_cmd->add_option("--last", log_last, "Show the last N runs (default 20; 0: all)");
+  log_cmd->add_flag("--json", log_json, "Print the runs as one JSON array");
+
+  std::string state_profile, state_values;
+  bool state_confirm = false;
+  CLI::App* state_cmd = app.add_subcommand(
+      "state", "Show the machine state kept from the last session (position, zero, units)");
+  add_profile_option(state_cmd, state_profile);
+  state_cmd->add_option("--values", state_values,
+                        "The values file the state sits beside (default: the profile's)");
+  state_cmd->add_flag("--confirm", state_confirm,
+                      "The tool is where the state says: mark the position confirmed");
 #ifdef GANTRY_HAVE_GUI
   GuiArgs gui_args;
   CLI::App* gui_cmd = add_gui_command(app, gui_args);
@@ -695,6 +781,8 @@ int main(int argc, char** argv) {
     if (*gui_cmd) return run_gui_command(gui_args);
 #endif
     if (*commands_cmd) return cmd_commands(commands_group, commands_json);
+    if (*log_cmd) return cmd_log(log_profile, log_values, log_last, log_json);
+    if (*state_cmd) return cmd_state(state_profile, state_values, state_confirm);
   } catch (const GantryError& e) {
     fmt::print(stderr, "{}\n", e.what());
     return 1;

@@ -173,6 +173,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
     lines_ = script->line_count();
     running_file_ = true;
     typed_ = typed;
+    activity_file_ = script->name() ? *script->name() : std::string();
     start_activity([this, script, typed] {
       try {
         interp_->run(script, typed);
@@ -542,6 +543,7 @@ void Controller::job_main() {
     feed_.pause_outputs(outputs_off_on_pause(interp_->settings()));
     planner_->feed_override(feed_override_);
     forward_->to = planner_.get();
+    if (activity_) activity_(activity(false));  // before any motion
     work();
     qsink_->fence();
     wait_for_motion();
@@ -553,7 +555,7 @@ void Controller::job_main() {
       qsink_->outputs(interp_->state().outputs);
       wait_for_motion();
     }
-    std::lock_guard lock(m_);
+    std::unique_lock lock(m_);
     // The queue is empty and the feeder idle: the activity's requests are spent.
     feed_.end_activity();
     effect_state_.reset();
@@ -572,9 +574,46 @@ void Controller::job_main() {
       state_ = jogged || state_ == MachineState::Jogging ? MachineState::Idle  // released too
                : cut                                     ? MachineState::Stopped
                                                          : MachineState::Idle;
+    if (activity_) {  // told outside m_ (a save takes a while), before wait() returns
+      const Activity ended = activity(true);
+      const std::function<void(const Activity&)> told = activity_;
+      lock.unlock();
+      told(ended);
+      lock.lock();
+    }
     busy_ = false;
     cv_.notify_all();
   }
+}
+
+// Job thread, the state settled.
+Controller::Activity Controller::activity(bool at_rest) const {
+  Activity a;
+  a.at_rest = at_rest;
+  a.part_file = running_file_ && !typed_;
+  a.file = activity_file_;
+  a.modal = interp_->state();
+  a.units = interp_->settings().units;
+  if (!at_rest) return a;
+  a.estop = state_ == MachineState::EStop || fault_ != CardFault::None;
+  a.fault = fault_;
+  a.error = error_;
+  if (!a.error && !message_.empty()) a.error = Diagnostic{stopped_at_, Severity::Error, message_};
+  a.elapsed_s = static_cast<double>(feed_.tick() - start_tick_) / settings_.card.pacer_hz();
+  return a;
+}
+
+void Controller::on_activity(std::function<void(const Activity&)> f) {
+  std::lock_guard lock(m_);
+  activity_ = std::move(f);
+}
+
+void Controller::restore(const std::function<void(ModalState&, const Vec6& machine)>& edit) {
+  std::lock_guard lock(m_);
+  if (busy_) return;
+  ModalState st = interp_->state();
+  edit(st, played_machine());
+  interp_->restore_state(st);
 }
 
 void Controller::wait_for_motion() {

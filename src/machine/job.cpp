@@ -35,7 +35,8 @@ void RunControl::detach() {
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options,
                   RunControl* control,
-                  const std::function<void(const ControllerStatus&)>& watch) {
+                  const std::function<void(const ControllerStatus&)>& watch,
+                  const std::function<void(Controller&)>& prepare) {
   JobResult result;
   result.settings = settings;
   CycleTimer timer(settings, options.feed_override, options.check_moves);
@@ -68,6 +69,7 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   Controller machine(settings, card, io, store, interp_options);
   machine.set_feed_override(options.feed_override);
   if (options.progress) machine.on_progress(options.progress);
+  if (prepare) prepare(machine);
   const std::string name = *script->name();
   Outcome started;
   auto start = [&] { started = machine.run(std::move(script), true, result.estimated_time_s); };

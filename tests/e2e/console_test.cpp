@@ -211,7 +211,10 @@ class TempDir {
     path_ = fs::temp_directory_path() / fmt::format("gantry_console_{}_{}", getpid(), ++n);
     fs::create_directories(path_ / "config");
   }
-  ~TempDir() { fs::remove_all(path_); }
+  ~TempDir() {  // the console may still be saving as it exits (SIGHUP from tmux): no throw
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
   const fs::path& path() const { return path_; }
   fs::path config() const { return path_ / "config"; }
 

@@ -416,4 +416,24 @@ TEST_F(GuiWindow, AScriptErrorNamesItsLine) {
   EXPECT_NE(out_.find("script.txt:1: unknown action 'fly'"), std::string::npos) << out_;
 }
 
+// Issue 25: the window restores the position the last session left (docs/machine_state.md)
+// and says so; killed mid-move, it is unconfirmed, and stays so in the file saved at exit.
+TEST_F(GuiWindow, ThePositionOfTheLastSessionIsRestoredAndSaid) {
+  const fs::path state_file = dir_ / "config/gantry/values/Desktop_24x18__inches_.state.toml";
+  fs::create_directories(state_file.parent_path());
+  std::ofstream(state_file) << "motion = \"moving\"\nconfirmed = true\nunits = \"in\"\n"
+                               "position = { x = 3.0, y = 2.0 }\nzero = { x = 1.0 }\n";
+  ASSERT_EQ(gui("wait idle\ndump s.json\n"), 0) << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["position"], json({2, 2, 0, 0, 0, 0}));  // working: table base less the zero
+  EXPECT_TRUE(has_line(s["log"], "position restored from the last session: X 3.0000 Y 2.0000"))
+      << s["log"].dump();
+  EXPECT_TRUE(has_line(s["log"], "UNCONFIRMED: the last session ended mid-move"))
+      << s["log"].dump();
+  std::stringstream saved;
+  saved << std::ifstream(state_file).rdbuf();
+  EXPECT_NE(saved.str().find("\nmotion = \"at rest\""), std::string::npos) << saved.str();
+  EXPECT_NE(saved.str().find("\nconfirmed = false"), std::string::npos) << saved.str();
+}
+
 }  // namespace

@@ -66,6 +66,25 @@ struct Outcome {
 // docs/controller.md has the states, the transition table and the behaviours.
 class Controller : private FeederEvents {
  public:
+  // An activity's start (before any motion) and its end (at rest), told on the job thread:
+  // what the session keeps across sessions (session/machine_memory) and logs (run_log).
+  struct Activity {
+    bool at_rest = false;     // false: it is about to move
+    bool part_file = false;   // a file run (not a jog, not a typed line)
+    std::string file;         // the file's name (part_file)
+    ModalState modal;         // the interpreter's state: the position, zero, offsets
+    Units units = Units::Inches;
+    // At rest only: how it ended.
+    bool estop = false;       // an E-stop or a card fault: the pulses stopped at once
+    CardFault fault = CardFault::None;  // the card's, if it stopped by itself
+    std::optional<Diagnostic> error;  // why it stopped short (stopped_at: where)
+    double elapsed_s = 0;     // machine time it took
+  };
+  void on_activity(std::function<void(const Activity&)> f);
+  // Before anything runs: `edit` changes the interpreter's state, given where the card's
+  // counts put the tool (machine frame), e.g. to restore the last session's position.
+  void restore(const std::function<void(ModalState&, const Vec6& machine)>& edit);
+
   Controller(const Settings& settings, Card& card, OperatorIO& io, PersistentStore& store,
              InterpreterOptions options = {});
   ~Controller() override;
@@ -154,6 +173,7 @@ class Controller : private FeederEvents {
   double elapsed_s() const;       // the card's clock since the activity began; takes m_
   MotionReport keypad_session();  // job thread: SK's wait, playing jogs
   void after_statement();         // job thread: single step, a new feed override
+  Activity activity(bool at_rest) const;  // job thread: for on_activity
 
   Settings settings_;
   Card& card_;
@@ -205,6 +225,8 @@ class Controller : private FeederEvents {
   bool running_file_ = false;  // the activity is a file (not a jog)
   bool typed_ = false;         // ... typed at the console (not a part file of its own)
   std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
+  std::function<void(const Activity&)> activity_;  // the caller's (set while idle)
+  std::string activity_file_;  // the part file the activity runs
   // Job thread -> status() (relaxed: display only). Set by start_run under m_, then by the
   // interpreter's progress call on the job thread.
   std::atomic<std::size_t> line_{0}, lines_{0};

@@ -75,9 +75,11 @@ struct JobResult {
 // `control`: stops the check and the run from another thread (null: nothing does).
 // `watch`: called with the controller's status about four times a second while the run
 // plays (gantry run's progress line).
+// `prepare`: called with the machine before it runs (the state kept across sessions).
 JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings, Card& card,
                   OperatorIO& io, PersistentStore& store, const JobOptions& options = {},
                   RunControl* control = nullptr,
-                  const std::function<void(const ControllerStatus&)>& watch = {});
+                  const std::function<void(const ControllerStatus&)>& watch = {},
+                  const std::function<void(Controller&)>& prepare = {});
 
 }  // namespace gantry
