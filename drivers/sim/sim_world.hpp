@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "gantry/core/axes.hpp"          // kAxisCount
+#include "gantry/core/vec6.hpp"          // Vec6, kAxisCount
 #include "gantry/settings/settings.hpp"  // Settings, InputSettings
 
 namespace gantry {

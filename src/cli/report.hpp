@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gantry/commands/command_table.hpp"  // CommandSpec
-#include "gantry/core/axes.hpp"               // Vec6, Steps6
+#include "gantry/core/vec6.hpp"               // Vec6, Steps6
 #include "gantry/core/diagnostic.hpp"         // Diagnostic
 #include "gantry/canon/canon_move.hpp"       // CanonMove
 #include "gantry/settings/settings.hpp"       // Units

@@ -461,15 +461,16 @@ void CommandContext::change_units(Units to, ValueScope scope, const SourceLoc& l
     Interpreter::Frame& f = interp_->frames_.back();
     if (!f.saved_units) f.saved_units = settings_.units;
   }
-  const Vec6 scale = units_scale(settings_, to);
+  const std::array<double, kAxisCount> factors = units_scale(settings_, to);
+  const Vec6 scale = to_vec6(factors);
   convert_units(settings_, to);
   ModalState& st = state_;
   for (Vec6* v : {&st.position, &st.zero, &st.machine_origin, &st.tool_offset, &st.applied_offset,
                   &st.tool_offset_values})
     *v = v->cwiseProduct(scale);
   st.gcode.scale(scale);
-  scale_speeds(st.speeds.move, scale);
-  scale_speeds(st.speeds.jog, scale);
+  scale_speeds(st.speeds.move, factors);
+  scale_speeds(st.speeds.jog, factors);
   if (st.last_xy_move) {
     (*st.last_xy_move)[0] *= scale[0];
     (*st.last_xy_move)[1] *= scale[1];
@@ -479,8 +480,8 @@ void CommandContext::change_units(Units to, ValueScope scope, const SourceLoc& l
   if (interp_->start_) interp_->start_->machine = interp_->start_->machine.cwiseProduct(scale);
   // What running files will restore is in the new units too.
   for (Interpreter::Frame& fr : interp_->frames_) {
-    scale_speeds(fr.saved_speeds.move, scale);
-    scale_speeds(fr.saved_speeds.jog, scale);
+    scale_speeds(fr.saved_speeds.move, factors);
+    scale_speeds(fr.saved_speeds.jog, factors);
     if (fr.saved_values) convert_units(*fr.saved_values, to);
   }
   // The tool stays where it is: the planner and the step generator take the new values.

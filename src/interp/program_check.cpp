@@ -4,6 +4,9 @@
 #include <algorithm>  // stable_sort
 #include <climits>    // INT_MAX
 
+#include "gantry/commands/command_recorder.hpp"  // CommandRecorder
+#include "gantry/interp/interpreter.hpp"         // Interpreter
+
 namespace gantry {
 namespace {
 

@@ -42,12 +42,12 @@ class Controller::ForwardSink : public MotionSink, public MachineLink {
   MotionReport sync() override {
     to->flush();
     c_.wait_for_motion();
-    if (c_.abort_.load(std::memory_order_acquire))
+    if (c_.feed_.aborted())
       throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
     MotionReport r;
     r.machine = c_.played_machine();
-    r.fired = std::exchange(c_.fired_, std::nullopt);  // the feeder is idle: its flush is done
-    r.latched = c_.latched_;
+    r.fired = c_.feed_.take_fired();  // the feeder is idle: its flush is done
+    r.latched = c_.feed_.latched();
     r.elapsed_s = c_.elapsed_s();
     return r;
   }
@@ -61,7 +61,7 @@ class Controller::ForwardSink : public MotionSink, public MachineLink {
                                         : MachineState::Running;
   }
   std::array<bool, 12> input_switches() const override {
-    return c_.input_switches(c_.inputs_.load(std::memory_order_acquire));
+    return c_.input_switches(c_.feed_.inputs());
   }
   MotionReport keypad(const SourceLoc&) override {
     sync();
@@ -79,10 +79,6 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
       io_(io),
       store_(store),
       feed_(settings_, card, input_roles(settings).stops, *this),
-      abort_(feed_.abort_flag()),
-      inputs_(feed_.inputs_),
-      fired_(feed_.fired_),
-      latched_(feed_.latched_),
       qsink_(&feed_.sink()),
       forward_(std::make_unique<ForwardSink>(*this)) {
   planner_ = std::make_unique<LookAheadPlanner>(settings, *qsink_);

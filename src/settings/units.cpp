@@ -23,15 +23,16 @@ double round12(double v) {
 
 }  // namespace
 
-Vec6 units_scale(const Settings& s, Units to) {
+std::array<double, kAxisCount> units_scale(const Settings& s, Units to) {
   const double f = units_factor(s.units, to);
-  Vec6 scale = Vec6::Constant(f);
+  std::array<double, kAxisCount> scale;
+  scale.fill(f);
   for (int i = 0; i < 3; ++i)
     if (s.display.rotary_units[i] == AxisUnit::Degrees) scale[3 + i] = 1;
   return scale;
 }
 
-void scale_speeds(GroupSpeeds& g, const Vec6& scale) {
+void scale_speeds(GroupSpeeds& g, const std::array<double, kAxisCount>& scale) {
   g.xy = round12(g.xy * scale[0]);
   g.z = round12(g.z * scale[2]);
   g.a = round12(g.a * scale[3]);

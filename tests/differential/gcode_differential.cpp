@@ -42,6 +42,7 @@
 #include "gantry/motion/path_limits.hpp"
 #include "gantry/settings/settings.hpp"
 #include "gantry/settings/values_file.hpp"
+#include "../support/recording_sink.hpp"
 
 namespace fs = std::filesystem;
 using namespace gantry;
@@ -375,13 +376,6 @@ Outcome parse_rs274(const std::string& out, const std::string& err, int status,
 
 // ---- Gantry --------------------------------------------------------------------------------
 
-class KeepingSink : public MotionSink {
- public:
-  void move(const CanonMove& m) override { moves.push_back(m); }
-  void flush() override {}
-  std::vector<CanonMove> moves;
-};
-
 // The machine the programs run on: the default profile in `units`, with a table so large
 // that no soft limit is in the way.
 Settings test_settings(Units units, const fs::path& tool_table, bool& tool_table_loaded) {
@@ -430,7 +424,7 @@ Outcome run_gantry(const fs::path& program, const Settings& settings) {
         o.error_file = at.file ? *at.file : "";
         return o;
       }
-    KeepingSink sink;
+    RecordingSink sink;
     std::string printed;
     ScriptedIO io(true, {}, &printed);
     opt.interpreter.dry_run = true;

@@ -15,6 +15,7 @@
 #include "gantry/preview/material.hpp"
 #include "gantry/preview/render.hpp"
 #include "gantry/preview/toolpath.hpp"
+#include "../support/recording_sink.hpp"
 
 namespace gantry {
 namespace {
@@ -38,18 +39,11 @@ class TempPart {
 };
 
 // The moves `gantry moves` lists: a check, then the file interpreted into a sink.
-class KeepingSink : public MotionSink {
- public:
-  void move(const CanonMove& m) override { moves.push_back(m); }
-  void flush() override {}
-  std::vector<CanonMove> moves;
-};
-
 std::vector<CanonMove> listed_moves(const std::string& file, const Settings& settings) {
   auto script = Script::load(file);
   PersistentStore store;
   EXPECT_TRUE(check_program(script, settings, store).kept().empty());
-  KeepingSink sink;
+  RecordingSink sink;
   ScriptedIO io(true, {});
   JobOptions opt;
   opt.interpreter.dry_run = true;

@@ -4,7 +4,7 @@
 #include <array>
 #include <optional>
 
-#include "gantry/core/axes.hpp"          // Vec6
+#include "gantry/core/vec6.hpp"          // Vec6
 #include "gantry/core/diagnostic.hpp"    // SourceLoc
 #include "gantry/settings/settings.hpp"  // GroupSpeeds
 

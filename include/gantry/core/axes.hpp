@@ -1,7 +1,6 @@
-// Axis naming and the two position types: real-valued units and integer steps.
+// Axis naming and the integer step position (the real-valued Vec6 is in core/vec6.hpp).
 #pragma once
 
-#include <Eigen/Core>  // Matrix for 6-axis vectors
 #include <array>
 #include <cstdint>
 
@@ -10,9 +9,6 @@ namespace gantry {
 inline constexpr int kAxisCount = 6;
 
 enum class Axis : int { X = 0, Y, Z, A, B, C };
-
-// A position or displacement in machine units (in or mm; degrees for rotary axes).
-using Vec6 = Eigen::Matrix<double, kAxisCount, 1>;
 
 // A position or displacement in motor steps, as the card counts them.
 using Steps6 = std::array<std::int64_t, kAxisCount>;

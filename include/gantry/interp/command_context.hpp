@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "gantry/canon/canon_move.hpp"      // CanonMove, MotionSink
-#include "gantry/core/axes.hpp"             // Vec6
+#include "gantry/core/vec6.hpp"             // Vec6
 #include "gantry/core/diagnostic.hpp"       // SourceLoc
 #include "gantry/interp/machine_link.hpp"   // MachineLink::Watching, MotionReport
 #include "gantry/interp/modal_state.hpp"    // ModalState

@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "gantry/core/axes.hpp"          // Vec6
+#include "gantry/core/vec6.hpp"          // Vec6
 #include "gantry/interp/tool_table.hpp"  // ToolTable
 
 namespace gantry {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "gantry/core/axes.hpp"          // Vec6
+#include "gantry/core/vec6.hpp"          // Vec6
 #include "gantry/core/text_file.hpp"     // user_config_dir
 #include "gantry/interp/file_system.hpp"  // FileSystem, user_macro_folder
 #include "gantry/settings/settings.hpp"  // Settings

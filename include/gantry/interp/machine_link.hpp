@@ -6,7 +6,7 @@
 #include <span>
 
 #include "gantry/canon/canon_move.hpp"  // InputTrigger
-#include "gantry/core/axes.hpp"         // Vec6
+#include "gantry/core/vec6.hpp"         // Vec6
 #include "gantry/core/diagnostic.hpp"   // SourceLoc
 
 namespace gantry {

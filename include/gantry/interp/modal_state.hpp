@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "gantry/canon/canon_move.hpp"      // IndependentMotion
-#include "gantry/core/axes.hpp"             // Vec6
+#include "gantry/core/vec6.hpp"             // Vec6
 #include "gantry/core/diagnostic.hpp"       // SourceLoc
 #include "gantry/interp/gcode_state.hpp"    // GcodeOffsets
 #include "gantry/settings/settings.hpp"     // SpeedSettings

@@ -10,15 +10,19 @@
 #include <string>
 #include <unordered_map>
 
-#include "gantry/canon/canon_move.hpp"         // MotionSink
-#include "gantry/core/diagnostic_log.hpp"      // DiagnosticLog
-#include "gantry/interp/interpreter.hpp"       // InterpreterOptions, ModalState, Value
-#include "gantry/interp/operator_io.hpp"       // OperatorIO
-#include "gantry/interp/persistent_store.hpp"  // PersistentStore
-#include "gantry/lang/script.hpp"              // Script
-#include "gantry/settings/settings.hpp"        // Settings
+#include "gantry/canon/canon_move.hpp"            // MotionSink
+#include "gantry/core/diagnostic_log.hpp"         // DiagnosticLog
+#include "gantry/interp/interpreter_options.hpp"  // InterpreterOptions
+#include "gantry/interp/modal_state.hpp"          // ModalState
+#include "gantry/interp/operator_io.hpp"          // OperatorIO
+#include "gantry/interp/persistent_store.hpp"     // PersistentStore
+#include "gantry/interp/value.hpp"                // Value
+#include "gantry/lang/script.hpp"                 // Script
+#include "gantry/settings/settings.hpp"           // Settings
 
 namespace gantry {
+
+class CommandRecorder;  // gantry/commands/command_recorder.hpp
 
 struct JobOptions {
   std::function<void(std::size_t done, std::size_t total)> progress;  // lines of the top file

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "gantry/core/axes.hpp"     // Vec6
+#include "gantry/core/vec6.hpp"     // Vec6
 #include "gantry/interp/value.hpp"  // Value
 
 namespace gantry {

@@ -183,12 +183,6 @@ class Controller : private FeederEvents {
   // The feeder thread (motion feeder, step generator, card) and the flags between it, the
   // job thread and the callers: feeder_thread.hpp documents who writes and reads each.
   FeederThread feed_;
-  // ForwardSink's names for the feeder's flags and results (read-only here; the job reads
-  // fired_ and latched_ only once the motion has played out).
-  const std::atomic<bool>& abort_;
-  const std::atomic<std::uint32_t>& inputs_;
-  std::optional<InputTrigger>& fired_;
-  const Vec6& latched_;
 
   // Job side.
   FeederThread::Sink* qsink_;  // the feeder's queue

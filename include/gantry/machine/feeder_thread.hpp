@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "gantry/canon/canon_move.hpp"     // InputTrigger
@@ -155,6 +156,10 @@ class FeederThread {
   void queue_emptied() { dropping_ = false; }  // job: what was cut is gone
   void end_activity();                         // job, the queue empty and the feeder idle
   void wait_for_motion();  // job: every flush pushed has played (or was dropped)
+  // Job, after wait_for_motion() (the feeder idle, its flush done): the trigger an input edge
+  // fired, once (later calls give nothing until another fires), and where the tool was then.
+  std::optional<InputTrigger> take_fired() { return std::exchange(fired_, std::nullopt); }
+  const Vec6& latched() const { return latched_; }
 
   // ---- state out (any thread) ----
   FeedPhase phase() const { return feeder_.phase(); }
@@ -171,7 +176,6 @@ class FeederThread {
   const StepGenerator& steps() const { return steps_; }
 
  private:
-  friend class Controller;  // ForwardSink reads inputs_, fired_, latched_ by name
   void main();
   void feed(Item& item);
   void card_faulted(const GantryError& e, bool flush_lost);

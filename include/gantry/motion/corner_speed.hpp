@@ -2,7 +2,7 @@
 // planner's modes. docs/planner.md derives each.
 #pragma once
 
-#include "gantry/core/axes.hpp"          // Vec6
+#include "gantry/core/vec6.hpp"          // Vec6
 #include "gantry/settings/settings.hpp"  // Settings
 
 namespace gantry {

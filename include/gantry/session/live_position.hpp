@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "gantry/core/axes.hpp"           // Vec6, kAxisCount
+#include "gantry/core/vec6.hpp"           // Vec6, kAxisCount
 #include "gantry/interp/interpreter.hpp"  // ModalState
 #include "gantry/machine/controller.hpp"  // ControllerStatus
 #include "gantry/settings/settings.hpp"   // Settings, Units

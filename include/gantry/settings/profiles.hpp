@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "gantry/settings/settings.hpp"  // Units, Vec6
+#include "gantry/core/vec6.hpp"          // Vec6
+#include "gantry/settings/settings.hpp"  // Units
 
 namespace gantry {
 

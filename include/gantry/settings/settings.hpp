@@ -281,9 +281,9 @@ void convert_units(Settings& s, Units to);
 double units_factor(Units from, Units to);
 // Per axis, the factor convert_units(s, to) applies: X, Y, Z always; A, B, C only when VD
 // gives them a length unit.
-Vec6 units_scale(const Settings& s, Units to);
+std::array<double, kAxisCount> units_scale(const Settings& s, Units to);
 // Scales a speed group as convert_units does (XY by X's factor, 12 significant digits).
-void scale_speeds(GroupSpeeds& g, const Vec6& scale);
+void scale_speeds(GroupSpeeds& g, const std::array<double, kAxisCount>& scale);
 
 // Reads and validates a profile file; a missing file is an error like any other.
 SettingsLoad load_settings_file(const std::string& path);
