@@ -108,7 +108,7 @@ void App::snapshot() {
 }
 
 bool App::at_rest() const {
-  return rest_state(status_.state);
+  return rest_state(status_.state) && status_.settled;
 }
 
 bool App::can_jog() const {
@@ -128,7 +128,7 @@ bool App::idle() const {
 Vec6 App::position(const ControllerStatus& st) const {
   // At rest the interpreter's position is exact (a step ends on its commanded point); under
   // way the pulses played say where the tool is.
-  return tool_.at(st, rest_state(st.state));
+  return tool_.at(st, rest_state(st.state) && st.settled);
 }
 
 void App::log(LogLine::Kind kind, std::string text) {
@@ -150,9 +150,9 @@ void App::poll() {
     log(LogLine::Print, out);
   }
   status_ = c_.status();
-  if (at_rest() && !was_at_rest_) {
-    c_.wait();
-    status_ = c_.status();
+  // An activity ended since the last frame (at rest or halted): the window never waits for
+  // motion, so a released jog slowing to rest leaves every key working.
+  if (activity_.ended(status_)) {
     snapshot();
     kp_continuous_ = false;
     kp_key_ = -1;
@@ -166,7 +166,6 @@ void App::poll() {
                   ? fmt::format(" (at {}:{})", *status_.stopped_at.file, status_.stopped_at.line)
                   : ""));
   }
-  was_at_rest_ = at_rest();
   // SK in a file: the keypad takes the keys until the operator goes on (Esc) or stops.
   const bool file_keypad =
       status_.state == MachineState::Keypad || (kp_file_ && status_.state == MachineState::Jogging);
@@ -277,7 +276,6 @@ void App::run_line(const std::string& typed) {
   }
   const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
   report(o, "refused");
-  if (o) was_at_rest_ = false;  // poll() sees the end, even of a move that ended at once
 }
 
 void App::open_sheet(const CommandSpec& spec, const std::string& typed) {
@@ -307,7 +305,6 @@ void App::start_file(int from_line) {
     log(LogLine::Typed, "> start " + file_);
     const Outcome o = c_.run(Script::load(file_));
     report(o, "refused");
-    if (o) was_at_rest_ = false;
   } catch (const GantryError& e) {
     log(LogLine::Error, e.what());
   }
@@ -344,10 +341,7 @@ void App::jog(const std::array<int, kAxisCount>& dir) {
   }
   const Outcome o = c_.jog(j);
   report(o, "jog");
-  if (o) {
-    was_at_rest_ = false;
-    kp_continuous_ = !j.step;
-  }
+  if (o) kp_continuous_ = !j.step;
 }
 
 // The keyboard's jogs, while the keypad has the keys.
@@ -941,7 +935,6 @@ void App::sheet_popup() {
     log(LogLine::Typed, "> " + line);
     if (o) {
       history_.add(line);
-      was_at_rest_ = false;
       sheet_open_ = false;
     } else {
       report(o, "refused");

@@ -352,6 +352,8 @@ ControllerStatus Controller::status() const {
     s.stopped_at = stopped_at_;
     s.step_hold = step_waiting_;
     s.warning = busy_ && feed_.warning();
+    s.settled = settled();
+    s.activities_ended = activities_ended_;
   }
   s.phase = feed_.phase();
   s.line = line_.load(std::memory_order_relaxed);
@@ -573,6 +575,7 @@ void Controller::job_main() {
                : cut                                     ? MachineState::Stopped
                                                          : MachineState::Idle;
     busy_ = false;
+    ++activities_ended_;
     cv_.notify_all();
   }
 }
