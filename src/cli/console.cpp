@@ -434,7 +434,11 @@ void Console::tick() {
   }
   if (mode_ == Mode::Job && c_.state() == MachineState::Keypad)
     return enter_keypad(io_.take_keypad_message(), true);
-  if (mode_ == Mode::Job && at_rest(c_.state())) return end_job();
+  if (mode_ == Mode::Job) {  // the key thread never waits for motion: end once settled
+    const ControllerStatus st = c_.status();
+    if (at_rest(st.state) && st.settled) return end_job();
+    if (at_rest(st.state)) io_.cancel();  // a question would keep the job from winding down
+  }
   if (mode_ == Mode::Keypad) keypad_tick(Clock::now());
   if (mode_ != Mode::Prompt && !asking_) draw_status(false);
 }
