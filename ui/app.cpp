@@ -951,14 +951,14 @@ void App::sheet_popup() {
 }
 
 void App::question_popup() {
-  const std::optional<Question> q = m_.io.question();
+  const std::optional<session::Question> q = m_.io.question();
   if (!q) {
     dialog_shown_ = 0;
     return;
   }
-  const char* title = q->kind == Question::Kind::Pause   ? "PAUSE###question"
-                      : q->kind == Question::Kind::Input ? "INPUT###question"
-                                                         : "MSGBOX###question";
+  const char* title = q->kind == session::Question::Kind::Pause   ? "PAUSE###question"
+                      : q->kind == session::Question::Kind::Input ? "INPUT###question"
+                                                                  : "MSGBOX###question";
   if (dialog_shown_ != q->id) {
     ImGui::OpenPopup("###question");
     answer_ = q->default_value;
@@ -978,12 +978,12 @@ void App::question_popup() {
   std::optional<std::string> answer;
   bool cancel = esc;
   switch (q->kind) {
-    case Question::Kind::Pause:
+    case session::Question::Kind::Pause:
       if (button("Continue") || enter) answer = "";
       ImGui::SameLine();
       cancel = button("Cancel##pause") || cancel;
       break;
-    case Question::Kind::Input:
+    case session::Question::Kind::Input:
       if (fresh) ImGui::SetKeyboardFocusHere();
       ImGui::SetNextItemWidth(220);
       ImGui::InputText(q->variable.c_str(), &answer_);
@@ -991,7 +991,7 @@ void App::question_popup() {
       ImGui::SameLine();
       cancel = button("Cancel##input") || cancel;
       break;
-    case Question::Kind::MsgBox:
+    case session::Question::Kind::MsgBox:
       for (std::size_t i = 0; i < q->buttons.size(); ++i) {
         if (i > 0) ImGui::SameLine();
         if (button(q->buttons[i].c_str())) answer = q->buttons[i];
@@ -1063,10 +1063,10 @@ nlohmann::json App::state() const {
                   {"line", sheet_->line()},
                   {"errors", sheet_errors_}};
   }
-  if (const std::optional<Question> q = m_.io.question())
-    s["dialog"] = {{"kind", q->kind == Question::Kind::Pause   ? "PAUSE"
-                            : q->kind == Question::Kind::Input ? "INPUT"
-                                                               : "MSGBOX"},
+  if (const std::optional<session::Question> q = m_.io.question())
+    s["dialog"] = {{"kind", q->kind == session::Question::Kind::Pause   ? "PAUSE"
+                            : q->kind == session::Question::Kind::Input ? "INPUT"
+                                                                        : "MSGBOX"},
                    {"text", q->text},
                    {"buttons", q->buttons},
                    {"shown", dialog_shown_ == q->id}};
