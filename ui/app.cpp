@@ -15,11 +15,12 @@
 #include "gantry/commands/command_docs.hpp"  // command_help
 #include "gantry/lang/scan.hpp"              // trim
 #include "gantry/lang/script.hpp"            // Script
+#include "gantry/session/console_help.hpp"   // help_answer, window_status, keys_help
 #include "gantry/session/console_words.hpp"  // read_typed_line
 #include "gantry/session/feed_override.hpp"  // stepped_feed_override
+#include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
-#include "gantry/session/readout_lines.hpp"  // spindle_text
 
 namespace gantry::ui {
 namespace {
@@ -57,26 +58,6 @@ void place(const Layout& l) {
 
 constexpr ImGuiWindowFlags kFixed =
     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
-
-const char* const kKeysHelp =
-    "Command line\n"
-    "  two letters        a command; the parameter line below shows what it takes\n"
-    "  Tab                completes the code (or lists the matches)\n"
-    "  Up / Down          the lines entered before\n"
-    "  Enter              runs the line; a code alone opens its fill-in sheet\n"
-    "  Alt + letter       the menu of that group (M Move, J Jog, Z Zero, V Values ...)\n"
-    "  help [CODE], status, ack, K (keypad), quit\n"
-    "While a file or line runs\n"
-    "  Space              pause, and resume\n"
-    "  Esc                stop (the tool slows to rest on the path)\n"
-    "  F12                E-stop (the pulses stop at once; ack to go on)\n"
-    "Keypad (K, or click the keypad window)\n"
-    "  Left / Right       X - / +          Up / Down   Y + / -\n"
-    "  PageUp / PageDown  Z + / -\n"
-    "  S                  fixed steps or continuous    F  fast or slow\n"
-    "  Space              stops the jog                Esc leaves the keypad\n"
-    "Fill-in sheets and dialogs: Enter runs (or answers), Esc closes (cancels).\n"
-    "Preview: left drag rotates, right drag pans, the wheel zooms; the pointer shows the line.\n";
 
 }  // namespace
 
@@ -245,18 +226,13 @@ void App::run_line(const std::string& typed) {
     case Word::Quit:
       quit_ = true;
       return;
-    case Word::Help:
-      if (rest.empty()) return log(LogLine::Info, kKeysHelp);
-      if (const CommandSpec* s = table_.find(scan::upper(rest)))
-        return log(LogLine::Info, command_help(*s));
-      return log(LogLine::Error, fmt::format("unknown command '{}'", rest));
-    case Word::Status: {
-      const Vec6 p = position(status_);
-      return log(LogLine::Info,
-                 fmt::format("{}  X {:.4f}  Y {:.4f}  Z {:.4f}  {}{}", state_name(status_.state),
-                             shown(p[0]), shown(p[1]), shown(p[2]), units_name(settings_.units),
-                             status_.message.empty() ? "" : "; last stop: " + status_.message));
+    case Word::Help: {
+      const session::HelpAnswer h = session::help_answer(session::FrontEnd::Window, rest);
+      return log(h.error ? LogLine::Error : LogLine::Info, h.text);
     }
+    case Word::Status:
+      return log(LogLine::Info,
+                 session::window_status(status_, position(status_), settings_.units));
     case Word::Ack: {
       const Outcome o = c_.acknowledge();
       report(o, "ack");
@@ -861,7 +837,7 @@ void App::values_window() {
 void App::keys_window() {
   ImGui::SetNextWindowPos(ImVec2(kLeft + 60, 80), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Keys", &show_keys_, ImGuiWindowFlags_AlwaysAutoResize))
-    ImGui::TextUnformatted(kKeysHelp);
+    ImGui::TextUnformatted(session::keys_help(session::FrontEnd::Window));
   ImGui::End();
 }
 
