@@ -15,11 +15,12 @@
 #include "gantry/commands/command_docs.hpp"  // command_help
 #include "gantry/lang/scan.hpp"              // trim
 #include "gantry/lang/script.hpp"            // Script
+#include "gantry/session/console_help.hpp"   // help_answer, window_status, keys_help
 #include "gantry/session/console_words.hpp"  // read_typed_line
 #include "gantry/session/feed_override.hpp"  // stepped_feed_override
+#include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
-#include "gantry/session/readout_lines.hpp"  // spindle_text
 
 namespace gantry::ui {
 namespace {
@@ -58,26 +59,6 @@ void place(const Layout& l) {
 constexpr ImGuiWindowFlags kFixed =
     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
 
-const char* const kKeysHelp =
-    "Command line\n"
-    "  two letters        a command; the parameter line below shows what it takes\n"
-    "  Tab                completes the code (or lists the matches)\n"
-    "  Up / Down          the lines entered before\n"
-    "  Enter              runs the line; a code alone opens its fill-in sheet\n"
-    "  Alt + letter       the menu of that group (M Move, J Jog, Z Zero, V Values ...)\n"
-    "  help [CODE], status, ack, K (keypad), quit\n"
-    "While a file or line runs\n"
-    "  Space              pause, and resume\n"
-    "  Esc                stop (the tool slows to rest on the path)\n"
-    "  F12                E-stop (the pulses stop at once; ack to go on)\n"
-    "Keypad (K, or click the keypad window)\n"
-    "  Left / Right       X - / +          Up / Down   Y + / -\n"
-    "  PageUp / PageDown  Z + / -\n"
-    "  S                  fixed steps or continuous    F  fast or slow\n"
-    "  Space              stops the jog                Esc leaves the keypad\n"
-    "Fill-in sheets and dialogs: Enter runs (or answers), Esc closes (cancels).\n"
-    "Preview: left drag rotates, right drag pans, the wheel zooms; the pointer shows the line.\n";
-
 }  // namespace
 
 App::App(const GuiOptions& options, Machine& machine)
@@ -108,7 +89,7 @@ void App::snapshot() {
 }
 
 bool App::at_rest() const {
-  return rest_state(status_.state);
+  return rest_state(status_.state) && status_.settled;
 }
 
 bool App::can_jog() const {
@@ -128,7 +109,7 @@ bool App::idle() const {
 Vec6 App::position(const ControllerStatus& st) const {
   // At rest the interpreter's position is exact (a step ends on its commanded point); under
   // way the pulses played say where the tool is.
-  return tool_.at(st, rest_state(st.state));
+  return tool_.at(st, rest_state(st.state) && st.settled);
 }
 
 void App::log(LogLine::Kind kind, std::string text) {
@@ -150,9 +131,9 @@ void App::poll() {
     log(LogLine::Print, out);
   }
   status_ = c_.status();
-  if (at_rest() && !was_at_rest_) {
-    c_.wait();
-    status_ = c_.status();
+  // An activity ended since the last frame (at rest or halted): the window never waits for
+  // motion, so a released jog slowing to rest leaves every key working.
+  if (activity_.ended(status_)) {
     snapshot();
     kp_continuous_ = false;
     kp_key_ = -1;
@@ -166,7 +147,6 @@ void App::poll() {
                   ? fmt::format(" (at {}:{})", *status_.stopped_at.file, status_.stopped_at.line)
                   : ""));
   }
-  was_at_rest_ = at_rest();
   // SK in a file: the keypad takes the keys until the operator goes on (Esc) or stops.
   const bool file_keypad =
       status_.state == MachineState::Keypad || (kp_file_ && status_.state == MachineState::Jogging);
@@ -246,18 +226,13 @@ void App::run_line(const std::string& typed) {
     case Word::Quit:
       quit_ = true;
       return;
-    case Word::Help:
-      if (rest.empty()) return log(LogLine::Info, kKeysHelp);
-      if (const CommandSpec* s = table_.find(scan::upper(rest)))
-        return log(LogLine::Info, command_help(*s));
-      return log(LogLine::Error, fmt::format("unknown command '{}'", rest));
-    case Word::Status: {
-      const Vec6 p = position(status_);
-      return log(LogLine::Info,
-                 fmt::format("{}  X {:.4f}  Y {:.4f}  Z {:.4f}  {}{}", state_name(status_.state),
-                             shown(p[0]), shown(p[1]), shown(p[2]), units_name(settings_.units),
-                             status_.message.empty() ? "" : "; last stop: " + status_.message));
+    case Word::Help: {
+      const session::HelpAnswer h = session::help_answer(session::FrontEnd::Window, rest);
+      return log(h.error ? LogLine::Error : LogLine::Info, h.text);
     }
+    case Word::Status:
+      return log(LogLine::Info,
+                 session::window_status(status_, position(status_), settings_.units));
     case Word::Ack: {
       const Outcome o = c_.acknowledge();
       report(o, "ack");
@@ -277,7 +252,6 @@ void App::run_line(const std::string& typed) {
   }
   const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
   report(o, "refused");
-  if (o) was_at_rest_ = false;  // poll() sees the end, even of a move that ended at once
 }
 
 void App::open_sheet(const CommandSpec& spec, const std::string& typed) {
@@ -307,7 +281,6 @@ void App::start_file(int from_line) {
     log(LogLine::Typed, "> start " + file_);
     const Outcome o = c_.run(Script::load(file_));
     report(o, "refused");
-    if (o) was_at_rest_ = false;
   } catch (const GantryError& e) {
     log(LogLine::Error, e.what());
   }
@@ -344,10 +317,7 @@ void App::jog(const std::array<int, kAxisCount>& dir) {
   }
   const Outcome o = c_.jog(j);
   report(o, "jog");
-  if (o) {
-    was_at_rest_ = false;
-    kp_continuous_ = !j.step;
-  }
+  if (o) kp_continuous_ = !j.step;
 }
 
 // The keyboard's jogs, while the keypad has the keys.
@@ -867,7 +837,7 @@ void App::values_window() {
 void App::keys_window() {
   ImGui::SetNextWindowPos(ImVec2(kLeft + 60, 80), ImGuiCond_FirstUseEver);
   if (ImGui::Begin("Keys", &show_keys_, ImGuiWindowFlags_AlwaysAutoResize))
-    ImGui::TextUnformatted(kKeysHelp);
+    ImGui::TextUnformatted(session::keys_help(session::FrontEnd::Window));
   ImGui::End();
 }
 
@@ -941,7 +911,6 @@ void App::sheet_popup() {
     log(LogLine::Typed, "> " + line);
     if (o) {
       history_.add(line);
-      was_at_rest_ = false;
       sheet_open_ = false;
     } else {
       report(o, "refused");
@@ -958,14 +927,14 @@ void App::sheet_popup() {
 }
 
 void App::question_popup() {
-  const std::optional<Question> q = m_.io.question();
+  const std::optional<session::Question> q = m_.io.question();
   if (!q) {
     dialog_shown_ = 0;
     return;
   }
-  const char* title = q->kind == Question::Kind::Pause   ? "PAUSE###question"
-                      : q->kind == Question::Kind::Input ? "INPUT###question"
-                                                         : "MSGBOX###question";
+  const char* title = q->kind == session::Question::Kind::Pause   ? "PAUSE###question"
+                      : q->kind == session::Question::Kind::Input ? "INPUT###question"
+                                                                  : "MSGBOX###question";
   if (dialog_shown_ != q->id) {
     ImGui::OpenPopup("###question");
     answer_ = q->default_value;
@@ -985,12 +954,12 @@ void App::question_popup() {
   std::optional<std::string> answer;
   bool cancel = esc;
   switch (q->kind) {
-    case Question::Kind::Pause:
+    case session::Question::Kind::Pause:
       if (button("Continue") || enter) answer = "";
       ImGui::SameLine();
       cancel = button("Cancel##pause") || cancel;
       break;
-    case Question::Kind::Input:
+    case session::Question::Kind::Input:
       if (fresh) ImGui::SetKeyboardFocusHere();
       ImGui::SetNextItemWidth(220);
       ImGui::InputText(q->variable.c_str(), &answer_);
@@ -998,7 +967,7 @@ void App::question_popup() {
       ImGui::SameLine();
       cancel = button("Cancel##input") || cancel;
       break;
-    case Question::Kind::MsgBox:
+    case session::Question::Kind::MsgBox:
       for (std::size_t i = 0; i < q->buttons.size(); ++i) {
         if (i > 0) ImGui::SameLine();
         if (button(q->buttons[i].c_str())) answer = q->buttons[i];
@@ -1070,10 +1039,10 @@ nlohmann::json App::state() const {
                   {"line", sheet_->line()},
                   {"errors", sheet_errors_}};
   }
-  if (const std::optional<Question> q = m_.io.question())
-    s["dialog"] = {{"kind", q->kind == Question::Kind::Pause   ? "PAUSE"
-                            : q->kind == Question::Kind::Input ? "INPUT"
-                                                               : "MSGBOX"},
+  if (const std::optional<session::Question> q = m_.io.question())
+    s["dialog"] = {{"kind", q->kind == session::Question::Kind::Pause   ? "PAUSE"
+                            : q->kind == session::Question::Kind::Input ? "INPUT"
+                                                                        : "MSGBOX"},
                    {"text", q->text},
                    {"buttons", q->buttons},
                    {"shown", dialog_shown_ == q->id}};

@@ -18,7 +18,8 @@
 #include "camera.hpp"
 #include "command_line.hpp"
 #include "fill_sheet.hpp"
-#include "gantry/session/live_position.hpp"  // LivePosition
+#include "gantry/session/activity_watch.hpp"  // ActivityWatch
+#include "gantry/session/live_position.hpp"   // LivePosition
 #include "gui.hpp"
 #include "preview_gl.hpp"
 
@@ -98,7 +99,7 @@ class App {
   ControllerStatus status_;
   ModalState modal_;
   session::LivePosition tool_;  // the frame and exact position at the last snapshot
-  bool was_at_rest_ = true;
+  session::ActivityWatch activity_;  // a run, line or jog ended since the last frame
 
   // Command line.
   std::string line_;

@@ -5,9 +5,9 @@
 #include <functional>
 #include <string>
 
-#include "gantry/machine/controller.hpp"  // Controller
-#include "gantry/settings/settings.hpp"   // Settings
-#include "window_io.hpp"                  // WindowIO
+#include "gantry/machine/controller.hpp"   // Controller
+#include "gantry/session/operator_io.hpp"  // OperatorMailbox
+#include "gantry/settings/settings.hpp"    // Settings
 
 namespace gantry::ui {
 
@@ -24,7 +24,7 @@ struct GuiOptions {
 // the keypad step): they change when a line runs a V command.
 struct Machine {
   Controller& controller;
-  WindowIO& io;
+  session::OperatorMailbox& io;  // PRINT to the log; PAUSE, INPUT, MSGBOX as dialogs
   std::function<Settings()> settings;
 };
 

@@ -19,6 +19,7 @@
 #include "gantry/commands/command_docs.hpp"  // command_help, command_list
 #include "gantry/lang/scan.hpp"              // upper, trim
 #include "gantry/lang/script.hpp"            // Script
+#include "gantry/session/console_help.hpp"   // help_answer, terminal_status
 #include "gantry/session/console_words.hpp"  // read_typed_line
 #include "gantry/session/feed_override.hpp"  // stepped_feed_override
 #include "gantry/session/readout_lines.hpp"  // speeds_text, spindle_text
@@ -44,20 +45,6 @@ std::string readout_text(std::string_view state, const Vec6& p, Units u) {
                      shown(p[0]), shown(p[1]), shown(p[2]), shown(p[3]), shown(p[4]), shown(p[5]),
                      units_name(u));
 }
-
-const char* const kConsoleHelp =
-    "Type a line and Enter: it runs on the machine, e.g.  MX, 5   J2, 1, 1   VS, 2   &D = 0.5\n"
-    "  FP, part.sbp   (a file runs from the current folder).\n"
-    "Editing: Left/Right, Home/End (Ctrl-A/Ctrl-E), Backspace/Delete, Ctrl-K/Ctrl-U, Up/Down\n"
-    "  recall earlier lines, Tab completes a two-letter code or lists the matches.\n"
-    "Words: help [CODE]   help commands   status   ack (after an E-stop)   K (keypad)   quit\n"
-    "  step [on|off] (single step: each statement holds once its motion has played)\n"
-    "While a line runs: space pauses (then space or Enter resumes, Esc or q quits the file),\n"
-    "  Esc stops, ! or Ctrl-C is the E-stop. Other lines wait until the machine is at rest.\n"
-    "Keypad (K or SK): arrows X and Y, PageUp/PageDown Z, / and \\ diagonals, Ctrl+key fast;\n"
-    "  S (or D) fixed steps or continuous, F fast or slow, space stops a jog, Esc leaves.\n"
-    "  SK in a file opens it too: Esc goes on with the file, q stops it.\n"
-    "  A continuous jog runs while the key repeats and slows to rest once the repeats stop.\n";
 
 // The console's words and the command table's codes, for Tab.
 std::vector<CompletionWord> completion_words() {
@@ -130,28 +117,13 @@ std::string Console::readout(const ControllerStatus& st) const {
 }
 
 std::string Console::help(const std::string& arg) const {
-  if (arg.empty()) return kConsoleHelp;
-  if (upper(arg) == "COMMANDS") return command_list(CommandTable::standard());
-  if (const CommandSpec* spec = CommandTable::standard().find(upper(arg)))
-    return command_help(*spec);
-  return fmt::format("error: unknown command '{}'; help commands lists them all\n", arg);
+  return session::help_answer(session::FrontEnd::Terminal, arg).text;
 }
 
 std::string Console::status_report() const {
   const ControllerStatus st = c_.status();
-  std::string out = readout(st) + "\n";
-  const Vec6 table = live_.table_base();
-  out += fmt::format("table base X {:.4f}  Y {:.4f}  Z {:.4f}; keypad step {:.4f} {}\n",
-                     shown(table[0]), shown(table[1]), shown(table[2]), keypad_step_,
-                     units_name(units_));
-  const ModalState m = c_.modal();  // at rest: the values in force
-  out += session::speeds_text(m.speeds, units_, st.feed_override) + "; " +
-         session::spindle_text(st, m.spindle_rpm) + "\n";
-  if (!st.message.empty())
-    out += fmt::format("last stop: {}{}\n", st.message,
-                       st.stopped_at.file ? " at " + where(st.stopped_at) : "");
-  if (st.state == MachineState::EStop) out += "E-stop: nothing moves until you type ack\n";
-  return out;
+  return session::terminal_status(readout(st), st, c_.modal(), live_.table_base(), keypad_step_,
+                                  units_);
 }
 
 std::string Console::refusal(const std::string& prefix, const std::string& line, const Outcome& o,
@@ -434,7 +406,11 @@ void Console::tick() {
   }
   if (mode_ == Mode::Job && c_.state() == MachineState::Keypad)
     return enter_keypad(io_.take_keypad_message(), true);
-  if (mode_ == Mode::Job && at_rest(c_.state())) return end_job();
+  if (mode_ == Mode::Job) {  // the key thread never waits for motion: end once settled
+    const ControllerStatus st = c_.status();
+    if (at_rest(st.state) && st.settled) return end_job();
+    if (at_rest(st.state)) io_.cancel();  // a question would keep the job from winding down
+  }
   if (mode_ == Mode::Keypad) keypad_tick(Clock::now());
   if (mode_ != Mode::Prompt && !asking_) draw_status(false);
 }

@@ -172,7 +172,8 @@ bool Console::start_jog(const JogRequest& j) {
 // (the terminal waits that long before it starts repeating a held key).
 void Console::keypad_tick(Clock::time_point now) {
   if (kp_.active) {
-    const MachineState s = c_.state();
+    ControllerStatus st = c_.status();
+    const MachineState s = st.state;
     if (!at_rest(s) && s != MachineState::Keypad) {
       if (!kp_.current.step && !kp_.released) {
         const milliseconds window(kp_.repeats == 0 ? args_.repeat_delay_ms : args_.release_ms);
@@ -183,10 +184,12 @@ void Console::keypad_tick(Clock::time_point now) {
       }
       return;
     }
-    c_.wait();
+    // A released jog reads idle while it slows to rest: look again at the next tick. This is
+    // the key thread, so it never waits for motion (space, ! and Esc act at once).
+    if (!st.settled) return;
     kp_.active = false;
     snapshot();
-    const ControllerStatus st = c_.status();
+    st = c_.status();
     if (st.state == MachineState::EStop) {
       kp_.queued.reset();
       kp_.leaving = true;  // back to the prompt, which says how to go on

@@ -349,6 +349,8 @@ ControllerStatus Controller::status() const {
     s.stopped_at = stopped_at_;
     s.step_hold = step_waiting_;
     s.warning = busy_ && feed_.warning();
+    s.settled = settled();
+    s.activities_ended = activities_ended_;
   }
   s.phase = feed_.phase();
   s.line = line_.load(std::memory_order_relaxed);
@@ -578,6 +580,7 @@ void Controller::job_main() {
       lock.lock();
     }
     busy_ = false;
+    ++activities_ended_;
     cv_.notify_all();
   }
 }

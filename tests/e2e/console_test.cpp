@@ -613,6 +613,44 @@ TEST(ConsoleTerminal, AContinuousJogStopsOnceTheKeyNoLongerRepeats) {
   ASSERT_TRUE(t.wait_for_prompt()) << t.text();
 }
 
+// Issue 25: after an E-stop and ack, K and an arrow left the console in "jogging", deaf to
+// every key (even !) while the released jog slowed to rest: the key thread waited for the
+// motion. A long keypad ramp (VR's keypad ramp rate) makes that slowing last seconds; ! must
+// still act at once.
+TEST(ConsoleTerminal, AfterAnEStopAndAckTheKeypadStillHearsBangWhileAJogSlowsToRest) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim --realtime --key-repeat-delay-ms 300");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("SW, 0");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 20");
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("running "); })) << t.text();
+  t.type("!");
+  ASSERT_TRUE(t.wait_for_last("gantry [E-stop: type ack]>")) << t.text();
+  t.line("ack");
+  ASSERT_TRUE(t.wait_for_line("E-stop acknowledged: the machine is ready")) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("VR, , , , , , , , , , , , , , , , 50");  // the keypad ramp rate: a long ramp down
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("K");
+  const std::string prefix = "[keypad continuous slow] ";
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with(prefix + "idle "); })) << t.text();
+  t.keys("Right");  // one press: released after the repeat delay, then seconds slowing down
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with(prefix + "jogging "); }))
+      << t.text();
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));  // released, still slowing
+  t.type("!");
+  EXPECT_TRUE(t.wait_for_last("gantry [E-stop: type ack]>", 1.5))
+      << "the keypad did not hear ! while the jog slowed to rest\n"
+      << t.text();
+  ASSERT_TRUE(t.wait_for_last("gantry [E-stop: type ack]>")) << t.text();
+  t.line("ack");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 0");  // and the machine moves again
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {0, 0, 0, 0, 0, 0}), 40)) << t.text();
+}
+
 // ---- gantry run at a terminal: Ctrl-C stops the run in order -------------------------------
 
 TEST(RunAtATerminal, CtrlCRampsTheMoveDownAndTheReportSaysWhereTheToolIs) {

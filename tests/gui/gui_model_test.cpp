@@ -9,8 +9,8 @@
 #include "camera.hpp"
 #include "command_line.hpp"
 #include "fill_sheet.hpp"
+#include "gantry/session/operator_io.hpp"
 #include "test_script.hpp"
-#include "window_io.hpp"
 
 namespace {
 
@@ -171,12 +171,12 @@ TEST(GuiFillSheet, FillsFromATypedLineAndPlacesTheControllersErrors) {
 // ---- the operator's dialogs ------------------------------------------------------------------
 
 TEST(GuiWindowIO, QuestionsWaitForTheWindowsAnswer) {
-  WindowIO io(false, {});
+  session::OperatorMailbox io(false, {});
   std::optional<std::string> got;
   std::thread job([&] { got = io.ask("Depth?", "&D", "0.25", {}); });
   while (!io.question()) std::this_thread::yield();
-  const Question q = *io.question();
-  EXPECT_EQ(q.kind, Question::Kind::Input);
+  const session::Question q = *io.question();
+  EXPECT_EQ(q.kind, session::Question::Kind::Input);
   EXPECT_EQ(q.variable, "&D");
   EXPECT_EQ(q.default_value, "0.25");
   io.answer("0.5");
@@ -200,7 +200,7 @@ TEST(GuiWindowIO, QuestionsWaitForTheWindowsAnswer) {
 }
 
 TEST(GuiWindowIO, ScriptedAnswersNeedNoWindow) {
-  WindowIO io(true, {{"&D", "3"}});
+  session::OperatorMailbox io(true, {{"&D", "3"}});
   EXPECT_TRUE(io.confirm("x", {}));
   EXPECT_EQ(io.ask("", "&D", "", {}), "3");
   io.print("hello\n");

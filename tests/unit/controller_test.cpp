@@ -16,6 +16,7 @@
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/script.hpp"
 #include "gantry/machine/job.hpp"
+#include "gantry/session/activity_watch.hpp"
 #include "sim/sim_card.hpp"
 
 namespace gantry {
@@ -312,6 +313,58 @@ TEST(Controller, AContinuousJogRampsDownOnReleaseAtTheKeypadRampRate) {
   const double expected = v * hold_s - (v - u) * (v - u) / (2 * a) + v * v / (2 * a);
   EXPECT_NEAR(s.machine[0], expected, 2.0 / m.settings.axes[0].steps_per_unit);
   EXPECT_EQ(s.steps[1], 0);
+}
+
+// Issue 25: after an E-stop and ack, a released jog read "idle" while it slowed to rest, and
+// the console's key thread waited in wait() there, deaf to every key (even !). The status says
+// whether anything is under way (settled) and counts the activities ended, so a front end
+// polls and never waits; an E-stop while the jog slows acts at once.
+TEST(Controller, AReleasedJogSlowingToRestIsNotSettledAndAnEStopThenActsAtOnce) {
+  using namespace std::chrono_literals;
+  Settings settings = default_settings();
+  settings.ramps.keypad_ramp_rate = 20;  // a long ramp down: seconds
+  SimCard card{settings, true};
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  session::ActivityWatch watch;
+  ASSERT_TRUE(c.run(Script::from_text("MS, 2\nMX, 1\n", "part.sbp")));
+  std::this_thread::sleep_for(100ms);
+  ASSERT_TRUE(c.estop());
+  ASSERT_TRUE(c.wait_for(5s));
+  ControllerStatus s = c.status();
+  EXPECT_EQ(s.state, MachineState::EStop);
+  EXPECT_TRUE(s.settled);
+  EXPECT_EQ(s.activities_ended, 1u);
+  EXPECT_TRUE(watch.ended(s));
+  EXPECT_FALSE(watch.ended(c.status()));  // once per end
+  ASSERT_TRUE(c.acknowledge());
+  JogRequest j;
+  j.direction[0] = 1;
+  ASSERT_TRUE(c.jog(j));
+  EXPECT_FALSE(c.status().settled);
+  std::this_thread::sleep_for(400ms);
+  ASSERT_TRUE(c.jog_release());
+  s = c.status();
+  EXPECT_EQ(s.state, MachineState::Idle);  // released: idle at once ...
+  EXPECT_FALSE(s.settled);                 // ... but still slowing to rest
+  EXPECT_FALSE(watch.ended(s));
+  EXPECT_FALSE(c.wait_for(100ms));
+  const double x = c.status().machine[0];
+  std::this_thread::sleep_for(100ms);
+  EXPECT_GT(c.status().machine[0], x);  // still moving
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(c.estop());
+  ASSERT_TRUE(c.wait_for(2s));  // the pulses stop at once, not at the end of the ramp
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 1s);
+  s = c.status();
+  EXPECT_EQ(s.state, MachineState::EStop);
+  EXPECT_TRUE(s.settled);
+  EXPECT_EQ(s.activities_ended, 2u);
+  EXPECT_TRUE(watch.ended(s));
+  const double stopped = s.machine[0];
+  std::this_thread::sleep_for(100ms);
+  EXPECT_EQ(c.status().machine[0], stopped);
 }
 
 TEST(Controller, AContinuousJogStopsAtTheSoftLimit) {

@@ -32,6 +32,12 @@ struct ControllerStatus {
   std::array<bool, 12> inputs{};  // input switches 1-12: closed
   bool step_hold = false;         // paused by single step, after a statement (at rest)
   bool warning = false;           // SW's warning: the machine is about to move
+  // Nothing is under way (what wait() waits for): a front end's key thread polls this and
+  // never waits for motion (a released jog reads idle while it still slows to rest).
+  bool settled = true;
+  // Activities (runs, typed lines, jogs) that have ended, at rest or halted: counts up, so a
+  // front end that polls sees an end even between two polls (session::ActivityWatch).
+  std::uint64_t activities_ended = 0;
   // The outputs as the card plays them (not as the file last set them): switches bit n-1 is
   // output switch n (1 runs the spindle on ShopBot's wiring), and TR's speed.
   std::uint32_t outputs = 0;
@@ -201,6 +207,7 @@ class Controller : private FeederEvents {
   bool quit_ = false;  // the destructor: the job thread ends (under m_)
   MachineState state_ = MachineState::Idle;
   bool busy_ = false;  // an activity is under way on the job thread
+  std::uint64_t activities_ended_ = 0;  // ControllerStatus::activities_ended
   std::function<void()> work_;
   std::vector<std::pair<Request, double>> scheduled_;
   std::optional<MachineState> effect_state_;  // entered when a scheduled hold takes effect
