@@ -308,24 +308,30 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   if (sim && !interactive)
     opt.interpreter.unattended_inputs = unattended_inputs(choice.world, settings.inputs, sim);
   // The position, zero and units the last session left (docs/machine_state.md), and the
-  // part-file log (VD), both next to the values file.
+  // part-file log (VD), both next to the values file: on a live machine only (a real card,
+  // or the simulated one in real time). A run in virtual time is an off-machine check of the
+  // file, the same from the same inputs: it neither starts where another left nor is logged.
+  const bool live = opt.interpreter.warn_before_motion;
   session::MachineMemory memory(session::machine_state_path(profile.values_path));
-  if (const std::string said = memory.load(settings.units); !memory.first_start())
-    fmt::print(stderr, "gantry: {}\n", said);
+  if (live)
+    if (const std::string said = memory.load(settings.units); !memory.first_start())
+      fmt::print(stderr, "gantry: {}\n", said);
   ModalState restored;  // the check starts from it too
   restored.speeds = settings.speeds;
   const Vec6 start_table = memory.state().table;  // the card counts from here (0: a fresh start)
-  if (memory.restoring()) {
+  if (live && memory.restoring()) {
     memory.restore(restored, Vec6::Zero());  // the card counts from 0
     opt.start_state = &restored;
   }
   session::RunLogger part_log(session::run_log_path(profile.values_path));
   const bool logging = settings.display.part_file_log;
-  auto keep = [&](Controller& c) {
-    memory.attach(c, [&](const Controller::Activity& act) {
-      if (logging) part_log.activity(act);
-    });
-  };
+  std::function<void(Controller&)> keep;
+  if (live)
+    keep = [&](Controller& c) {
+      memory.attach(c, [&](const Controller::Activity& act) {
+        if (logging) part_log.activity(act);
+      });
+    };
   if (!a.json)
     fmt::print(stderr, "gantry: running {} on the {} card, profile \"{}\"\n", a.file,
                sim ? "simulated" : choice.type, settings.name);
@@ -361,7 +367,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
                   watch, keep);
     stops = control.stops();
   }
-  if (std::string why; !memory.save(&why))  // at exit
+  if (std::string why; live && !memory.save(&why))  // at exit
     fmt::print(stderr, "gantry: cannot save the machine state to {}: {}\n", memory.path(), why);
   if (const std::string why = part_log.failure(); !why.empty())
     fmt::print(stderr, "gantry: cannot append to the part-file log {}: {}\n", part_log.path(), why);

@@ -64,7 +64,7 @@ struct Sessions {
 TEST(MachineState, SigkillMidMoveRestoresThePositionUnconfirmed) {
   Sessions s;
   // Session 1: ends at rest at table X 1.5 with working 0 at table X 1.
-  const auto first = s.gantry(fmt::format("run '{}'", s.part("first.sbp", "MX, 1\nZX\nMX, 0.5\n")));
+  const auto first = s.gantry(fmt::format("run '{}' --realtime", s.part("first.sbp", "SW, 0\nMX, 1\nZX\nMX, 0.5\n")));
   ASSERT_EQ(first.exit_code, 0) << first.err;
   EXPECT_EQ(first.err.find("position restored"), std::string::npos) << "nothing to restore yet";
   std::string state = slurp(s.state());
@@ -124,7 +124,7 @@ TEST(MachineState, SigkillMidMoveRestoresThePositionUnconfirmed) {
 
   // Session 5 (gantry run): moves from the restored position: working 0 is table X 1, half an
   // inch towards -X; still unconfirmed at rest afterwards.
-  const auto back = s.gantry(fmt::format("run '{}' --json", s.part("back.sbp", "MX, 0\n")));
+  const auto back = s.gantry(fmt::format("run '{}' --realtime --json", s.part("back.sbp", "SW, 0\nMX, 0\n")));
   ASSERT_EQ(back.exit_code, 0) << back.err;
   EXPECT_NE(back.err.find("gantry: position restored from the last session"), std::string::npos)
       << back.err;
@@ -160,12 +160,26 @@ TEST(MachineState, SigkillMidMoveRestoresThePositionUnconfirmed) {
   EXPECT_EQ(runs[0]["position"]["x"], 1.0);
 }
 
+// The runs here are live (--realtime): only a live `gantry run` keeps the machine's state.
+// One in virtual time is an off-machine check: the same file, the same report, every time.
+TEST(MachineState, ARunInVirtualTimeNeitherRestoresNorSaves) {
+  Sessions s;
+  const std::string file = s.part("rel.sbp", "SR\nMX, 1\n");
+  for (int run = 0; run < 2; ++run) {
+    const auto r = s.gantry(fmt::format("run '{}' --json", file));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["position"]["x"], 1.0) << "run " << run;
+  }
+  EXPECT_FALSE(fs::exists(s.state()));
+  EXPECT_FALSE(fs::exists(s.state().parent_path() / "part_files.log"));
+}
+
 // A corrupt state file: a clear message and a fresh start at 0, never a crash.
 TEST(MachineState, ACorruptFileIsAMessageAndAFreshStart) {
   Sessions s;
   fs::create_directories(s.state().parent_path());
   std::ofstream(s.state()) << "motion = \"at rest\"\nposition = { x = oops }\n";
-  const auto r = s.gantry(fmt::format("run '{}' --json", s.part("m.sbp", "MX, 1\n")));
+  const auto r = s.gantry(fmt::format("run '{}' --realtime --json", s.part("m.sbp", "SW, 0\nMX, 1\n")));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("not a machine state file (line 2"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("starting afresh"), std::string::npos) << r.err;
@@ -180,7 +194,7 @@ TEST(MachineState, NoLogLineWhenVdTurnsItOff) {
   Sessions s;
   fs::create_directories(s.dir / "config/gantry/values");
   std::ofstream(s.dir / "values.toml") << "[display]\npart_file_log = false\n";
-  const auto r = s.gantry(fmt::format("run '{}' --values '{}'", s.part("m.sbp", "MX, 1\n"),
+  const auto r = s.gantry(fmt::format("run '{}' --realtime --values '{}'", s.part("m.sbp", "SW, 0\nMX, 1\n"),
                                       (s.dir / "values.toml").string()));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(fs::exists(s.dir / "part_files.log"));

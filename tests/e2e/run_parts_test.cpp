@@ -1022,8 +1022,10 @@ TEST(Signals, AStopAndADoubleSigintAreReportedByNameWithWhatRan) {
   const std::string file = part_file("long_x", "MS, 2\nMX, 10\nMY, 5\n");
   for (const int signals : {1, 2}) {
     const fs::path out = fs::temp_directory_path() / fmt::format("gantry_e2e_int_{}.out", getpid());
-    const std::string cmd = fmt::format("exec '{}' run '{}' --realtime --json 2>/dev/null >'{}'",
-                                        GANTRY_BIN, file, out.string());
+    // A live run keeps the machine's state next to its values file: this test's own.
+    const std::string cmd =
+        fmt::format("exec '{}' run '{}' --realtime --json --values '{}.values.toml' 2>/dev/null >'{}'",
+                    GANTRY_BIN, file, out.string(), out.string());
     pid_t pid = 0;
     const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
     ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
@@ -1114,8 +1116,9 @@ TEST(Realtime, ALateProducerIsAReportedUnderrunNeverASilentClockShift) {
   const std::string starve = part_file("starve", starving);
   const std::string plain = part_file("plain", "MS, 2\nMX, 0.5\nMY, 0.5\nMX, 0\nMY, 0\n");
   for (const std::string& file : {starve, plain}) {
-    const Result r = gantry(fmt::format("run '{}' --realtime --budget 0 --settings '{}' --json",
-                                        file, settings.string()));
+    const Result r = gantry(fmt::format(  // a live run: its machine state in its own values file
+        "run '{}' --realtime --budget 0 --settings '{}' --values '{}.values.toml' --json", file,
+        settings.string(), settings.string()));
     const json j = json::parse(r.out);
     if (file == starve || j["fault"] == "underrun") {
       EXPECT_EQ(r.exit_code, 1) << file;
