@@ -68,7 +68,6 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   };
   Controller machine(settings, card, io, store, interp_options);
   machine.set_feed_override(options.feed_override);
-  if (options.progress) machine.on_progress(options.progress);
   if (prepare) prepare(machine);
   const std::string name = *script->name();
   Outcome started;

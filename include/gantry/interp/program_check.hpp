@@ -25,7 +25,6 @@ namespace gantry {
 class CommandRecorder;  // gantry/commands/command_recorder.hpp
 
 struct JobOptions {
-  std::function<void(std::size_t done, std::size_t total)> progress;  // lines of the top file
   InterpreterOptions interpreter;
   std::map<std::string, std::string> inputs;  // --input answers, for the check as well
   bool yes = false;                           // --yes: PAUSE continues, MSGBOX defaults
