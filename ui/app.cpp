@@ -33,7 +33,7 @@ using session::shown;
 const char* const kAxes = "XYZABC";
 
 const ImVec4 kRed(1.0f, 0.35f, 0.35f, 1), kGreen(0.4f, 0.9f, 0.4f, 1), kYellow(1, 0.85f, 0.3f, 1),
-    kGrey(0.6f, 0.6f, 0.6f, 1), kCyan(0.5f, 0.85f, 1, 1);
+    kGrey(0.6f, 0.6f, 0.6f, 1), kCyan(0.5f, 0.85f, 1, 1), kMagenta(0.95f, 0.45f, 0.95f, 1);
 
 std::string clock_text(double s) {
   const auto t = static_cast<long>(std::lround(std::max(s, 0.0)));
@@ -469,8 +469,10 @@ void App::readout_window() {
   ImGui::Begin("Position", nullptr, kFixed);
   const ControllerStatus& st = status_;
   const bool pausing = st.state == MachineState::Paused && st.phase != FeedPhase::Held;
+  // One colour a state: E-stop red, stopped yellow, paused magenta, under way cyan, idle green.
   const ImVec4 colour = st.state == MachineState::EStop     ? kRed
                         : st.state == MachineState::Stopped ? kYellow
+                        : st.state == MachineState::Paused  ? kMagenta
                         : at_rest()                         ? kGreen
                                                             : kCyan;
   if (st.warning) {  // SW's warning before a run moves the tool: flashing, the whole line

@@ -272,6 +272,8 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed: nothing to remember
   ImGui::StyleColorsDark();
+  // Dialogs and menus opaque: a question over the preview must read at once.
+  ImGui::GetStyle().Colors[ImGuiCol_PopupBg].w = 1.0f;
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 

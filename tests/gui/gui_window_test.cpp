@@ -352,7 +352,7 @@ TEST_F(GuiWindow, SpacePausesAndResumesAndF12IsTheEStop) {
   // SW, 0: no warning before the moves, so the pause comes while X moves.
   ASSERT_EQ(gui("type SW, 0\nkey Enter\nwait idle\n"
                 "type MX, 3\nkey Enter\nwait frames 3\nkey Space\nwait frames 40\n"
-                "dump paused.json\nkey Space\nwait idle\ndump resumed.json\n"
+                "dump paused.json\nscreenshot paused.png\nkey Space\nwait idle\ndump resumed.json\n"
                 "type MX, 0\nkey Enter\nwait frames 3\nkey F12\nwait frames 3\ndump estop.json\n"
                 "type ack\nkey Enter\nwait idle\ndump ack.json\n",
                 "--realtime"),
@@ -362,6 +362,12 @@ TEST_F(GuiWindow, SpacePausesAndResumesAndF12IsTheEStop) {
   EXPECT_EQ(paused["state"], "paused");
   EXPECT_GT(paused["position"][0].get<double>(), 0);
   EXPECT_LT(paused["position"][0].get<double>(), 3);
+  // Issue 25: paused has its own colour (magenta), not running's cyan, in the state word.
+  const Image im = image("paused.png");
+  const auto magenta = [](int r, int g, int b) { return r > 200 && g < 150 && b > 200; };
+  const auto cyan = [](int r, int g, int b) { return r < 150 && g > 190 && b > 230; };
+  EXPECT_GT(im.count(0, 40, 120, 62, magenta), 10);
+  EXPECT_EQ(im.count(0, 40, 120, 62, cyan), 0);
   EXPECT_NEAR(state("resumed.json")["position"][0].get<double>(), 3, 1e-9);
   const json estop = state("estop.json");
   EXPECT_EQ(estop["state"], "estop");
