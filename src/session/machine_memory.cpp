@@ -4,13 +4,12 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
-#include <ctime>
 #include <filesystem>
 #include <sstream>
 #include <toml++/toml.h>
 
 #include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
+#include "gantry/core/utc_time.hpp"   // utc_timestamp
 
 namespace gantry::session {
 namespace {
@@ -23,15 +22,6 @@ toml::table axes_table(const Vec6& v) {  // { x = 1.0, y = 0.0, ... } on one lin
   for (int i = 0; i < kAxisCount; ++i) t.insert(std::string(1, kAxisLetters[i]), v[i]);
   t.is_inline(true);
   return t;
-}
-
-std::string now_utc() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
 }
 
 // `t[key]`: six axes x..c, each a number (missing: 0).
@@ -265,7 +255,7 @@ bool MachineMemory::write(const SavedMachine& m, std::string* why) {
     std::lock_guard lock(m_);
     if (same == last_written_) return true;  // unchanged since the last save: no write
   }
-  out.saved_at = now_utc();
+  out.saved_at = utc_timestamp();
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(path_).parent_path(), ec);
   if (!write_file_atomically(path_, machine_state_text(out), why)) return false;

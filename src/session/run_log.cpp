@@ -7,25 +7,14 @@
 
 #include <cerrno>
 #include <cstring>  // strerror
-#include <ctime>
 #include <deque>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "gantry/core/utc_time.hpp"  // utc_timestamp
+
 namespace gantry::session {
-namespace {
-
-std::string now_utc() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-}  // namespace
 
 std::string run_log_path(const std::string& values_path) {
   return (std::filesystem::path(values_path).parent_path() / "part_files.log").string();
@@ -125,13 +114,13 @@ void RunLogger::activity(const Controller::Activity& a) {
   if (!a.part_file) return;
   std::lock_guard lock(m_);
   if (!a.at_rest) {
-    start_ = now_utc();
+    start_ = utc_timestamp();
     return;
   }
   RunRecord r;
   r.file = a.file;
-  r.start = start_.empty() ? now_utc() : start_;
-  r.end = now_utc();
+  r.start = start_.empty() ? utc_timestamp() : start_;
+  r.end = utc_timestamp();
   r.cycle_s = a.elapsed_s;
   r.position = a.modal.position + a.modal.zero + a.modal.applied_offset;
   r.units = units_name(a.units);

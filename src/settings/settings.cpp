@@ -395,18 +395,10 @@ void read_profile(TableReader& root, Settings& s) {
     order.push_back(path);
     return tables.emplace(path, std::move(child)).first->second;
   };
-  const std::span<const SettingRow> rows = settings_schema();
-  for (size_t r = 0; r < rows.size();) {
-    // A run of rows of one family in one table.
-    size_t end = r + 1;
-    if (rows[r].family != SettingFamily::None)
-      while (end < rows.size() && rows[end].family == rows[r].family &&
-             rows[end].section == rows[r].section)
-        ++end;
-    for (int i = 0; i < rows[r].size(); ++i)
-      for (size_t k = r; k < end; ++k) read_row(table(rows[k].section_at(i)), rows[k], i, s);
-    r = end;
-  }
+  for_each_setting([&](const SettingRow& row, int i) {
+    read_row(table(row.section_at(i)), row, i, s);
+    return true;
+  });
   for (auto it = order.rbegin(); it != order.rend(); ++it) tables.at(*it).finish();
   root.finish();
 }

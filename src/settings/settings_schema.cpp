@@ -464,6 +464,22 @@ std::span<const SettingRow> settings_schema() {
   return kRows;
 }
 
+bool for_each_setting(const std::function<bool(const SettingRow& row, int i)>& visit) {
+  const std::span<const SettingRow> rows = kRows;
+  for (size_t r = 0; r < rows.size();) {
+    size_t end = r + 1;  // a run of rows of one family in one table
+    if (rows[r].family != SettingFamily::None)
+      while (end < rows.size() && rows[end].family == rows[r].family &&
+             rows[end].section == rows[r].section)
+        ++end;
+    for (int i = 0; i < rows[r].size(); ++i)
+      for (size_t k = r; k < end; ++k)
+        if (!visit(rows[k], i)) return false;
+    r = end;
+  }
+  return true;
+}
+
 std::span<const SettingRow> settings_schema(std::string_view section) {
   const SettingRow* begin = std::find_if(std::begin(kRows), std::end(kRows),
                                          [&](const SettingRow& r) { return r.section == section; });

@@ -154,26 +154,19 @@ std::string default_values_path(const std::string& profile_name) {
 // none does.
 std::string machine_key_changed(const Settings& now, const Settings& next) {
   const toml::table a = settings_table(now), b = settings_table(next);
+  std::string changed;
   for (const SettingOwner owner : {SettingOwner::MachineTable, SettingOwner::MachineKey}) {
-    const std::span<const SettingRow> rows = settings_schema();
-    for (size_t r = 0; r < rows.size();) {
-      // A family's consecutive rows in one table are compared axis by axis.
-      size_t end = r + 1;
-      if (rows[r].family != SettingFamily::None)
-        while (end < rows.size() && rows[end].family == rows[r].family &&
-               rows[end].section == rows[r].section)
-          ++end;
-      for (int i = 0; i < rows[r].size(); ++i)
-        for (size_t k = r; k < end; ++k) {
-          if (rows[k].owner != owner) continue;
-          const std::string path = rows[k].path(i);
-          const toml::node* x = a.at_path(path).node();
-          const toml::node* y = b.at_path(path).node();
-          if (!x || !y ? x != y : !same_leaf(*x, *y))
-            return owner == SettingOwner::MachineKey ? path : path.substr(0, path.find('.'));
-        }
-      r = end;
-    }
+    // A family's consecutive rows in one table are compared axis by axis.
+    for_each_setting([&](const SettingRow& row, int i) {
+      if (row.owner != owner) return true;
+      const std::string path = row.path(i);
+      const toml::node* x = a.at_path(path).node();
+      const toml::node* y = b.at_path(path).node();
+      if (x && y ? same_leaf(*x, *y) : x == y) return true;
+      changed = owner == SettingOwner::MachineKey ? path : path.substr(0, path.find('.'));
+      return false;
+    });
+    if (!changed.empty()) return changed;
   }
   return "";
 }

@@ -683,7 +683,7 @@ TEST(RunAtATerminal, CtrlCRampsTheMoveDownAndTheReportSaysWhereTheToolIs) {
 // Issue 25: at a terminal `gantry run` showed no progress. It shows the playing line, the
 // percent and the times on one line, and a question clears it and gets the terminal.
 TEST(RunAtATerminal, AProgressLineFollowsTheRunAndAQuestionDoesNotBreakIt) {
-  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed";
+  REQUIRE_TMUX();
   TmuxConsole t("ask.sbp --realtime", "run",
                 {{"ask.sbp", "MS, 2\nMX, 3\nMX, 0\nINPUT \"Depth?\" &d\nMX, 1\n"}});
   ASSERT_TRUE(t.started());

@@ -2,6 +2,7 @@
 // the profile reader and writer, the unit conversion, the V-commands and docs/settings.md share.
 #pragma once
 
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -103,6 +104,10 @@ struct SettingRow {
 std::span<const SettingRow> settings_schema();
 // The rows of one TOML table ("ramps"), in order.
 std::span<const SettingRow> settings_schema(std::string_view section);
+// Every setting in the order the profile is read: a family's consecutive rows in one table
+// (axes.<x>.min, axes.<x>.max, ...) axis by axis, each other row on its own. `visit(row, i)`
+// returns false to stop; the result is false when it stopped.
+bool for_each_setting(const std::function<bool(const SettingRow& row, int i)>& visit);
 // The row of a key path ("ramps.move_ramp_rate"); throws std::out_of_range for an unknown one.
 const SettingRow& setting_row(std::string_view path);
 
