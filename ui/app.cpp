@@ -21,6 +21,7 @@
 #include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
+#include "theme.hpp"                         // digits_font, palette
 
 namespace gantry::ui {
 namespace {
@@ -45,11 +46,13 @@ bool rest_state(MachineState s) {
 }
 
 // The window's fixed layout: the readout, keypad and job down the left; the preview on the
-// right; the console (log and command line) along the bottom.
+// right; the console (log and command line) along the bottom. The column's width and the
+// console's height follow the window's scale (App::lay_out sets them each frame).
 struct Layout {
   ImVec2 pos, size;
 };
-constexpr float kLeft = 370, kConsole = 250;
+float kLeft = 370, kConsole = 250;
+float kReadout = 300, kKeypad = 215;  // the left column's heights: the job window gets the rest
 
 void place(const Layout& l) {
   ImGui::SetNextWindowPos(l.pos, ImGuiCond_Always);
@@ -198,10 +201,22 @@ bool App::button(const char* label, bool enabled) {
   if (!enabled) ImGui::BeginDisabled();
   bool pressed = ImGui::Button(label);
   if (!enabled) ImGui::EndDisabled();
-  // A script names the button by its label (without any ##id).
+  // A script names the button by its label (without any ##id), and clicks it only when the
+  // whole button is on the screen, as a person could.
   const std::string name = std::string(label).substr(0, std::string(label).find("##"));
-  if (enabled && clicked(name.c_str())) pressed = true;
+  const bool whole = note_button(name);
+  if (enabled && whole && clicked(name.c_str())) pressed = true;
   return pressed;
+}
+
+bool App::note_button(const std::string& name) {
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  const ImDrawList& d = *ImGui::GetWindowDrawList();
+  const ImVec2 c0 = d.GetClipRectMin(), c1 = d.GetClipRectMax(), size = ImGui::GetIO().DisplaySize;
+  const bool whole = a.x >= std::max(c0.x, 0.0f) - 0.5f && a.y >= std::max(c0.y, 0.0f) - 0.5f &&
+                     b.x <= std::min(c1.x, size.x) + 0.5f && b.y <= std::min(c1.y, size.y) + 0.5f;
+  buttons_[name] = {a.x, a.y, b.x, b.y, whole ? 1.0f : 0.0f};
+  return whole;
 }
 
 std::optional<std::string> App::missed_click() {
@@ -390,6 +405,8 @@ void App::set_feed_override(double factor) {
 // ---- the frame -------------------------------------------------------------------------------
 
 void App::frame() {
+  buttons_.clear();
+  lay_out();
   poll();
   global_keys();
   menu_bar();
@@ -463,9 +480,40 @@ void App::group_popup() {
   ImGui::EndPopup();
 }
 
+// The layout at this frame's size. The column and the console scale with the fonts; the
+// keypad and the job window (the run controls) get the height they need and the readout what
+// is left, up to what its digits fill: at 1024 x 600 every run control stays on the screen.
+void App::lay_out() {
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  const ImGuiStyle& style = ImGui::GetStyle();
+  kLeft = std::min(370 * scale_, size.x * 0.45f);
+  kConsole = std::min(250 * scale_, size.y * 0.4f);
+  const float title = ImGui::GetFrameHeight(), pad = 2 * style.WindowPadding.y;
+  const float row = ImGui::GetFrameHeightWithSpacing();
+  const float text = ImGui::GetTextLineHeightWithSpacing();
+  kKeypad = title + pad + 2 * text + 3 * pad_row() + 2 * row;
+  const float job = title + pad + 5 * row + text + style.ItemSpacing.y;
+  const float column = size.y - ImGui::GetFrameHeight();  // below the menu bar
+  // The readout: the state line, the digits, then five lines (units, speeds, inputs, outputs,
+  // spindle; the last stop scrolls in a low window). The digits as large as the height left
+  // and the width allow.
+  const float fixed = title + pad + 6 * text;
+  const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  const float left = column - kKeypad - job;  // for the readout
+  const float by_height = (left - fixed) / static_cast<float>(axes) - style.ItemSpacing.y;
+  // A digit is about 0.6 of the font's size wide; 11 of them and the axis letter's column.
+  const float by_width = (kLeft - 2 * style.WindowPadding.x - 40 * scale_) / (11 * 0.62f);
+  const float most = digits_font() ? digits_font_size() : 3 * ImGui::GetFontSize();
+  digits_px_ = std::clamp(std::min(by_height, by_width), ImGui::GetFontSize(), most);
+  // Too little height: the readout scrolls (its digits first), the run controls stay whole.
+  kReadout = std::max(
+      std::min(fixed + static_cast<float>(axes) * (digits_px_ + style.ItemSpacing.y), left),
+      4 * text);
+}
+
 void App::readout_window() {
   const float top = ImGui::GetFrameHeight();
-  place({{0, top}, {kLeft, 300}});
+  place({{0, top}, {kLeft, kReadout}});
   ImGui::Begin("Position", nullptr, kFixed);
   const ControllerStatus& st = status_;
   const bool pausing = st.state == MachineState::Paused && st.phase != FeedPhase::Held;
@@ -480,27 +528,34 @@ void App::readout_window() {
                        "WARNING: about to move");
   } else {
     ImGui::TextColored(colour, "%s", pausing ? "pausing" : state_name(st.state));
-    ImGui::SameLine(120);
+    ImGui::SameLine(120 * scale_);
     ImGui::TextDisabled("card: %s", opt_.card.c_str());
   }
+  // SB3's readout: large digits, as large as the window allows (lay_out).
   const Vec6 p = position(st);
-  ImGui::SetWindowFontScale(1.7f);
+  ImFont* digits = digits_font();
+  if (digits) ImGui::PushFont(digits);
+  ImGui::SetWindowFontScale(digits ? digits_px_ / digits_font_size()
+                                   : digits_px_ / ImGui::GetFontSize());
   const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  const float number_x = ImGui::CalcTextSize("X ").x;
   for (int i = 0; i < axes; ++i) {
     ImGui::TextColored(kGrey, "%c", kAxes[i]);
-    ImGui::SameLine(40);
+    ImGui::SameLine(number_x);
     ImGui::Text("%11.4f", shown(p[i]));
   }
   ImGui::SetWindowFontScale(1.0f);
+  if (digits) ImGui::PopFont();
   ImGui::Text("%s   %s   %s", units_name(settings_.units),
               modal_.absolute ? "absolute (SA)" : "relative (SR)",
               modal_.preview ? "preview mode (SP)" : "move mode");
   ImGui::TextUnformatted(
       session::speeds_text(modal_.speeds, settings_.units, status_.feed_override).c_str());
-  auto leds = [](const char* label, auto on) {
+  const float led_x = 70 * scale_;
+  auto leds = [led_x](const char* label, auto on) {
     ImGui::TextDisabled("%s", label);
     for (int i = 0; i < 12; ++i) {
-      ImGui::SameLine(i == 0 ? 70.0f : 0.0f, 3);
+      ImGui::SameLine(i == 0 ? led_x : 0.0f, 3);
       ImGui::TextColored(on(i) ? kGreen : ImVec4(0.3f, 0.3f, 0.3f, 1), "%d", i + 1);
     }
   };
@@ -511,9 +566,15 @@ void App::readout_window() {
   ImGui::End();
 }
 
+// The keypad's rows of jog buttons, at the window's scale (tighter in a low window, where the
+// readout's digits need the height).
+float App::pad_row() const {
+  return (ImGui::GetIO().DisplaySize.y < 700 * scale_ ? 28.0f : 34.0f) * scale_;
+}
+
 void App::keypad_window() {
-  const float top = ImGui::GetFrameHeight() + 300;
-  place({{0, top}, {kLeft, 215}});
+  const float top = ImGui::GetFrameHeight() + kReadout;
+  place({{0, top}, {kLeft, kKeypad}});
   ImGui::Begin("Keypad", nullptr, kFixed);
   if (ImGui::IsWindowFocused() && ImGui::IsMouseClicked(0)) kp_focus_ = true;
   ImGui::TextColored(kp_focus_ ? kGreen : kGrey, "%s",
@@ -527,13 +588,14 @@ void App::keypad_window() {
   static constexpr B pad[] = {{"Y+", 1, 1, 60, 0},  {"X-", 0, -1, 0, 1},  {"X+", 0, 1, 120, 1},
                               {"Y-", 1, -1, 60, 2}, {"Z+", 2, 1, 200, 0}, {"Z-", 2, -1, 200, 2}};
   const ImVec2 origin = ImGui::GetCursorPos();
-  const float row = 34;
+  const float row = pad_row();
   for (const B& b : pad) {
-    ImGui::SetCursorPos(ImVec2(origin.x + b.x, origin.y + b.y * row));
+    ImGui::SetCursorPos(ImVec2(origin.x + b.x * scale_, origin.y + b.y * row));
     std::array<int, kAxisCount> dir{};
     dir[static_cast<std::size_t>(b.axis)] = b.sign;
-    const bool press = ImGui::Button(b.label, ImVec2(52, 30));
-    if (kp_step_ ? (press || clicked(b.label)) && can_jog()
+    const bool press = ImGui::Button(b.label, ImVec2(52 * scale_, row - 4 * scale_));
+    const bool whole = note_button(b.label);
+    if (kp_step_ ? (press || (whole && clicked(b.label))) && can_jog()
                  : ImGui::IsItemActivated() && can_jog()) {
       jog(dir);
       if (!kp_step_ && kp_continuous_) kp_key_ = 1000 + b.axis * 2 + (b.sign > 0);
@@ -543,7 +605,7 @@ void App::keypad_window() {
       kp_key_ = -1;
     }
   }
-  ImGui::SetCursorPos(ImVec2(origin.x, origin.y + 3 * row + 4));
+  ImGui::SetCursorPos(ImVec2(origin.x, origin.y + 3 * row + 4 * scale_));
   if (button(kp_step_ ? "Fixed step##mode" : "Continuous##mode")) kp_step_ = !kp_step_;
   ImGui::SameLine();
   if (button(kp_fast_ ? "Fast##speed" : "Slow##speed")) kp_fast_ = !kp_fast_;
@@ -555,11 +617,11 @@ void App::keypad_window() {
 }
 
 void App::job_window() {
-  const float top = ImGui::GetFrameHeight() + 515;
+  const float top = ImGui::GetFrameHeight() + kReadout + kKeypad;
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   place({{0, top}, {kLeft, std::max(size.y - top, 100.0f)}});
   ImGui::Begin("Job", nullptr, kFixed);
-  ImGui::SetNextItemWidth(kLeft - 80);
+  ImGui::SetNextItemWidth(kLeft - 80 * scale_);
   ImGui::InputTextWithHint("##file", "part file (.sbp)", &file_);
   ImGui::SameLine();
   if (button("Load")) load(file_);
@@ -1022,6 +1084,14 @@ nlohmann::json App::state() const {
                  {"step", kp_step_},
                  {"fast", kp_fast_},
                  {"step_size", settings_.display.keypad_step}};
+  s["layout"] = {{"scale", scale_},
+                 {"font_px", ImGui::GetFontSize()},
+                 {"digits_px", digits_px_},
+                 {"display", {ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y}}};
+  json buttons = json::object();
+  for (const auto& [name, b] : buttons_)
+    buttons[name] = {{"rect", {b[0], b[1], b[2], b[3]}}, {"whole", b[4] > 0}};
+  s["buttons"] = buttons;
   s["progress"] = {{"line", status_.line},
                    {"lines", status_.lines},
                    {"elapsed_s", status_.elapsed_s},

@@ -8,6 +8,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -50,6 +51,8 @@ class App {
   Camera& camera() { return camera_; }
   // Frames are the benchmark's: the preview redraws every frame even when nothing changed.
   void set_always_redraw(bool on) { always_redraw_ = on; }
+  // The layout's and fonts' scale (window_scale), set by the main loop when the fonts change.
+  void set_scale(float scale) { scale_ = scale; }
 
  private:
   struct LogLine {
@@ -58,6 +61,7 @@ class App {
   };
 
   // Each window.
+  void lay_out();  // the windows' places and the readout's digit size for this frame
   void menu_bar();
   void readout_window();
   void keypad_window();
@@ -73,6 +77,10 @@ class App {
   // Actions.
   bool button(const char* label, bool enabled = true);
   bool clicked(const char* name);  // the script's click for a widget drawn another way
+  // Records the last button drawn (its place, for the state); true when it is wholly on the
+  // screen, so that a script can click it.
+  bool note_button(const std::string& name);
+  float pad_row() const;
   void run_line(const std::string& line);
   void open_sheet(const CommandSpec& spec, const std::string& typed);
   void choose(const CommandSpec& spec);  // a menu item: run it, or ask for its parameters
@@ -130,6 +138,11 @@ class App {
   bool kp_continuous_ = false;  // a continuous jog we started runs until its key is released
   int kp_key_ = -1;             // the key (or on-screen button id) holding it
   bool kp_file_ = false;        // a file waits at SK: the keypad is its
+
+  // Layout: the scale, the readout's digit height, the buttons drawn in the last frame
+  // (x0, y0, x1, y1, wholly on the screen).
+  float scale_ = 1, digits_px_ = 24;
+  std::map<std::string, std::array<float, 5>> buttons_;
 
   // Job.
   std::string file_;

@@ -22,6 +22,8 @@
 #include "gantry/core/any_bytes.hpp"  // json_text
 #include "gui.hpp"
 #include "test_script.hpp"
+#include "theme.hpp"        // fonts and colours at the window's scale
+#include "window_size.hpp"  // window_scale
 
 namespace gantry::ui {
 namespace {
@@ -271,15 +273,16 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed: nothing to remember
-  ImGui::StyleColorsDark();
-  // Dialogs and menus opaque: a question over the preview must read at once.
-  ImGui::GetStyle().Colors[ImGuiCol_PopupBg].w = 1.0f;
+  float scale = window_scale(static_cast<float>(opt.width), static_cast<float>(opt.height));
+  build_fonts(scale);
+  apply_style(false, scale);
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   int status = 0;
   {
     App app(opt, machine);
+    app.set_scale(scale);
     ScriptRunner script(std::move(actions), window, app);
     std::optional<Bench> bench;
     if (opt.bench) bench.emplace(app);
@@ -289,6 +292,18 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
       else
         glfwWaitEventsTimeout(0.05);  // the readout updates 20 times a second at least
       script.before_frame();
+      // A resized window: the fonts and sizes at its scale (between frames).
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(window, &ww, &wh);
+      if (const float s = window_scale(static_cast<float>(ww), static_cast<float>(wh));
+          s != scale && ww > 0 && wh > 0) {
+        scale = s;
+        build_fonts(scale);
+        ImGui_ImplOpenGL3_DestroyFontsTexture();
+        ImGui_ImplOpenGL3_CreateFontsTexture();
+        apply_style(false, scale);
+        app.set_scale(scale);
+      }
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();

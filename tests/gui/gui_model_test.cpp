@@ -11,6 +11,7 @@
 #include "fill_sheet.hpp"
 #include "gantry/session/operator_io.hpp"
 #include "test_script.hpp"
+#include "window_size.hpp"
 
 namespace {
 
@@ -296,6 +297,32 @@ TEST(GuiCamera, PresetViewsLookAlongTheirAxes) {
   const float before = ndc(c, 1, {6, 5, 0}).x();
   c.zoom(0.5f);
   EXPECT_NEAR(ndc(c, 1, {6, 5, 0}).x(), 2 * before, 1e-4);
+}
+
+// ---- window size -----------------------------------------------------------------------------
+
+// Issue 25: `gui --size` took a width only (16:10), so 1024 x 600 could not be asked for.
+TEST(GuiWindowSize, TakesWidthByHeightOrAWidthAlone) {
+  const std::optional<WindowSize> wh = parse_window_size("1024x600", nullptr);
+  ASSERT_TRUE(wh);
+  EXPECT_EQ(wh->width, 1024);
+  EXPECT_EQ(wh->height, 600);
+  const std::optional<WindowSize> w = parse_window_size("1280", nullptr);
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->height, 800);  // 16:10, as before
+  std::string why;
+  EXPECT_FALSE(parse_window_size("1024x", &why));
+  EXPECT_NE(why.find("WIDTHxHEIGHT"), std::string::npos) << why;
+  EXPECT_FALSE(parse_window_size("100x100", &why));
+  EXPECT_NE(why.find("320 to 8192"), std::string::npos) << why;
+}
+
+TEST(GuiWindowSize, TheScaleGrowsPast1280By800) {
+  EXPECT_EQ(window_scale(1024, 600), 1.0f);  // small windows keep the text readable
+  EXPECT_EQ(window_scale(1280, 800), 1.0f);
+  EXPECT_EQ(window_scale(1920, 1200), 1.5f);
+  EXPECT_EQ(window_scale(3840, 2160), 2.5f);  // 2.7, in quarters
+  EXPECT_EQ(window_scale(1921, 1201), 1.5f);  // a few pixels do not rebuild the fonts
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ class Xvfb : public ::testing::Environment {
     if (pid_ == 0) {
       close(fds[0]);
       const std::string fd = std::to_string(fds[1]);
-      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x800x24", "-nolisten",
+      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "3840x2160x24", "-nolisten",
              "tcp", static_cast<char*>(nullptr));
       _exit(127);
     }
@@ -440,6 +440,63 @@ TEST_F(GuiWindow, ThePositionOfTheLastSessionIsRestoredAndSaid) {
   saved << std::ifstream(state_file).rdbuf();
   EXPECT_NE(saved.str().find("\nmotion = \"at rest\""), std::string::npos) << saved.str();
   EXPECT_NE(saved.str().find("\nconfirmed = false"), std::string::npos) << saved.str();
+}
+
+// ---- layout, keypad, offsets, macros, theme (issue 25) ----------------------------------------
+
+// Issue 25: at 1024 x 600 the Start/Pause/Stop/E-stop row was cut off. Every button drawn is
+// wholly on the screen (a script's click on one that is not fails), and the run controls work.
+TEST_F(GuiWindow, EveryControlFitsAt1024By600) {
+  write("short.sbp", "MX, 1\nMY, 1\n");
+  ASSERT_EQ(gui("wait idle\ndump s.json\nscreenshot s.png\nclick Start\nwait idle\n"
+                "click X+\nwait idle\ndump after.json\nclick E-STOP\nwait frames 3\n"
+                "dump estop.json\nclick Ack\nwait idle\ndump ack.json\n",
+                "short.sbp --size 1024x600"),
+            0)
+      << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["layout"]["display"], json({1024, 600}));
+  for (const char* name : {"Start", "Pause", "Stop", "E-STOP", "Load", "X+", "Z-", "Stop jog"}) {
+    ASSERT_TRUE(s["buttons"].contains(name)) << name << " was not drawn";
+    EXPECT_TRUE(s["buttons"][name]["whole"]) << name << ": " << s["buttons"][name].dump();
+    EXPECT_LE(s["buttons"][name]["rect"][3].get<double>(), 600) << name;
+  }
+  // The readout's digits are larger than the text even here.
+  EXPECT_GT(s["layout"]["digits_px"].get<double>(), s["layout"]["font_px"].get<double>());
+  const Image im = image("s.png");
+  EXPECT_EQ(im.w, 1024);
+  EXPECT_EQ(im.h, 600);
+  const json after = state("after.json");  // the file ran, then X+ stepped
+  EXPECT_NEAR(after["position"][0].get<double>(), 1.1, 1e-9);
+  EXPECT_EQ(state("estop.json")["state"], "estop");
+  EXPECT_EQ(state("ack.json")["state"], "idle");
+}
+
+// A width alone still works (16:10), and at 4K the fonts, the column and the digits grow.
+TEST_F(GuiWindow, FontsAndTheReadoutScaleWithTheWindow) {
+  ASSERT_EQ(gui("wait idle\ndump s.json\n", "--size 1024"), 0) << out_;
+  EXPECT_EQ(state("s.json")["layout"]["display"], json({1024, 640}));
+  ASSERT_EQ(gui("wait idle\ndump s.json\n"), 0) << out_;
+  const json normal = state("s.json");
+  ASSERT_EQ(gui("wait idle\ndump s.json\nscreenshot s.png\nclick Y+\nwait idle\n"
+                "dump after.json\n",
+                "--size 3840x2160"),
+            0)
+      << out_;
+  const json big = state("s.json");
+  EXPECT_EQ(normal["layout"]["scale"], 1);
+  EXPECT_GT(big["layout"]["scale"].get<double>(), 2);
+  EXPECT_GT(big["layout"]["font_px"].get<double>(), 2 * normal["layout"]["font_px"].get<double>());
+  EXPECT_GT(big["layout"]["digits_px"].get<double>(),
+            2 * normal["layout"]["digits_px"].get<double>());
+  for (const auto& [name, b] : big["buttons"].items()) EXPECT_TRUE(b["whole"]) << name;
+  // The keypad's buttons grow too.
+  const json& y = big["buttons"]["Y+"]["rect"];
+  EXPECT_GT(y[2].get<double>() - y[0].get<double>(), 100);
+  const Image im = image("s.png");
+  EXPECT_EQ(im.w, 3840);
+  EXPECT_EQ(im.h, 2160);
+  EXPECT_NEAR(state("after.json")["position"][1].get<double>(), 0.1, 1e-9);
 }
 
 }  // namespace
