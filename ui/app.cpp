@@ -109,6 +109,10 @@ bool App::idle() const {
   return at_rest() && !m_.io.question() && !loading_ && dialog_shown_ == 0;
 }
 
+bool App::keys_moving() const {
+  return (focus_line_ && !kp_focus_ && !sheet_open_ && !dialog_shown_) || sheet_focus_ >= 0;
+}
+
 Vec6 App::position(const ControllerStatus& st) const {
   // At rest the interpreter's position is exact (a step ends on its commanded point); under
   // way the pulses played say where the tool is.

@@ -44,6 +44,9 @@ class App {
   void hover(float fx, float fy) { scripted_hover_ = Eigen::Vector2f(fx, fy); }
   bool idle() const;  // at rest, no dialog, no load under way
   bool dialog_showing() const { return dialog_shown_ != 0; }
+  // A field is about to take the keys (the command line or a sheet's field asked for them):
+  // what is typed waits for it (InputQueue).
+  bool keys_moving() const;
   bool preview_loaded() const { return path_ != nullptr && !loading_; }
   std::size_t preview_segments() const { return path_ ? path_->segments.size() : 0; }
   nlohmann::json state() const;

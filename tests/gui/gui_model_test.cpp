@@ -217,10 +217,10 @@ TEST(GuiScript, ParsesEveryAction) {
   ASSERT_TRUE(
       parse_script("# comment\ntype MX, 5\nkey ctrl+Enter\nhold Right 0.5\nclick Start\n"
                    "wait idle\nwait frames 3\nwait dialog\nhover 0.5 0.25\n"
-                   "screenshot a.png\ndump s.json\nquit\n",
+                   "screenshot a.png\ndump s.json\nquit\ntap Enter\n",
                    "s", a, error))
       << error;
-  ASSERT_EQ(a.size(), 11u);
+  ASSERT_EQ(a.size(), 12u);
   EXPECT_EQ(a[0].kind, Action::Kind::Type);
   EXPECT_EQ(a[0].text, "MX, 5");
   EXPECT_EQ(a[1].key, GLFW_KEY_ENTER);
@@ -232,6 +232,8 @@ TEST(GuiScript, ParsesEveryAction) {
   EXPECT_EQ(a[7].b, 0.25);
   EXPECT_EQ(a[10].kind, Action::Kind::Quit);
   EXPECT_EQ(a[10].line, 12);
+  EXPECT_EQ(a[11].kind, Action::Kind::Tap);
+  EXPECT_EQ(a[11].key, GLFW_KEY_ENTER);
 }
 
 TEST(GuiScript, ErrorsNameTheLine) {

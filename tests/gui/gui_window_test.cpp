@@ -499,4 +499,32 @@ TEST_F(GuiWindow, FontsAndTheReadoutScaleWithTheWindow) {
   EXPECT_NEAR(state("after.json")["position"][1].get<double>(), 0.1, 1e-9);
 }
 
+// Issue 25: the first line typed in a new window did not run (what was typed before the
+// command line had the keys was dropped); the script types from the very first frame.
+TEST_F(GuiWindow, TheFirstLineTypedInANewWindowRuns) {
+  ASSERT_EQ(gui("type MX, 1\nkey Enter\nwait idle\ndump s.json\n"), 0) << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["history"], json({"MX, 1"}));
+  EXPECT_EQ(s["position"][0], 1);
+}
+
+// Issue 25: a quick Enter tap (pressed and released between two frames) in a fill-in sheet
+// was missed: the sheet looked at the key once a frame. Taps now count, in the sheet and at
+// the command line.
+TEST_F(GuiWindow, AQuickEnterTapCountsInAFillInSheet) {
+  ASSERT_EQ(gui("wait idle\ntype MY\nkey Enter\nwait frames 3\ndump open.json\ntype 3\n"
+                "tap Enter\nwait idle\ndump ran.json\ntype MZ, 0.5\ntap Enter\nwait idle\n"
+                "dump line.json\n"),
+            0)
+      << out_;
+  const json open = state("open.json");
+  ASSERT_TRUE(open.contains("sheet")) << open.dump(2);
+  const json ran = state("ran.json");
+  EXPECT_FALSE(ran.contains("sheet")) << ran["sheet"].dump(2);
+  EXPECT_EQ(ran["position"][1], 3);
+  EXPECT_TRUE(has_line(ran["log"], "> MY, 3"));
+  EXPECT_EQ(state("line.json")["position"][2], 0.5);
+}
+
 }  // namespace
+
