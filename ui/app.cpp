@@ -21,6 +21,7 @@
 #include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
+#include "offsets_panel.hpp"                 // offset_rows, offsets_panel
 #include "theme.hpp"                         // digits_font, palette
 
 namespace gantry::ui {
@@ -330,6 +331,7 @@ void App::jog(const std::array<int, kAxisCount>& dir) {
   j.direction = dir;
   j.fast = kp_fast_;
   j.step = kp_step_;
+  j.step_size = jog_step();
   if (!j.step && !opt_.realtime) {
     log(LogLine::Error, "continuous jogs need --realtime on the simulated card; S: fixed steps");
     return;
@@ -410,6 +412,7 @@ void App::set_feed_override(double factor) {
 
 void App::frame() {
   buttons_.clear();
+  panel_top_ = {};
   lay_out();
   poll();
   global_keys();
@@ -420,6 +423,7 @@ void App::frame() {
   preview_window();
   console_window();
   if (show_values_) values_window();
+  if (show_offsets_) offsets_window();
   if (show_keys_) keys_window();
   group_popup();
   sheet_popup();
@@ -428,6 +432,7 @@ void App::frame() {
 
 void App::menu_bar() {
   if (clicked("Values window")) show_values_ = true;  // a script names the menu item
+  if (clicked("Offsets")) show_offsets_ = !show_offsets_;
   if (!ImGui::BeginMainMenuBar()) return;
   for (const Menu& menu : menus_) {
     if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
@@ -459,6 +464,8 @@ void App::menu_bar() {
     ImGui::MenuItem("Show jogs", nullptr, &show_jogs_);
     ImGui::EndMenu();
   }
+  // The panels over the preview, one click away (and touch-friendly): toggles on the bar.
+  ImGui::MenuItem("Offsets", nullptr, &show_offsets_);
   ImGui::EndMainMenuBar();
 }
 
@@ -495,7 +502,7 @@ void App::lay_out() {
   const float title = ImGui::GetFrameHeight(), pad = 2 * style.WindowPadding.y;
   const float row = ImGui::GetFrameHeightWithSpacing();
   const float text = ImGui::GetTextLineHeightWithSpacing();
-  kKeypad = title + pad + 2 * text + 3 * pad_row() + 2 * row;
+  kKeypad = title + pad + text + 3 * pad_row() + 2 * row + style.ItemSpacing.y;
   const float job = title + pad + 5 * row + text + style.ItemSpacing.y;
   const float column = size.y - ImGui::GetFrameHeight();  // below the menu bar
   // The readout: the state line, the digits, then five lines (units, speeds, inputs, outputs,
@@ -570,6 +577,36 @@ void App::readout_window() {
   ImGui::End();
 }
 
+// A panel over the preview's top right corner (offsets, macros), `row` panels down.
+void App::place_panel(int row, float height) {
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  const float w = std::min(440 * scale_, size.x - kLeft);
+  // Below the menu bar and the preview's title and tool bar.
+  const float y = 3 * ImGui::GetFrameHeight() + 24 * scale_ + static_cast<float>(row) * 10 * scale_;
+  ImGui::SetNextWindowPos(ImVec2(size.x - w - 8 * scale_, y + panel_top_[row]), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(w, height), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(1.0f);
+}
+
+// The work-offset view: Zero runs ZX, ZY ... as typed at the command line.
+void App::offsets_window() {
+  const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  const float h = ImGui::GetFrameHeight() + 2 * ImGui::GetStyle().WindowPadding.y +
+                  static_cast<float>(axes + 1) * ImGui::GetFrameHeightWithSpacing() +
+                  2 * ImGui::GetTextLineHeightWithSpacing();
+  place_panel(0, h);
+  panel_top_[1] = h;
+  if (ImGui::Begin("Work offsets", &show_offsets_, kFixed)) {
+    const std::string code = offsets_panel(
+        offset_rows(position(status_), modal_, axes, table_), units_name(settings_.units),
+        at_rest(), [this](const std::string& label, bool enabled) {
+          return button(label.c_str(), enabled);
+        });
+    if (!code.empty()) run_line(code);
+  }
+  ImGui::End();
+}
+
 // The keypad's rows of jog buttons, at the window's scale (tighter in a low window, where the
 // readout's digits need the height).
 float App::pad_row() const {
@@ -615,9 +652,36 @@ void App::keypad_window() {
   if (button(kp_fast_ ? "Fast##speed" : "Slow##speed")) kp_fast_ = !kp_fast_;
   ImGui::SameLine();
   if (button("Stop jog", status_.state == MachineState::Jogging)) stop_jog();
-  ImGui::TextDisabled("step %.4f %s (VD); %s speed", settings_.display.keypad_step,
-                      units_name(settings_.units), kp_fast_ ? "jog" : "move");
+  // The step: a preset, or VD's keypad step.
+  ImGui::TextDisabled("step");
+  const std::array<double, 4> presets = jog_presets();
+  for (int i = 0; i <= static_cast<int>(presets.size()); ++i) {
+    const bool vd = i == static_cast<int>(presets.size());
+    ImGui::SameLine();
+    const bool chosen = kp_preset_ == (vd ? -1 : i);
+    if (chosen) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    if (button(vd ? "VD##step" : fmt::format("{:g}##step", presets[static_cast<std::size_t>(i)]).c_str()))
+      kp_preset_ = vd ? -1 : i;
+    if (chosen) ImGui::PopStyleColor();
+    if (vd && ImGui::IsItemHovered())
+      ImGui::SetTooltip("VD's keypad step: %.4f %s", settings_.display.keypad_step,
+                        units_name(settings_.units));
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("%s, %s speed", units_name(settings_.units), kp_fast_ ? "jog" : "move");
   ImGui::End();
+}
+
+// The step presets in the units in force: a thousandth to an inch, or a hundredth of a
+// millimetre to ten.
+std::array<double, 4> App::jog_presets() const {
+  if (settings_.units == Units::Millimetres) return {0.01, 0.1, 1, 10};
+  return {0.001, 0.01, 0.1, 1};
+}
+
+double App::jog_step() const {
+  return kp_preset_ < 0 ? settings_.display.keypad_step
+                        : jog_presets()[static_cast<std::size_t>(kp_preset_)];
 }
 
 void App::job_window() {
@@ -1087,7 +1151,15 @@ nlohmann::json App::state() const {
   s["keypad"] = {{"keys", kp_focus_},
                  {"step", kp_step_},
                  {"fast", kp_fast_},
-                 {"step_size", settings_.display.keypad_step}};
+                 {"step_size", jog_step()},
+                 {"preset", kp_preset_}};
+  s["offsets_window"] = show_offsets_;
+  s["offsets"] = json::array();
+  for (const OffsetRow& r : offset_rows(p, modal_, std::clamp(settings_.display.axes, 3, kAxisCount), table_))
+    s["offsets"].push_back({{"axis", std::string(1, r.axis)},
+                            {"machine", shown(r.table)},
+                            {"offset", shown(r.offset)},
+                            {"work", shown(r.work)}});
   s["layout"] = {{"scale", scale_},
                  {"font_px", ImGui::GetFontSize()},
                  {"digits_px", digits_px_},

@@ -72,6 +72,8 @@ class App {
   void preview_window();
   void console_window();
   void values_window();
+  void offsets_window();
+  void place_panel(int row, float height);  // the panels over the preview's top right
   void sheet_popup();
   void question_popup();
   void group_popup();
@@ -99,6 +101,8 @@ class App {
   bool at_rest() const;
   void set_feed_override(double factor);  // the controller's, shown and logged
   bool can_jog() const;  // at rest, or a file waits at SK
+  std::array<double, 4> jog_presets() const;  // the step presets in the units in force
+  double jog_step() const;                     // a step's length: the preset, or VD's
   void stop_jog();
 
   const GuiOptions& opt_;
@@ -141,6 +145,7 @@ class App {
   bool kp_continuous_ = false;  // a continuous jog we started runs until its key is released
   int kp_key_ = -1;             // the key (or on-screen button id) holding it
   bool kp_file_ = false;        // a file waits at SK: the keypad is its
+  int kp_preset_ = -1;          // the step preset chosen (-1: VD's keypad step)
 
   // Layout: the scale, the readout's digit height, the buttons drawn in the last frame
   // (x0, y0, x1, y1, wholly on the screen).
@@ -192,6 +197,8 @@ class App {
   bool scroll_log_ = false;
 
   bool show_values_ = false, show_keys_ = false;
+  bool show_offsets_ = false;
+  std::array<float, 3> panel_top_{};  // where each panel over the preview starts (below the last)
   bool quit_ = false;
   std::string pending_click_;
 };

@@ -526,5 +526,46 @@ TEST_F(GuiWindow, AQuickEnterTapCountsInAFillInSheet) {
   EXPECT_EQ(state("line.json")["position"][2], 0.5);
 }
 
+// Issue 25: jog step presets, 0.001 to 1 in (0.01 to 10 mm); a step jog goes the one chosen,
+// VD's keypad step when none is.
+TEST_F(GuiWindow, TheKeypadsStepPresetsSetTheStep) {
+  ASSERT_EQ(gui("wait idle\nclick 0.01\nclick X+\nwait idle\nclick 1\nclick Y+\nwait idle\n"
+                "dump in.json\nclick VD\nclick X+\nwait idle\ndump vd.json\n"
+                "type VD, , , 1\nkey Enter\nwait idle\nclick 10\nwait frames 2\ndump mm.json\n"),
+            0)
+      << out_;
+  const json in = state("in.json");
+  EXPECT_NEAR(in["position"][0].get<double>(), 0.01, 1e-12);
+  EXPECT_NEAR(in["position"][1].get<double>(), 1, 1e-12);
+  EXPECT_EQ(in["keypad"]["step_size"], 1);
+  const json vd = state("vd.json");  // VD's keypad step, 0.1 in
+  EXPECT_NEAR(vd["position"][0].get<double>(), 0.11, 1e-12);
+  const json mm = state("mm.json");
+  EXPECT_EQ(mm["units"], "mm");
+  EXPECT_EQ(mm["keypad"]["step_size"], 10);
+  EXPECT_TRUE(mm["buttons"].contains("0.01"));
+  EXPECT_FALSE(mm["buttons"].contains("0.001"));
+}
+
+// Issue 25: a work-offset view: machine (table base), offset and work position per axis, and a
+// Zero button per axis that runs ZX, ZY ... as typed.
+TEST_F(GuiWindow, TheOffsetsViewZeroesAnAxisAsTheConsoleDoes) {
+  ASSERT_EQ(gui("wait idle\ntype MX, 3\nkey Enter\nwait idle\ntype MY, 2\nkey Enter\nwait idle\n"
+                "click Offsets\nwait frames 2\ndump before.json\nclick Zero X\nwait idle\n"
+                "wait frames 2\ndump after.json\nscreenshot after.png\n",
+                "--size 1024x600"),
+            0)
+      << out_;
+  const json before = state("before.json");
+  EXPECT_TRUE(before["offsets_window"]);
+  EXPECT_EQ(before["offsets"][0], json({{"axis", "X"}, {"machine", 3}, {"offset", 0}, {"work", 3}}));
+  EXPECT_TRUE(before["buttons"]["Zero X"]["whole"]);
+  const json after = state("after.json");
+  EXPECT_TRUE(has_line(after["log"], "> ZX"));  // the console's command, run as typed
+  EXPECT_EQ(after["offsets"][0], json({{"axis", "X"}, {"machine", 3}, {"offset", 3}, {"work", 0}}));
+  EXPECT_EQ(after["offsets"][1], json({{"axis", "Y"}, {"machine", 2}, {"offset", 0}, {"work", 2}}));
+  EXPECT_EQ(after["position"][0], 0);
+}
+
 }  // namespace
 
