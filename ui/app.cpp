@@ -540,7 +540,20 @@ void App::readout_window() {
   } else {
     ImGui::TextColored(colour, "%s", pausing ? "pausing" : state_name(st.state));
     ImGui::SameLine(120 * scale_);
-    ImGui::TextDisabled("card: %s", opt_.card.c_str());
+    if (const std::optional<std::string> why = unconfirmed()) {
+      // After an E-stop or a kill the position may be wrong until homed or confirmed.
+      ImGui::TextColored(kYellow, "UNCONFIRMED");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s: home (C3) or, if the tool is where the readout says, Confirm",
+                          why->c_str());
+      ImGui::SameLine();
+      if (button("Confirm", at_rest())) {
+        m_.memory->confirm();
+        log(LogLine::Info, "the position is confirmed: the tool is where the readout says");
+      }
+    } else {
+      ImGui::TextDisabled("card: %s", opt_.card.c_str());
+    }
   }
   // SB3's readout: large digits, as large as the window allows (lay_out).
   const Vec6 p = position(st);
@@ -605,6 +618,14 @@ void App::offsets_window() {
     if (!code.empty()) run_line(code);
   }
   ImGui::End();
+}
+
+// Why the position is unconfirmed (the machine memory's mark), or nullopt when it is not.
+std::optional<std::string> App::unconfirmed() const {
+  if (!m_.memory) return std::nullopt;
+  const session::SavedMachine m = m_.memory->state();
+  if (m.confirmed) return std::nullopt;
+  return m.why.empty() ? std::string("the position is unconfirmed") : m.why;
 }
 
 // The keypad's rows of jog buttons, at the window's scale (tighter in a low window, where the
@@ -1153,6 +1174,7 @@ nlohmann::json App::state() const {
                  {"fast", kp_fast_},
                  {"step_size", jog_step()},
                  {"preset", kp_preset_}};
+  s["confirmed"] = !unconfirmed().has_value();
   s["offsets_window"] = show_offsets_;
   s["offsets"] = json::array();
   for (const OffsetRow& r : offset_rows(p, modal_, std::clamp(settings_.display.axes, 3, kAxisCount), table_))

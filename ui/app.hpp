@@ -86,6 +86,7 @@ class App {
   // screen, so that a script can click it.
   bool note_button(const std::string& name);
   float pad_row() const;
+  std::optional<std::string> unconfirmed() const;  // why the position is suspect
   void run_line(const std::string& line);
   void open_sheet(const CommandSpec& spec, const std::string& typed);
   void choose(const CommandSpec& spec);  // a menu item: run it, or ask for its parameters

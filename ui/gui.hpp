@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gantry/machine/controller.hpp"   // Controller
+#include "gantry/session/machine_memory.hpp"  // MachineMemory
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
 #include "gantry/settings/settings.hpp"    // Settings
 
@@ -26,6 +27,9 @@ struct Machine {
   Controller& controller;
   session::OperatorMailbox& io;  // PRINT to the log; PAUSE, INPUT, MSGBOX as dialogs
   std::function<Settings()> settings;
+  // The state kept across sessions (its unconfirmed mark and the operator's confirmation);
+  // null when nothing is kept.
+  session::MachineMemory* memory = nullptr;
 };
 
 // Opens the window and runs it until it is closed (or the script ends). Returns the exit

@@ -61,6 +61,7 @@ int run_gui_command(const GuiArgs& a) {
   o.width = size ? size->width : 1280;
   o.height = size ? size->height : 800;
   ui::Machine m{*live->controller, io, [&live] { return live->values.settings(); }};
+  m.memory = live->memory.get();
   return ui::run_gui(o, m);
 }
 

@@ -567,5 +567,32 @@ TEST_F(GuiWindow, TheOffsetsViewZeroesAnAxisAsTheConsoleDoes) {
   EXPECT_EQ(after["position"][0], 0);
 }
 
+// Issue 25: the readout marks a position the machine memory holds unconfirmed (a kill mid-move
+// here), and Confirm vouches for it as `gantry state --confirm` does.
+TEST_F(GuiWindow, AnUnconfirmedPositionIsMarkedUntilConfirmed) {
+  const fs::path state_file = dir_ / "config/gantry/values/Desktop_24x18__inches_.state.toml";
+  fs::create_directories(state_file.parent_path());
+  std::ofstream(state_file) << "motion = \"moving\"\nconfirmed = true\nunits = \"in\"\n"
+                               "position = { x = 3.0, y = 2.0 }\n";
+  ASSERT_EQ(gui("wait idle\ndump before.json\nscreenshot before.png\nclick Confirm\n"
+                "wait frames 2\ndump after.json\n"),
+            0)
+      << out_;
+  const json before = state("before.json");
+  EXPECT_FALSE(before["confirmed"]);
+  EXPECT_TRUE(before["buttons"]["Confirm"]["whole"]);
+  // The mark: yellow text on the state line.
+  const Image im = image("before.png");
+  EXPECT_GT(im.count(110, 40, 370, 62, [](int r, int g, int b) { return r > 200 && g > 170 && b < 120; }),
+            20);
+  const json after = state("after.json");
+  EXPECT_TRUE(after["confirmed"]);
+  EXPECT_FALSE(after["buttons"].contains("Confirm"));
+  EXPECT_TRUE(has_line(after["log"], "the position is confirmed"));
+  std::stringstream saved;
+  saved << std::ifstream(state_file).rdbuf();
+  EXPECT_NE(saved.str().find("\nconfirmed = true"), std::string::npos) << saved.str();
+}
+
 }  // namespace
 
