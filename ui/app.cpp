@@ -21,6 +21,8 @@
 #include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
+#include "gantry/interp/file_system.hpp"     // user_macro_folder
+#include "macro_panel.hpp"                   // macro_panel, user_part_files
 #include "offsets_panel.hpp"                 // offset_rows, offsets_panel
 #include "theme.hpp"                         // digits_font, palette
 
@@ -424,6 +426,8 @@ void App::frame() {
   console_window();
   if (show_values_) values_window();
   if (show_offsets_) offsets_window();
+  if (show_macros_) macros_window();
+  show_macros_was_ = show_macros_;
   if (show_keys_) keys_window();
   group_popup();
   sheet_popup();
@@ -433,6 +437,7 @@ void App::frame() {
 void App::menu_bar() {
   if (clicked("Values window")) show_values_ = true;  // a script names the menu item
   if (clicked("Offsets")) show_offsets_ = !show_offsets_;
+  if (clicked("Macros")) show_macros_ = !show_macros_;
   if (!ImGui::BeginMainMenuBar()) return;
   for (const Menu& menu : menus_) {
     if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
@@ -466,6 +471,7 @@ void App::menu_bar() {
   }
   // The panels over the preview, one click away (and touch-friendly): toggles on the bar.
   ImGui::MenuItem("Offsets", nullptr, &show_offsets_);
+  ImGui::MenuItem("Macros", nullptr, &show_macros_);
   ImGui::EndMainMenuBar();
 }
 
@@ -616,6 +622,24 @@ void App::offsets_window() {
           return button(label.c_str(), enabled);
         });
     if (!code.empty()) run_line(code);
+  }
+  ImGui::End();
+}
+
+// The macro buttons: each runs the line typing it runs (C2, or FP with the file).
+void App::macros_window() {
+  const std::string folder = opt_.macros.empty() ? user_macro_folder() : opt_.macros;
+  if (!show_macros_was_) macro_files_ = user_part_files(folder);  // listed again at each opening
+  const float row = ImGui::GetFrameHeightWithSpacing();
+  const float h = ImGui::GetFrameHeight() + 2 * ImGui::GetStyle().WindowPadding.y + 2 * row +
+                  2 * ImGui::GetTextLineHeightWithSpacing() +
+                  std::ceil(static_cast<float>(macro_files_.size()) / 4) * row;
+  place_panel(panel_top_[1] > 0 ? 1 : 0, h);
+  if (ImGui::Begin("Macros", &show_macros_, kFixed)) {
+    const std::string line = macro_panel(
+        macro_files_, folder, at_rest(),
+        [this](const std::string& label, bool enabled) { return button(label.c_str(), enabled); });
+    if (!line.empty()) run_line(line);
   }
   ImGui::End();
 }

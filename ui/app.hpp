@@ -73,6 +73,7 @@ class App {
   void console_window();
   void values_window();
   void offsets_window();
+  void macros_window();
   void place_panel(int row, float height);  // the panels over the preview's top right
   void sheet_popup();
   void question_popup();
@@ -199,6 +200,8 @@ class App {
 
   bool show_values_ = false, show_keys_ = false;
   bool show_offsets_ = false;
+  bool show_macros_ = false, show_macros_was_ = false;
+  std::vector<std::string> macro_files_;  // the operator's part files, listed when opened
   std::array<float, 3> panel_top_{};  // where each panel over the preview starts (below the last)
   bool quit_ = false;
   std::string pending_click_;

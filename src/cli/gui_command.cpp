@@ -55,6 +55,7 @@ int run_gui_command(const GuiArgs& a) {
   o.file = a.file;
   o.script = a.script;
   o.bench = a.bench;
+  o.macros = a.macros;
   o.realtime = live->real_time;
   o.card = live->sim() ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : live->card_type;
   const std::optional<ui::WindowSize> size = ui::parse_window_size(a.size, nullptr);

@@ -594,5 +594,29 @@ TEST_F(GuiWindow, AnUnconfirmedPositionIsMarkedUntilConfirmed) {
   EXPECT_NE(saved.str().find("\nconfirmed = true"), std::string::npos) << saved.str();
 }
 
+// Issue 25: macro buttons. C2 runs the custom cut's file as typing C2 does (here the
+// operator's own C2.sbp in --macros), and each part file there has a button running it (FP).
+TEST_F(GuiWindow, MacroButtonsRunTheCustomCutsAndTheOperatorsFiles) {
+  fs::create_directories(dir_ / "macros");
+  std::ofstream(dir_ / "macros/C2.sbp") << "PRINT \"my C2\"\nMZ, 0.5\n";
+  std::ofstream(dir_ / "macros/surface.sbp") << "MX, 2\n";
+  ASSERT_EQ(gui("wait idle\nclick Macros\nwait frames 2\ndump open.json\nclick C2\nwait idle\n"
+                "wait frames 2\ndump c2.json\nclick surface\nwait idle\nwait frames 2\n"
+                "dump part.json\n",
+                "--macros macros"),
+            0)
+      << out_;
+  const json open = state("open.json");
+  for (const char* name : {"C2", "C3", "C6", "C7", "C9", "surface"})
+    EXPECT_TRUE(open["buttons"].contains(name)) << name;
+  const json c2 = state("c2.json");
+  EXPECT_TRUE(has_line(c2["log"], "> C2")) << c2["log"].dump();
+  EXPECT_TRUE(has_line(c2["log"], "my C2")) << c2["log"].dump();
+  EXPECT_EQ(c2["position"][2], 0.5);
+  const json part = state("part.json");
+  EXPECT_TRUE(has_line(part["log"], "> FP, \"")) << part["log"].dump();
+  EXPECT_EQ(part["position"][0], 2);
+}
+
 }  // namespace
 
