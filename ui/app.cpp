@@ -36,8 +36,13 @@ using session::kConsoleName;
 using session::shown;
 const char* const kAxes = "XYZABC";
 
-const ImVec4 kRed(1.0f, 0.35f, 0.35f, 1), kGreen(0.4f, 0.9f, 0.4f, 1), kYellow(1, 0.85f, 0.3f, 1),
-    kGrey(0.6f, 0.6f, 0.6f, 1), kCyan(0.5f, 0.85f, 1, 1), kMagenta(0.95f, 0.45f, 0.95f, 1);
+// The theme's text colours (palette): set at the start of each frame.
+ImVec4 kRed, kGreen, kYellow, kGrey, kCyan, kMagenta, kText, kOff;
+
+void use_palette(const Palette& p) {
+  kRed = p.red, kGreen = p.green, kYellow = p.yellow, kGrey = p.grey, kCyan = p.cyan;
+  kMagenta = p.magenta, kText = p.text, kOff = p.off;
+}
 
 std::string clock_text(double s) {
   const auto t = static_cast<long>(std::lround(std::max(s, 0.0)));
@@ -413,6 +418,7 @@ void App::set_feed_override(double factor) {
 // ---- the frame -------------------------------------------------------------------------------
 
 void App::frame() {
+  use_palette(palette(light_));
   buttons_.clear();
   panel_top_ = {};
   lay_out();
@@ -438,6 +444,7 @@ void App::menu_bar() {
   if (clicked("Values window")) show_values_ = true;  // a script names the menu item
   if (clicked("Offsets")) show_offsets_ = !show_offsets_;
   if (clicked("Macros")) show_macros_ = !show_macros_;
+  if (clicked("Light theme")) light_ = !light_;
   if (!ImGui::BeginMainMenuBar()) return;
   for (const Menu& menu : menus_) {
     if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
@@ -467,6 +474,8 @@ void App::menu_bar() {
       if (ImGui::MenuItem(name)) camera_.set_view(v), fit_ = true;
     ImGui::MenuItem("Perspective", nullptr, &camera_.perspective);
     ImGui::MenuItem("Show jogs", nullptr, &show_jogs_);
+    ImGui::Separator();
+    ImGui::MenuItem("Light theme", nullptr, &light_);  // dark or light, for a bright shop
     ImGui::EndMenu();
   }
   // The panels over the preview, one click away (and touch-friendly): toggles on the bar.
@@ -586,7 +595,7 @@ void App::readout_window() {
     ImGui::TextDisabled("%s", label);
     for (int i = 0; i < 12; ++i) {
       ImGui::SameLine(i == 0 ? led_x : 0.0f, 3);
-      ImGui::TextColored(on(i) ? kGreen : ImVec4(0.3f, 0.3f, 0.3f, 1), "%d", i + 1);
+      ImGui::TextColored(on(i) ? kGreen : kOff, "%d", i + 1);
     }
   };
   leds("inputs", [&](int i) { return st.inputs[static_cast<std::size_t>(i)]; });
@@ -919,7 +928,7 @@ void App::console_window() {
   for (const LogLine& l : log_) {
     const ImVec4 c = l.kind == LogLine::Error   ? kRed
                      : l.kind == LogLine::Typed ? kCyan
-                     : l.kind == LogLine::Print ? ImVec4(1, 1, 1, 1)
+                     : l.kind == LogLine::Print ? kText
                                                 : kGrey;
     ImGui::TextColored(c, "%s", l.text.c_str());
   }
@@ -1199,6 +1208,7 @@ nlohmann::json App::state() const {
                  {"step_size", jog_step()},
                  {"preset", kp_preset_}};
   s["confirmed"] = !unconfirmed().has_value();
+  s["theme"] = light_ ? "light" : "dark";
   s["offsets_window"] = show_offsets_;
   s["offsets"] = json::array();
   for (const OffsetRow& r : offset_rows(p, modal_, std::clamp(settings_.display.axes, 3, kAxisCount), table_))

@@ -56,6 +56,7 @@ class App {
   void set_always_redraw(bool on) { always_redraw_ = on; }
   // The layout's and fonts' scale (window_scale), set by the main loop when the fonts change.
   void set_scale(float scale) { scale_ = scale; }
+  bool light_theme() const { return light_; }  // View > Light theme
 
  private:
   struct LogLine {
@@ -200,6 +201,7 @@ class App {
 
   bool show_values_ = false, show_keys_ = false;
   bool show_offsets_ = false;
+  bool light_ = false;  // the light theme (the main loop applies it between frames)
   bool show_macros_ = false, show_macros_was_ = false;
   std::vector<std::string> macro_files_;  // the operator's part files, listed when opened
   std::array<float, 3> panel_top_{};  // where each panel over the preview starts (below the last)

@@ -284,7 +284,8 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
   ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed: nothing to remember
   float scale = window_scale(static_cast<float>(opt.width), static_cast<float>(opt.height));
   build_fonts(scale);
-  apply_style(false, scale);
+  bool light = false;
+  apply_style(light, scale);
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
@@ -312,8 +313,12 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
         build_fonts(scale);
         ImGui_ImplOpenGL3_DestroyFontsTexture();
         ImGui_ImplOpenGL3_CreateFontsTexture();
-        apply_style(false, scale);
+        apply_style(light, scale);
         app.set_scale(scale);
+      }
+      if (app.light_theme() != light) {  // View > Light theme
+        light = app.light_theme();
+        apply_style(light, scale);
       }
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
@@ -323,7 +328,8 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
       int w = 0, h = 0;
       glfwGetFramebufferSize(window, &w, &h);
       glViewport(0, 0, w, h);
-      glClearColor(0.06f, 0.06f, 0.07f, 1);
+      const ImVec4 bg = palette(light).background;
+      glClearColor(bg.x, bg.y, bg.z, 1);
       glClear(GL_COLOR_BUFFER_BIT);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
       if (bench && !bench->after_frame(t0)) break;

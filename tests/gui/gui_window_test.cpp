@@ -618,5 +618,24 @@ TEST_F(GuiWindow, MacroButtonsRunTheCustomCutsAndTheOperatorsFiles) {
   EXPECT_EQ(part["position"][0], 2);
 }
 
+// Issue 25: a light theme (View > Light theme) for a bright shop: light backgrounds, dark text.
+TEST_F(GuiWindow, TheLightThemeHasLightBackgroundsAndDarkText) {
+  ASSERT_EQ(gui("wait idle\ntype MX, 1\nkey Enter\nwait idle\nscreenshot dark.png\n"
+                "click Light theme\nwait frames 3\nscreenshot light.png\ndump s.json\n"),
+            0)
+      << out_;
+  EXPECT_EQ(state("s.json")["theme"], "light");
+  const auto bright = [](int r, int g, int b) { return r > 200 && g > 200 && b > 200; };
+  const auto dark = [](int r, int g, int b) { return r < 70 && g < 70 && b < 70; };
+  // The console's log (right, bottom) and the readout (left, top): mostly background.
+  const Image d = image("dark.png"), l = image("light.png");
+  const int log_area = (1260 - 390) * (720 - 590);
+  EXPECT_LT(d.count(390, 590, 1260, 720, bright), log_area / 20);
+  EXPECT_GT(l.count(390, 590, 1260, 720, bright), log_area * 8 / 10);
+  EXPECT_GT(l.count(0, 40, 370, 300, bright), 370 * 260 / 2);
+  // Readable: the readout's digits are dark on it.
+  EXPECT_GT(l.count(0, 60, 370, 200, dark), 1000);
+}
+
 }  // namespace
 
