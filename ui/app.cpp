@@ -713,9 +713,11 @@ void App::keypad_window() {
     const bool vd = i == static_cast<int>(presets.size());
     ImGui::SameLine();
     const bool chosen = kp_preset_ == (vd ? -1 : i);
-    if (chosen) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
-    if (button(vd ? "VD##step" : fmt::format("{:g}##step", presets[static_cast<std::size_t>(i)]).c_str()))
-      kp_preset_ = vd ? -1 : i;
+    if (chosen)
+      ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    const std::string label =
+        vd ? "VD##step" : fmt::format("{:g}##step", presets[static_cast<std::size_t>(i)]);
+    if (button(label.c_str())) kp_preset_ = vd ? -1 : i;
     if (chosen) ImGui::PopStyleColor();
     if (vd && ImGui::IsItemHovered())
       ImGui::SetTooltip("VD's keypad step: %.4f %s", settings_.display.keypad_step,
@@ -1211,7 +1213,8 @@ nlohmann::json App::state() const {
   s["theme"] = light_ ? "light" : "dark";
   s["offsets_window"] = show_offsets_;
   s["offsets"] = json::array();
-  for (const OffsetRow& r : offset_rows(p, modal_, std::clamp(settings_.display.axes, 3, kAxisCount), table_))
+  const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  for (const OffsetRow& r : offset_rows(p, modal_, axes, table_))
     s["offsets"].push_back({{"axis", std::string(1, r.axis)},
                             {"machine", shown(r.table)},
                             {"offset", shown(r.offset)},

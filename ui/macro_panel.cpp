@@ -17,7 +17,8 @@ std::vector<std::string> user_part_files(const std::string& folder) {
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     std::string ext = it->path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     if (ext == ".sbp" && it->is_regular_file(ec)) files.push_back(it->path().string());
   }
   std::sort(files.begin(), files.end());
@@ -25,8 +26,7 @@ std::vector<std::string> user_part_files(const std::string& folder) {
 }
 
 std::string macro_panel(const std::vector<std::string>& files, const std::string& folder,
-                        bool can_run,
-                        const std::function<bool(const std::string&, bool)>& button) {
+                        bool can_run, const std::function<bool(const std::string&, bool)>& button) {
   // What the shipped files do (the operator's own C<n>.sbp comes first when there is one).
   static const char* const kWhat[] = {"zero Z with the plate", "home X, Y and Z", "spindle on",
                                       "spindle off", "manual tool change"};

@@ -19,7 +19,6 @@ std::vector<std::string> user_part_files(const std::string& folder);
 // window does (a script may click it by its label). Returns the line to run ("C2",
 // "FP, \"...\"") or "".
 std::string macro_panel(const std::vector<std::string>& files, const std::string& folder,
-                        bool can_run,
-                        const std::function<bool(const std::string&, bool)>& button);
+                        bool can_run, const std::function<bool(const std::string&, bool)>& button);
 
 }  // namespace gantry::ui

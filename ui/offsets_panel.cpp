@@ -13,8 +13,8 @@ std::vector<OffsetRow> offset_rows(const Vec6& work, const ModalState& m, int ax
   for (int i = 0; i < axes && i < kAxisCount; ++i) {
     const double offset = m.zero[i] + m.applied_offset[i];
     const std::string code = fmt::format("Z{}", kAxes[i]);
-    rows.push_back({kAxes[i], work[i] + offset, offset, work[i],
-                    table.find(code) ? code : std::string()});
+    rows.push_back(
+        {kAxes[i], work[i] + offset, offset, work[i], table.find(code) ? code : std::string()});
   }
   return rows;
 }
@@ -35,8 +35,7 @@ std::string offsets_panel(const std::vector<OffsetRow>& rows, const char* units,
       ImGui::Text("%.4f", v);
     }
     ImGui::TableNextColumn();
-    if (!r.zero_code.empty() &&
-        button(fmt::format("Zero {}##{}", r.axis, r.zero_code), can_zero))
+    if (!r.zero_code.empty() && button(fmt::format("Zero {}##{}", r.axis, r.zero_code), can_zero))
       run = r.zero_code;
   }
   ImGui::EndTable();

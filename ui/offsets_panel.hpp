@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "gantry/commands/command_table.hpp"  // CommandTable
-#include "gantry/core/axes.hpp"                // Vec6
-#include "gantry/interp/modal_state.hpp"       // ModalState
+#include "gantry/core/axes.hpp"               // Vec6
+#include "gantry/interp/modal_state.hpp"      // ModalState
 
 namespace gantry::ui {
 

@@ -19,17 +19,15 @@ const char* const kDigitFonts[] = {"/usr/share/fonts/truetype/dejavu/DejaVuSansM
 }  // namespace
 
 const Palette& palette(bool light) {
-  static const Palette dark{{1.0f, 0.35f, 0.35f, 1}, {0.4f, 0.9f, 0.4f, 1},
-                            {1, 0.85f, 0.3f, 1},     {0.6f, 0.6f, 0.6f, 1},
-                            {0.5f, 0.85f, 1, 1},     {0.95f, 0.45f, 0.95f, 1},
-                            {1, 1, 1, 1},            {0.3f, 0.3f, 0.3f, 1},
-                            {0.06f, 0.06f, 0.07f, 1}};
+  static const Palette dark{
+      {1.0f, 0.35f, 0.35f, 1}, {0.4f, 0.9f, 0.4f, 1},    {1, 0.85f, 0.3f, 1}, {0.6f, 0.6f, 0.6f, 1},
+      {0.5f, 0.85f, 1, 1},     {0.95f, 0.45f, 0.95f, 1}, {1, 1, 1, 1},        {0.3f, 0.3f, 0.3f, 1},
+      {0.06f, 0.06f, 0.07f, 1}};
   // On white the same hues, darker: each at least 4.5:1 against the window's background.
-  static const Palette bright{{0.75f, 0.05f, 0.05f, 1}, {0.05f, 0.45f, 0.05f, 1},
-                              {0.55f, 0.38f, 0.0f, 1},  {0.35f, 0.35f, 0.35f, 1},
-                              {0.0f, 0.35f, 0.6f, 1},   {0.6f, 0.0f, 0.6f, 1},
-                              {0.0f, 0.0f, 0.0f, 1},    {0.75f, 0.75f, 0.75f, 1},
-                              {0.86f, 0.86f, 0.86f, 1}};
+  static const Palette bright{
+      {0.75f, 0.05f, 0.05f, 1}, {0.05f, 0.45f, 0.05f, 1}, {0.55f, 0.38f, 0.0f, 1},
+      {0.35f, 0.35f, 0.35f, 1}, {0.0f, 0.35f, 0.6f, 1},   {0.6f, 0.0f, 0.6f, 1},
+      {0.0f, 0.0f, 0.0f, 1},    {0.75f, 0.75f, 0.75f, 1}, {0.86f, 0.86f, 0.86f, 1}};
   return light ? bright : dark;
 }
 

@@ -17,7 +17,7 @@ const Palette& palette(bool light);
 // made again after it): the text font at 13 px times the scale, and the readout's digits,
 // large, drawn smaller to fit their window.
 void build_fonts(float scale);
-ImFont* digits_font();      // null before build_fonts
+ImFont* digits_font();     // null before build_fonts
 float digits_font_size();  // the size it was rasterised at, in pixels
 
 // The colours and sizes (padding, rounding, scroll bars) of the theme at `scale`.

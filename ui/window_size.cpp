@@ -26,15 +26,14 @@ std::optional<WindowSize> parse_window_size(std::string_view text, std::string* 
   if (!side(both ? text.substr(0, x) : text, w.width) ||
       (both && !side(text.substr(x + 1), w.height))) {
     if (why)
-      *why = fmt::format("'{}' is no window size: WIDTH (16:10) or WIDTHxHEIGHT, e.g. 1024x600",
-                         text);
+      *why =
+          fmt::format("'{}' is no window size: WIDTH (16:10) or WIDTHxHEIGHT, e.g. 1024x600", text);
     return std::nullopt;
   }
   if (!both) w.height = w.width * 10 / 16;
   for (const int v : {w.width, w.height})
     if (v < kMin || v > kMax) {
-      if (why)
-        *why = fmt::format("'{}': each side must be {} to {} pixels", text, kMin, kMax);
+      if (why) *why = fmt::format("'{}': each side must be {} to {} pixels", text, kMin, kMax);
       return std::nullopt;
     }
   return w;

@@ -558,12 +558,15 @@ TEST_F(GuiWindow, TheOffsetsViewZeroesAnAxisAsTheConsoleDoes) {
       << out_;
   const json before = state("before.json");
   EXPECT_TRUE(before["offsets_window"]);
-  EXPECT_EQ(before["offsets"][0], json({{"axis", "X"}, {"machine", 3}, {"offset", 0}, {"work", 3}}));
+  EXPECT_EQ(before["offsets"][0],
+            json({{"axis", "X"}, {"machine", 3}, {"offset", 0}, {"work", 3}}));
   EXPECT_TRUE(before["buttons"]["Zero X"]["whole"]);
   const json after = state("after.json");
   EXPECT_TRUE(has_line(after["log"], "> ZX"));  // the console's command, run as typed
-  EXPECT_EQ(after["offsets"][0], json({{"axis", "X"}, {"machine", 3}, {"offset", 3}, {"work", 0}}));
-  EXPECT_EQ(after["offsets"][1], json({{"axis", "Y"}, {"machine", 2}, {"offset", 0}, {"work", 2}}));
+  EXPECT_EQ(after["offsets"][0],
+            json({{"axis", "X"}, {"machine", 3}, {"offset", 3}, {"work", 0}}));
+  EXPECT_EQ(after["offsets"][1],
+            json({{"axis", "Y"}, {"machine", 2}, {"offset", 0}, {"work", 2}}));
   EXPECT_EQ(after["position"][0], 0);
 }
 
@@ -583,8 +586,8 @@ TEST_F(GuiWindow, AnUnconfirmedPositionIsMarkedUntilConfirmed) {
   EXPECT_TRUE(before["buttons"]["Confirm"]["whole"]);
   // The mark: yellow text on the state line.
   const Image im = image("before.png");
-  EXPECT_GT(im.count(110, 40, 370, 62, [](int r, int g, int b) { return r > 200 && g > 170 && b < 120; }),
-            20);
+  const auto yellow = [](int r, int g, int b) { return r > 200 && g > 170 && b < 120; };
+  EXPECT_GT(im.count(110, 40, 370, 62, yellow), 20);
   const json after = state("after.json");
   EXPECT_TRUE(after["confirmed"]);
   EXPECT_FALSE(after["buttons"].contains("Confirm"));
