@@ -495,6 +495,9 @@ MotionReport Controller::keypad_session() {
 void Controller::start_activity(std::function<void()> work) {
   // Called under m_ with the state changed already.
   busy_ = true;
+  // A stop request belongs to the activity it stops; one made at rest (an E-stop) had none
+  // to end, and would stop this one before it began.
+  feed_.clear_abort();
   feed_.new_activity();  // nothing cut yet; the step generator counts anew
   jog_target_.reset();
   error_.reset();

@@ -238,6 +238,33 @@ TEST(Controller, EStopStopsThePulsesAtOnceAndNeedsAcknowledging) {
   EXPECT_EQ(m.card.steps()[0], m.steps(1.0));
 }
 
+// An E-stop at rest has no activity to end, so nothing had cleared its stop request: the
+// first jog or move after the acknowledgement was stopped before it began (the window's X+
+// did nothing, once). Both play in full.
+TEST(Controller, AfterAnEStopAtRestTheNextJogAndMovePlay) {
+  Machine m;
+  ASSERT_TRUE(m.run("MX, 1\n"));
+  m.c.wait();
+  ASSERT_TRUE(m.c.estop());
+  m.c.wait();
+  ASSERT_EQ(m.c.state(), MachineState::EStop);
+  ASSERT_TRUE(m.c.acknowledge());
+  JogRequest j;
+  j.direction[0] = 1;
+  j.step = true;
+  j.step_size = 0.5;
+  ASSERT_TRUE(m.c.jog(j));
+  m.c.wait();
+  EXPECT_EQ(m.c.status().steps[0], m.steps(1.5));
+  ASSERT_TRUE(m.c.estop());
+  m.c.wait();
+  ASSERT_TRUE(m.c.acknowledge());
+  ASSERT_TRUE(m.run("MX, 2\n"));
+  m.c.wait();
+  EXPECT_EQ(m.c.status().steps[0], m.steps(2.0));
+  EXPECT_EQ(m.card.steps()[0], m.steps(2.0));
+}
+
 // Issue 25: on the real-time card, the move after an acknowledged E-stop plays at once. It
 // froze for as long as the card had played before (the readout said "running" with X still):
 // SimCard::start() must carry the wall clock's origin with the tick count. The two times are

@@ -71,7 +71,8 @@ class FeederEvents {
 // Activity flags (any thread -> job thread, and the interpreter's stop_check):
 //   abort_            callers (stop, E-stop), the feeder (card fault, halt, a scheduled stop
 //                     taking effect: abort()), the job (an error ends the run: abort();
-//                     end_activity(): cleared). Read by the job's queue pushes (acquire), its
+//                     end_activity(): cleared), an activity's start (cleared: an E-stop at
+//                     rest had none to end). Read by the job's queue pushes (acquire), its
 //                     waits (under the controller's mutex) and the interpreter's loops. Set
 //                     under the mutex except on a card fault; a push that sees it throws.
 //   interrupted_      "the motion was cut" (stop, release, halt, fault). Feeder sets it when
@@ -145,7 +146,7 @@ class FeederThread {
 
   // ---- the activity (job thread, and callers under the mutex) ----
   void abort() { abort_ = true; }
-  void clear_abort() { abort_ = false; }  // job, at the activity's end (under the mutex)
+  void clear_abort() { abort_ = false; }  // an activity's start and end (under the mutex)
   bool aborted() const { return abort_; }
   const std::atomic<bool>& abort_flag() const { return abort_; }  // the interpreter's stop_check
   bool interrupted() const { return interrupted_; }
