@@ -22,6 +22,7 @@
 #include "gantry/session/live_position.hpp"   // LivePosition
 #include "gui.hpp"
 #include "preview_gl.hpp"
+#include "program_listing.hpp"
 
 namespace gantry::ui {
 
@@ -134,6 +135,9 @@ class App {
   // Job.
   std::string file_;
   int start_line_ = 1;
+  ProgramListing listing_;
+  bool job_running_ = false;     // a file we started has not ended yet
+  std::size_t listing_line_ = 0;  // highlighted at rest: where the last run ended or stopped
 
   // Preview.
   std::unique_ptr<PreviewGL> gl_;
@@ -143,6 +147,7 @@ class App {
   std::atomic<std::size_t> loaded_so_far_{0};
   std::mutex loaded_m_;
   std::shared_ptr<const Toolpath> loaded_;  // handed over by the loader
+  std::shared_ptr<const ListingText> loaded_text_;  // and the file's lines, for the listing
   Camera camera_;
   bool fit_ = true;
   std::uint32_t hover_line_ = 0;
@@ -174,6 +179,7 @@ class App {
   // Log.
   std::vector<LogLine> log_;
   bool scroll_log_ = false;
+  int log_last_rows_ = 0;  // text rows the last entry was drawn on (wrapped: more than 1)
 
   bool show_values_ = false, show_keys_ = false;
   bool quit_ = false;

@@ -259,6 +259,73 @@ TEST_F(GuiWindow, RunsAFileOnTheSimCardWithItsPreview) {
   EXPECT_GT(im.count(kPx0, kPy0, kPx1, kPy1, blue), 50);
 }
 
+// Issue 25: the program listing. A click on a line at rest sets the start line; "Start at
+// line" starts there and the bar counts the file's lines (it said "line 25 of 1": the one
+// typed FG line's); while the file runs its playing line is highlighted and kept in view; after
+// a stop the bar shows where the motion stopped, not 100 %, and no time remaining.
+TEST_F(GuiWindow, TheListingSetsTheStartLineAndFollowsThePlayingLine) {
+  // Line 19 leaves the tool at X 0, where it is: from line 20 on each line moves at once.
+  std::string part = "SW, 0\nMS, 0.5\n";
+  for (int i = 3; i <= 40; ++i) part += i % 2 ? "MX, 0\n" : "MX, 0.2\n";
+  write("long.sbp", part);
+  ASSERT_EQ(gui("wait idle\ndump loaded.json\nclick line 20\nwait frames 2\ndump picked.json\n"
+                "click Start at line\nwait frames 30\ndump early.json\nwait frames 120\n"
+                "dump later.json\nkey Escape\nwait idle\ndump stopped.json\n",
+                "long.sbp --realtime"),
+            0)
+      << out_;
+  const json loaded = state("loaded.json");
+  EXPECT_EQ(loaded["listing"]["lines"], 40);
+  EXPECT_EQ(loaded["listing"]["highlighted"], 0);
+  EXPECT_EQ(loaded["listing"]["start_line"], 1);
+  EXPECT_EQ(state("picked.json")["listing"]["start_line"], 20);
+  auto in_view = [](const json& l) {
+    return l["first_shown"] <= l["highlighted"] && l["highlighted"] <= l["last_shown"];
+  };
+  const json early = state("early.json");
+  ASSERT_EQ(early["state"], "running") << early.dump();
+  EXPECT_EQ(early["progress"]["lines"], 40) << early["progress"].dump();
+  const int first = early["progress"]["line"].get<int>();
+  EXPECT_GE(first, 20) << early["progress"].dump();
+  EXPECT_EQ(early["progress"]["label"].get<std::string>().find(fmt::format("line {} of 40", first)),
+            0u)
+      << early["progress"].dump();
+  EXPECT_EQ(early["listing"]["highlighted"], first);
+  EXPECT_TRUE(in_view(early["listing"])) << early["listing"].dump();
+  const json later = state("later.json");
+  ASSERT_EQ(later["state"], "running") << later.dump();
+  EXPECT_GT(later["listing"]["highlighted"].get<int>(), first) << later["listing"].dump();
+  EXPECT_EQ(later["listing"]["highlighted"], later["progress"]["line"]);
+  EXPECT_TRUE(in_view(later["listing"])) << later["listing"].dump();
+  const json stopped = state("stopped.json");
+  EXPECT_EQ(stopped["state"], "stopped");
+  const json& p = stopped["progress"];
+  EXPECT_LT(p["line"].get<int>(), 40) << p.dump();
+  EXPECT_LT(p["fraction"].get<double>(), 1) << p.dump();
+  EXPECT_EQ(p["label"].get<std::string>().find("100 %"), std::string::npos) << p.dump();
+  EXPECT_LT(p["remaining_s"].get<double>(), 0) << p.dump();
+  EXPECT_NE(p["times"].get<std::string>().find("remaining -"), std::string::npos) << p.dump();
+  EXPECT_EQ(stopped["listing"]["highlighted"], p["line"]);  // where it stopped
+}
+
+// Issue 25: the log showed ImGui's ids ("PAUSE###question: continue") and cut long lines off
+// at its edge; it names the dialog, and a long line wraps onto more rows.
+TEST_F(GuiWindow, TheLogShowsNoInternalIdsAndWrapsLongLines) {
+  std::string words;
+  for (int i = 0; i < 40; ++i) words += "a long line ";
+  write("say.sbp", "PAUSE\nPRINT \"" + words + "end\"\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait dialog\nclick Continue\nwait idle\n"
+                "wait frames 2\ndump end.json\n",
+                "say.sbp"),
+            0)
+      << out_;
+  const json end = state("end.json");
+  EXPECT_TRUE(has_line(end["log"], "  PAUSE: continue")) << end["log"].dump();
+  EXPECT_FALSE(has_line(end["log"], "###")) << end["log"].dump();
+  ASSERT_TRUE(has_line(end["log"], words + "end"));
+  EXPECT_GE(end["log_last_rows"].get<int>(), 3) << end["log"].dump();  // 490 characters
+}
+
 // Issue 25: "SO, 1, 1" in a running file left the output lights dark (they showed the
 // interpreter's state); they and the spindle line follow what the card plays.
 TEST_F(GuiWindow, TheOutputLightsAndSpindleFollowTheRunningFile) {
