@@ -174,13 +174,12 @@ void App::poll() {
     loading_ = false;
     fit_ = true;
     load_seconds_ = std::chrono::duration<double>(Clock::now() - load_started_).count();
-    log(LogLine::Info,
-        fmt::format("preview: {} segments, {} moves in {:.2f} s{}", path_->segments.size(),
-                    path_->moves, load_seconds_,
-                    path_->estimated_time_s > 0
-                        ? fmt::format("; cycle time about {}",
-                                      session::clock_text(path_->estimated_time_s))
-                        : ""));
+    log(LogLine::Info, fmt::format("preview: {} segments, {} moves in {:.2f} s{}",
+                                   path_->segments.size(), path_->moves, load_seconds_,
+                                   path_->estimated_time_s > 0
+                                       ? fmt::format("; cycle time about {}",
+                                                     session::clock_text(path_->estimated_time_s))
+                                       : ""));
     int shown_errors = 0;
     for (const Diagnostic& d : path_->violations)
       if (shown_errors++ < 20)
@@ -298,6 +297,9 @@ void App::start_file(int from_line) {
 
 void App::load(const std::string& path) {
   file_ = path;
+  if (std::error_code ec; std::filesystem::is_regular_file(path, ec))
+    if (std::string why; !recent_.add(path, &why))
+      log(LogLine::Error, fmt::format("recent files: {}", why));
   cancel_ = true;
   if (loader_.joinable()) loader_.join();
   cancel_ = false;
@@ -308,6 +310,7 @@ void App::load(const std::string& path) {
   loader_ = std::thread([this, path, settings = settings_] {
     ToolpathOptions o;
     o.job.yes = true;  // a preview answers PAUSE and MSGBOX as --yes does
+    o.job.input_defaults = true;  // and INPUT with its default, as `gantry preview` does
     o.cancel = &cancel_;
     o.progress = [this](const Toolpath& so_far) { loaded_so_far_ = so_far.segments.size(); };
     std::shared_ptr<const ListingText> text = ListingText::read(path);
@@ -570,10 +573,18 @@ void App::job_window() {
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   place({{0, top}, {kLeft, std::max(size.y - top, 100.0f)}});
   ImGui::Begin("Job", nullptr, kFixed);
-  ImGui::SetNextItemWidth(kLeft - 80);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("LoadOpen...").x -
+                          4 * style.FramePadding.x - 2 * style.ItemSpacing.x);
   ImGui::InputTextWithHint("##file", "part file (.sbp)", &file_);
   ImGui::SameLine();
   if (button("Load")) load(file_);
+  ImGui::SameLine();
+  const bool ctrl_o = ImGui::GetIO().KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_O, false) &&
+                      !file_dialog_.showing() && !sheet_open_ && !dialog_shown_;
+  if (button("Open...") || ctrl_o)
+    file_dialog_.open(file_.empty() ? std::string()
+                                    : std::filesystem::path(file_).parent_path().string());
   const bool rest = at_rest(), paused = status_.state == MachineState::Paused ||
                                         status_.state == MachineState::Keypad;
   if (button("Start", rest && !file_.empty())) start_file(1);
@@ -628,6 +639,11 @@ void App::job_window() {
                     start_line_, pending_click_);
   if (chosen > 0) start_line_ = static_cast<int>(chosen);
   ImGui::End();
+  if (const std::optional<std::string> f = file_dialog_.draw(
+          recent_.files(), [this](const std::string& name) { return clicked(name.c_str()); })) {
+    load(*f);
+    focus_line_ = true;
+  }
 }
 
 void App::preview_window() {
@@ -756,9 +772,10 @@ void App::console_window() {
     ImGui::TextColored(c, "%s", l.text.c_str());
   }
   // The rows the last entry takes, for the state dump (a wrapped line takes several).
-  log_last_rows_ = log_.empty() ? 0
-                                : static_cast<int>(std::lround(ImGui::GetItemRectSize().y /
-                                                               ImGui::GetTextLineHeight()));
+  log_last_rows_ =
+      log_.empty()
+          ? 0
+          : static_cast<int>(std::lround(ImGui::GetItemRectSize().y / ImGui::GetTextLineHeight()));
   ImGui::PopTextWrapPos();
   if (scroll_log_) ImGui::SetScrollHereY(1.0f);
   scroll_log_ = false;
@@ -781,7 +798,7 @@ void App::console_window() {
   ImGui::TextColored(kCyan, "%s", status_.state == MachineState::EStop ? "ack>" : "gantry>");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
-  if (focus_line_ && !kp_focus_ && !sheet_open_ && !dialog_shown_) {
+  if (focus_line_ && !kp_focus_ && !sheet_open_ && !dialog_shown_ && !file_dialog_.showing()) {
     ImGui::SetKeyboardFocusHere();
     focus_line_ = false;
   }
@@ -992,8 +1009,9 @@ void App::question_popup() {
   if (answer || cancel) {
     // The log names the dialog by its kind: the title's ###id is ImGui's, not the operator's.
     const std::string_view kind(title, std::string_view(title).find("###"));
-    log(LogLine::Info, fmt::format("{}: {}", kind,
-                                   answer ? (answer->empty() ? "continue" : *answer) : "cancelled"));
+    log(LogLine::Info,
+        fmt::format("{}: {}", kind,
+                    answer ? (answer->empty() ? "continue" : *answer) : "cancelled"));
     if (answer)
       m_.io.answer(*answer);
     else
@@ -1082,6 +1100,8 @@ nlohmann::json App::state() const {
                            path_->bounds.max().y(), path_->bounds.max().z()};
   }
   s["preview"] = preview;
+  s["file_dialog"] = file_dialog_.state();
+  s["recent_files"] = recent_.files();
   json listing = listing_.state();
   listing["start_line"] = start_line_;
   s["listing"] = listing;

@@ -17,9 +17,11 @@
 
 #include "camera.hpp"
 #include "command_line.hpp"
+#include "file_dialog.hpp"
 #include "fill_sheet.hpp"
 #include "gantry/session/activity_watch.hpp"  // ActivityWatch
 #include "gantry/session/live_position.hpp"   // LivePosition
+#include "gantry/session/recent_files.hpp"    // RecentFiles
 #include "gui.hpp"
 #include "preview_gl.hpp"
 #include "program_listing.hpp"
@@ -136,8 +138,10 @@ class App {
   std::string file_;
   int start_line_ = 1;
   ProgramListing listing_;
-  bool job_running_ = false;     // a file we started has not ended yet
+  bool job_running_ = false;      // a file we started has not ended yet
   std::size_t listing_line_ = 0;  // highlighted at rest: where the last run ended or stopped
+  FileDialog file_dialog_;
+  session::RecentFiles recent_{opt_.recent_files};
 
   // Preview.
   std::unique_ptr<PreviewGL> gl_;

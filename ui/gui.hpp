@@ -18,6 +18,7 @@ struct GuiOptions {
   std::string card;      // what the readout says the card is: "sim (virtual time)", "pci7200"
   bool realtime = true;  // the card plays in wall-clock time (continuous jogs need it)
   int width = 1280, height = 800;
+  std::string recent_files;  // where the part files opened last are kept (empty: not kept)
 };
 
 // What the window drives. `settings` returns the values in force now (units, calibration,

@@ -91,8 +91,9 @@ std::size_t ProgramListing::draw(std::size_t playing, bool follow, bool pick, in
       ImGui::SameLine(x);
       const std::string_view text = text_->line(n);
       const std::string number = fmt::format("{}{:>6}  ", is_start ? ">" : " ", n);
-      ImGui::TextColored(n == highlighted_ ? playing_colour : is_start ? start_colour
-                                                                        : ImVec4(0.6f, 0.6f, 0.6f, 1),
+      ImGui::TextColored(n == highlighted_ ? playing_colour
+                         : is_start        ? start_colour
+                                           : ImVec4(0.6f, 0.6f, 0.6f, 1),
                          "%s", number.c_str());
       ImGui::SameLine(0, 0);
       if (n == highlighted_) ImGui::PushStyleColor(ImGuiCol_Text, playing_colour);

@@ -10,6 +10,7 @@
 
 #include "gantry/machine/controller.hpp"   // Controller
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
+#include "gantry/session/recent_files.hpp"  // recent_files_path
 #include "gui.hpp"                         // run_gui (ui/)
 #include "live_machine.hpp"                // LiveMachine
 #include "machine_profile.hpp"             // load_machine_profile
@@ -53,6 +54,7 @@ int run_gui_command(const GuiArgs& a) {
   o.card = live->sim() ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : live->card_type;
   o.width = a.width;
   o.height = a.width * 10 / 16;
+  o.recent_files = session::recent_files_path(profile.values_path);  // beside the machine state
   ui::Machine m{*live->controller, io, [&live] { return live->values.settings(); }};
   return ui::run_gui(o, m);
 }

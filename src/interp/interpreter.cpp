@@ -630,7 +630,8 @@ void Interpreter::loop(DiagnosticLog* collect) {
       const Frame& top = frames_.size() > 1 && frames_.front().call.lines && !frames_[1].call.lines
                              ? frames_[1]
                              : frames_.front();
-      progress_(static_cast<size_t>(top.pc.line - 1), static_cast<size_t>(top.script->line_count()));
+      progress_(static_cast<size_t>(top.pc.line - 1),
+                static_cast<size_t>(top.script->line_count()));
     }
   }
 }

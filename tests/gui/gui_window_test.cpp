@@ -326,6 +326,58 @@ TEST_F(GuiWindow, TheLogShowsNoInternalIdsAndWrapsLongLines) {
   EXPECT_GE(end["log_last_rows"].get<int>(), 3) << end["log"].dump();  // 490 characters
 }
 
+// Issue 25: the window's preview stopped at the first INPUT; it goes on with the default the
+// INPUT offers (the answer Enter at the dialog gives), as `gantry preview` does, and says so.
+TEST_F(GuiWindow, ThePreviewGoesOnPastInputWithItsDefault) {
+  write("ask.sbp", "&D = 2\nINPUT \"How far\" : &D\nMX, &D\nMY, 3\n");
+  ASSERT_EQ(gui("wait idle\ndump s.json\n", "ask.sbp"), 0) << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["preview"]["moves"], 2) << s["preview"].dump();
+  ASSERT_TRUE(s["preview"].contains("bounds")) << s["preview"].dump();
+  EXPECT_EQ(s["preview"]["bounds"][3], 2);  // X max: MX, &D with &D's default
+  EXPECT_EQ(s["preview"]["bounds"][4], 3);
+  EXPECT_TRUE(has_line(s["log"], "the preview answered INPUT &D with its default \"2\""))
+      << s["log"].dump();
+}
+
+// Issue 25: no file-open dialog and no recent files. Ctrl+O opens the dialog in the working
+// folder, listing its folders and part files only; a click goes into a folder or opens a file;
+// a typed path and Enter open it too; the files opened are listed first in the next session.
+TEST_F(GuiWindow, TheFileDialogOpensAPartFileAndTheNextSessionListsItAsRecent) {
+  write("pick.sbp", "MX, 2\n");
+  write("notes.txt", "not a part file\n");
+  fs::create_directories(dir_ / "sub");
+  write("sub/other.nc", "G0 X1 Y1\n");
+  ASSERT_EQ(gui("wait idle\nkey ctrl+o\nwait frames 3\ndump open.json\nclick sub/\nwait frames 2\n"
+                "dump sub.json\nclick Up\nwait frames 2\nclick pick.sbp\nwait idle\n"
+                "wait frames 2\ndump loaded.json\n"),
+            0)
+      << out_;
+  const json open = state("open.json");
+  EXPECT_TRUE(open["file_dialog"]["showing"]) << open.dump();
+  EXPECT_EQ(open["file_dialog"]["folder"], dir_.string());
+  EXPECT_EQ(open["file_dialog"]["entries"], json({"config/", "sub/", "pick.sbp"}))
+      << open["file_dialog"].dump();
+  EXPECT_EQ(state("sub.json")["file_dialog"]["entries"], json({"other.nc"}));
+  const json loaded = state("loaded.json");
+  EXPECT_FALSE(loaded["file_dialog"]["showing"]);
+  EXPECT_EQ(loaded["preview"]["file"], (dir_ / "pick.sbp").string());
+  EXPECT_EQ(loaded["preview"]["moves"], 1);
+  EXPECT_EQ(loaded["listing"]["lines"], 1);
+  EXPECT_EQ(loaded["recent_files"], json({(dir_ / "pick.sbp").string()}));
+  // The next session: the list was kept beside the machine's state; a typed path opens.
+  EXPECT_TRUE(fs::exists(dir_ / "config/gantry/values/recent_files.txt"));
+  ASSERT_EQ(gui("wait idle\nkey ctrl+o\nwait frames 3\ndump again.json\ntype sub/other.nc\n"
+                "key Enter\nwait idle\nwait frames 2\ndump typed.json\n"),
+            0)
+      << out_;
+  EXPECT_EQ(state("again.json")["recent_files"], json({(dir_ / "pick.sbp").string()}));
+  const json typed = state("typed.json");
+  EXPECT_EQ(typed["preview"]["file"], (dir_ / "sub/other.nc").string());
+  EXPECT_EQ(typed["recent_files"],
+            json({(dir_ / "sub/other.nc").string(), (dir_ / "pick.sbp").string()}));
+}
+
 // Issue 25: "SO, 1, 1" in a running file left the output lights dark (they showed the
 // interpreter's state); they and the spindle line follow what the card plays.
 TEST_F(GuiWindow, TheOutputLightsAndSpindleFollowTheRunningFile) {
