@@ -43,7 +43,8 @@ std::optional<std::string> ScriptedIO::ask(std::string_view, std::string_view va
     if (comma == std::string::npos) comma = names.size();
     const std::string name = names.substr(start, comma - start);
     auto it = inputs_.find(name);
-    if (it == inputs_.end() && input_defaults_) {
+    // An INPUT that offers no default has no answer to take: the preview stops there.
+    if (it == inputs_.end() && input_defaults_ && !default_value.empty()) {
       // Once a line: an INPUT in a loop says it once.
       const bool said = std::any_of(warnings_.begin(), warnings_.end(), [&](const Diagnostic& w) {
         return w.loc.line == loc.line &&
@@ -51,13 +52,9 @@ std::optional<std::string> ScriptedIO::ask(std::string_view, std::string_view va
       });
       if (!said)
         warn({loc, Severity::Warning,
-              default_value.empty()
-                  ? fmt::format("the preview answered INPUT {} with an empty answer (it offers "
-                                "no default; the run asks the operator)",
-                                variable)
-                  : fmt::format("the preview answered INPUT {} with its default \"{}\" (the "
-                                "run asks the operator)",
-                                variable, default_value)});
+              fmt::format("the preview answered INPUT {} with its default \"{}\" (the run asks "
+                          "the operator)",
+                          variable, default_value)});
       return std::string(default_value);
     }
     if (it == inputs_.end())

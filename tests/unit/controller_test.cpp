@@ -445,7 +445,9 @@ TEST(Controller, ATypedLineThatRunsAFileShowsTheFilesProgress) {
   Machine m;
   const std::string file = ::testing::TempDir() + "gantry_typed_fg_progress.sbp";
   std::ofstream(file) << kSquare;
-  ASSERT_TRUE(m.c.run_typed(Script::from_text("FG, \"" + file + "\", , , , , , , , 3", "console")));
+  const Outcome o =
+      m.c.run_typed(Script::from_text("FG, \"" + file + "\", , , , , , , , , 3", "console"));
+  ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : o.errors[0].message);
   m.c.wait();
   const ControllerStatus s = m.c.status();
   EXPECT_EQ(s.lines, 6u);
