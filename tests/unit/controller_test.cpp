@@ -443,7 +443,8 @@ TEST(Controller, ProgressGivesTheLineTheMachineTimeAndWhatRemains) {
 // "line 25 of 1", the one typed line's progress; the file's lines are what count.
 TEST(Controller, ATypedLineThatRunsAFileShowsTheFilesProgress) {
   Machine m;
-  const std::string file = ::testing::TempDir() + "gantry_typed_fg_progress.sbp";
+  // In the working folder: a typed line's files are read only from there.
+  const std::string file = "gantry_typed_fg_progress.sbp";
   std::ofstream(file) << kSquare;
   const Outcome o =
       m.c.run_typed(Script::from_text("FG, \"" + file + "\", , , , , , , , , 3", "console"));
