@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 
 #include "gantry/commands/command_docs.hpp"  // command_help
 #include "gantry/lang/scan.hpp"              // trim
@@ -20,6 +21,7 @@
 #include "gantry/session/feed_override.hpp"  // stepped_feed_override
 #include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
+#include "gantry/session/run_progress.hpp"   // run_progress
 #include "gantry/session/source_place.hpp"   // kConsoleName
 #include "gantry/interp/file_system.hpp"     // user_macro_folder
 #include "macro_panel.hpp"                   // macro_panel, user_part_files
@@ -42,11 +44,6 @@ ImVec4 kRed, kGreen, kYellow, kGrey, kCyan, kMagenta, kText, kOff;
 void use_palette(const Palette& p) {
   kRed = p.red, kGreen = p.green, kYellow = p.yellow, kGrey = p.grey, kCyan = p.cyan;
   kMagenta = p.magenta, kText = p.text, kOff = p.off;
-}
-
-std::string clock_text(double s) {
-  const auto t = static_cast<long>(std::lround(std::max(s, 0.0)));
-  return fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60);
 }
 
 bool rest_state(MachineState s) {
@@ -150,6 +147,8 @@ void App::poll() {
   // motion, so a released jog slowing to rest leaves every key working.
   if (activity_.ended(status_)) {
     snapshot();
+    if (job_running_) listing_line_ = session::run_progress(status_).line;  // where it ended
+    job_running_ = false;
     kp_continuous_ = false;
     kp_key_ = -1;
     if (status_.state == MachineState::EStop)
@@ -175,23 +174,27 @@ void App::poll() {
   if (!file_keypad && kp_file_) kp_focus_ = false, focus_line_ = true;
   kp_file_ = file_keypad;
   std::shared_ptr<const Toolpath> done;
+  std::shared_ptr<const ListingText> text;
   {
     std::lock_guard lock(loaded_m_);
     done = std::move(loaded_);
+    text = std::move(loaded_text_);
   }
   if (done) {
     if (loader_.joinable()) loader_.join();
     path_ = std::move(done);
+    listing_.set(std::move(text));
+    listing_line_ = 0;
     gl_->set_path(*path_);
     loading_ = false;
     fit_ = true;
     load_seconds_ = std::chrono::duration<double>(Clock::now() - load_started_).count();
-    log(LogLine::Info,
-        fmt::format("preview: {} segments, {} moves in {:.2f} s{}", path_->segments.size(),
-                    path_->moves, load_seconds_,
-                    path_->estimated_time_s > 0
-                        ? fmt::format("; cycle time about {}", clock_text(path_->estimated_time_s))
-                        : ""));
+    log(LogLine::Info, fmt::format("preview: {} segments, {} moves in {:.2f} s{}",
+                                   path_->segments.size(), path_->moves, load_seconds_,
+                                   path_->estimated_time_s > 0
+                                       ? fmt::format("; cycle time about {}",
+                                                     session::clock_text(path_->estimated_time_s))
+                                       : ""));
     int shown_errors = 0;
     for (const Diagnostic& d : path_->violations)
       if (shown_errors++ < 20)
@@ -302,12 +305,18 @@ void App::start_file(int from_line) {
     const CommandSpec* fg = table_.find("FG");
     std::string l = fmt::format("FG, \"{}\"", std::filesystem::absolute(file_).string());
     for (std::size_t i = 1; fg && i + 1 < fg->params.size(); ++i) l += ", ";
-    return run_line(fmt::format("{}, {}", l, from_line));
+    l += fmt::format(", {}", from_line);
+    log(LogLine::Typed, "> " + l);
+    const Outcome o = c_.run_typed(Script::from_text(l, kConsoleName));
+    report(o, "refused");
+    job_running_ = o.accepted;
+    return;
   }
   try {
     log(LogLine::Typed, "> start " + file_);
     const Outcome o = c_.run(Script::load(file_));
     report(o, "refused");
+    job_running_ = o.accepted;
   } catch (const GantryError& e) {
     log(LogLine::Error, e.what());
   }
@@ -315,6 +324,9 @@ void App::start_file(int from_line) {
 
 void App::load(const std::string& path) {
   file_ = path;
+  if (std::error_code ec; std::filesystem::is_regular_file(path, ec))
+    if (std::string why; !recent_.add(path, &why))
+      log(LogLine::Error, fmt::format("recent files: {}", why));
   cancel_ = true;
   if (loader_.joinable()) loader_.join();
   cancel_ = false;
@@ -325,11 +337,13 @@ void App::load(const std::string& path) {
   loader_ = std::thread([this, path, settings = settings_] {
     ToolpathOptions o;
     o.job.yes = true;  // a preview answers PAUSE and MSGBOX as --yes does
+    o.job.input_defaults = true;  // and INPUT with its default, as `gantry preview` does
     o.cancel = &cancel_;
     o.progress = [this](const Toolpath& so_far) { loaded_so_far_ = so_far.segments.size(); };
+    std::shared_ptr<const ListingText> text = ListingText::read(path);
     auto tp = std::make_shared<Toolpath>(load_toolpath(path, settings, o));
     std::lock_guard lock(loaded_m_);
-    if (!cancel_) loaded_ = std::move(tp);
+    if (!cancel_) loaded_ = std::move(tp), loaded_text_ = std::move(text);
   });
 }
 
@@ -745,10 +759,18 @@ void App::job_window() {
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   place({{0, top}, {kLeft, std::max(size.y - top, 100.0f)}});
   ImGui::Begin("Job", nullptr, kFixed);
-  ImGui::SetNextItemWidth(kLeft - 80 * scale_);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("LoadOpen...").x -
+                          4 * style.FramePadding.x - 2 * style.ItemSpacing.x);
   ImGui::InputTextWithHint("##file", "part file (.sbp)", &file_);
   ImGui::SameLine();
   if (button("Load")) load(file_);
+  ImGui::SameLine();
+  const bool ctrl_o = ImGui::GetIO().KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_O, false) &&
+                      !file_dialog_.showing() && !sheet_open_ && !dialog_shown_;
+  if (button("Open...") || ctrl_o)
+    file_dialog_.open(file_.empty() ? std::string()
+                                    : std::filesystem::path(file_).parent_path().string());
   const bool rest = at_rest(), paused = status_.state == MachineState::Paused ||
                                         status_.state == MachineState::Keypad;
   if (button("Start", rest && !file_.empty())) start_file(1);
@@ -791,23 +813,23 @@ void App::job_window() {
         "next statement, Stop ends the file there");
   ImGui::SameLine();
   ImGui::TextUnformatted(single_step_ ? "on" : "off");
-  // Progress of the file running, or of the last one. The interpreter runs ahead of the
-  // motion: the line shown is the one the card plays, the fraction the time played of the
-  // check's estimate (the lines when there is none).
-  const std::size_t line = status_.playing_line > 0 && !at_rest()
-                               ? static_cast<std::size_t>(status_.playing_line)
-                               : status_.line;
-  const double total = status_.elapsed_s + status_.remaining_s;
-  const double fraction = !at_rest() && status_.remaining_s > 0 ? status_.elapsed_s / total
-                          : status_.lines > 0
-                              ? static_cast<double>(line) / static_cast<double>(status_.lines)
-                              : 0;
-  ImGui::ProgressBar(
-      static_cast<float>(fraction), ImVec2(-1, 0),
-      fmt::format("line {} of {}  ({:.0f} %)", line, status_.lines, 100 * fraction).c_str());
-  ImGui::Text("elapsed %s   remaining %s", clock_text(status_.elapsed_s).c_str(),
-              status_.remaining_s > 0 ? clock_text(status_.remaining_s).c_str() : "-");
+  // Progress of the file running, or of the last one, as `gantry run` and the console show it.
+  const session::RunProgress progress = session::run_progress(status_);
+  ImGui::ProgressBar(static_cast<float>(progress.fraction), ImVec2(-1, 0),
+                     progress.label().c_str());
+  ImGui::TextUnformatted(progress.times().c_str());
+  // The listing: the line the card plays while the file runs, else where the last run ended;
+  // a click at rest chooses the line "Start at line" starts at.
+  const std::size_t chosen =
+      listing_.draw(job_running_ ? progress.line : listing_line_, job_running_ && !rest, rest,
+                    start_line_, pending_click_);
+  if (chosen > 0) start_line_ = static_cast<int>(chosen);
   ImGui::End();
+  if (const std::optional<std::string> f = file_dialog_.draw(
+          recent_.files(), [this](const std::string& name) { return clicked(name.c_str()); })) {
+    load(*f);
+    focus_line_ = true;
+  }
 }
 
 void App::preview_window() {
@@ -927,6 +949,7 @@ void App::console_window() {
   const float below =
       ImGui::GetFrameHeightWithSpacing() + 2 * ImGui::GetTextLineHeightWithSpacing();
   ImGui::BeginChild("log", ImVec2(0, -below), true);
+  ImGui::PushTextWrapPos(0.0f);  // long lines wrap at the log's edge instead of being cut off
   for (const LogLine& l : log_) {
     const ImVec4 c = l.kind == LogLine::Error   ? kRed
                      : l.kind == LogLine::Typed ? kCyan
@@ -934,6 +957,12 @@ void App::console_window() {
                                                 : kGrey;
     ImGui::TextColored(c, "%s", l.text.c_str());
   }
+  // The rows the last entry takes, for the state dump (a wrapped line takes several).
+  log_last_rows_ =
+      log_.empty()
+          ? 0
+          : static_cast<int>(std::lround(ImGui::GetItemRectSize().y / ImGui::GetTextLineHeight()));
+  ImGui::PopTextWrapPos();
   if (scroll_log_) ImGui::SetScrollHereY(1.0f);
   scroll_log_ = false;
   ImGui::EndChild();
@@ -955,7 +984,7 @@ void App::console_window() {
   ImGui::TextColored(kCyan, "%s", status_.state == MachineState::EStop ? "ack>" : "gantry>");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
-  if (focus_line_ && !kp_focus_ && !sheet_open_ && !dialog_shown_) {
+  if (focus_line_ && !kp_focus_ && !sheet_open_ && !dialog_shown_ && !file_dialog_.showing()) {
     ImGui::SetKeyboardFocusHere();
     focus_line_ = false;
   }
@@ -1164,8 +1193,10 @@ void App::question_popup() {
       break;
   }
   if (answer || cancel) {
+    // The log names the dialog by its kind: the title's ###id is ImGui's, not the operator's.
+    const std::string_view kind(title, std::string_view(title).find("###"));
     log(LogLine::Info,
-        fmt::format("{}: {}", title,
+        fmt::format("{}: {}", kind,
                     answer ? (answer->empty() ? "continue" : *answer) : "cancelled"));
     if (answer)
       m_.io.answer(*answer);
@@ -1227,10 +1258,14 @@ nlohmann::json App::state() const {
   for (const auto& [name, b] : buttons_)
     buttons[name] = {{"rect", {b[0], b[1], b[2], b[3]}}, {"whole", b[4] > 0}};
   s["buttons"] = buttons;
-  s["progress"] = {{"line", status_.line},
-                   {"lines", status_.lines},
-                   {"elapsed_s", status_.elapsed_s},
-                   {"remaining_s", status_.remaining_s}};
+  const session::RunProgress progress = session::run_progress(status_);  // as the bar shows it
+  s["progress"] = {{"line", progress.line},
+                   {"lines", progress.lines},
+                   {"fraction", progress.fraction},
+                   {"elapsed_s", progress.elapsed_s},
+                   {"remaining_s", progress.remaining_s},
+                   {"label", progress.label()},
+                   {"times", progress.times()}};
   if (sheet_open_ && sheet_) {
     json fields = json::array();
     for (const SheetField& f : sheet_->fields())
@@ -1270,10 +1305,16 @@ nlohmann::json App::state() const {
                            path_->bounds.max().y(), path_->bounds.max().z()};
   }
   s["preview"] = preview;
+  s["file_dialog"] = file_dialog_.state();
+  s["recent_files"] = recent_.files();
+  json listing = listing_.state();
+  listing["start_line"] = start_line_;
+  s["listing"] = listing;
   json log = json::array();
   for (const LogLine& l : log_)
     log.push_back(fmt::format("{}{}", l.kind == LogLine::Error ? "E " : "  ", l.text));
   s["log"] = log;
+  s["log_last_rows"] = log_last_rows_;
   return s;
 }
 

@@ -18,11 +18,14 @@
 
 #include "camera.hpp"
 #include "command_line.hpp"
+#include "file_dialog.hpp"
 #include "fill_sheet.hpp"
 #include "gantry/session/activity_watch.hpp"  // ActivityWatch
 #include "gantry/session/live_position.hpp"   // LivePosition
+#include "gantry/session/recent_files.hpp"    // RecentFiles
 #include "gui.hpp"
 #include "preview_gl.hpp"
+#include "program_listing.hpp"
 
 namespace gantry::ui {
 
@@ -158,6 +161,11 @@ class App {
   // Job.
   std::string file_;
   int start_line_ = 1;
+  ProgramListing listing_;
+  bool job_running_ = false;      // a file we started has not ended yet
+  std::size_t listing_line_ = 0;  // highlighted at rest: where the last run ended or stopped
+  FileDialog file_dialog_;
+  session::RecentFiles recent_{opt_.recent_files};
 
   // Preview.
   std::unique_ptr<PreviewGL> gl_;
@@ -167,6 +175,7 @@ class App {
   std::atomic<std::size_t> loaded_so_far_{0};
   std::mutex loaded_m_;
   std::shared_ptr<const Toolpath> loaded_;  // handed over by the loader
+  std::shared_ptr<const ListingText> loaded_text_;  // and the file's lines, for the listing
   Camera camera_;
   bool fit_ = true;
   std::uint32_t hover_line_ = 0;
@@ -198,6 +207,7 @@ class App {
   // Log.
   std::vector<LogLine> log_;
   bool scroll_log_ = false;
+  int log_last_rows_ = 0;  // text rows the last entry was drawn on (wrapped: more than 1)
 
   bool show_values_ = false, show_keys_ = false;
   bool show_offsets_ = false;

@@ -20,6 +20,7 @@ struct GuiOptions {
   bool realtime = true;  // the card plays in wall-clock time (continuous jogs need it)
   int width = 1280, height = 800;
   std::string macros;  // --macros: the macro folder (else the operator's, user_macro_folder)
+  std::string recent_files;  // where the part files opened last are kept (empty: not kept)
 };
 
 // What the window drives. `settings` returns the values in force now (units, calibration,

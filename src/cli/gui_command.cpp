@@ -10,6 +10,7 @@
 
 #include "gantry/machine/controller.hpp"   // Controller
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
+#include "gantry/session/recent_files.hpp"  // recent_files_path
 #include "gui.hpp"                         // run_gui (ui/)
 #include "window_size.hpp"                 // parse_window_size (ui/)
 #include "live_machine.hpp"                // LiveMachine
@@ -61,6 +62,7 @@ int run_gui_command(const GuiArgs& a) {
   const std::optional<ui::WindowSize> size = ui::parse_window_size(a.size, nullptr);
   o.width = size ? size->width : 1280;
   o.height = size ? size->height : 800;
+  o.recent_files = session::recent_files_path(profile.values_path);  // beside the machine state
   ui::Machine m{*live->controller, io, [&live] { return live->values.settings(); }};
   m.memory = live->memory.get();
   return ui::run_gui(o, m);

@@ -543,6 +543,7 @@ int cmd_preview(const PreviewArgs& args, const LanguageArgs& lang) {
   if (!load_machine_profile(args.settings, lang.values, profile, lang.tool_table)) return 1;
   JobOptions opt;
   if (!lang.job_options(profile.settings, opt)) return 1;
+  opt.input_defaults = true;  // a preview goes on past INPUT (--input still answers first)
   describe(profile, lang.allow_paths, opt.interpreter);
   return run_preview(args, profile.settings, opt, lang.store());
 }

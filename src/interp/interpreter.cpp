@@ -624,9 +624,15 @@ void Interpreter::loop(DiagnosticLog* collect) {
       unwind_all();
       stop_all_ = false;
     }
-    if (progress_ && !frames_.empty())
-      progress_(static_cast<size_t>(frames_.front().pc.line - 1),
-                static_cast<size_t>(frames_.front().script->line_count()));
+    if (progress_ && !frames_.empty()) {
+      // A typed line that calls a file (FG from a line, FP) shows that file's progress, not
+      // its own one line's.
+      const Frame& top = frames_.size() > 1 && frames_.front().call.lines && !frames_[1].call.lines
+                             ? frames_[1]
+                             : frames_.front();
+      progress_(static_cast<size_t>(top.pc.line - 1),
+                static_cast<size_t>(top.script->line_count()));
+    }
   }
 }
 

@@ -3,7 +3,8 @@
 
 #include <fmt/format.h>  // messages
 
-#include <cstdio>  // stdout
+#include <algorithm>  // any_of
+#include <cstdio>     // stdout
 
 namespace gantry {
 
@@ -33,7 +34,7 @@ bool ScriptedIO::confirm(std::string_view message, const SourceLoc& loc) {
 }
 
 std::optional<std::string> ScriptedIO::ask(std::string_view, std::string_view variable,
-                                           std::string_view, const SourceLoc& loc) {
+                                           std::string_view default_value, const SourceLoc& loc) {
   std::string answer;
   size_t start = 0;
   const std::string names(variable);
@@ -42,6 +43,20 @@ std::optional<std::string> ScriptedIO::ask(std::string_view, std::string_view va
     if (comma == std::string::npos) comma = names.size();
     const std::string name = names.substr(start, comma - start);
     auto it = inputs_.find(name);
+    // An INPUT that offers no default has no answer to take: the preview stops there.
+    if (it == inputs_.end() && input_defaults_ && !default_value.empty()) {
+      // Once a line: an INPUT in a loop says it once.
+      const bool said = std::any_of(warnings_.begin(), warnings_.end(), [&](const Diagnostic& w) {
+        return w.loc.line == loc.line &&
+               (w.loc.file == loc.file || (w.loc.file && loc.file && *w.loc.file == *loc.file));
+      });
+      if (!said)
+        warn({loc, Severity::Warning,
+              fmt::format("the preview answered INPUT {} with its default \"{}\" (the run asks "
+                          "the operator)",
+                          variable, default_value)});
+      return std::string(default_value);
+    }
     if (it == inputs_.end())
       throw NeedsOperator({loc, Severity::Error,
                            fmt::format("the file asks the operator for {}; run from a "

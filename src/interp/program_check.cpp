@@ -25,6 +25,7 @@ DiagnosticLog check_program(std::shared_ptr<const Script> script, const Settings
   MotionSink& sink = options.check_moves ? *options.check_moves : nothing;
   std::string printed;  // a check prints nothing
   ScriptedIO io(options.yes || options.operator_present, options.inputs, &printed);
+  if (options.input_defaults) io.take_input_defaults();
   PersistentStore scratch = store.scratch_copy();  // a check may assign $variables, never saves
   InterpreterOptions opt = options.interpreter;
   opt.dry_run = true;

@@ -130,6 +130,24 @@ TEST_F(PreviewCli, SoftLimitViolationNamesItsLineAndFails) {
   EXPECT_TRUE(fs::exists(path("l.png")));  // what the file would do up to there is drawn
 }
 
+// Issue 25: the preview stopped at the first INPUT. It goes on with the default the INPUT
+// offers (what Enter at the window's dialog gives), says so, and --input still answers first.
+TEST_F(PreviewCli, ThePreviewGoesOnPastInputWithItsDefault) {
+  const std::string file = write("ask.sbp", "&D = 2\nINPUT \"How far\" : &D\nMX, &D\nMY, 3\n");
+  const Result r = gantry(fmt::format("preview {} --json -o {}", file, path("a.png")));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["moves"], 2) << r.out;
+  EXPECT_NE(j["violations"].dump().find(
+                "the preview answered INPUT &D with its default \\\"2\\\" (the run asks the "
+                "operator)"),
+            std::string::npos)
+      << j["violations"].dump();
+  const Result answered =
+      gantry(fmt::format("preview {} --json --input D=5 -o {}", file, path("b.png")));
+  EXPECT_EQ(nlohmann::json::parse(answered.out)["violations"].size(), 0u) << answered.out;
+}
+
 TEST_F(PreviewCli, MissingAndBadFilesGiveLocatedErrors) {
   const Result missing = gantry("preview parts/nosuch.sbp -o " + path("n.png"));
   EXPECT_EQ(missing.exit_code, 1);

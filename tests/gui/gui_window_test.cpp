@@ -259,6 +259,126 @@ TEST_F(GuiWindow, RunsAFileOnTheSimCardWithItsPreview) {
   EXPECT_GT(im.count(kPx0, kPy0, kPx1, kPy1, blue), 50);
 }
 
+// Issue 25: the program listing. A click on a line at rest sets the start line; "Start at
+// line" starts there and the bar counts the file's lines (it said "line 25 of 1": the one
+// typed FG line's); while the file runs its playing line is highlighted and kept in view; after
+// a stop the bar shows where the motion stopped, not 100 %, and no time remaining.
+TEST_F(GuiWindow, TheListingSetsTheStartLineAndFollowsThePlayingLine) {
+  // Line 19 leaves the tool at X 0, where it is: from line 20 on each line moves at once.
+  std::string part = "SW, 0\nMS, 0.5\n";
+  // 80 lines of 0.4 s from line 20: under way at the later dump even at a few frames a second.
+  for (int i = 3; i <= 100; ++i) part += i % 2 ? "MX, 0\n" : "MX, 0.2\n";
+  write("long.sbp", part);
+  ASSERT_EQ(gui("wait idle\ndump loaded.json\nclick line 20\nwait frames 2\ndump picked.json\n"
+                "click Start at line\nwait frames 30\ndump early.json\nwait frames 120\n"
+                "dump later.json\nkey Escape\nwait idle\ndump stopped.json\n",
+                "long.sbp --realtime"),
+            0)
+      << out_;
+  const json loaded = state("loaded.json");
+  EXPECT_EQ(loaded["listing"]["lines"], 100);
+  EXPECT_EQ(loaded["listing"]["highlighted"], 0);
+  EXPECT_EQ(loaded["listing"]["start_line"], 1);
+  EXPECT_EQ(state("picked.json")["listing"]["start_line"], 20);
+  auto in_view = [](const json& l) {
+    return l["first_shown"] <= l["highlighted"] && l["highlighted"] <= l["last_shown"];
+  };
+  const json early = state("early.json");
+  ASSERT_EQ(early["state"], "running") << early.dump();
+  EXPECT_EQ(early["progress"]["lines"], 100) << early["progress"].dump();
+  const int first = early["progress"]["line"].get<int>();
+  EXPECT_GE(first, 20) << early["progress"].dump();
+  EXPECT_EQ(
+      early["progress"]["label"].get<std::string>().find(fmt::format("line {} of 100", first)), 0u)
+      << early["progress"].dump();
+  EXPECT_EQ(early["listing"]["highlighted"], first);
+  EXPECT_TRUE(in_view(early["listing"])) << early["listing"].dump();
+  const json later = state("later.json");
+  ASSERT_EQ(later["state"], "running") << later.dump();
+  EXPECT_GT(later["listing"]["highlighted"].get<int>(), first) << later["listing"].dump();
+  EXPECT_EQ(later["listing"]["highlighted"], later["progress"]["line"]);
+  EXPECT_TRUE(in_view(later["listing"])) << later["listing"].dump();
+  const json stopped = state("stopped.json");
+  EXPECT_EQ(stopped["state"], "stopped");
+  const json& p = stopped["progress"];
+  EXPECT_LT(p["line"].get<int>(), 100) << p.dump();
+  EXPECT_LT(p["fraction"].get<double>(), 1) << p.dump();
+  EXPECT_EQ(p["label"].get<std::string>().find("100 %"), std::string::npos) << p.dump();
+  EXPECT_LT(p["remaining_s"].get<double>(), 0) << p.dump();
+  EXPECT_NE(p["times"].get<std::string>().find("remaining -"), std::string::npos) << p.dump();
+  EXPECT_EQ(stopped["listing"]["highlighted"], p["line"]);  // where it stopped
+}
+
+// Issue 25: the log showed ImGui's ids ("PAUSE###question: continue") and cut long lines off
+// at its edge; it names the dialog, and a long line wraps onto more rows.
+TEST_F(GuiWindow, TheLogShowsNoInternalIdsAndWrapsLongLines) {
+  std::string words;
+  for (int i = 0; i < 40; ++i) words += "a long line ";
+  write("say.sbp", "PAUSE\nPRINT \"" + words + "end\"\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait dialog\nclick Continue\nwait idle\n"
+                "wait frames 2\ndump end.json\n",
+                "say.sbp"),
+            0)
+      << out_;
+  const json end = state("end.json");
+  EXPECT_TRUE(has_line(end["log"], "  PAUSE: continue")) << end["log"].dump();
+  EXPECT_FALSE(has_line(end["log"], "###")) << end["log"].dump();
+  ASSERT_TRUE(has_line(end["log"], words + "end"));
+  EXPECT_GE(end["log_last_rows"].get<int>(), 3) << end["log"].dump();  // 490 characters
+}
+
+// Issue 25: the window's preview stopped at the first INPUT; it goes on with the default the
+// INPUT offers (the answer Enter at the dialog gives), as `gantry preview` does, and says so.
+TEST_F(GuiWindow, ThePreviewGoesOnPastInputWithItsDefault) {
+  write("ask.sbp", "&D = 2\nINPUT \"How far\" : &D\nMX, &D\nMY, 3\n");
+  ASSERT_EQ(gui("wait idle\ndump s.json\n", "ask.sbp"), 0) << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["preview"]["moves"], 2) << s["preview"].dump();
+  ASSERT_TRUE(s["preview"].contains("bounds")) << s["preview"].dump();
+  EXPECT_EQ(s["preview"]["bounds"][3], 2);  // X max: MX, &D with &D's default
+  EXPECT_EQ(s["preview"]["bounds"][4], 3);
+  EXPECT_TRUE(has_line(s["log"], "the preview answered INPUT &D with its default \"2\""))
+      << s["log"].dump();
+}
+
+// Issue 25: no file-open dialog and no recent files. Ctrl+O opens the dialog in the working
+// folder, listing its folders and part files only; a click goes into a folder or opens a file;
+// a typed path and Enter open it too; the files opened are listed first in the next session.
+TEST_F(GuiWindow, TheFileDialogOpensAPartFileAndTheNextSessionListsItAsRecent) {
+  write("pick.sbp", "MX, 2\n");
+  write("notes.txt", "not a part file\n");
+  fs::create_directories(dir_ / "sub");
+  write("sub/other.nc", "G0 X1 Y1\n");
+  ASSERT_EQ(gui("wait idle\nkey ctrl+o\nwait frames 3\ndump open.json\nclick sub/\nwait frames 2\n"
+                "dump sub.json\nclick Up\nwait frames 2\nclick pick.sbp\nwait idle\n"
+                "wait frames 2\ndump loaded.json\n"),
+            0)
+      << out_;
+  const json open = state("open.json");
+  EXPECT_TRUE(open["file_dialog"]["showing"]) << open.dump();
+  EXPECT_EQ(open["file_dialog"]["folder"], dir_.string());
+  EXPECT_EQ(open["file_dialog"]["entries"], json({"config/", "sub/", "pick.sbp"}))
+      << open["file_dialog"].dump();
+  EXPECT_EQ(state("sub.json")["file_dialog"]["entries"], json({"other.nc"}));
+  const json loaded = state("loaded.json");
+  EXPECT_FALSE(loaded["file_dialog"]["showing"]);
+  EXPECT_EQ(loaded["preview"]["file"], (dir_ / "pick.sbp").string());
+  EXPECT_EQ(loaded["preview"]["moves"], 1);
+  EXPECT_EQ(loaded["listing"]["lines"], 1);
+  EXPECT_EQ(loaded["recent_files"], json({(dir_ / "pick.sbp").string()}));
+  // The next session: the list was kept beside the machine's state; a typed path opens.
+  EXPECT_TRUE(fs::exists(dir_ / "config/gantry/values/recent_files.txt"));
+  ASSERT_EQ(gui("wait idle\nkey ctrl+o\nwait frames 3\ndump again.json\ntype sub/other.nc\n"
+                "key Enter\nwait idle\nwait frames 2\ndump typed.json\n"),
+            0)
+      << out_;
+  EXPECT_EQ(state("again.json")["recent_files"], json({(dir_ / "pick.sbp").string()}));
+  const json typed = state("typed.json");
+  EXPECT_EQ(typed["preview"]["file"], (dir_ / "sub/other.nc").string());
+  EXPECT_EQ(typed["recent_files"],
+            json({(dir_ / "sub/other.nc").string(), (dir_ / "pick.sbp").string()}));
+}
+
 // Issue 25: "SO, 1, 1" in a running file left the output lights dark (they showed the
 // interpreter's state); they and the spindle line follow what the card plays.
 TEST_F(GuiWindow, TheOutputLightsAndSpindleFollowTheRunningFile) {

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>  // remove
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -463,6 +464,24 @@ TEST(Controller, ProgressGivesTheLineTheMachineTimeAndWhatRemains) {
   EXPECT_EQ(s.playing_line, 6);  // the last motion played was line 6's jog
   EXPECT_NEAR(s.elapsed_s, m.card.time_s(), 1e-9);
   EXPECT_LT(s.remaining_s, 0.01 * s.elapsed_s);  // the estimate was the cycle time
+}
+
+// Issue 25: a typed line that runs a file (the window's "Start at line" types FG) showed
+// "line 25 of 1", the one typed line's progress; the file's lines are what count.
+TEST(Controller, ATypedLineThatRunsAFileShowsTheFilesProgress) {
+  Machine m;
+  // In the working folder: a typed line's files are read only from there.
+  const std::string file = "gantry_typed_fg_progress.sbp";
+  std::ofstream(file) << kSquare;
+  const Outcome o =
+      m.c.run_typed(Script::from_text("FG, \"" + file + "\", , , , , , , , , 3", "console"));
+  ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : o.errors[0].message);
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.lines, 6u);
+  EXPECT_EQ(s.line, 6u);
+  EXPECT_EQ(s.playing_line, 6);
+  std::remove(file.c_str());
 }
 
 }  // namespace

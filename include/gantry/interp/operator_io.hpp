@@ -55,9 +55,13 @@ class ScriptedIO : public OperatorIO {
   void warn(const Diagnostic& d) override;
   KeypadAnswer keypad(std::string_view message, const SourceLoc& loc) override;
   const std::vector<Diagnostic>& warnings() const { return warnings_; }
+  // A preview: an INPUT `inputs` does not answer takes the default it offers (what Enter at
+  // the window's dialog gives), with a warning that says so, instead of ending the check.
+  void take_input_defaults() { input_defaults_ = true; }
 
  private:
   bool yes_;
+  bool input_defaults_ = false;
   std::map<std::string, std::string> inputs_;  // keys upper case, e.g. "&DEPTH"
   std::string* out_;                           // PRINT text goes here (or to stream_)
   std::FILE* stream_;

@@ -28,6 +28,7 @@ struct JobOptions {
   InterpreterOptions interpreter;
   std::map<std::string, std::string> inputs;  // --input answers, for the check as well
   bool yes = false;                           // --yes: PAUSE continues, MSGBOX defaults
+  bool input_defaults = false;  // a preview: an unanswered INPUT takes its default, and goes on
   bool operator_present = true;               // a person answers at a terminal
   std::size_t check_budget = 10'000'000;      // statements a check may run (loops end there)
   std::size_t max_errors = 100;  // a check stops after this many errors (0: never); the rest

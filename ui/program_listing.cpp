@@ -1,0 +1,115 @@
+// The program listing window part (docs/console.md, "Console window").
+#include "program_listing.hpp"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "gantry/core/text_file.hpp"  // read_text_file
+
+namespace gantry::ui {
+
+std::string_view ListingText::line(std::size_t n) const {
+  if (n == 0 || n > starts.size()) return {};
+  const std::size_t begin = starts[n - 1];
+  std::size_t end = n < starts.size() ? starts[n] : text.size();
+  while (end > begin && (text[end - 1] == '\n' || text[end - 1] == '\r')) --end;
+  return std::string_view(text).substr(begin, end - begin);
+}
+
+std::shared_ptr<const ListingText> ListingText::read(const std::string& path) {
+  std::optional<std::string> bytes = read_text_file(path);
+  if (!bytes) return nullptr;
+  auto t = std::make_shared<ListingText>();
+  t->text = std::move(*bytes);
+  // Lines as the interpreter numbers them: each \n ends one; a last line without one counts.
+  for (std::size_t i = 0; i < t->text.size();) {
+    t->starts.push_back(i);
+    const std::size_t nl = t->text.find('\n', i);
+    i = nl == std::string::npos ? t->text.size() : nl + 1;
+  }
+  return t;
+}
+
+void ProgramListing::set(std::shared_ptr<const ListingText> text) {
+  text_ = std::move(text);
+  highlighted_ = followed_ = first_shown_ = last_shown_ = 0;
+}
+
+std::size_t ProgramListing::draw(std::size_t playing, bool follow, bool pick, int start_line,
+                                 std::string& pending_click) {
+  const std::size_t lines = text_ ? text_->lines() : 0;
+  highlighted_ = playing <= lines ? playing : 0;
+  std::size_t chosen = 0;
+  // A script names a line "line N"; it may be out of view, so it is taken here, not drawn.
+  if (pick && pending_click.rfind("line ", 0) == 0) {
+    std::size_t n = 0;
+    const char* digits = pending_click.c_str() + 5;
+    const char* end = pending_click.c_str() + pending_click.size();
+    if (std::from_chars(digits, end, n).ptr == end && n >= 1 && n <= lines) {
+      chosen = n;
+      pending_click.clear();
+    }
+  }
+  const float row = ImGui::GetTextLineHeightWithSpacing();
+  const float height = std::max(ImGui::GetContentRegionAvail().y, 4 * row + 8);
+  ImGui::BeginChild("listing", ImVec2(0, height), true, ImGuiWindowFlags_HorizontalScrollbar);
+  if (lines == 0) {
+    ImGui::TextDisabled("the part file's lines show here once it is loaded");
+    first_shown_ = last_shown_ = 0;
+    ImGui::EndChild();
+    return chosen;
+  }
+  // While the file runs the playing line stays in view: once it leaves the view, it is
+  // brought a third of the way down (not every line: the operator can still scroll).
+  const float view = ImGui::GetWindowHeight();
+  if (follow && highlighted_ > 0 && highlighted_ != followed_) {
+    const float y = static_cast<float>(highlighted_ - 1) * row;
+    const float top = ImGui::GetScrollY();
+    if (y < top || y + 2 * row > top + view) ImGui::SetScrollY(std::max(0.0f, y - view / 3));
+    followed_ = highlighted_;
+  }
+  if (!follow) followed_ = 0;
+  const float top = ImGui::GetScrollY();
+  first_shown_ = static_cast<std::size_t>(std::floor(top / row)) + 1;
+  last_shown_ = std::min(lines, static_cast<std::size_t>(std::floor((top + view) / row)));
+  const ImVec4 playing_colour(1, 0.85f, 0.3f, 1), start_colour(0.5f, 0.85f, 1, 1);
+  ImGuiListClipper clip;
+  clip.Begin(static_cast<int>(lines), row);
+  while (clip.Step())
+    for (int i = clip.DisplayStart; i < clip.DisplayEnd; ++i) {
+      const auto n = static_cast<std::size_t>(i) + 1;
+      const bool is_start = static_cast<int>(n) == start_line && start_line > 1;
+      ImGui::PushID(i);
+      const float x = ImGui::GetCursorPosX();
+      // The text is drawn apart from the selectable: a line's own "##" is no ImGui id.
+      if (ImGui::Selectable("##line", n == highlighted_) && pick) chosen = n;
+      if (pick && ImGui::IsItemHovered()) ImGui::SetTooltip("start at line %zu", n);
+      ImGui::SameLine(x);
+      const std::string_view text = text_->line(n);
+      const std::string number = fmt::format("{}{:>6}  ", is_start ? ">" : " ", n);
+      ImGui::TextColored(n == highlighted_ ? playing_colour
+                         : is_start        ? start_colour
+                                           : ImVec4(0.6f, 0.6f, 0.6f, 1),
+                         "%s", number.c_str());
+      ImGui::SameLine(0, 0);
+      if (n == highlighted_) ImGui::PushStyleColor(ImGuiCol_Text, playing_colour);
+      ImGui::TextUnformatted(text.data(), text.data() + text.size());
+      if (n == highlighted_) ImGui::PopStyleColor();
+      ImGui::PopID();
+    }
+  ImGui::EndChild();
+  return chosen;
+}
+
+nlohmann::json ProgramListing::state() const {
+  return {{"lines", text_ ? text_->lines() : 0},
+          {"highlighted", highlighted_},
+          {"first_shown", first_shown_},
+          {"last_shown", last_shown_}};
+}
+
+}  // namespace gantry::ui

@@ -1,0 +1,46 @@
+// The program listing: the loaded part file's lines, the playing line highlighted and kept in
+// view while the file runs, and a click at rest choosing the line "Start at line" starts at.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gantry::ui {
+
+// A part file's text cut into lines (read on the preview loader's thread: a file of a
+// million lines takes a while).
+struct ListingText {
+  std::string text;
+  std::vector<std::size_t> starts;  // where each line begins: line n at starts[n - 1]
+  std::size_t lines() const { return starts.size(); }
+  std::string_view line(std::size_t n) const;  // 1-based, without its end of line
+  // Null when the file cannot be read.
+  static std::shared_ptr<const ListingText> read(const std::string& path);
+};
+
+class ProgramListing {
+ public:
+  // A new file (or none): nothing highlighted, the top in view.
+  void set(std::shared_ptr<const ListingText> text);
+  // Draws the lines in the space left in the window. `playing`: the line highlighted (0:
+  // none); `follow`: it is kept in view (a file runs); `pick`: a click chooses the start line
+  // (at rest). A script's click "line N" (`pending_click`, cleared when taken) is a click on
+  // line N. Returns the line clicked (0: none); `start_line` is marked.
+  std::size_t draw(std::size_t playing, bool follow, bool pick, int start_line,
+                   std::string& pending_click);
+  // For the state dump: the lines, the one highlighted and the range in view.
+  nlohmann::json state() const;
+
+ private:
+  std::shared_ptr<const ListingText> text_;
+  std::size_t highlighted_ = 0;
+  std::size_t followed_ = 0;  // the playing line last brought into view
+  std::size_t first_shown_ = 0, last_shown_ = 0;
+};
+
+}  // namespace gantry::ui
