@@ -83,7 +83,7 @@ std::pair<std::string, std::string> question_text(const Question& q) {
 
 }  // namespace
 
-Console::Console(Controller& c, OperatorMailbox& io, ValuesKeeper& values, const ConsoleArgs& args,
+Console::Console(Controller& c, OperatorMailbox& io, session::ValuesKeeper& values, const ConsoleArgs& args,
                  bool realtime, std::atomic<int>& signal)
     : c_(c),
       io_(io),

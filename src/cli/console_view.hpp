@@ -13,10 +13,10 @@
 
 #include "console.hpp"                       // ConsoleArgs
 #include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/session/live_machine.hpp"   // ValuesKeeper
 #include "gantry/session/live_position.hpp"  // LivePosition
 #include "gantry/session/operator_io.hpp"    // OperatorMailbox, Question
 #include "line_editor.hpp"                   // Key, LineEditor
-#include "live_machine.hpp"                  // ValuesKeeper
 
 namespace gantry::console {
 
@@ -33,7 +33,7 @@ inline bool at_rest(MachineState s) {
 
 class Console {
  public:
-  Console(Controller& c, OperatorMailbox& io, ValuesKeeper& values, const ConsoleArgs& args,
+  Console(Controller& c, OperatorMailbox& io, session::ValuesKeeper& values, const ConsoleArgs& args,
           bool realtime, std::atomic<int>& signal);
 
   int interactive(const std::string& banner);
@@ -78,7 +78,7 @@ class Console {
 
   Controller& c_;
   OperatorMailbox& io_;
-  ValuesKeeper& values_;
+  session::ValuesKeeper& values_;
   const ConsoleArgs& args_;
   bool realtime_;
   std::atomic<int>& signal_;
