@@ -1,17 +1,19 @@
-// A fixture for tests that run programs on an interpreter of their own into a RecordingSink
-// (the G-code front end's golden tests): the default profile, an operator, the $variables,
-// a fresh interpreter per run or check; and the helpers those tests share.
+// Fixtures for tests that run programs on an interpreter into a RecordingSink: the default
+// profile, an operator, the $variables, and either a fresh interpreter per run or check (the
+// G-code front end's golden tests) or one kept across runs; and the helpers they share.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "answering_io.hpp"
 #include "gantry/core/vec6.hpp"
 #include "gantry/interp/interpreter.hpp"
+#include "gantry/interp/operator_io.hpp"
 #include "gantry/interp/persistent_store.hpp"
 #include "gantry/lang/script.hpp"
 #include "gantry/settings/settings.hpp"
@@ -83,6 +85,26 @@ class InterpreterFixture : public ::testing::Test {
   IO io;
   PersistentStore store;
   ModalState state;
+};
+
+// One interpreter, made at its first use with `settings` and `options`, runs program after
+// program and keeps its state; the operator answers yes and its PRINT text goes to `printed`.
+class KeptInterpreterFixture : public ::testing::Test {
+ protected:
+  Interpreter& interp() {
+    if (!interp_) interp_.emplace(settings, sink, io, store, options);
+    return *interp_;
+  }
+  const ModalState& state() { return interp().state(); }
+  const std::vector<CanonMove>& moves() const { return sink.moves; }
+
+  Settings settings = default_settings();
+  InterpreterOptions options;
+  RecordingSink sink;
+  std::string printed;
+  ScriptedIO io{true, {}, &printed};
+  PersistentStore store;
+  std::optional<Interpreter> interp_;
 };
 
 }  // namespace gantry
