@@ -45,7 +45,6 @@ class Console {
   // Shared.
   void snapshot();  // at rest: the interpreter's exact position, the frame and units
   std::string readout(const ControllerStatus& st) const;
-  std::string state_text(const ControllerStatus& st) const;
   std::string help(const std::string& arg) const;
   std::string status_report() const;
   std::string refusal(const std::string& prefix, const std::string& line, const Outcome& o,
