@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "gantry/hal/card.hpp"                 // Card
-#include "gantry/interp/interpreter.hpp"       // InterpreterOptions
-#include "gantry/interp/operator_io.hpp"       // OperatorIO
-#include "gantry/interp/persistent_store.hpp"  // PersistentStore
-#include "gantry/machine/controller.hpp"       // Controller
-#include "gantry/session/machine_memory.hpp"   // MachineMemory
-#include "gantry/session/machine_profile.hpp"  // MachineProfile
-#include "gantry/session/run_log.hpp"          // RunLogger
+#include "gantry/hal/card.hpp"                    // Card
+#include "gantry/interp/interpreter_options.hpp"  // InterpreterOptions
+#include "gantry/interp/operator_io.hpp"          // OperatorIO
+#include "gantry/interp/persistent_store.hpp"     // PersistentStore
+#include "gantry/machine/controller.hpp"          // Controller
+#include "gantry/session/machine_memory.hpp"      // MachineMemory
+#include "gantry/session/machine_profile.hpp"     // MachineProfile
+#include "gantry/session/run_log.hpp"             // RunLogger
 
 namespace gantry::session {
 
