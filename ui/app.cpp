@@ -21,6 +21,10 @@
 #include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/source_place.hpp"   // kConsoleName
+#include "gantry/interp/file_system.hpp"     // user_macro_folder
+#include "macro_panel.hpp"                   // macro_panel, user_part_files
+#include "offsets_panel.hpp"                 // offset_rows, offsets_panel
+#include "theme.hpp"                         // digits_font, palette
 
 namespace gantry::ui {
 namespace {
@@ -32,8 +36,13 @@ using session::kConsoleName;
 using session::shown;
 const char* const kAxes = "XYZABC";
 
-const ImVec4 kRed(1.0f, 0.35f, 0.35f, 1), kGreen(0.4f, 0.9f, 0.4f, 1), kYellow(1, 0.85f, 0.3f, 1),
-    kGrey(0.6f, 0.6f, 0.6f, 1), kCyan(0.5f, 0.85f, 1, 1), kMagenta(0.95f, 0.45f, 0.95f, 1);
+// The theme's text colours (palette): set at the start of each frame.
+ImVec4 kRed, kGreen, kYellow, kGrey, kCyan, kMagenta, kText, kOff;
+
+void use_palette(const Palette& p) {
+  kRed = p.red, kGreen = p.green, kYellow = p.yellow, kGrey = p.grey, kCyan = p.cyan;
+  kMagenta = p.magenta, kText = p.text, kOff = p.off;
+}
 
 std::string clock_text(double s) {
   const auto t = static_cast<long>(std::lround(std::max(s, 0.0)));
@@ -45,11 +54,13 @@ bool rest_state(MachineState s) {
 }
 
 // The window's fixed layout: the readout, keypad and job down the left; the preview on the
-// right; the console (log and command line) along the bottom.
+// right; the console (log and command line) along the bottom. The column's width and the
+// console's height follow the window's scale (App::lay_out sets them each frame).
 struct Layout {
   ImVec2 pos, size;
 };
-constexpr float kLeft = 370, kConsole = 250;
+float kLeft = 370, kConsole = 250;
+float kReadout = 300, kKeypad = 215;  // the left column's heights: the job window gets the rest
 
 void place(const Layout& l) {
   ImGui::SetNextWindowPos(l.pos, ImGuiCond_Always);
@@ -104,6 +115,10 @@ void App::stop_jog() {
 
 bool App::idle() const {
   return at_rest() && !m_.io.question() && !loading_ && dialog_shown_ == 0;
+}
+
+bool App::keys_moving() const {
+  return (focus_line_ && !kp_focus_ && !sheet_open_ && !dialog_shown_) || sheet_focus_ >= 0;
 }
 
 Vec6 App::position(const ControllerStatus& st) const {
@@ -198,10 +213,22 @@ bool App::button(const char* label, bool enabled) {
   if (!enabled) ImGui::BeginDisabled();
   bool pressed = ImGui::Button(label);
   if (!enabled) ImGui::EndDisabled();
-  // A script names the button by its label (without any ##id).
+  // A script names the button by its label (without any ##id), and clicks it only when the
+  // whole button is on the screen, as a person could.
   const std::string name = std::string(label).substr(0, std::string(label).find("##"));
-  if (enabled && clicked(name.c_str())) pressed = true;
+  const bool whole = note_button(name);
+  if (enabled && whole && clicked(name.c_str())) pressed = true;
   return pressed;
+}
+
+bool App::note_button(const std::string& name) {
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  const ImDrawList& d = *ImGui::GetWindowDrawList();
+  const ImVec2 c0 = d.GetClipRectMin(), c1 = d.GetClipRectMax(), size = ImGui::GetIO().DisplaySize;
+  const bool whole = a.x >= std::max(c0.x, 0.0f) - 0.5f && a.y >= std::max(c0.y, 0.0f) - 0.5f &&
+                     b.x <= std::min(c1.x, size.x) + 0.5f && b.y <= std::min(c1.y, size.y) + 0.5f;
+  buttons_[name] = {a.x, a.y, b.x, b.y, whole ? 1.0f : 0.0f};
+  return whole;
 }
 
 std::optional<std::string> App::missed_click() {
@@ -311,6 +338,7 @@ void App::jog(const std::array<int, kAxisCount>& dir) {
   j.direction = dir;
   j.fast = kp_fast_;
   j.step = kp_step_;
+  j.step_size = jog_step();
   if (!j.step && !opt_.realtime) {
     log(LogLine::Error, "continuous jogs need --realtime on the simulated card; S: fixed steps");
     return;
@@ -390,6 +418,10 @@ void App::set_feed_override(double factor) {
 // ---- the frame -------------------------------------------------------------------------------
 
 void App::frame() {
+  use_palette(palette(light_));
+  buttons_.clear();
+  panel_top_ = {};
+  lay_out();
   poll();
   global_keys();
   menu_bar();
@@ -399,6 +431,9 @@ void App::frame() {
   preview_window();
   console_window();
   if (show_values_) values_window();
+  if (show_offsets_) offsets_window();
+  if (show_macros_) macros_window();
+  show_macros_was_ = show_macros_;
   if (show_keys_) keys_window();
   group_popup();
   sheet_popup();
@@ -407,6 +442,9 @@ void App::frame() {
 
 void App::menu_bar() {
   if (clicked("Values window")) show_values_ = true;  // a script names the menu item
+  if (clicked("Offsets")) show_offsets_ = !show_offsets_;
+  if (clicked("Macros")) show_macros_ = !show_macros_;
+  if (clicked("Light theme")) light_ = !light_;
   if (!ImGui::BeginMainMenuBar()) return;
   for (const Menu& menu : menus_) {
     if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
@@ -436,8 +474,13 @@ void App::menu_bar() {
       if (ImGui::MenuItem(name)) camera_.set_view(v), fit_ = true;
     ImGui::MenuItem("Perspective", nullptr, &camera_.perspective);
     ImGui::MenuItem("Show jogs", nullptr, &show_jogs_);
+    ImGui::Separator();
+    ImGui::MenuItem("Light theme", nullptr, &light_);  // dark or light, for a bright shop
     ImGui::EndMenu();
   }
+  // The panels over the preview, one click away (and touch-friendly): toggles on the bar.
+  ImGui::MenuItem("Offsets", nullptr, &show_offsets_);
+  ImGui::MenuItem("Macros", nullptr, &show_macros_);
   ImGui::EndMainMenuBar();
 }
 
@@ -463,9 +506,40 @@ void App::group_popup() {
   ImGui::EndPopup();
 }
 
+// The layout at this frame's size. The column and the console scale with the fonts; the
+// keypad and the job window (the run controls) get the height they need and the readout what
+// is left, up to what its digits fill: at 1024 x 600 every run control stays on the screen.
+void App::lay_out() {
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  const ImGuiStyle& style = ImGui::GetStyle();
+  kLeft = std::min(370 * scale_, size.x * 0.45f);
+  kConsole = std::min(250 * scale_, size.y * 0.4f);
+  const float title = ImGui::GetFrameHeight(), pad = 2 * style.WindowPadding.y;
+  const float row = ImGui::GetFrameHeightWithSpacing();
+  const float text = ImGui::GetTextLineHeightWithSpacing();
+  kKeypad = title + pad + text + 3 * pad_row() + 2 * row + style.ItemSpacing.y;
+  const float job = title + pad + 5 * row + text + style.ItemSpacing.y;
+  const float column = size.y - ImGui::GetFrameHeight();  // below the menu bar
+  // The readout: the state line, the digits, then five lines (units, speeds, inputs, outputs,
+  // spindle; the last stop scrolls in a low window). The digits as large as the height left
+  // and the width allow.
+  const float fixed = title + pad + 6 * text;
+  const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  const float left = column - kKeypad - job;  // for the readout
+  const float by_height = (left - fixed) / static_cast<float>(axes) - style.ItemSpacing.y;
+  // A digit is about 0.6 of the font's size wide; 11 of them and the axis letter's column.
+  const float by_width = (kLeft - 2 * style.WindowPadding.x - 40 * scale_) / (11 * 0.62f);
+  const float most = digits_font() ? digits_font_size() : 3 * ImGui::GetFontSize();
+  digits_px_ = std::clamp(std::min(by_height, by_width), ImGui::GetFontSize(), most);
+  // Too little height: the readout scrolls (its digits first), the run controls stay whole.
+  kReadout = std::max(
+      std::min(fixed + static_cast<float>(axes) * (digits_px_ + style.ItemSpacing.y), left),
+      4 * text);
+}
+
 void App::readout_window() {
   const float top = ImGui::GetFrameHeight();
-  place({{0, top}, {kLeft, 300}});
+  place({{0, top}, {kLeft, kReadout}});
   ImGui::Begin("Position", nullptr, kFixed);
   const ControllerStatus& st = status_;
   const bool pausing = st.state == MachineState::Paused && st.phase != FeedPhase::Held;
@@ -480,28 +554,48 @@ void App::readout_window() {
                        "WARNING: about to move");
   } else {
     ImGui::TextColored(colour, "%s", pausing ? "pausing" : state_name(st.state));
-    ImGui::SameLine(120);
-    ImGui::TextDisabled("card: %s", opt_.card.c_str());
+    ImGui::SameLine(120 * scale_);
+    if (const std::optional<std::string> why = unconfirmed()) {
+      // After an E-stop or a kill the position may be wrong until homed or confirmed.
+      ImGui::TextColored(kYellow, "UNCONFIRMED");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s: home (C3) or, if the tool is where the readout says, Confirm",
+                          why->c_str());
+      ImGui::SameLine();
+      if (button("Confirm", at_rest())) {
+        m_.memory->confirm();
+        log(LogLine::Info, "the position is confirmed: the tool is where the readout says");
+      }
+    } else {
+      ImGui::TextDisabled("card: %s", opt_.card.c_str());
+    }
   }
+  // SB3's readout: large digits, as large as the window allows (lay_out).
   const Vec6 p = position(st);
-  ImGui::SetWindowFontScale(1.7f);
+  ImFont* digits = digits_font();
+  if (digits) ImGui::PushFont(digits);
+  ImGui::SetWindowFontScale(digits ? digits_px_ / digits_font_size()
+                                   : digits_px_ / ImGui::GetFontSize());
   const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  const float number_x = ImGui::CalcTextSize("X ").x;
   for (int i = 0; i < axes; ++i) {
     ImGui::TextColored(kGrey, "%c", kAxes[i]);
-    ImGui::SameLine(40);
+    ImGui::SameLine(number_x);
     ImGui::Text("%11.4f", shown(p[i]));
   }
   ImGui::SetWindowFontScale(1.0f);
+  if (digits) ImGui::PopFont();
   ImGui::Text("%s   %s   %s", units_name(settings_.units),
               modal_.absolute ? "absolute (SA)" : "relative (SR)",
               modal_.preview ? "preview mode (SP)" : "move mode");
   ImGui::TextUnformatted(
       session::speeds_text(modal_.speeds, settings_.units, status_.feed_override).c_str());
-  auto leds = [](const char* label, auto on) {
+  const float led_x = 70 * scale_;
+  auto leds = [led_x](const char* label, auto on) {
     ImGui::TextDisabled("%s", label);
     for (int i = 0; i < 12; ++i) {
-      ImGui::SameLine(i == 0 ? 70.0f : 0.0f, 3);
-      ImGui::TextColored(on(i) ? kGreen : ImVec4(0.3f, 0.3f, 0.3f, 1), "%d", i + 1);
+      ImGui::SameLine(i == 0 ? led_x : 0.0f, 3);
+      ImGui::TextColored(on(i) ? kGreen : kOff, "%d", i + 1);
     }
   };
   leds("inputs", [&](int i) { return st.inputs[static_cast<std::size_t>(i)]; });
@@ -511,9 +605,71 @@ void App::readout_window() {
   ImGui::End();
 }
 
+// A panel over the preview's top right corner (offsets, macros), `row` panels down.
+void App::place_panel(int row, float height) {
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  const float w = std::min(440 * scale_, size.x - kLeft);
+  // Below the menu bar and the preview's title and tool bar.
+  const float y = 3 * ImGui::GetFrameHeight() + 24 * scale_ + static_cast<float>(row) * 10 * scale_;
+  ImGui::SetNextWindowPos(ImVec2(size.x - w - 8 * scale_, y + panel_top_[row]), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(w, height), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(1.0f);
+}
+
+// The work-offset view: Zero runs ZX, ZY ... as typed at the command line.
+void App::offsets_window() {
+  const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  const float h = ImGui::GetFrameHeight() + 2 * ImGui::GetStyle().WindowPadding.y +
+                  static_cast<float>(axes + 1) * ImGui::GetFrameHeightWithSpacing() +
+                  2 * ImGui::GetTextLineHeightWithSpacing();
+  place_panel(0, h);
+  panel_top_[1] = h;
+  if (ImGui::Begin("Work offsets", &show_offsets_, kFixed)) {
+    const std::string code = offsets_panel(
+        offset_rows(position(status_), modal_, axes, table_), units_name(settings_.units),
+        at_rest(), [this](const std::string& label, bool enabled) {
+          return button(label.c_str(), enabled);
+        });
+    if (!code.empty()) run_line(code);
+  }
+  ImGui::End();
+}
+
+// The macro buttons: each runs the line typing it runs (C2, or FP with the file).
+void App::macros_window() {
+  const std::string folder = opt_.macros.empty() ? user_macro_folder() : opt_.macros;
+  if (!show_macros_was_) macro_files_ = user_part_files(folder);  // listed again at each opening
+  const float row = ImGui::GetFrameHeightWithSpacing();
+  const float h = ImGui::GetFrameHeight() + 2 * ImGui::GetStyle().WindowPadding.y + 2 * row +
+                  2 * ImGui::GetTextLineHeightWithSpacing() +
+                  std::ceil(static_cast<float>(macro_files_.size()) / 4) * row;
+  place_panel(panel_top_[1] > 0 ? 1 : 0, h);
+  if (ImGui::Begin("Macros", &show_macros_, kFixed)) {
+    const std::string line = macro_panel(
+        macro_files_, folder, at_rest(),
+        [this](const std::string& label, bool enabled) { return button(label.c_str(), enabled); });
+    if (!line.empty()) run_line(line);
+  }
+  ImGui::End();
+}
+
+// Why the position is unconfirmed (the machine memory's mark), or nullopt when it is not.
+std::optional<std::string> App::unconfirmed() const {
+  if (!m_.memory) return std::nullopt;
+  const session::SavedMachine m = m_.memory->state();
+  if (m.confirmed) return std::nullopt;
+  return m.why.empty() ? std::string("the position is unconfirmed") : m.why;
+}
+
+// The keypad's rows of jog buttons, at the window's scale (tighter in a low window, where the
+// readout's digits need the height).
+float App::pad_row() const {
+  return (ImGui::GetIO().DisplaySize.y < 700 * scale_ ? 28.0f : 34.0f) * scale_;
+}
+
 void App::keypad_window() {
-  const float top = ImGui::GetFrameHeight() + 300;
-  place({{0, top}, {kLeft, 215}});
+  const float top = ImGui::GetFrameHeight() + kReadout;
+  place({{0, top}, {kLeft, kKeypad}});
   ImGui::Begin("Keypad", nullptr, kFixed);
   if (ImGui::IsWindowFocused() && ImGui::IsMouseClicked(0)) kp_focus_ = true;
   ImGui::TextColored(kp_focus_ ? kGreen : kGrey, "%s",
@@ -527,13 +683,14 @@ void App::keypad_window() {
   static constexpr B pad[] = {{"Y+", 1, 1, 60, 0},  {"X-", 0, -1, 0, 1},  {"X+", 0, 1, 120, 1},
                               {"Y-", 1, -1, 60, 2}, {"Z+", 2, 1, 200, 0}, {"Z-", 2, -1, 200, 2}};
   const ImVec2 origin = ImGui::GetCursorPos();
-  const float row = 34;
+  const float row = pad_row();
   for (const B& b : pad) {
-    ImGui::SetCursorPos(ImVec2(origin.x + b.x, origin.y + b.y * row));
+    ImGui::SetCursorPos(ImVec2(origin.x + b.x * scale_, origin.y + b.y * row));
     std::array<int, kAxisCount> dir{};
     dir[static_cast<std::size_t>(b.axis)] = b.sign;
-    const bool press = ImGui::Button(b.label, ImVec2(52, 30));
-    if (kp_step_ ? (press || clicked(b.label)) && can_jog()
+    const bool press = ImGui::Button(b.label, ImVec2(52 * scale_, row - 4 * scale_));
+    const bool whole = note_button(b.label);
+    if (kp_step_ ? (press || (whole && clicked(b.label))) && can_jog()
                  : ImGui::IsItemActivated() && can_jog()) {
       jog(dir);
       if (!kp_step_ && kp_continuous_) kp_key_ = 1000 + b.axis * 2 + (b.sign > 0);
@@ -543,23 +700,52 @@ void App::keypad_window() {
       kp_key_ = -1;
     }
   }
-  ImGui::SetCursorPos(ImVec2(origin.x, origin.y + 3 * row + 4));
+  ImGui::SetCursorPos(ImVec2(origin.x, origin.y + 3 * row + 4 * scale_));
   if (button(kp_step_ ? "Fixed step##mode" : "Continuous##mode")) kp_step_ = !kp_step_;
   ImGui::SameLine();
   if (button(kp_fast_ ? "Fast##speed" : "Slow##speed")) kp_fast_ = !kp_fast_;
   ImGui::SameLine();
   if (button("Stop jog", status_.state == MachineState::Jogging)) stop_jog();
-  ImGui::TextDisabled("step %.4f %s (VD); %s speed", settings_.display.keypad_step,
-                      units_name(settings_.units), kp_fast_ ? "jog" : "move");
+  // The step: a preset, or VD's keypad step.
+  ImGui::TextDisabled("step");
+  const std::array<double, 4> presets = jog_presets();
+  for (int i = 0; i <= static_cast<int>(presets.size()); ++i) {
+    const bool vd = i == static_cast<int>(presets.size());
+    ImGui::SameLine();
+    const bool chosen = kp_preset_ == (vd ? -1 : i);
+    if (chosen)
+      ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    const std::string label =
+        vd ? "VD##step" : fmt::format("{:g}##step", presets[static_cast<std::size_t>(i)]);
+    if (button(label.c_str())) kp_preset_ = vd ? -1 : i;
+    if (chosen) ImGui::PopStyleColor();
+    if (vd && ImGui::IsItemHovered())
+      ImGui::SetTooltip("VD's keypad step: %.4f %s", settings_.display.keypad_step,
+                        units_name(settings_.units));
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("%s, %s speed", units_name(settings_.units), kp_fast_ ? "jog" : "move");
   ImGui::End();
 }
 
+// The step presets in the units in force: a thousandth to an inch, or a hundredth of a
+// millimetre to ten.
+std::array<double, 4> App::jog_presets() const {
+  if (settings_.units == Units::Millimetres) return {0.01, 0.1, 1, 10};
+  return {0.001, 0.01, 0.1, 1};
+}
+
+double App::jog_step() const {
+  return kp_preset_ < 0 ? settings_.display.keypad_step
+                        : jog_presets()[static_cast<std::size_t>(kp_preset_)];
+}
+
 void App::job_window() {
-  const float top = ImGui::GetFrameHeight() + 515;
+  const float top = ImGui::GetFrameHeight() + kReadout + kKeypad;
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   place({{0, top}, {kLeft, std::max(size.y - top, 100.0f)}});
   ImGui::Begin("Job", nullptr, kFixed);
-  ImGui::SetNextItemWidth(kLeft - 80);
+  ImGui::SetNextItemWidth(kLeft - 80 * scale_);
   ImGui::InputTextWithHint("##file", "part file (.sbp)", &file_);
   ImGui::SameLine();
   if (button("Load")) load(file_);
@@ -744,7 +930,7 @@ void App::console_window() {
   for (const LogLine& l : log_) {
     const ImVec4 c = l.kind == LogLine::Error   ? kRed
                      : l.kind == LogLine::Typed ? kCyan
-                     : l.kind == LogLine::Print ? ImVec4(1, 1, 1, 1)
+                     : l.kind == LogLine::Print ? kText
                                                 : kGrey;
     ImGui::TextColored(c, "%s", l.text.c_str());
   }
@@ -1021,7 +1207,26 @@ nlohmann::json App::state() const {
   s["keypad"] = {{"keys", kp_focus_},
                  {"step", kp_step_},
                  {"fast", kp_fast_},
-                 {"step_size", settings_.display.keypad_step}};
+                 {"step_size", jog_step()},
+                 {"preset", kp_preset_}};
+  s["confirmed"] = !unconfirmed().has_value();
+  s["theme"] = light_ ? "light" : "dark";
+  s["offsets_window"] = show_offsets_;
+  s["offsets"] = json::array();
+  const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
+  for (const OffsetRow& r : offset_rows(p, modal_, axes, table_))
+    s["offsets"].push_back({{"axis", std::string(1, r.axis)},
+                            {"machine", shown(r.table)},
+                            {"offset", shown(r.offset)},
+                            {"work", shown(r.work)}});
+  s["layout"] = {{"scale", scale_},
+                 {"font_px", ImGui::GetFontSize()},
+                 {"digits_px", digits_px_},
+                 {"display", {ImGui::GetIO().DisplaySize.x, ImGui::GetIO().DisplaySize.y}}};
+  json buttons = json::object();
+  for (const auto& [name, b] : buttons_)
+    buttons[name] = {{"rect", {b[0], b[1], b[2], b[3]}}, {"whole", b[4] > 0}};
+  s["buttons"] = buttons;
   s["progress"] = {{"line", status_.line},
                    {"lines", status_.lines},
                    {"elapsed_s", status_.elapsed_s},

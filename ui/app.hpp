@@ -8,6 +8,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -43,6 +44,9 @@ class App {
   void hover(float fx, float fy) { scripted_hover_ = Eigen::Vector2f(fx, fy); }
   bool idle() const;  // at rest, no dialog, no load under way
   bool dialog_showing() const { return dialog_shown_ != 0; }
+  // A field is about to take the keys (the command line or a sheet's field asked for them):
+  // what is typed waits for it (InputQueue).
+  bool keys_moving() const;
   bool preview_loaded() const { return path_ != nullptr && !loading_; }
   std::size_t preview_segments() const { return path_ ? path_->segments.size() : 0; }
   nlohmann::json state() const;
@@ -50,6 +54,9 @@ class App {
   Camera& camera() { return camera_; }
   // Frames are the benchmark's: the preview redraws every frame even when nothing changed.
   void set_always_redraw(bool on) { always_redraw_ = on; }
+  // The layout's and fonts' scale (window_scale), set by the main loop when the fonts change.
+  void set_scale(float scale) { scale_ = scale; }
+  bool light_theme() const { return light_; }  // View > Light theme
 
  private:
   struct LogLine {
@@ -58,6 +65,7 @@ class App {
   };
 
   // Each window.
+  void lay_out();  // the windows' places and the readout's digit size for this frame
   void menu_bar();
   void readout_window();
   void keypad_window();
@@ -65,6 +73,9 @@ class App {
   void preview_window();
   void console_window();
   void values_window();
+  void offsets_window();
+  void macros_window();
+  void place_panel(int row, float height);  // the panels over the preview's top right
   void sheet_popup();
   void question_popup();
   void group_popup();
@@ -73,6 +84,11 @@ class App {
   // Actions.
   bool button(const char* label, bool enabled = true);
   bool clicked(const char* name);  // the script's click for a widget drawn another way
+  // Records the last button drawn (its place, for the state); true when it is wholly on the
+  // screen, so that a script can click it.
+  bool note_button(const std::string& name);
+  float pad_row() const;
+  std::optional<std::string> unconfirmed() const;  // why the position is suspect
   void run_line(const std::string& line);
   void open_sheet(const CommandSpec& spec, const std::string& typed);
   void choose(const CommandSpec& spec);  // a menu item: run it, or ask for its parameters
@@ -88,6 +104,8 @@ class App {
   bool at_rest() const;
   void set_feed_override(double factor);  // the controller's, shown and logged
   bool can_jog() const;  // at rest, or a file waits at SK
+  std::array<double, 4> jog_presets() const;  // the step presets in the units in force
+  double jog_step() const;                     // a step's length: the preset, or VD's
   void stop_jog();
 
   const GuiOptions& opt_;
@@ -130,6 +148,12 @@ class App {
   bool kp_continuous_ = false;  // a continuous jog we started runs until its key is released
   int kp_key_ = -1;             // the key (or on-screen button id) holding it
   bool kp_file_ = false;        // a file waits at SK: the keypad is its
+  int kp_preset_ = -1;          // the step preset chosen (-1: VD's keypad step)
+
+  // Layout: the scale, the readout's digit height, the buttons drawn in the last frame
+  // (x0, y0, x1, y1, wholly on the screen).
+  float scale_ = 1, digits_px_ = 24;
+  std::map<std::string, std::array<float, 5>> buttons_;
 
   // Job.
   std::string file_;
@@ -176,6 +200,11 @@ class App {
   bool scroll_log_ = false;
 
   bool show_values_ = false, show_keys_ = false;
+  bool show_offsets_ = false;
+  bool light_ = false;  // the light theme (the main loop applies it between frames)
+  bool show_macros_ = false, show_macros_was_ = false;
+  std::vector<std::string> macro_files_;  // the operator's part files, listed when opened
+  std::array<float, 3> panel_top_{};  // where each panel over the preview starts (below the last)
   bool quit_ = false;
   std::string pending_click_;
 };

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gantry/machine/controller.hpp"   // Controller
+#include "gantry/session/machine_memory.hpp"  // MachineMemory
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
 #include "gantry/settings/settings.hpp"    // Settings
 
@@ -18,6 +19,7 @@ struct GuiOptions {
   std::string card;      // what the readout says the card is: "sim (virtual time)", "pci7200"
   bool realtime = true;  // the card plays in wall-clock time (continuous jogs need it)
   int width = 1280, height = 800;
+  std::string macros;  // --macros: the macro folder (else the operator's, user_macro_folder)
 };
 
 // What the window drives. `settings` returns the values in force now (units, calibration,
@@ -26,6 +28,9 @@ struct Machine {
   Controller& controller;
   session::OperatorMailbox& io;  // PRINT to the log; PAUSE, INPUT, MSGBOX as dialogs
   std::function<Settings()> settings;
+  // The state kept across sessions (its unconfirmed mark and the operator's confirmation);
+  // null when nothing is kept.
+  session::MachineMemory* memory = nullptr;
 };
 
 // Opens the window and runs it until it is closed (or the script ends). Returns the exit

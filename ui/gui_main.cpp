@@ -19,9 +19,12 @@
 #include <sstream>
 
 #include "app.hpp"
+#include "input_queue.hpp"  // keys a frame at a time
 #include "gantry/core/any_bytes.hpp"  // json_text
 #include "gui.hpp"
 #include "test_script.hpp"
+#include "theme.hpp"        // fonts and colours at the window's scale
+#include "window_size.hpp"  // window_scale
 
 namespace gantry::ui {
 namespace {
@@ -54,15 +57,18 @@ long resident_bytes() {
 // Plays the scripted actions, one (or a part of one) per frame.
 class ScriptRunner {
  public:
-  ScriptRunner(std::vector<Action> actions, GLFWwindow* w, App& app)
-      : actions_(std::move(actions)), window_(w), app_(app) {}
+  ScriptRunner(std::vector<Action> actions, GLFWwindow* w, App& app, InputQueue& input)
+      : actions_(std::move(actions)), window_(w), app_(app), input_(input) {}
 
   bool done() const { return next_ >= actions_.size() || failed_; }
   bool failed() const { return failed_; }
 
   // Before the frame: the input this frame gets.
   void before_frame() {
-    if (done() || ++frame_ <= 2) return;  // the first frames give the command line the keys
+    // From the first frame, as a fast typist: the input queue holds the keys for the command
+    // line until it has them.
+    if (done()) return;
+    ++frame_;
     const Action& a = actions_[next_];
     if (!started_) {
       started_ = true;
@@ -70,12 +76,17 @@ class ScriptRunner {
       frames_ = 0;
       switch (a.kind) {
         case Action::Kind::Type:
-          for (unsigned char c : a.text) ImGui_ImplGlfw_CharCallback(window_, c);
+          for (unsigned char c : a.text) input_.character(c);
           break;
         case Action::Kind::Key:
         case Action::Kind::Hold:
           modifiers(a.mods, GLFW_PRESS);
-          ImGui_ImplGlfw_KeyCallback(window_, a.key, 0, GLFW_PRESS, a.mods);
+          input_.key(a.key, GLFW_PRESS, a.mods);
+          break;
+        case Action::Kind::Tap:  // both between two frames, as a quick finger does
+          input_.key(a.key, GLFW_PRESS, 0);
+          input_.key(a.key, GLFW_RELEASE, 0);
+          released_ = true;
           break;
         case Action::Kind::Click:
           app_.click(a.text);
@@ -88,9 +99,9 @@ class ScriptRunner {
       }
       return;
     }
-    if ((a.kind == Action::Kind::Key && frames_ >= 1) ||
-        (a.kind == Action::Kind::Hold && seconds_since(since_) >= a.a)) {
-      ImGui_ImplGlfw_KeyCallback(window_, a.key, 0, GLFW_RELEASE, a.mods);
+    if (!released_ && ((a.kind == Action::Kind::Key && frames_ >= 1) ||
+                       (a.kind == Action::Kind::Hold && seconds_since(since_) >= a.a))) {
+      input_.key(a.key, GLFW_RELEASE, a.mods);
       modifiers(a.mods, GLFW_RELEASE);
       released_ = true;
     }
@@ -99,7 +110,7 @@ class ScriptRunner {
   // After the frame is drawn (before the swap): screenshots, dumps, and whether the action
   // is over.
   void after_frame() {
-    if (done() || frame_ <= 2) return;
+    if (done() || frame_ == 0) return;
     const Action& a = actions_[next_];
     ++frames_;
     bool over = false;
@@ -110,7 +121,8 @@ class ScriptRunner {
         break;
       case Action::Kind::Key:
       case Action::Kind::Hold:
-        over = released_ && frames_ >= 2;
+      case Action::Kind::Tap:
+        over = released_ && !input_.pending() && frames_ >= 2;
         break;
       case Action::Kind::Click:
         if (const std::optional<std::string> missed = app_.missed_click())
@@ -153,11 +165,9 @@ class ScriptRunner {
 
  private:
   void modifiers(int mods, int action) {
-    if (mods & GLFW_MOD_CONTROL)
-      ImGui_ImplGlfw_KeyCallback(window_, GLFW_KEY_LEFT_CONTROL, 0, action, 0);
-    if (mods & GLFW_MOD_ALT) ImGui_ImplGlfw_KeyCallback(window_, GLFW_KEY_LEFT_ALT, 0, action, 0);
-    if (mods & GLFW_MOD_SHIFT)
-      ImGui_ImplGlfw_KeyCallback(window_, GLFW_KEY_LEFT_SHIFT, 0, action, 0);
+    if (mods & GLFW_MOD_CONTROL) input_.key(GLFW_KEY_LEFT_CONTROL, action, 0);
+    if (mods & GLFW_MOD_ALT) input_.key(GLFW_KEY_LEFT_ALT, action, 0);
+    if (mods & GLFW_MOD_SHIFT) input_.key(GLFW_KEY_LEFT_SHIFT, action, 0);
   }
   void fail(const std::string& why) {
     std::fprintf(stderr, "script line %d: %s\n", actions_[next_].line, why.c_str());
@@ -167,6 +177,7 @@ class ScriptRunner {
   std::vector<Action> actions_;
   GLFWwindow* window_;
   App& app_;
+  InputQueue& input_;
   std::size_t next_ = 0;
   bool started_ = false, released_ = false, failed_ = false;
   int frames_ = 0, idle_frames_ = 0;
@@ -271,24 +282,44 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed: nothing to remember
-  ImGui::StyleColorsDark();
-  // Dialogs and menus opaque: a question over the preview must read at once.
-  ImGui::GetStyle().Colors[ImGuiCol_PopupBg].w = 1.0f;
+  float scale = window_scale(static_cast<float>(opt.width), static_cast<float>(opt.height));
+  build_fonts(scale);
+  bool light = false;
+  apply_style(light, scale);
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   int status = 0;
   {
     App app(opt, machine);
-    ScriptRunner script(std::move(actions), window, app);
+    app.set_scale(scale);
+    InputQueue input(window);
+    ScriptRunner script(std::move(actions), window, app, input);
     std::optional<Bench> bench;
     if (opt.bench) bench.emplace(app);
     while (!glfwWindowShouldClose(window) && !app.quit_requested()) {
-      if (unattended)
+      if (unattended || input.pending())  // held keys go in the next frames, at once
         glfwPollEvents();
       else
         glfwWaitEventsTimeout(0.05);  // the readout updates 20 times a second at least
       script.before_frame();
+      input.deliver(app.keys_moving());
+      // A resized window: the fonts and sizes at its scale (between frames).
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(window, &ww, &wh);
+      if (const float s = window_scale(static_cast<float>(ww), static_cast<float>(wh));
+          s != scale && ww > 0 && wh > 0) {
+        scale = s;
+        build_fonts(scale);
+        ImGui_ImplOpenGL3_DestroyFontsTexture();
+        ImGui_ImplOpenGL3_CreateFontsTexture();
+        apply_style(light, scale);
+        app.set_scale(scale);
+      }
+      if (app.light_theme() != light) {  // View > Light theme
+        light = app.light_theme();
+        apply_style(light, scale);
+      }
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
@@ -297,7 +328,8 @@ int run_gui(const GuiOptions& opt, Machine& machine) {
       int w = 0, h = 0;
       glfwGetFramebufferSize(window, &w, &h);
       glViewport(0, 0, w, h);
-      glClearColor(0.06f, 0.06f, 0.07f, 1);
+      const ImVec4 bg = palette(light).background;
+      glClearColor(bg.x, bg.y, bg.z, 1);
       glClear(GL_COLOR_BUFFER_BIT);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
       if (bench && !bench->after_frame(t0)) break;

@@ -81,7 +81,7 @@ bool parse_script(const std::string& text, const std::string& name, std::vector<
     if (verb == "type") {
       a.kind = Action::Kind::Type;
       a.text = arg;
-    } else if (verb == "key" || verb == "hold") {
+    } else if (verb == "key" || verb == "hold" || verb == "tap") {
       if (w.empty()) return fail(fmt::format("{} needs a key name, e.g. {} Enter", verb, verb));
       std::string k = w[0];
       if (verb == "key") {
@@ -104,7 +104,9 @@ bool parse_script(const std::string& text, const std::string& name, std::vector<
             fmt::format("unknown key '{}': Enter, Escape, Tab, Space, Up, PageUp, F1, "
                         "a letter or a digit ...",
                         k));
-      a.kind = verb == "key" ? Action::Kind::Key : Action::Kind::Hold;
+      a.kind = verb == "key"   ? Action::Kind::Key
+               : verb == "tap" ? Action::Kind::Tap
+                               : Action::Kind::Hold;
       if (verb == "hold" && (w.size() != 2 || !number(w[1], a.a) || a.a <= 0 || a.a > 60))
         return fail("hold needs a key and seconds (0 to 60), e.g. hold Right 0.5");
     } else if (verb == "click") {
@@ -135,7 +137,7 @@ bool parse_script(const std::string& text, const std::string& name, std::vector<
       a.kind = Action::Kind::Quit;
     } else {
       return fail(
-          fmt::format("unknown action '{}': type, key, hold, click, wait, hover, "
+          fmt::format("unknown action '{}': type, key, tap, hold, click, wait, hover, "
                       "screenshot, dump or quit",
                       verb));
     }

@@ -12,6 +12,7 @@ struct Action {
   enum class Kind {
     Type,        // type TEXT: characters, as if typed where the keyboard focus is
     Key,         // key [ctrl+|alt+|shift+]NAME: one press and release
+    Tap,         // tap NAME: a press and its release between two frames (a quick tap)
     Hold,        // hold NAME SECONDS: press, wait (wall-clock time), release
     Click,       // click NAME: the button (or menu item) of that name
     WaitIdle,    // wait idle: the machine at rest, no dialog pending, the preview loaded
@@ -23,7 +24,7 @@ struct Action {
     Quit,        // quit: leave now (also the end of the script)
   } kind;
   std::string text;     // Type, Click, Screenshot, Dump: the argument
-  int key = 0;          // Key, Hold: the GLFW key code
+  int key = 0;          // Key, Hold, Tap: the GLFW key code
   int mods = 0;         // Key: GLFW modifier bits
   double a = 0, b = 0;  // Hold: seconds; WaitFrames: frames; Hover: fractions
   int line = 0;         // in the script, for messages

@@ -12,6 +12,7 @@
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
 #include "gui.hpp"                         // run_gui (ui/)
 #include "live_options.hpp"                // add_live_machine_options, LiveMachine
+#include "window_size.hpp"                 // parse_window_size (ui/)
 #include "machine_profile.hpp"             // load_machine_profile
 
 namespace gantry {
@@ -26,8 +27,13 @@ CLI::App* add_gui_command(CLI::App& app, GuiArgs& a) {
                   "Play scripted actions (type, key, click, wait, screenshot, dump) and exit");
   cmd->add_flag("--bench", a.bench,
                 "Load FILE, print the time to the first frames and the steady frame time, exit");
-  cmd->add_option("--size", a.width, "Window width in pixels (the height follows, 16:10)")
-      ->check(CLI::Range(800, 4096));
+  cmd->add_option("--size", a.size,
+                  "Window size in pixels: WIDTHxHEIGHT (1024x600 to 3840x2160 and beyond), or a "
+                  "width alone (the height follows, 16:10)")
+      ->check([](const std::string& text) {
+        std::string why;
+        return ui::parse_window_size(text, &why) ? std::string() : why;
+      });
   return cmd;
 }
 
@@ -49,11 +55,14 @@ int run_gui_command(const GuiArgs& a) {
   o.file = a.file;
   o.script = a.script;
   o.bench = a.bench;
+  o.macros = a.macros;
   o.realtime = live->real_time;
   o.card = live->sim() ? (a.realtime ? "sim (real time)" : "sim (virtual time)") : live->card_type;
-  o.width = a.width;
-  o.height = a.width * 10 / 16;
+  const std::optional<ui::WindowSize> size = ui::parse_window_size(a.size, nullptr);
+  o.width = size ? size->width : 1280;
+  o.height = size ? size->height : 800;
   ui::Machine m{*live->controller, io, [&live] { return live->values.settings(); }};
+  m.memory = live->memory.get();
   return ui::run_gui(o, m);
 }
 

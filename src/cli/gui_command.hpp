@@ -13,7 +13,7 @@ struct GuiArgs : session::LiveMachineOptions {
   std::string file;
   std::string script;  // scripted actions; the window exits at their end
   bool bench = false;
-  int width = 1280, height = 800;
+  std::string size = "1280x800";  // --size: WIDTH (16:10) or WIDTHxHEIGHT
 };
 
 CLI::App* add_gui_command(CLI::App& app, GuiArgs& args);

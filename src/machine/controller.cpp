@@ -407,7 +407,7 @@ CanonMove Controller::keypad_move(const JogRequest& j) const {
   for (int i = 0; i < kAxisCount; ++i) d[i] = j.direction[i] > 0 ? 1 : j.direction[i] < 0 ? -1 : 0;
   Vec6 target = table;
   if (j.step) {
-    target = table + d * s.display.keypad_step;
+    target = table + d * (j.step_size > 0 ? j.step_size : s.display.keypad_step);
     for (int i = 0; i < kAxisCount; ++i)
       if (d[i] != 0 && s.machine.limit_checking &&
           (target[i] < s.axes[i].min - 1e-12 || target[i] > s.axes[i].max + 1e-12))

@@ -11,6 +11,7 @@
 #include "fill_sheet.hpp"
 #include "gantry/session/operator_io.hpp"
 #include "test_script.hpp"
+#include "window_size.hpp"
 
 namespace {
 
@@ -216,10 +217,10 @@ TEST(GuiScript, ParsesEveryAction) {
   ASSERT_TRUE(
       parse_script("# comment\ntype MX, 5\nkey ctrl+Enter\nhold Right 0.5\nclick Start\n"
                    "wait idle\nwait frames 3\nwait dialog\nhover 0.5 0.25\n"
-                   "screenshot a.png\ndump s.json\nquit\n",
+                   "screenshot a.png\ndump s.json\nquit\ntap Enter\n",
                    "s", a, error))
       << error;
-  ASSERT_EQ(a.size(), 11u);
+  ASSERT_EQ(a.size(), 12u);
   EXPECT_EQ(a[0].kind, Action::Kind::Type);
   EXPECT_EQ(a[0].text, "MX, 5");
   EXPECT_EQ(a[1].key, GLFW_KEY_ENTER);
@@ -231,6 +232,8 @@ TEST(GuiScript, ParsesEveryAction) {
   EXPECT_EQ(a[7].b, 0.25);
   EXPECT_EQ(a[10].kind, Action::Kind::Quit);
   EXPECT_EQ(a[10].line, 12);
+  EXPECT_EQ(a[11].kind, Action::Kind::Tap);
+  EXPECT_EQ(a[11].key, GLFW_KEY_ENTER);
 }
 
 TEST(GuiScript, ErrorsNameTheLine) {
@@ -296,6 +299,32 @@ TEST(GuiCamera, PresetViewsLookAlongTheirAxes) {
   const float before = ndc(c, 1, {6, 5, 0}).x();
   c.zoom(0.5f);
   EXPECT_NEAR(ndc(c, 1, {6, 5, 0}).x(), 2 * before, 1e-4);
+}
+
+// ---- window size -----------------------------------------------------------------------------
+
+// Issue 25: `gui --size` took a width only (16:10), so 1024 x 600 could not be asked for.
+TEST(GuiWindowSize, TakesWidthByHeightOrAWidthAlone) {
+  const std::optional<WindowSize> wh = parse_window_size("1024x600", nullptr);
+  ASSERT_TRUE(wh);
+  EXPECT_EQ(wh->width, 1024);
+  EXPECT_EQ(wh->height, 600);
+  const std::optional<WindowSize> w = parse_window_size("1280", nullptr);
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->height, 800);  // 16:10, as before
+  std::string why;
+  EXPECT_FALSE(parse_window_size("1024x", &why));
+  EXPECT_NE(why.find("WIDTHxHEIGHT"), std::string::npos) << why;
+  EXPECT_FALSE(parse_window_size("100x100", &why));
+  EXPECT_NE(why.find("320 to 8192"), std::string::npos) << why;
+}
+
+TEST(GuiWindowSize, TheScaleGrowsPast1280By800) {
+  EXPECT_EQ(window_scale(1024, 600), 1.0f);  // small windows keep the text readable
+  EXPECT_EQ(window_scale(1280, 800), 1.0f);
+  EXPECT_EQ(window_scale(1920, 1200), 1.5f);
+  EXPECT_EQ(window_scale(3840, 2160), 2.5f);  // 2.7, in quarters
+  EXPECT_EQ(window_scale(1921, 1201), 1.5f);  // a few pixels do not rebuild the fonts
 }
 
 }  // namespace

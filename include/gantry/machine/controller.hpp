@@ -56,6 +56,7 @@ struct JogRequest {
   std::array<int, kAxisCount> direction{};
   bool fast = false;  // jog speed; otherwise move speed
   bool step = false;
+  double step_size = 0;  // a step's length (units); 0: VD's keypad step
 };
 
 struct Outcome {
