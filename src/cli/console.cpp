@@ -22,7 +22,7 @@
 #include "gantry/session/console_help.hpp"   // help_answer, terminal_status
 #include "gantry/session/console_words.hpp"  // read_typed_line
 #include "gantry/session/feed_override.hpp"  // stepped_feed_override
-#include "gantry/session/readout_lines.hpp"  // speeds_text, spindle_text
+#include "gantry/session/readout_lines.hpp"  // readout_text, speeds_text, spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_under_line
 #include "gantry/session/source_place.hpp"   // kConsoleName, where
 
@@ -34,17 +34,9 @@ using std::chrono::milliseconds;
 using scan::trim;
 using scan::upper;
 using session::kConsoleName;
-using session::shown;
 using session::where;
 
 // ---- what the console shows --------------------------------------------------------------
-
-// The position readout: state, X Y Z A B C in working coordinates, units.
-std::string readout_text(std::string_view state, const Vec6& p, Units u) {
-  return fmt::format("{:<9}X {:.4f}  Y {:.4f}  Z {:.4f}  A {:.4f}  B {:.4f}  C {:.4f}  {}", state,
-                     shown(p[0]), shown(p[1]), shown(p[2]), shown(p[3]), shown(p[4]), shown(p[5]),
-                     units_name(u));
-}
 
 // The console's words and the command table's codes, for Tab.
 std::vector<CompletionWord> completion_words() {
@@ -83,7 +75,7 @@ std::pair<std::string, std::string> question_text(const Question& q) {
 
 }  // namespace
 
-Console::Console(Controller& c, OperatorMailbox& io, ValuesKeeper& values, const ConsoleArgs& args,
+Console::Console(Controller& c, OperatorMailbox& io, session::ValuesKeeper& values, const ConsoleArgs& args,
                  bool realtime, std::atomic<int>& signal)
     : c_(c),
       io_(io),
@@ -101,19 +93,12 @@ void Console::snapshot() {
   keypad_step_ = s.display.keypad_step;
 }
 
-std::string Console::state_text(const ControllerStatus& st) const {
-  if (st.state == MachineState::Paused && st.step_hold) return "step";
-  if (st.warning) return "WARNING: about to move";
-  if (st.state == MachineState::Paused && st.phase != FeedPhase::Held) return "pausing";
-  return state_name(st.state);
-}
-
 std::string Console::readout(const ControllerStatus& st) const {
   // At rest the interpreter's position is exact (a step jog ends on its commanded point);
   // under way, the pulses played say where the tool is.
   const bool rest =
       (at_rest(st.state) || st.state == MachineState::Keypad) && mode_ != Mode::Job && !kp_.active;
-  return readout_text(state_text(st), live_.at(st, rest), units_);
+  return session::readout_text(session::state_word(st), live_.at(st, rest), units_);
 }
 
 std::string Console::help(const std::string& arg) const {

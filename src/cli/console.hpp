@@ -2,14 +2,15 @@
 // controller, the position readout, the stop keys and the keypad (docs/console.md).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
-#include "live_machine.hpp"  // LiveMachineArgs
+#include "gantry/session/live_machine.hpp"  // LiveMachineOptions
 
 namespace gantry {
 
-struct ConsoleArgs : LiveMachineArgs {
+struct ConsoleArgs : session::LiveMachineOptions {
   bool yes = false;
   std::vector<std::string> inputs;  // NAME=VALUE
   // Keypad: a held key is released when no key repeat arrives within `release_ms`, or before

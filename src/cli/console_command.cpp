@@ -12,7 +12,7 @@
 #include "console_view.hpp"                // Console
 #include "gantry/lang/scan.hpp"            // upper
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
-#include "live_machine.hpp"                // LiveMachine
+#include "live_options.hpp"                // add_live_machine_options, LiveMachine
 #include "machine_profile.hpp"             // load_machine_profile
 #include "signal_watch.hpp"                // SignalWatch
 
@@ -60,7 +60,7 @@ int run_console(const ConsoleArgs& a) {
   OperatorMailbox io(a.yes, inputs,
                      interactive ? std::function<void(std::string_view)>{}
                                  : std::function<void(std::string_view)>(write_out));
-  const std::unique_ptr<LiveMachine> live = LiveMachine::open(a, profile, io);
+  const std::unique_ptr<session::LiveMachine> live = session::LiveMachine::open(a, profile, io);
   if (!live) return 1;
   Controller& controller = *live->controller;
   std::atomic<int> signal{0};

@@ -13,10 +13,10 @@
 
 #include "console.hpp"                       // ConsoleArgs
 #include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/session/live_machine.hpp"   // ValuesKeeper
 #include "gantry/session/live_position.hpp"  // LivePosition
 #include "gantry/session/operator_io.hpp"    // OperatorMailbox, Question
 #include "line_editor.hpp"                   // Key, LineEditor
-#include "live_machine.hpp"                  // ValuesKeeper
 
 namespace gantry::console {
 
@@ -33,7 +33,7 @@ inline bool at_rest(MachineState s) {
 
 class Console {
  public:
-  Console(Controller& c, OperatorMailbox& io, ValuesKeeper& values, const ConsoleArgs& args,
+  Console(Controller& c, OperatorMailbox& io, session::ValuesKeeper& values, const ConsoleArgs& args,
           bool realtime, std::atomic<int>& signal);
 
   int interactive(const std::string& banner);
@@ -45,7 +45,6 @@ class Console {
   // Shared.
   void snapshot();  // at rest: the interpreter's exact position, the frame and units
   std::string readout(const ControllerStatus& st) const;
-  std::string state_text(const ControllerStatus& st) const;
   std::string help(const std::string& arg) const;
   std::string status_report() const;
   std::string refusal(const std::string& prefix, const std::string& line, const Outcome& o,
@@ -78,7 +77,7 @@ class Console {
 
   Controller& c_;
   OperatorMailbox& io_;
-  ValuesKeeper& values_;
+  session::ValuesKeeper& values_;
   const ConsoleArgs& args_;
   bool realtime_;
   std::atomic<int>& signal_;

@@ -12,8 +12,8 @@
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
 #include "gantry/session/recent_files.hpp"  // recent_files_path
 #include "gui.hpp"                         // run_gui (ui/)
+#include "live_options.hpp"                // add_live_machine_options, LiveMachine
 #include "window_size.hpp"                 // parse_window_size (ui/)
-#include "live_machine.hpp"                // LiveMachine
 #include "machine_profile.hpp"             // load_machine_profile
 
 namespace gantry {
@@ -50,7 +50,7 @@ int run_gui_command(const GuiArgs& a) {
   MachineProfile profile;
   if (!load_machine_profile(a.profile, a.values, profile, a.tool_table)) return 1;
   session::OperatorMailbox io(false, {});
-  const std::unique_ptr<LiveMachine> live = LiveMachine::open(a, profile, io);
+  const std::unique_ptr<session::LiveMachine> live = session::LiveMachine::open(a, profile, io);
   if (!live) return 1;
   ui::GuiOptions o;
   o.file = a.file;

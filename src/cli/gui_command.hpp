@@ -2,13 +2,14 @@
 // window"). Compiled into gantry when the window is built (GANTRY_GUI).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 
-#include "live_machine.hpp"  // LiveMachineArgs
+#include "gantry/session/live_machine.hpp"  // LiveMachineOptions
 
 namespace gantry {
 
-struct GuiArgs : LiveMachineArgs {
+struct GuiArgs : session::LiveMachineOptions {
   std::string file;
   std::string script;  // scripted actions; the window exits at their end
   bool bench = false;

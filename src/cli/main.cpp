@@ -26,8 +26,8 @@
 #include "gantry/session/machine_memory.hpp"  // MachineMemory: the state kept across sessions
 #include "gantry/session/run_log.hpp"         // RunLogger, the part-file log; gantry log
 #include "gantry/settings/values_file.hpp"   // the values file
+#include "gantry/session/open_card.hpp"       // open_card
 #include "machine_profile.hpp"               // MachineProfile, load_machine_profile
-#include "open_card.hpp"                     // open_card
 #include "preview_command.hpp"               // PreviewArgs, run_preview
 #include "man_page.hpp"                      // man_page
 #include "progress.hpp"                      // StatusLine
@@ -41,6 +41,10 @@
 
 namespace gantry {
 namespace {
+
+using session::CardChoice;
+using session::open_card;
+using session::plays_in_real_time;
 
 void print_errors(const std::vector<Diagnostic>& errors) {  // and warnings
   for (const Diagnostic& d : errors) fmt::print(stderr, "{}\n", format(d));

@@ -1,10 +1,9 @@
 // Modal commands: distance mode (SA, SR) and speeds (MS, JS, VS).
 #include <fmt/format.h>  // messages
 
-#include <algorithm>  // min
-
 #include "gantry/commands/command_table.hpp"
 #include "gantry/interp/command_context.hpp"
+#include "gantry/settings/settings_schema.hpp"  // the speeds' rows: their range
 
 namespace gantry {
 namespace {
@@ -27,23 +26,21 @@ constexpr GroupRef kGroups[] = {{&GroupSpeeds::xy, "XY"},
                                 {&GroupSpeeds::b, "B"},
                                 {&GroupSpeeds::c, "C"}};
 
-double group_limit(const Settings& s, int g) {
-  return g == 0 ? std::min(s.axes[0].max_speed, s.axes[1].max_speed) : s.axes[g + 1].max_speed;
-}
-
 // Applies values[first .. first+count) to `speeds`, group by group; blanks keep the old speed.
 void apply_speeds(CommandContext& ctx, const CommandCall& call, size_t first, size_t count,
                   GroupSpeeds& speeds, SpeedClass cls, bool by_values) {
   const Settings& s = ctx.settings();
+  const SettingRow& row =
+      settings_schema(cls == SpeedClass::Move ? "speeds.move" : "speeds.jog").front();
   for (size_t g = 0; g < count; ++g) {
     const std::optional<double> v = call.number(first + g);
     if (!v) continue;
-    const double limit = group_limit(s, static_cast<int>(g));
-    if (!(*v > 0) || *v > limit)
+    const SettingRange range = row.range_in(s, static_cast<int>(g));  // (0, axis max_speed]
+    if (!range.contains(*v))
       fail(call.param_loc(first + g),
            fmt::format("{} speed {} is out of range; allowed: above 0 and up to {} {}/s (the "
                        "axis max_speed in the profile)",
-                       kGroups[g].name, *v, limit, units_name(s.units)));
+                       kGroups[g].name, *v, range.hi, units_name(s.units)));
   }
   for (size_t g = 0; g < count; ++g)
     if (const std::optional<double> v = call.number(first + g)) {

@@ -4,9 +4,21 @@
 #include <fmt/format.h>
 
 #include "gantry/session/feed_override.hpp"  // feed_override_text
-
+#include "gantry/session/live_position.hpp"  // shown
 namespace gantry::session {
 
+std::string state_word(const ControllerStatus& s) {
+  if (s.state == MachineState::Paused && s.step_hold) return "step";
+  if (s.warning) return "WARNING: about to move";
+  if (s.state == MachineState::Paused && s.phase != FeedPhase::Held) return "pausing";
+  return state_name(s.state);
+}
+
+std::string readout_text(std::string_view state, const Vec6& p, Units u) {
+  return fmt::format("{:<9}X {:.4f}  Y {:.4f}  Z {:.4f}  A {:.4f}  B {:.4f}  C {:.4f}  {}", state,
+                     shown(p[0]), shown(p[1]), shown(p[2]), shown(p[3]), shown(p[4]), shown(p[5]),
+                     units_name(u));
+}
 std::string spindle_text(const ControllerStatus& s, double recorded_rpm) {
   const bool on = (s.outputs & 1u) != 0;
   const double rpm = s.spindle_rpm > 0 ? s.spindle_rpm : recorded_rpm;

@@ -375,28 +375,26 @@ void read_row(TableReader& t, const SettingRow& row, int i, Settings& s) {
   }
 }
 
-// The tables a profile may leave out (the keys in them are then not asked for).
-bool optional_table(std::string_view path) {
-  return path == "spindle" || path == "simulator" || path == "files";
-}
-
 // Reads every row of the schema, in its order; a family's consecutive rows in one table are
 // read axis by axis (axes.x's keys, then axes.y's), as the tables are written.
 void read_profile(TableReader& root, Settings& s) {
   std::map<std::string, TableReader> tables;  // by path; nodes do not move
   std::vector<std::string> order;             // to finish each table once, inner ones first
-  std::function<TableReader&(const std::string&)> table = [&](const std::string& path) -> TableReader& {
+  // `optional`: the schema's row says the table may be left out (a table holding one holds
+  // no other).
+  std::function<TableReader&(const std::string&, bool)> table =
+      [&](const std::string& path, bool optional) -> TableReader& {
     if (path.empty()) return root;
     if (auto it = tables.find(path); it != tables.end()) return it->second;
     const size_t dot = path.rfind('.');
-    TableReader& parent = table(dot == std::string::npos ? "" : path.substr(0, dot));
+    TableReader& parent = table(dot == std::string::npos ? "" : path.substr(0, dot), false);
     const std::string key = dot == std::string::npos ? path : path.substr(dot + 1);
-    TableReader child = optional_table(path) ? parent.optional_table(key) : parent.table(key);
+    TableReader child = optional ? parent.optional_table(key) : parent.table(key);
     order.push_back(path);
     return tables.emplace(path, std::move(child)).first->second;
   };
   for_each_setting([&](const SettingRow& row, int i) {
-    read_row(table(row.section_at(i)), row, i, s);
+    read_row(table(row.section_at(i), row.optional_table), row, i, s);
     return true;
   });
   for (auto it = order.rbegin(); it != order.rend(); ++it) tables.at(*it).finish();
@@ -482,21 +480,12 @@ static void check_consistency(const Settings& s, const std::string& origin,
   }
   for (int i = 0; i < kAxisCount; ++i)
     input(std::string(1, kAxisLetters[i]) + ".home_bit", s.inputs.home_bit[i], true);
-  auto check_group = [&](const char* what, const GroupSpeeds& g) {
-    const double xy_limit = std::min(s.axes[0].max_speed, s.axes[1].max_speed);
-    const std::array<std::pair<const char*, std::pair<double, double>>, 5> items{{
-        {"xy", {g.xy, xy_limit}},
-        {"z", {g.z, s.axes[2].max_speed}},
-        {"a", {g.a, s.axes[3].max_speed}},
-        {"b", {g.b, s.axes[4].max_speed}},
-        {"c", {g.c, s.axes[5].max_speed}},
-    }};
-    for (auto& [k, vl] : items)
-      if (vl.first > vl.second)
-        err(fmt::format("{}.{} = {} exceeds the axis max_speed {}", what, k, vl.first, vl.second));
-  };
-  check_group("speeds.move", s.speeds.move);
-  check_group("speeds.jog", s.speeds.jog);
+  // A bound other keys set (the speeds' axis max_speed) is the row's, as VS checks it.
+  for (const SettingRow& row : settings_schema())
+    if (row.most)
+      for (int i = 0; i < row.size(); ++i)
+        if (const double v = row.get(s, i), limit = row.most(s, i); v > limit)
+          err(fmt::format("{} = {} exceeds the axis max_speed {}", row.path(i), v, limit));
   std::array<int, kAxisCount> channels = s.drivers.channel_axis;
   std::sort(channels.begin(), channels.end());
   if (channels != std::array<int, kAxisCount>{0, 1, 2, 3, 4, 5})

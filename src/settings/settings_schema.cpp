@@ -33,6 +33,11 @@ constexpr std::string_view kSigns[] = {"-", "+"};
 constexpr std::string_view kTriggerAxes[] = {"z", "a"};
 constexpr std::string_view kAxisUnits[] = {"in", "mm", "deg"};  // AxisUnit's order
 
+// The speed limit of a speed group (xy z a b c): the axis max_speed, XY's the lower of X's and Y's.
+double group_limit(const Settings& s, int i) {
+  return i == 0 ? std::min(s.axes[0].max_speed, s.axes[1].max_speed) : s.axes[i + 1].max_speed;
+}
+
 double& group(GroupSpeeds& g, int i) {
   switch (i) {
     case 0: return g.xy;
@@ -90,10 +95,10 @@ bool channels_read(Settings& s, std::string_view channels) {
   {.section = sec_, .key = key_, .kind = SettingKind::Number,                             \
    .field = GANTRY_FIELD(double, expr), .range = range_, .unit = SettingUnit::unit_, \
    .help = help_, .family = SettingFamily::Axes, __VA_ARGS__}
-#define GROUP(sec_, expr, help_)                                                       \
+#define GROUP(sec_, expr, help_, ...)                                                  \
   {.section = sec_, .key = "<xy,z,a,b,c>", .kind = SettingKind::Number,               \
    .field = [](Settings& s, int i) -> void* { return &group(s.expr, i); }, .range = kSpeed, \
-   .unit = SettingUnit::Axis, .help = help_, .family = SettingFamily::Groups}
+   .unit = SettingUnit::Axis, .help = help_, .family = SettingFamily::Groups, __VA_ARGS__}
 #define INT(sec_, key_, expr, lo_, hi_, help_, ...)                                            \
   {.section = sec_, .key = key_, .kind = SettingKind::Integer, .field = GANTRY_FIELD(int, expr), \
    .range = {lo_, hi_}, .help = help_, __VA_ARGS__}
@@ -142,8 +147,10 @@ const SettingRow kRows[] = {
            "soft limit: no move may take the axis above it"),
 
   GROUP("speeds.move", speeds.move,
-        "move (cutting) speeds, as VS/MS set them; XY is the vector speed; at most the axis max_speed"),
-  GROUP("speeds.jog", speeds.jog, "jog (rapid) speeds, as VS/JS set them; at most the axis max_speed"),
+        "move (cutting) speeds, as VS/MS set them; XY is the vector speed; at most the axis max_speed",
+        .most = group_limit),
+  GROUP("speeds.jog", speeds.jog, "jog (rapid) speeds, as VS/JS set them; at most the axis max_speed",
+        .most = group_limit),
 
   NUM("ramps", "move_ramp_rate", ramps.move_ramp_rate, kRampRate, Length,
       "VR move ramp rate: distance over which the speed changes by 2 units/s (a length)"),
@@ -307,7 +314,7 @@ const SettingRow kRows[] = {
   {.section = "files", .key = "allow", .kind = SettingKind::Texts,
    .field = GANTRY_FIELD(std::vector<std::string>, files.allow),
    .help = "folders part files may read and write in besides their job's folder and Gantry's data folder (`--allow-path DIR` adds one for a run). Read from the profile only (docs/security.md)",
-   .optional = true, .check = folder_rule,
+   .optional = true, .optional_table = true, .check = folder_rule,
    .docs_allowed = "absolute paths or `~/...`; the `[files]` table is optional"},
 
   INT("outputs", "charge_pump_bit", outputs.charge_pump_bit, -1, 31, "a square wave while pulses flow (-1: none)", .owner = SettingOwner::MachineTable),
@@ -318,11 +325,13 @@ const SettingRow kRows[] = {
    .help = "output switches 1, 2, ... (SO numbers)", .owner = SettingOwner::MachineTable},
 
   INT("spindle", "pwm_bit", spindle.pwm_bit, -1, 31,
-      "the output bit carrying TR's spindle speed as a square wave of duty rpm / `max_rpm` (-1: none; TR only records the RPM and warns once a run); the `[spindle]` table is optional (none: no speed output)"),
+      "the output bit carrying TR's spindle speed as a square wave of duty rpm / `max_rpm` (-1: none; TR only records the RPM and warns once a run); the `[spindle]` table is optional (none: no speed output)",
+      .optional_table = true),
   NUM("spindle", "pwm_hz", spindle.pwm_hz, kPositive, None,
-      "the square wave's frequency; at most the pacer / 100 when `pwm_bit` is wired"),
+      "the square wave's frequency; at most the pacer / 100 when `pwm_bit` is wired",
+      .optional_table = true),
   NUM("spindle", "max_rpm", spindle.max_rpm, kPositive, None,
-      "the RPM at 100 % duty; with `pwm_bit` wired, TR above it is refused"),
+      "the RPM at 100 % duty; with `pwm_bit` wired, TR above it is refused", .optional_table = true),
 
   INT("inputs", "estop_bit", inputs.estop_bit, -1, 31, "the E-stop's input-word bit (-1: not wired)", .owner = SettingOwner::MachineTable),
   BOOL("inputs", "estop_active_low", inputs.estop_active_low, "the E-stop input reads 0 when active", .owner = SettingOwner::MachineTable),
@@ -354,11 +363,11 @@ const SettingRow kRows[] = {
   {.section = "simulator", .key = "home_<x..c>", .kind = SettingKind::OptionalNumber,
    .field = GANTRY_FIELD(std::optional<double>, simulator.home[i]), .range = kAny, .unit = SettingUnit::Axis,
    .help = "the simulated card's proximity switch of that axis: closed at or beyond this position on the side `homing.<axis>.direction` points to. In the card's own coordinates: the table base at power-up, before any homing",
-   .family = SettingFamily::Axes, .optional = true},
+   .family = SettingFamily::Axes, .optional = true, .optional_table = true},
   {.section = "simulator", .key = "plate_z", .kind = SettingKind::OptionalNumber,
    .field = GANTRY_FIELD(std::optional<double>, simulator.plate_z), .range = kAny, .unit = SettingUnit::Length,
    .help = "the simulated Z zero plate's top: the probe input (`inputs.probe_bit`, input 1) closes at or below this Z (a length)",
-   .optional = true},
+   .optional = true, .optional_table = true},
 };
 // clang-format on
 #pragma GCC diagnostic pop
@@ -428,6 +437,12 @@ int SettingRow::size() const {
 double SettingRow::fallback() const {
   static const Settings defaults;
   return get(defaults);
+}
+
+SettingRange SettingRow::range_in(const Settings& s, int i) const {
+  SettingRange r = range;
+  if (most) r.hi = std::min(r.hi, most(s, i));
+  return r;
 }
 
 std::string SettingRow::type_name() const {

@@ -8,13 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "../support/answering_io.hpp"
-#include "../support/recording_sink.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
-#include "gantry/lang/script.hpp"
-
+#include "../support/interpreter_fixture.hpp"
 namespace gantry {
 namespace {
 
@@ -33,17 +27,13 @@ struct Row {
 // rs274's tool table, as Gantry's G10 L1 gives it.
 constexpr const char* kTools = "G10 L1 P1 R0.125\nG10 L1 P2 R0.0625\n";
 
-class GcodeCompCycles : public ::testing::Test {
+class GcodeCompCycles : public InterpreterFixture<AskingIO> {
  protected:
   GcodeCompCycles() { settings.machine.limit_checking = false; }
 
   std::vector<CanonMove> run(const std::string& text) {
-    sink = RecordingSink();
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(kTools + text, "t.ngc"));
-    return sink.moves;
+    return run_script(Script::from_text(kTools + text, "t.ngc"));
   }
-
   // The moves of `text` against rs274's, within 1e-4 (its output has 4 decimals).
   void expect_moves(const std::string& text, const std::vector<Row>& want, bool outputs) {
     std::vector<CanonMove> got;
@@ -85,21 +75,8 @@ class GcodeCompCycles : public ::testing::Test {
 
   // The first error a check finds.
   Diagnostic error(const std::string& text) {
-    sink = RecordingSink();
-    InterpreterOptions o;
-    o.dry_run = true;
-    Interpreter interp(settings, sink, io, store, o);
-    const std::vector<Diagnostic> found = interp.check(Script::from_text(kTools + text, "t.ngc"));
-    for (const Diagnostic& d : found)
-      if (d.severity == Severity::Error) return d;
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
+    return first_error_of(check_script(Script::from_text(kTools + text, "t.ngc")), text);
   }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  AskingIO io;
-  PersistentStore store;
 };
 
 // cyc_xy.ngc

@@ -7,42 +7,23 @@
 #include <string>
 #include <vector>
 
-#include "../support/answering_io.hpp"
-#include "../support/recording_sink.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/interp/persistent_store.hpp"
-#include "gantry/lang/script.hpp"
-#include "gantry/settings/settings.hpp"
-
+#include "../support/interpreter_fixture.hpp"
 namespace gantry {
 namespace {
 
-class GcodeCompPosition : public ::testing::Test {
+class GcodeCompPosition : public InterpreterFixture<> {
  protected:
   GcodeCompPosition() { settings.machine.limit_checking = false; }
 
   std::string printed(const std::string& text) {
-    sink = RecordingSink();
     io.printed.clear();
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "t.ngc"));
+    run_script(Script::from_text(text, "t.ngc"));
     return io.printed;
   }
   std::vector<Diagnostic> errors(const std::string& text) {
-    RecordingSink s;
-    InterpreterOptions o;
-    o.dry_run = true;
-    Interpreter interp(settings, s, io, store, o);
-    std::vector<Diagnostic> out;
-    for (const Diagnostic& d : interp.check(Script::from_text(text, "t.ngc")))
-      if (d.severity == Severity::Error) out.push_back(d);
-    return out;
+    RecordingSink s;  // the run's moves stay in `sink`
+    return errors_of(check_script(Script::from_text(text, "t.ngc"), {}, &s));
   }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  AnsweringIO io;
-  PersistentStore store;
 };
 
 // rs274: MESSAGE(" a 1.000000 0.250000"), (" b 0.750000 1.000000"), (" c 0.000000 0.750000"):

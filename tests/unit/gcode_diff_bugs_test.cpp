@@ -6,41 +6,22 @@
 #include <string>
 #include <vector>
 
-#include "../support/answering_io.hpp"
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
 #include "gantry/core/diagnostic.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
-#include "gantry/lang/script.hpp"
-
 namespace gantry {
 namespace {
 
 using QuietIO = AnsweringIO;
 
-class GcodeDiffBugs : public ::testing::Test {
+class GcodeDiffBugs : public InterpreterFixture<QuietIO> {
  protected:
   // The lines and arcs `text` makes, run as a G-code file.
   std::vector<CanonMove> run(const std::string& text) {
-    sink = RecordingSink();
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "t.ngc"));
-    std::vector<CanonMove> out;
-    for (const CanonMove& m : sink.moves)
-      if (m.kind == MoveKind::Line || m.kind == MoveKind::Arc) out.push_back(m);
-    return out;
+    return lines_and_arcs(run_script(Script::from_text(text, "t.ngc")));
   }
   // The first error the check before a run finds; a failure when there is none.
   Diagnostic error(const std::string& text) {
-    sink = RecordingSink();
-    InterpreterOptions o;
-    o.dry_run = true;
-    Interpreter interp(settings, sink, io, store, o);
-    for (const Diagnostic& d : interp.check(Script::from_text(text, "t.ngc")))
-      if (d.severity == Severity::Error) return d;
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
+    return first_error_of(check_script(Script::from_text(text, "t.ngc")), text);
   }
   // The X and Y of each move `text` makes, for comparing with rs274's canonical calls.
   std::vector<std::pair<double, double>> xy(const std::string& text) {
@@ -48,11 +29,6 @@ class GcodeDiffBugs : public ::testing::Test {
     for (const CanonMove& m : run(text)) out.emplace_back(m.to[0], m.to[1]);
     return out;
   }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  QuietIO io;
-  PersistentStore store;
 };
 
 using XY = std::vector<std::pair<double, double>>;

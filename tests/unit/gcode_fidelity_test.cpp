@@ -12,43 +12,25 @@
 #include <string>
 #include <vector>
 
-#include "../support/answering_io.hpp"
-#include "../support/recording_sink.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
-#include "gantry/lang/script.hpp"
-
+#include "../support/interpreter_fixture.hpp"
 namespace gantry {
 namespace {
 
 using PrintingIO = AnsweringIO;
 
-class GcodeFidelity : public ::testing::Test {
+class GcodeFidelity : public InterpreterFixture<PrintingIO> {
  protected:
   GcodeFidelity() { settings.machine.limit_checking = false; }
 
   // Runs `text` (a .nc file); the lines and arcs it made.
   std::vector<CanonMove> run(const std::string& text) {
-    sink = RecordingSink();
     io.printed.clear();
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "t.nc"));
-    std::vector<CanonMove> out;
-    for (const CanonMove& m : sink.moves)
-      if (m.kind == MoveKind::Line || m.kind == MoveKind::Arc) out.push_back(m);
-    return out;
+    return lines_and_arcs(run_script(Script::from_text(text, "t.nc")));
   }
   // The errors `gantry check` finds in `text`, first first; none: an empty list.
   std::vector<Diagnostic> check(const std::string& text) {
-    RecordingSink s;
-    InterpreterOptions o;
-    o.dry_run = true;
-    Interpreter interp(settings, s, io, store, o);
-    std::vector<Diagnostic> errors;
-    for (const Diagnostic& d : interp.check(Script::from_text(text, "t.nc")))
-      if (d.severity == Severity::Error) errors.push_back(d);
-    return errors;
+    RecordingSink s;  // the run's moves stay in `sink`
+    return errors_of(check_script(Script::from_text(text, "t.nc"), {}, &s));
   }
   // The first error of `text`'s check, which must have one.
   Diagnostic error(const std::string& text) {
@@ -65,11 +47,6 @@ class GcodeFidelity : public ::testing::Test {
     run(text);
     return true;
   }
-
-  Settings settings = default_settings();  // inches
-  RecordingSink sink;
-  PrintingIO io;
-  PersistentStore store;
 };
 
 void expect_xyz(const Vec6& got, double x, double y, double z, const std::string& what) {

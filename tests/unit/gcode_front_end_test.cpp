@@ -8,13 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "../support/interpreter_fixture.hpp"
 #include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
 #include "gantry/lang/gcode.hpp"
-#include "gantry/lang/script.hpp"
-
 namespace gantry {
 namespace {
 
@@ -38,46 +34,19 @@ class CountingIO : public OperatorIO {
   int questions = 0;
 };
 
-class GcodeTest : public ::testing::Test {
+class GcodeTest : public InterpreterFixture<CountingIO> {
  protected:
   // Runs `text` as the file `name`; the moves (lines and arcs unless `all`).
   std::vector<CanonMove> run(const std::string& text, const std::string& name = "t.nc",
                              bool all = false) {
-    sink = RecordingSink();
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, name));
-    state = interp.state();
-    std::vector<CanonMove> out;
-    for (const CanonMove& m : sink.moves)
-      if (all || m.kind == MoveKind::Line || m.kind == MoveKind::Arc) out.push_back(m);
-    return out;
+    const std::vector<CanonMove>& moves = run_script(Script::from_text(text, name));
+    return all ? moves : lines_and_arcs(moves);
   }
   // The first error a check finds (script errors included).
   Diagnostic error(const std::string& text, const std::string& name = "t.nc") {
-    sink = RecordingSink();
-    InterpreterOptions o;
-    o.dry_run = true;
-    Interpreter interp(settings, sink, io, store, o);
-    const std::vector<Diagnostic> found = interp.check(Script::from_text(text, name));
-    for (const Diagnostic& d : found)
-      if (d.severity == Severity::Error) return d;
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
+    return first_error_of(check_script(Script::from_text(text, name)), text);
   }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  CountingIO io;
-  PersistentStore store;
-  ModalState state;
 };
-
-Vec6 v6(double x, double y, double z = 0) {
-  Vec6 v = Vec6::Zero();
-  v << x, y, z, 0, 0, 0;
-  return v;
-}
-
 void expect_at(const Vec6& got, const Vec6& want, const std::string& what) {
   for (int i = 0; i < kAxisCount; ++i) EXPECT_NEAR(got[i], want[i], 1e-12) << what << " axis " << i;
 }

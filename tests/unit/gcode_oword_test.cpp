@@ -13,14 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "../support/answering_io.hpp"
-#include "../support/recording_sink.hpp"
-#include "gantry/interp/interpreter.hpp"
+#include "../support/interpreter_fixture.hpp"
 #include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
-#include "gantry/lang/script.hpp"
-#include "gantry/settings/settings.hpp"
-
 namespace gantry {
 namespace {
 
@@ -28,7 +22,7 @@ namespace fs = std::filesystem;
 
 using QuietIO = AnsweringIO;
 
-class OwordTest : public ::testing::Test {
+class OwordTest : public InterpreterFixture<QuietIO> {
  protected:
   OwordTest() { settings.machine.limit_checking = false; }
 
@@ -39,22 +33,13 @@ class OwordTest : public ::testing::Test {
     return out;
   }
   std::vector<Vec6> run(std::shared_ptr<const Script> script, InterpreterOptions o = {}) {
-    sink = RecordingSink();
-    Interpreter interp(settings, sink, io, store, o);
-    interp.run(std::move(script));
-    return ends(sink.moves);
+    return ends(run_script(std::move(script), o));
   }
   std::vector<Vec6> run(const std::string& text) { return run(Script::from_text(text, "t.ngc")); }
   // What a check finds (the load pass's errors included).
   std::vector<Diagnostic> check(std::shared_ptr<const Script> script, InterpreterOptions o = {}) {
-    sink = RecordingSink();
-    o.dry_run = true;
     if (o.statement_budget == 0) o.statement_budget = 100000;  // as the CLI bounds a check
-    Interpreter interp(settings, sink, io, store, o);
-    std::vector<Diagnostic> errors;
-    for (const Diagnostic& d : interp.check(std::move(script)))
-      if (d.severity == Severity::Error) errors.push_back(d);
-    return errors;
+    return errors_of(check_script(std::move(script), o));
   }
   std::vector<Diagnostic> check(const std::string& text) {
     return check(Script::from_text(text, "t.ngc"));
@@ -74,19 +59,7 @@ class OwordTest : public ::testing::Test {
     }
     return errors;
   }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  QuietIO io;
-  PersistentStore store;
 };
-
-Vec6 v6(double x, double y, double z = 0) {
-  Vec6 v = Vec6::Zero();
-  v << x, y, z, 0, 0, 0;
-  return v;
-}
-
 void expect_moves(const std::vector<Vec6>& got, const std::vector<Vec6>& want) {
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < want.size(); ++i)

@@ -10,14 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "../support/answering_io.hpp"
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
 #include "gantry/core/text_file.hpp"
-#include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
 #include "gantry/interp/tool_table.hpp"
-#include "gantry/lang/script.hpp"
 #include "gantry/preview/material.hpp"
 #include "gantry/preview/toolpath.hpp"
 #include "gantry/settings/settings.hpp"
@@ -47,7 +43,7 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-class GcodeToolTable : public ::testing::Test {
+class GcodeToolTable : public InterpreterFixture<RecordingIO> {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
@@ -68,37 +64,15 @@ class GcodeToolTable : public ::testing::Test {
 
   // Runs `text`; the lines and arcs it made. `after` receives the settings as it left them.
   std::vector<CanonMove> run(const std::string& text, Settings* after = nullptr) {
-    sink = RecordingSink();
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "t.ngc"));
-    state = interp.state();
-    if (after) *after = interp.settings();
-    std::vector<CanonMove> out;
-    for (const CanonMove& m : sink.moves)
-      if (m.kind == MoveKind::Line || m.kind == MoveKind::Arc) out.push_back(m);
-    return out;
+    return lines_and_arcs(run_script(Script::from_text(text, "t.ngc"), {}, after));
   }
   // What a check (a dry run) finds.
   std::vector<Diagnostic> check(const std::string& text) {
-    sink = RecordingSink();
-    InterpreterOptions o;
-    o.dry_run = true;
-    Interpreter interp(settings, sink, io, store, o);
-    return interp.check(Script::from_text(text, "t.ngc"));
+    return check_script(Script::from_text(text, "t.ngc"));
   }
-  Diagnostic first_error(const std::string& text) {
-    for (const Diagnostic& d : check(text))
-      if (d.severity == Severity::Error) return d;
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
-  }
+  Diagnostic first_error(const std::string& text) { return first_error_of(check(text), text); }
 
   fs::path dir_;
-  Settings settings = default_settings();
-  RecordingSink sink;
-  RecordingIO io;
-  PersistentStore store;
-  ModalState state;
 };
 
 void expect_z(const std::vector<CanonMove>& m, const std::vector<double>& z) {

@@ -11,19 +11,13 @@
 #include <utility>
 #include <vector>
 
-#include "../support/answering_io.hpp"
-#include "../support/recording_sink.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
-#include "gantry/lang/script.hpp"
-
+#include "../support/interpreter_fixture.hpp"
 namespace gantry {
 namespace {
 
 using CountingIO = AnsweringIO;
 
-class WinCncTest : public ::testing::Test {
+class WinCncTest : public InterpreterFixture<CountingIO> {
  protected:
   WinCncTest() {
     settings.gcode_dialect = GcodeDialect::WinCNC;
@@ -32,41 +26,15 @@ class WinCncTest : public ::testing::Test {
   }
   // Runs `text`; the moves (lines and arcs unless `all`).
   std::vector<CanonMove> run(const std::string& text, bool all = false) {
-    sink = RecordingSink();
     io = CountingIO();
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "t.tap"));
-    state = interp.state();
-    std::vector<CanonMove> out;
-    for (const CanonMove& m : sink.moves)
-      if (all || m.kind == MoveKind::Line || m.kind == MoveKind::Arc) out.push_back(m);
-    return out;
+    const std::vector<CanonMove>& moves = run_script(Script::from_text(text, "t.tap"));
+    return all ? moves : lines_and_arcs(moves);
   }
   // The first error a check finds (script errors included).
   Diagnostic error(const std::string& text) {
-    sink = RecordingSink();
-    InterpreterOptions o;
-    o.dry_run = true;
-    Interpreter interp(settings, sink, io, store, o);
-    for (const Diagnostic& d : interp.check(Script::from_text(text, "t.tap")))
-      if (d.severity == Severity::Error) return d;
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
+    return first_error_of(check_script(Script::from_text(text, "t.tap")), text);
   }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  CountingIO io;
-  PersistentStore store;
-  ModalState state;
 };
-
-Vec6 v6(double x, double y, double z = 0) {
-  Vec6 v = Vec6::Zero();
-  v << x, y, z, 0, 0, 0;
-  return v;
-}
-
 void expect_at(const CanonMove& m, const Vec6& want, const std::string& what) {
   for (int i = 0; i < kAxisCount; ++i) EXPECT_NEAR(m.to[i], want[i], 1e-9) << what << " axis " << i;
 }

@@ -7,10 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
 #include "gantry/core/diagnostic.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/lang/script.hpp"
 #include "gantry/canon/canon_move.hpp"
 #include "gantry/settings/settings.hpp"
 
@@ -41,7 +39,7 @@ void expect_speeds(const GroupSpeeds& s, double xy, double z, double a, double b
   EXPECT_DOUBLE_EQ(s.c, c);
 }
 
-class InterpreterTest : public ::testing::Test {
+class InterpreterTest : public KeptInterpreterFixture {
  protected:
   // Runs `text` as part.sbp; errors fail the test.
   void run(std::string_view text) {
@@ -68,21 +66,7 @@ class InterpreterTest : public ::testing::Test {
     return interp().check(script_);
   }
 
-  Interpreter& interp() {
-    if (!interp_) interp_.emplace(settings, sink, io, store, options);
-    return *interp_;
-  }
-  const ModalState& state() { return interp().state(); }
-  const std::vector<CanonMove>& moves() const { return sink.moves; }
-
-  Settings settings = default_settings();
-  InterpreterOptions options;
-  RecordingSink sink;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
   std::shared_ptr<const Script> script_;
-  std::optional<Interpreter> interp_;
 };
 
 // ---- absolute and relative distances

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -98,6 +99,31 @@ TEST(SettingsSchema, LengthRowsFollowTheUnits) {
   convert_units(s, Units::Millimetres);
   EXPECT_DOUBLE_EQ(s.ramps.move_ramp_rate, 25.4);
   EXPECT_DOUBLE_EQ(s.ramps.threshold_3d, 50);  // a percent: unchanged
+}
+
+// The tables a profile may leave out are the schema's: every row of such a table says so.
+TEST(SettingsSchema, OptionalTablesAreTheRows) {
+  std::set<std::string> optional;
+  for (const SettingRow& row : settings_schema())
+    if (row.optional_table) optional.insert(std::string(row.section));
+  EXPECT_EQ(optional, (std::set<std::string>{"files", "simulator", "spindle"}));
+  for (const SettingRow& row : settings_schema())
+    EXPECT_EQ(row.optional_table, optional.count(std::string(row.section)) == 1) << row.path();
+}
+
+// The speeds' bound is their row's: (0, the axis max_speed], XY's the lower of X's and Y's.
+TEST(SettingsSchema, SpeedRowsAreBoundedByTheAxisMaxSpeed) {
+  Settings s;
+  s.axes[0].max_speed = 4;
+  s.axes[1].max_speed = 3;
+  s.axes[2].max_speed = 2;
+  for (const char* table : {"speeds.move", "speeds.jog"}) {
+    const SettingRow& row = settings_schema(table).front();
+    EXPECT_EQ(row.range_in(s, 0).hi, 3) << table;
+    EXPECT_EQ(row.range_in(s, 1).hi, 2) << table;
+    EXPECT_FALSE(row.range_in(s, 1).contains(0)) << table;
+  }
+  EXPECT_EQ(settings_schema("ramps.move_speed").front().range_in(s, 0).hi, 1e5);
 }
 
 }  // namespace

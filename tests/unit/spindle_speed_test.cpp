@@ -7,23 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
 #include "gantry/core/diagnostic.hpp"
-#include "gantry/interp/interpreter.hpp"
-#include "gantry/interp/operator_io.hpp"
-#include "gantry/interp/persistent_store.hpp"
-#include "gantry/lang/script.hpp"
-#include "gantry/settings/settings.hpp"
-
 namespace gantry {
 namespace {
 
-class SpindleSpeedTest : public ::testing::Test {
+class SpindleSpeedTest : public KeptInterpreterFixture {
  protected:
-  Interpreter& interp() {
-    if (!interp_) interp_.emplace(settings, sink, io, store, InterpreterOptions{});
-    return *interp_;
-  }
   // Runs `text`; the error it stops at ("" when none).
   std::string run(const std::string& text) {
     try {
@@ -43,12 +33,6 @@ class SpindleSpeedTest : public ::testing::Test {
       if (m.kind == MoveKind::SpindleSpeed) rpm.push_back(m.spindle_rpm);
     return rpm;
   }
-
-  Settings settings = default_settings();
-  RecordingSink sink;
-  ScriptedIO io{true, {}};
-  PersistentStore store;
-  std::optional<Interpreter> interp_;
 };
 
 TEST_F(SpindleSpeedTest, WithoutASpeedOutputTrWarnsOnceARun) {

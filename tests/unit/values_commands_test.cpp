@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
 #include "gantry/core/text_file.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/system_variables.hpp"
@@ -31,7 +31,7 @@ struct TempDir {
   }
 };
 
-class ValuesTest : public ::testing::Test {
+class ValuesTest : public KeptInterpreterFixture {
  protected:
   void run(const std::string& text) {
     const std::string file = dir.write("part.sbp", text);
@@ -46,20 +46,10 @@ class ValuesTest : public ::testing::Test {
     ADD_FAILURE() << "no error from:\n" << text;
     return {};
   }
-  Interpreter& interp() {
-    if (!interp_) interp_.emplace(settings, sink, io, store);
-    return *interp_;
-  }
   const Settings& values() { return interp().settings(); }
-  const ModalState& state() { return interp().state(); }
+  ~ValuesTest() override { interp_.reset(); }  // the interpreter ends before its folder goes
 
   TempDir dir;
-  Settings settings = default_settings();
-  RecordingSink sink;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
-  std::optional<Interpreter> interp_;
 };
 
 // ---- scope: permanent values, file-scoped values, SV

@@ -71,6 +71,7 @@ struct SettingRow {
   SettingFamily family = SettingFamily::None;
   std::span<const std::string_view> names{};  // Choice and Text: the allowed strings
   bool optional = false;                      // the key may be left out (the default stays)
+  bool optional_table = false;                // its whole table may be left out (no key asked)
   bool omit_empty = false;                    // Text, Texts: not written when empty
   int count = 0;                              // lists: how many values (0: any)
   // Choice: the held value as an index of `names`, and back (null: an int member holds it).
@@ -85,6 +86,8 @@ struct SettingRow {
   std::string_view docs_allowed;  // docs/settings.md's "allowed" cell when the kind cannot say it
   std::string_view docs_type;     // docs/settings.md's "type" cell when the kind's is not it
   SettingOwner owner = SettingOwner::Operator;
+  // Number: a bound above `range` that other keys set (the speeds: the axis max_speed).
+  double (*most)(const Settings&, int i) = nullptr;
 
   std::string path() const;            // "ramps.move_ramp_rate", "axes.<x..c>.max_speed"
   std::string path(int i) const;       // with the family's letter: "axes.x.max_speed"
@@ -95,6 +98,8 @@ struct SettingRow {
   double& number(Settings& s, int i = 0) const { return *static_cast<double*>(field(s, i)); }
   double get(const Settings& s, int i = 0) const { return number(const_cast<Settings&>(s), i); }
   double fallback() const;  // a Number's value in a default-constructed Settings
+  // The range in force in `s`: `range`, its top lowered to `most(s, i)` when the row has one.
+  SettingRange range_in(const Settings& s, int i = 0) const;
   // docs/settings.md's cells.
   std::string type_name() const;
   std::string allowed() const;

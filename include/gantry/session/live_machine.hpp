@@ -1,25 +1,26 @@
-// What `gantry console` and `gantry gui` share to drive the live machine: their common
-// options, the interpreter's options, and the values the runs leave in force.
+// The live machine `gantry console` and `gantry gui` both drive, assembled from their common
+// options: the card, the interpreter's options, the values the runs leave in force, the
+// state kept across sessions. The command line's flags that fill the options are in src/cli.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
-#include "gantry/hal/card.hpp"                 // Card
-#include "gantry/interp/interpreter.hpp"       // InterpreterOptions
-#include "gantry/interp/operator_io.hpp"       // OperatorIO
-#include "gantry/interp/persistent_store.hpp"  // PersistentStore
-#include "gantry/machine/controller.hpp"       // Controller
-#include "gantry/session/machine_memory.hpp"   // MachineMemory
-#include "gantry/session/run_log.hpp"          // RunLogger
-#include "machine_profile.hpp"                 // MachineProfile
+#include "gantry/hal/card.hpp"                    // Card
+#include "gantry/interp/interpreter_options.hpp"  // InterpreterOptions
+#include "gantry/interp/operator_io.hpp"          // OperatorIO
+#include "gantry/interp/persistent_store.hpp"     // PersistentStore
+#include "gantry/machine/controller.hpp"          // Controller
+#include "gantry/session/machine_memory.hpp"      // MachineMemory
+#include "gantry/session/machine_profile.hpp"     // MachineProfile
+#include "gantry/session/run_log.hpp"             // RunLogger
 
-namespace gantry {
+namespace gantry::session {
 
 // The options both live front ends take.
-struct LiveMachineArgs {
+struct LiveMachineOptions {
   std::string card;     // empty: the profile's card.type
   std::string profile;  // empty: the built-in default
   std::string values, persistent, macros;
@@ -30,12 +31,9 @@ struct LiveMachineArgs {
   std::vector<std::string> subroutines;  // --subroutines, before the profile's
 };
 
-// Adds them to `cmd` (`realtime_help`: what real time is needed for there).
-void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::string& realtime_help);
-
 // The card the options choose (else the profile's card.type), in real time if asked; `type`
 // receives the type. Null, with the reason printed on stderr, when it cannot be opened.
-std::unique_ptr<Card> open_live_card(const LiveMachineArgs& a, const Settings& settings,
+std::unique_ptr<Card> open_live_card(const LiveMachineOptions& a, const Settings& settings,
                                      std::string* type);
 
 // The values a live machine's runs leave in force (units, speeds, calibration), for the
@@ -59,14 +57,14 @@ class ValuesKeeper {
 // keeps what each run leaves), the macros' folder, whether SHELL may start programs, and
 // SW's warning when the card plays in real time.
 InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeeper& values,
-                                            const LiveMachineArgs& a, bool real_time);
+                                            const LiveMachineOptions& a, bool real_time);
 
 // The live machine both front ends drive, built in the order it needs: the persistent
 // store, the values kept, the card, then the controller (last: it starts the threads, and it
 // is destroyed first).
 struct LiveMachine {
   // Null, with the card's reason printed, when the card cannot be opened.
-  static std::unique_ptr<LiveMachine> open(const LiveMachineArgs& a, const MachineProfile& p,
+  static std::unique_ptr<LiveMachine> open(const LiveMachineOptions& a, const MachineProfile& p,
                                            OperatorIO& io);
 
   PersistentStore store;
@@ -76,8 +74,8 @@ struct LiveMachine {
   bool real_time = false;
   // The state kept across sessions and the part-file log (docs/machine_state.md); `restored`:
   // what load said (the operator is told it at start).
-  std::unique_ptr<session::MachineMemory> memory;
-  std::unique_ptr<session::RunLogger> part_log;
+  std::unique_ptr<MachineMemory> memory;
+  std::unique_ptr<RunLogger> part_log;
   std::string restored;
   std::unique_ptr<Controller> controller;
 
@@ -86,4 +84,4 @@ struct LiveMachine {
   bool sim() const { return card_type == "sim"; }
 };
 
-}  // namespace gantry
+}  // namespace gantry::session

@@ -8,7 +8,7 @@
 #include "gantry/settings/settings.hpp"  // Settings
 #include "sim/sim_world.hpp"             // SimWorld
 
-namespace gantry {
+namespace gantry::session {
 
 struct CardChoice {
   std::string type;       // "sim", "pci7200" or "gpiod"
@@ -27,4 +27,4 @@ inline bool plays_in_real_time(const std::string& type, bool realtime) {
 std::unique_ptr<Card> open_card(const CardChoice& choice, const Settings& settings,
                                 std::string* error);
 
-}  // namespace gantry
+}  // namespace gantry::session

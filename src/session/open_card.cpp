@@ -1,5 +1,5 @@
-// Card selection for the command line.
-#include "open_card.hpp"
+// Card selection for the live front ends and `gantry run`.
+#include "gantry/session/open_card.hpp"
 
 #include "sim/sim_card.hpp"  // SimCard
 #ifdef GANTRY_HAVE_GPIOD
@@ -10,7 +10,7 @@
 #include "pci7200/open_pci7200.hpp"  // open_pci7200
 #endif
 
-namespace gantry {
+namespace gantry::session {
 
 std::unique_ptr<Card> open_card(const CardChoice& choice, const Settings& settings,
                                 std::string* error) {
@@ -35,4 +35,4 @@ std::unique_ptr<Card> open_card(const CardChoice& choice, const Settings& settin
   return nullptr;
 }
 
-}  // namespace gantry
+}  // namespace gantry::session

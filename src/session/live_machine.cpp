@@ -1,29 +1,14 @@
-// The live front ends' shared options, and keeping the values the runs leave in force.
-#include "live_machine.hpp"
+// The live machine's assembly for the console and the window, and keeping the values the
+// runs leave in force.
+#include "gantry/session/live_machine.hpp"
 
 #include <fmt/format.h>  // the error
 
 #include "gantry/core/text_file.hpp"        // read_text_file, write_file_atomically
+#include "gantry/session/open_card.hpp"     // open_card, plays_in_real_time
 #include "gantry/settings/values_file.hpp"  // values_text
-#include "open_card.hpp"                    // open_card, plays_in_real_time
 
-namespace gantry {
-
-void add_live_machine_options(CLI::App* cmd, LiveMachineArgs& a, const std::string& realtime_help) {
-  cmd->add_option("--card", a.card, "Card to run on (default: the profile's card.type)")
-      ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
-  cmd->add_flag("--realtime", a.realtime, realtime_help);
-  add_profile_option(cmd, a.profile);
-  cmd->add_option("--values", a.values,
-                  "File of the V commands' values (TOML); default: the profile's in "
-                  "~/.config/gantry/values");
-  cmd->add_option("--persistent", a.persistent, "File of persistent $variables (JSON)");
-  cmd->add_option("--macros", a.macros, "Folder of custom cut files C<n>.sbp / macro_<n>.sbp");
-  cmd->add_flag("--allow-shell", a.allow_shell, "Let SHELL start programs");
-  add_allow_path_option(cmd, a.allow_paths);
-  add_tool_table_option(cmd, a.tool_table);
-  add_subroutines_option(cmd, a.subroutines);
-}
+namespace gantry::session {
 
 void ValuesKeeper::ran(const Settings& s) {
   {
@@ -45,7 +30,7 @@ Settings ValuesKeeper::settings() const {
 }
 
 InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeeper& values,
-                                            const LiveMachineArgs& a, bool real_time) {
+                                            const LiveMachineOptions& a, bool real_time) {
   InterpreterOptions opt;
   opt.allow_shell = a.allow_shell;
   opt.macro_dir = a.macros;
@@ -60,7 +45,7 @@ InterpreterOptions live_interpreter_options(const MachineProfile& p, ValuesKeepe
   return opt;
 }
 
-std::unique_ptr<Card> open_live_card(const LiveMachineArgs& a, const Settings& settings,
+std::unique_ptr<Card> open_live_card(const LiveMachineOptions& a, const Settings& settings,
                                      std::string* type) {
   CardChoice choice;
   choice.type = a.card.empty() ? settings.card.type : a.card;
@@ -73,7 +58,7 @@ std::unique_ptr<Card> open_live_card(const LiveMachineArgs& a, const Settings& s
   return card;
 }
 
-std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineArgs& a, const MachineProfile& p,
+std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, const MachineProfile& p,
                                                OperatorIO& io) {
   auto m = std::unique_ptr<LiveMachine>(new LiveMachine{
       PersistentStore(a.persistent.empty() ? PersistentStore::default_path() : a.persistent),
@@ -90,8 +75,8 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineArgs& a, const M
   m->real_time = plays_in_real_time(m->card_type, a.realtime);
   m->controller = std::make_unique<Controller>(
       p.settings, *m->card, io, m->store, live_interpreter_options(p, m->values, a, m->real_time));
-  m->memory = std::make_unique<session::MachineMemory>(session::machine_state_path(p.values_path));
-  m->part_log = std::make_unique<session::RunLogger>(session::run_log_path(p.values_path));
+  m->memory = std::make_unique<MachineMemory>(machine_state_path(p.values_path));
+  m->part_log = std::make_unique<RunLogger>(run_log_path(p.values_path));
   m->restored = m->memory->load(p.settings.units);
   if (!m->memory->first_start()) io.warn({SourceLoc{}, Severity::Warning, m->restored});
   LiveMachine& live = *m;
@@ -106,4 +91,4 @@ LiveMachine::~LiveMachine() {
   if (memory) memory->save();
 }
 
-}  // namespace gantry
+}  // namespace gantry::session
