@@ -93,6 +93,8 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineArgs& a, const M
   m->memory = std::make_unique<session::MachineMemory>(session::machine_state_path(p.values_path));
   m->part_log = std::make_unique<session::RunLogger>(session::run_log_path(p.values_path));
   m->restored = m->memory->load(p.settings.units);
+  const session::SavedMachine last = m->memory->state();
+  m->part_log->close_unfinished(&last);  // runs a kill cut short get their end line
   if (!m->memory->first_start()) io.warn({SourceLoc{}, Severity::Warning, m->restored});
   LiveMachine& live = *m;
   m->memory->attach(*m->controller, [&live](const Controller::Activity& act) {
