@@ -354,7 +354,8 @@ TEST(ConsolePiped, ABareValueCommandInAPartFileShowsNothing) {
   TempDir dir;
   const fs::path part = dir.path() / "bare.sbp";
   std::ofstream(part) << "VS\nVC\nMX, 1\n";
-  const Result r = console_piped(fmt::format("FP, {}\n", part.string()));
+  const Result r = console_piped(fmt::format("FP, {}\n", part.string()),
+                                 fmt::format("--card sim --allow-path '{}'", dir.path().string()));
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_EQ(r.out.find("in force"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(readout("idle", {1, 0, 0, 0, 0, 0})), std::string::npos) << r.out;
