@@ -328,6 +328,8 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
     opt.start_state = &restored;
   }
   session::RunLogger part_log(session::run_log_path(profile.values_path));
+  if (const session::SavedMachine last = memory.state(); live)
+    part_log.close_unfinished(&last);  // runs a kill cut short get their end line
   const bool logging = settings.display.part_file_log;
   std::function<void(Controller&)> keep;
   if (live)

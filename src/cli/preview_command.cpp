@@ -140,6 +140,8 @@ int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions
   topts.estimate = true;
   const Toolpath whole = load_toolpath(a.file, settings, topts);
   const bool failed = whole.has_errors();
+  Cutter cut = *cutter;
+  cut.diameter = whole.cutter_diameter;  // VC's, in the units the file left in force
   const Toolpath path = a.play_s      ? played_to_time(whole, *a.play_s)
                         : a.play_line ? played_to_line(whole, *a.play_line)
                                       : whole;
@@ -166,7 +168,7 @@ int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions
                    "warning: no move goes below the stock top (Z {:g}; --stock-top sets it): "
                    "the material map shows uncut stock\n",
                    stock->max().z());
-      const HeightMap map = carve(path, *cutter, *stock, std::max(opts.width, opts.height));
+      const HeightMap map = carve(path, cut, *stock, std::max(opts.width, opts.height));
       written = write_png(a.output, render_material(map, opts));
     } else if (ext == "png") {
       written = write_png(a.output, render_lines(path, settings, opts));
@@ -201,7 +203,7 @@ int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions
     }
     // The cutter per range of segments: VC's at the start, then each change.
     j["tools"] = nlohmann::ordered_json::array();
-    j["tools"].push_back({{"first_segment", 0}, {"line", 0}, {"diameter", cutter->diameter}});
+    j["tools"].push_back({{"first_segment", 0}, {"line", 0}, {"diameter", cut.diameter}});
     for (const Toolpath::CutterChange& c : path.cutter_changes)
       j["tools"].push_back(
           {{"first_segment", c.first}, {"line", c.line}, {"diameter", c.diameter}});

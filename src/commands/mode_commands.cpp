@@ -3,7 +3,9 @@
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/interp/command_context.hpp"
-#include "gantry/settings/settings_schema.hpp"  // the speeds' rows: their range
+#include "gantry/interp/value.hpp"              // format_number
+#include "gantry/settings/settings_schema.hpp"  // the speeds' rows: their range; a bare VS
+#include "values_display.hpp"                   // a bare VS
 
 namespace gantry {
 namespace {
@@ -61,8 +63,26 @@ void set_jog_speed(CommandContext& ctx, const CommandCall& call) {
 }
 // VS: move XY, Z, A, B, then jog XY, Z, A, B (SB3); FabMo adds C to each group.
 void set_speeds(CommandContext& ctx, const CommandCall& call) {
-  // Validate every value before changing any: a bad VS changes nothing.
   const size_t groups = ctx.settings().dialect == Dialect::FabMo ? 5 : 4;
+  if (shows_values(ctx, call)) {
+    // The speeds in force (a file's VS, MS or JS changed them), read through the schema's
+    // speeds.move and speeds.jog rows, in VS's order: move XY, Z, A, B, then jog.
+    Settings now = ctx.settings();
+    now.speeds = ctx.state().speeds;
+    const std::vector<ParamSpec>& params = call.spec.params_for(ctx.settings().dialect);
+    std::vector<ShownValue> shown;
+    for (std::string_view section : {"speeds.move", "speeds.jog"})
+      for_each_setting([&](const SettingRow& row, int g) {
+        if (row.section != section || static_cast<size_t>(g) >= groups) return true;
+        const int axis = setting_axis(row.family, g);
+        const bool deg = axis >= 3 && now.display.rotary_units[axis - 3] == AxisUnit::Degrees;
+        shown.push_back({shown.size() + 1, &params[shown.size()],
+                         format_number(row.get(now, g)), deg ? "deg/s" : ""});
+        return true;
+      });
+    return ctx.print(values_listing(call.spec, shown, now));
+  }
+  // Validate every value before changing any: a bad VS changes nothing.
   SpeedSettings next = ctx.state().speeds;
   apply_speeds(ctx, call, 0, groups, next.move, SpeedClass::Move, true);
   apply_speeds(ctx, call, groups, groups, next.jog, SpeedClass::Jog, true);

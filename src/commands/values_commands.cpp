@@ -11,6 +11,7 @@
 #include "gantry/interp/tool_table.hpp"  // cutter_to_tool_table
 #include "gantry/lang/expression.hpp"    // parse_lvalue: VV's names
 #include "gantry/settings/settings_schema.hpp"  // ranges and members of schema settings
+#include "values_display.hpp"                   // a bare command's values
 
 namespace gantry {
 namespace {
@@ -18,11 +19,22 @@ namespace {
 // One parameter of a V command and the field it sets. `set` is null for a parameter the
 // references mark obsolete (accepted and ignored, as SB3 does) and for those with no
 // meaning on this machine, which `ignored` explains in a warning.
+// `row` (with `index`: a family's index or a list's item) is the schema setting the
+// parameter sets, which a bare command shows; null for one that sets none.
 struct Field {
   ParamSpec param;
   std::function<void(Settings&, const Value&)> set = nullptr;
   std::string_view ignored = {};
+  const SettingRow* row = nullptr;
+  int index = 0;
 };
+
+// `f`, shown as schema setting `path`'s value (item `i`).
+Field showing(Field f, std::string_view path, int i = 0) {
+  f.row = &setting_row(path);
+  f.index = i;
+  return f;
+}
 
 ParamSpec num(std::string_view name, std::string_view unit, std::string_view help) {
   return {name, unit, false, std::nullopt, help};
@@ -54,17 +66,32 @@ Field schema_field(std::string_view path, ParamSpec spec, int i = 0) {
   const double lo = row.range.lo_open ? row.range.lo + 1e-6 : row.range.lo;
   switch (row.kind) {
     case SettingKind::Integer:
-      return {spec.integer(row.range.lo, row.range.hi), [&row, i](Settings& s, const Value& v) {
+      return {spec.integer(row.range.lo, row.range.hi),
+              [&row, i](Settings& s, const Value& v) {
                 *static_cast<int*>(row.field(s, i)) = whole(v);
-              }};
+              },
+              {}, &row, i};
     case SettingKind::Bool:
-      return {spec.integer(0, 1), [&row, i](Settings& s, const Value& v) {
+      return {spec.integer(0, 1),
+              [&row, i](Settings& s, const Value& v) {
                 *static_cast<bool*>(row.field(s, i)) = on(v);
-              }};
+              },
+              {}, &row, i};
     default:
       return {spec.range(lo, row.range.hi),
-              [&row, i](Settings& s, const Value& v) { set_setting(s, row, v.num(), i); }};
+              [&row, i](Settings& s, const Value& v) { set_setting(s, row, v.num(), i); }, {},
+              &row, i};
   }
+}
+
+// A bare command: the value of each parameter that sets a setting.
+void show(CommandContext& ctx, const CommandCall& call, const std::vector<Field>& fields) {
+  std::vector<ShownValue> shown;
+  for (size_t i = 0; i < fields.size(); ++i)
+    if (fields[i].row)
+      shown.push_back({i + 1, &fields[i].param,
+                       setting_value_text(*fields[i].row, ctx.settings(), fields[i].index)});
+  ctx.print(values_listing(call.spec, shown, ctx.settings()));
 }
 
 std::vector<ParamSpec> params_of(const std::vector<Field>& fields) {
@@ -124,10 +151,11 @@ const std::vector<Field>& vc_sb3() {
       safe_z(),
       // SB3 files in the corpus write 0 here: read as the default, "-" (0 and -1 negative,
       // 1 positive).
-      {word("plunge direction", "- + 0 1 -1", "-: a negative Z goes into the material."),
-       [](Settings& s, const Value& v) {
-         s.cutter.plunge_negative = v.to_string() != "+" && v.to_string() != "1";
-       }},
+      showing({word("plunge direction", "- + 0 1 -1", "-: a negative Z goes into the material."),
+               [](Settings& s, const Value& v) {
+                 s.cutter.plunge_negative = v.to_string() != "+" && v.to_string() != "1";
+               }},
+              "cutter.plunge_direction"),
       pocket_overlap(),
       safe_a(),
       {flag("triggered output", "1 turns the Z/A-triggered output switch on for this file."),
@@ -136,10 +164,11 @@ const std::vector<Field>& vc_sb3() {
                    num("trigger ON level", "units", "Z or A level at which the switch comes on.")),
       schema_field("cutter.trigger_off",
                    num("trigger OFF level", "units", "Z or A level at which the switch goes off.")),
-      {word("trigger axis", "Z A", "The axis watched: Z or A."),
-       [](Settings& s, const Value& v) {
-         s.cutter.trigger_axis = (v.to_string() == "A" || v.to_string() == "a") ? 3 : 2;
-       }},
+      showing({word("trigger axis", "Z A", "The axis watched: Z or A."),
+               [](Settings& s, const Value& v) {
+                 s.cutter.trigger_axis = (v.to_string() == "A" || v.to_string() == "a") ? 3 : 2;
+               }},
+              "cutter.trigger_axis"),
       schema_field("cutter.trigger_output", num("triggered switch", "", "Output switch 3-12 (not 4)."))};
   return f;
 }
@@ -151,6 +180,7 @@ const std::vector<Field>& vc_fabmo() {
 
 void values_cutter(CommandContext& ctx, const CommandCall& call) {
   const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  if (shows_values(ctx, call)) return show(ctx, call, fabmo ? vc_fabmo() : vc_sb3());
   const double before = ctx.settings().cutter.diameter;
   apply(ctx, call, fabmo ? vc_fabmo() : vc_sb3(), ValueScope::Permanent,
         [](CommandContext&, const CommandCall& call, Settings& s) {
@@ -181,6 +211,7 @@ const std::vector<Field>& vb_fields() {
 }
 
 void values_tabs(CommandContext& ctx, const CommandCall& call) {
+  if (shows_values(ctx, call)) return show(ctx, call, vb_fields());
   apply(ctx, call, vb_fields(), ValueScope::Permanent);
   ModalState& st = ctx.state();
   if (const auto v = call.number(4)) st.tabs_on = *v != 0;
@@ -205,14 +236,17 @@ ParamSpec unit_code(std::string_view name) {
   return num(name, "", "0 inches, 1 millimetres, 2 degrees.").integer(0, 2);
 }
 Field linear_units() {
-  return {
-      num("linear units", "", "0 inches, 1 millimetres: every value is converted.").integer(0, 1),
-      nullptr};  // applied by values_display: it converts everything
+  return showing(
+      {num("linear units", "", "0 inches, 1 millimetres: every value is converted.").integer(0, 1),
+       nullptr},  // applied by values_display: it converts everything
+      "units");
 }
 Field units_of(int axis) {
   static const std::string names[] = {"A units", "B units", "C units"};
-  return {unit_code(names[axis]),
-          [axis](Settings& s, const Value& v) { s.display.rotary_units[axis] = axis_unit(v); }};
+  static const std::string_view rows[] = {"display.units_a", "display.units_b", "display.units_c"};
+  return showing({unit_code(names[axis]),
+                  [axis](Settings& s, const Value& v) { s.display.rotary_units[axis] = axis_unit(v); }},
+                 rows[axis]);
 }
 constexpr std::string_view kScreen =
     "Windows message-screen placement has no meaning in Gantry's "
@@ -257,6 +291,7 @@ const std::vector<Field>& vd_fabmo() {
 
 void values_display(CommandContext& ctx, const CommandCall& call) {
   const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  if (shows_values(ctx, call)) return show(ctx, call, fabmo ? vd_fabmo() : vd_sb3());
   const size_t units_param = fabmo ? 1 : 2;
   apply(ctx, call, fabmo ? vd_fabmo() : vd_sb3(), ValueScope::Permanent);
   if (const std::optional<double> units = call.number(units_param))
@@ -285,6 +320,7 @@ const std::vector<Field>& vh_fields() {
 }
 
 void values_accessories(CommandContext& ctx, const CommandCall& call) {
+  if (shows_values(ctx, call)) return show(ctx, call, vh_fields());
   apply(ctx, call, vh_fields(), ValueScope::Permanent,
         [](CommandContext&, const CommandCall& call, Settings& s) {
           if (s.accessories.mode != 1) return;
@@ -311,8 +347,9 @@ int axis_of(const Value& v) {
 Field channel(int k) {
   static const std::string names[] = {"channel 1 axis", "channel 2 axis", "channel 3 axis",
                                       "channel 4 axis", "channel 5 axis", "channel 6 axis"};
-  return {word(names[k], "X Y Z A B C 1 2 3 4 5 6", "The axis this driver channel drives."),
-          [k](Settings& s, const Value& v) { s.drivers.channel_axis[k] = axis_of(v); }};
+  return showing({word(names[k], "X Y Z A B C 1 2 3 4 5 6", "The axis this driver channel drives."),
+                  [k](Settings& s, const Value& v) { s.drivers.channel_axis[k] = axis_of(v); }},
+                 "drivers.channels", k);
 }
 Field comm_speed() {
   return {num("comm speed", "", "SB3's serial link speed code."), nullptr,
@@ -345,6 +382,7 @@ const std::vector<Field>& vi_fabmo() {
 
 void values_drivers(CommandContext& ctx, const CommandCall& call) {
   const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  if (shows_values(ctx, call)) return show(ctx, call, fabmo ? vi_fabmo() : vi_sb3());
   if (!fabmo && call.number(11) == 0.0)
     fail(call.param_loc(11),
          "VI: running with step output disabled is not supported; "
@@ -393,8 +431,9 @@ const std::vector<Field>& vl_fabmo() {
 }
 
 void values_limits(CommandContext& ctx, const CommandCall& call) {
-  apply(ctx, call, ctx.settings().dialect == Dialect::FabMo ? vl_fabmo() : vl_sb3(),
-        ValueScope::File);
+  const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  if (shows_values(ctx, call)) return show(ctx, call, fabmo ? vl_fabmo() : vl_sb3());
+  apply(ctx, call, fabmo ? vl_fabmo() : vl_sb3(), ValueScope::File);
 }
 
 // ---- VN: input and output switch modes ------------------------------------------------
@@ -414,18 +453,20 @@ const std::vector<Field>& vn_fields() {
     static std::deque<std::string> names;
     for (int n : {1, 2, 3, 5, 6, 7, 8, 9, 10, 11, 12}) {  // input 4 is the stop switch
       names.push_back(fmt::format("input {} mode", n));
-      v.push_back(
+      v.push_back(showing(
           {num(names.back(), "", "0 standard, 1 NO limit, 2 NC limit, 3 NO stop, 4 NC stop.")
                .integer(0, 4),
-           [n](Settings& s, const Value& x) { s.switches.input_modes[n - 1] = whole(x); }});
+           [n](Settings& s, const Value& x) { s.switches.input_modes[n - 1] = whole(x); }},
+          "switches.input_modes", n - 1));
     }
     for (int k = 0; k < 12; ++k) {
       names.push_back(fmt::format("output {} mode", k + 1));
-      v.push_back({num(names.back(), "",
-                       "0 off at file end, 1 stays on, 2 as 0 and off while paused, 3 on for a "
-                       "file, 4 on from file start, 5 as 3 and off while paused.")
-                       .integer(0, 5),
-                   [k](Settings& s, const Value& x) { s.switches.output_modes[k] = whole(x); }});
+      v.push_back(showing({num(names.back(), "",
+                               "0 off at file end, 1 stays on, 2 as 0 and off while paused, 3 on "
+                               "for a file, 4 on from file start, 5 as 3 and off while paused.")
+                               .integer(0, 5),
+                           [k](Settings& s, const Value& x) { s.switches.output_modes[k] = whole(x); }},
+                          "switches.output_modes", k));
     }
     return v;
   }();
@@ -435,6 +476,7 @@ const std::vector<Field>& vn_fields() {
 // The limit and stop switches change on the card and in the controller with the machine at
 // rest, from this point of the motion stream on.
 void values_switches(CommandContext& ctx, const CommandCall& call) {
+  if (shows_values(ctx, call)) return show(ctx, call, vn_fields());
   const SwitchSettings before = ctx.settings().switches;
   apply(ctx, call, vn_fields(), ValueScope::Permanent);
   const Settings& s = ctx.settings();
@@ -491,6 +533,7 @@ const std::vector<Field>& vp_fields() {
 }
 
 void values_preview(CommandContext& ctx, const CommandCall& call) {
+  if (shows_values(ctx, call)) return show(ctx, call, vp_fields());
   apply(ctx, call, vp_fields(), ValueScope::Permanent);
 }
 
@@ -556,8 +599,9 @@ const std::vector<Field>& vr_fabmo() {
 }
 
 void values_ramps(CommandContext& ctx, const CommandCall& call) {
-  apply(ctx, call, ctx.settings().dialect == Dialect::FabMo ? vr_fabmo() : vr_sb3(),
-        ValueScope::Permanent);
+  const bool fabmo = ctx.settings().dialect == Dialect::FabMo;
+  if (shows_values(ctx, call)) return show(ctx, call, fabmo ? vr_fabmo() : vr_sb3());
+  apply(ctx, call, fabmo ? vr_fabmo() : vr_sb3(), ValueScope::Permanent);
   ctx.values_reach_motion(call.loc);
 }
 
@@ -578,7 +622,8 @@ Field multiplier(int axis) {
   const SettingRow& row = setting_row("calibration.resolution_multipliers");
   return {num(names[axis], "", "Jog resolution shift of SB3's alpha drives.")
               .range(row.range.lo, row.range.hi),
-          [axis](Settings& s, const Value& v) { s.calibration.resolution_multiplier[axis] = v.num(); }};
+          [axis](Settings& s, const Value& v) { s.calibration.resolution_multiplier[axis] = v.num(); },
+          {}, &row, axis};
 }
 
 const std::vector<Field>& vu_fields() {
@@ -606,6 +651,7 @@ const std::vector<Field>& vu_fields() {
 }
 
 void values_calibration(CommandContext& ctx, const CommandCall& call) {
+  if (shows_values(ctx, call)) return show(ctx, call, vu_fields());
   const Settings before = ctx.settings();
   apply(ctx, call, vu_fields(), ValueScope::File);
   for (int i = 0; i < kAxisCount; ++i)
@@ -633,6 +679,16 @@ std::vector<ParamSpec> va_params(std::string_view letters) {
 // Table base values first, then working ones (FabMo states that order; SB3 is silent).
 void values_locations(CommandContext& ctx, const CommandCall& call) {
   const int n = ctx.settings().dialect == Dialect::FabMo ? 6 : 5;
+  if (shows_values(ctx, call)) {  // the working location, then its table base value
+    const ModalState& st = ctx.state();
+    const std::vector<ParamSpec>& params = call.spec.params_for(ctx.settings().dialect);
+    std::vector<ShownValue> shown;
+    for (int i = 0; i < 2 * n; ++i)
+      shown.push_back({static_cast<size_t>(i) + 1, &params[i],
+                       format_number(i < n ? st.position[i] : st.position[i - n] + st.zero[i - n]),
+                       i % n >= 3 && ctx.settings().display.rotary_units[i % n - 3] == AxisUnit::Degrees ? "deg" : ""});
+    return ctx.print(values_listing(call.spec, shown, ctx.settings()));
+  }
   // FabMo's `VA, 0,,,,,, 0` (X, then table base X) read in SB3's layout sets table base Y:
   // parameter 6 (C in FabMo's layout, table base X in SB3's) blank while a later one is set
   // may be either. SB3's own files write such lines (table base Z alone), so the profile's

@@ -306,7 +306,20 @@ void CommandContext::dwell(double seconds, const SourceLoc& loc) {
   ++moves_;
 }
 
+void CommandContext::note_drawing(const SourceLoc& loc) {
+  DrawingState d;
+  d.cutter_diameter = settings_.cutter.diameter;
+  d.units = settings_.units;
+  d.file_units = file_units_.value_or(settings_.units);
+  d.spindle_rpm = state_.spindle_rpm;
+  d.line = loc.line;
+  if (drawn_ && drawn_->same(d)) return;
+  drawn_ = d;
+  sink_.drawing_changed(d);
+}
+
 void CommandContext::emit(CanonMove& m) {
+  note_drawing(m.loc);
   m.count = {interp_ ? interp_->statements_executed() : 0, moves_ + 1};
   if (!warned_ && m.kind != MoveKind::Dwell) warn_before_motion(m.loc);
   if (const std::optional<IndependentMotion>& mi = state_.independent) {
@@ -404,6 +417,7 @@ void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
 void CommandContext::set_spindle_speed(double rpm, const SourceLoc& loc) {
   state_.spindle_rpm = rpm;
   if (state_.preview) return;  // a preview switches nothing
+  note_drawing(loc);
   if (settings_.spindle.pwm_bit < 0) {
     if (!std::exchange(spindle_speed_warned_, true))
       warn(loc,

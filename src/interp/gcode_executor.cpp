@@ -168,6 +168,7 @@ void GcodeExecutor::begin_file(bool typed) {
                                              ? ProgramUnits::Millimetres
                                              : ProgramUnits::Inches;
   modes_.retract_to_r = true;  // G99: LinuxCNC's interpreter starts in it (docs/gcode.md)
+  ctx_.set_file_units(std::nullopt);
 }
 
 void GcodeExecutor::enter_file(bool restore_g92) {
@@ -608,6 +609,8 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
       modes_.units = modes_.previous_units;
     }
     if (modes_.units != was) modes_.previous_units = was;
+    ctx_.set_file_units(modes_.units == ProgramUnits::Inches ? Units::Inches
+                                                             : Units::Millimetres);
   }
   if (w.g[7] >= 0) cutter_comp(w, loc);
   if (w.g[8] == 430 && wincnc) {  // WinCNC: the length the last M37 measured

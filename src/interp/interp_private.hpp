@@ -49,6 +49,7 @@ class Interpreter::GatedSink : public MotionSink {
   // input reads as the probe asked (closed, or open for G38.4) until the next move, so a file
   // follows the path of a probe that found its switch.
   std::optional<std::pair<int, bool>> touched;
+  void drawing_changed(const DrawingState& d) override { out_.drawing_changed(d); }
   void settings_changed(const Settings& s) override {
     if (closed)
       changed = true;

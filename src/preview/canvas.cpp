@@ -1,6 +1,8 @@
 // The preview's rasteriser: Bresenham lines, filled dots and z-buffered triangles.
 #include "canvas.hpp"
 
+#include "pixel_font.hpp"  // glyph_rows
+
 #include <algorithm>  // min, max
 #include <cmath>      // lround, floor, ceil
 #include <cstdlib>    // abs
@@ -47,6 +49,18 @@ void Canvas::dot(Eigen::Vector2f c, float radius, Rgb colour) {
       if ((Eigen::Vector2f(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f) - c)
               .squaredNorm() <= radius * radius)
         plot(x, y, colour);
+}
+
+void Canvas::text(int x, int y, std::string_view text, Rgb colour, int scale) {
+  for (char c : text) {
+    const auto rows = glyph_rows(c);
+    for (int r = 0; r < kGlyphHeight; ++r)
+      for (int k = 0; k < kGlyphWidth; ++k)
+        if (rows[r] >> (kGlyphWidth - 1 - k) & 1)
+          for (int dy = 0; dy < scale; ++dy)
+            for (int dx = 0; dx < scale; ++dx) plot(x + k * scale + dx, y + r * scale + dy, colour);
+    x += kGlyphAdvance * scale;
+  }
 }
 
 void Canvas::triangle(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,

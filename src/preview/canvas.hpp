@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <limits>
+#include <string_view>
 #include <utility>  // move
 #include <vector>
 
@@ -19,6 +20,9 @@ class Canvas {
   // A line `width` pixels wide; `dash` > 0: drawn `dash` pixels, skipped `dash` pixels.
   void line(Eigen::Vector2f a, Eigen::Vector2f b, Rgb colour, int width, int dash = 0);
   void dot(Eigen::Vector2f centre, float radius, Rgb colour);
+  // `text` in the 5x7 pixel font (pixel_font.hpp), each font pixel `scale` pixels square,
+  // its top left corner at (x, y).
+  void text(int x, int y, std::string_view text, Rgb colour, int scale = 1);
   // A triangle in picture coordinates with depth (larger: nearer), one colour.
   void triangle(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
                 Rgb colour);

@@ -6,10 +6,12 @@
 #include <stb_image_write.h>
 
 #include <algorithm>  // max, min
+#include <array>
 #include <cmath>      // sqrt, pow, log10
 #include <limits>
 
 #include "canvas.hpp"                 // Canvas
+#include "pixel_font.hpp"             // kGlyphAdvance
 #include "gantry/core/text_file.hpp"  // write_file_atomically
 
 namespace gantry {
@@ -141,6 +143,22 @@ double bar_length(const Projection& p) {
   return step;
 }
 
+// The scale bar's label ("2 in") and the path's bounding dimensions, one text per axis
+// ("X 0.0000 to 12.0000 (12.0000 in)"), as both pictures write them.
+std::string bar_label(double bar, Units units) {
+  return fmt::format("{:g} {}", bar, units_name(units));
+}
+std::array<std::string, 3> dimension_texts(const Toolpath& path) {
+  const Eigen::AlignedBox3f& b = path.bounds;
+  const Eigen::Vector3f size = b.sizes();
+  const char* u = units_name(path.units);
+  std::array<std::string, 3> out;
+  for (int i = 0; i < 3; ++i)
+    out[i] = fmt::format("{} {:.4f} to {:.4f} ({:.4f} {})", "XYZ"[i], b.min()[i], b.max()[i],
+                         size[i], u);
+  return out;
+}
+
 }  // namespace
 
 const char* view_name(View v) {
@@ -246,6 +264,31 @@ Image render_lines(const Toolpath& path, const Settings& settings, const Preview
     canvas.dot(at(ends->first), 3 * w, palette::start);
     canvas.dot(at(ends->second), 2 * w, palette::end);
   }
+  if (opts.dimensions) {
+    // The SVG's scale bar (bottom left) and bounding dimensions (top left), in the pixel
+    // font: its pixels twice as big from 1000 pixels up.
+    constexpr Rgb black = palette::text;
+    const int k = std::max(1, std::min(proj.width(), proj.height()) / 500);
+    const double bar = bar_length(proj);
+    const int bar_px = static_cast<int>(std::lround(bar * proj.pixels_per_unit()));
+    const int y = proj.height() - 8;
+    const Eigen::Vector2f p0(8, static_cast<float>(y - 6)), p1(8, static_cast<float>(y)),
+        p2(static_cast<float>(8 + bar_px), static_cast<float>(y)),
+        p3(static_cast<float>(8 + bar_px), static_cast<float>(y - 6));
+    canvas.line(p0, p1, black, 1);
+    canvas.line(p1, p2, black, 1);
+    canvas.line(p2, p3, black, 1);
+    canvas.text(12 + bar_px, y - 7 * k, bar_label(bar, path.units), black, k);
+    if (!path.bounds.isEmpty()) {
+      const std::array<std::string, 3> dims = dimension_texts(path);
+      const std::string one = dims[0] + ", " + dims[1] + ", " + dims[2];
+      const int advance = preview_detail::kGlyphAdvance * k;
+      if (8 + static_cast<int>(one.size()) * advance <= proj.width())
+        canvas.text(8, 8, one, black, k);
+      else
+        for (int i = 0; i < 3; ++i) canvas.text(8, 8 + i * 10 * k, dims[i], black, k);
+    }
+  }
   return canvas.take();
 }
 
@@ -310,24 +353,30 @@ std::string render_svg(const Toolpath& path, const Settings& settings, const Pre
   // the units the file left in force.
   const char* units = units_name(path.units);
   const double bar = bar_length(proj);
+  const std::string label = bar_label(bar, path.units);
   const float bar_px = static_cast<float>(bar) * proj.pixels_per_unit();
   const float y = static_cast<float>(proj.height()) - 8;
   out += fmt::format(
       "<g class=\"scale\" stroke=\"#000000\" stroke-width=\"1\">"
       "<polyline fill=\"none\" points=\"8,{2:.2f} 8,{0:.2f} {1:.2f},{0:.2f} {1:.2f},{2:.2f}\"/>"
       "<text x=\"{3:.2f}\" y=\"{0:.2f}\" font-family=\"sans-serif\" font-size=\"11\" "
-      "stroke=\"none\" fill=\"#000000\">{4:g} {5}</text></g>\n",
-      y, 8 + bar_px, y - 6, 12 + bar_px, bar, units);
+      "stroke=\"none\" fill=\"#000000\">{4}</text></g>\n",
+      y, 8 + bar_px, y - 6, 12 + bar_px, label);
   if (!path.bounds.isEmpty()) {
-    const Eigen::AlignedBox3f& b = path.bounds;
-    const Eigen::Vector3f size = b.sizes();
+    const std::array<std::string, 3> dims = dimension_texts(path);
     out += fmt::format(
         "<text class=\"dimensions\" x=\"8\" y=\"16\" font-family=\"sans-serif\" "
-        "font-size=\"11\" fill=\"#000000\">X {:.4f} to {:.4f} ({:.4f} {}), Y {:.4f} to {:.4f} "
-        "({:.4f} {}), Z {:.4f} to {:.4f} ({:.4f} {})</text>\n",
-        b.min().x(), b.max().x(), size.x(), units, b.min().y(), b.max().y(), size.y(), units,
-        b.min().z(), b.max().z(), size.z(), units);
+        "font-size=\"11\" fill=\"#000000\">{}, {}, {}</text>\n",
+        dims[0], dims[1], dims[2]);
   }
+  // The cutters: VC's at the start, then each tool change with the line it came at.
+  std::string cutters = fmt::format("{:g} {}", path.cutter_diameter, units);
+  for (const Toolpath::CutterChange& c : path.cutter_changes)
+    cutters += fmt::format(", {:g} {} from line {}", c.diameter, units, c.line);
+  out += fmt::format(
+      "<text class=\"tools\" x=\"8\" y=\"30\" font-family=\"sans-serif\" font-size=\"11\" "
+      "fill=\"#000000\">cutter{} {}</text>\n",
+      path.cutter_changes.empty() ? "" : "s", cutters);
   out += "</svg>\n";
   return out;
 }

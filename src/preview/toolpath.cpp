@@ -25,24 +25,34 @@ PathKind path_kind(const CanonMove& m) {
 struct Cancelled {};  // thrown through the interpreter to end a cancelled load
 
 // Collects the check's moves into the toolpath, reporting progress and honouring cancel.
+// The moves come in the interpreter's units (VD's); the path is kept in the file's
+// (DrawingState::file_units), converted as they come.
 class ToolpathSink : public MotionSink {
  public:
   ToolpathSink(Toolpath& path, const Settings& settings, const ToolpathOptions& opts)
       : path_(path),
         tolerance_(settings.planner.chord_tolerance),
-        cutter_(settings.cutter.diameter),
-        opts_(opts) {}
+        moves_in_(settings.units),
+        opts_(opts) {
+    path_.cutter_diameter = settings.cutter.diameter;
+  }
   void move(const CanonMove& m) override {
     if (opts_.cancel && opts_.cancel->load(std::memory_order_relaxed)) throw Cancelled{};
-    const auto line = static_cast<std::uint32_t>(std::max(m.loc.line, 0));
-    if (m.kind == MoveKind::SpindleSpeed)
-      path_.spindle_changes.push_back({path_.segments.size(), m.spindle_rpm, line});
-    if (cutter_line_pending_ && (m.kind == MoveKind::Line || m.kind == MoveKind::Arc)) {
-      path_.cutter_changes.back().line = line;
-      cutter_line_pending_ = false;
-    }
     const std::size_t before = path_.segments.size();
-    path_.add(m, tolerance_);
+    const double k = units_factor(moves_in_, path_.units);
+    if (k == 1) {
+      path_.add(m, tolerance_);
+    } else {  // X, Y, Z and the arc's centre in the path's units (A and B turn in degrees)
+      CanonMove c = m;
+      for (Vec6* v : {&c.from, &c.to}) v->head<3>() *= k;
+      c.center_x *= k;
+      c.center_y *= k;
+      path_.add(c, tolerance_ * k);
+    }
+    for (std::size_t i = before; i < path_.segments.size(); ++i) {
+      path_.segments[i].tool = tool_;
+      path_.segments[i].units = static_cast<std::uint8_t>(path_.units);
+    }
     if (path_.segments.size() > before) ends_.push_back({m.count.moves, path_.segments.size()});
     if (opts_.progress && path_.segments.size() >= next_report_) {
       opts_.progress(path_);
@@ -50,28 +60,52 @@ class ToolpathSink : public MotionSink {
     }
   }
   void flush() override {}
-  // VP or a VU may change the chord tolerance part-way (it comes at rest, like the planner's),
-  // and a tool change the cutter (VC's diameter).
+  // VP or a VU may change the chord tolerance part-way (it comes at rest, like the planner's).
   void settings_changed(const Settings& s) override {
     tolerance_ = s.planner.chord_tolerance;
     path_.wrap_a = s.display.rotary_units[0] == AxisUnit::Degrees;
     path_.wrap_b = s.display.rotary_units[1] == AxisUnit::Degrees;
-    if (s.cutter.diameter != cutter_) {
-      path_.cutter_changes.push_back({path_.segments.size(), cutter_ = s.cutter.diameter});
-      cutter_line_pending_ = true;
+  }
+  // A tool change (VC, &Tool + C9, M6), a spindle speed (TR) or new units (VD, G20/G21).
+  void drawing_changed(const DrawingState& d) override {
+    if (d.file_units != path_.units) convert(d.file_units);
+    moves_in_ = d.units;
+    const auto line = static_cast<std::uint32_t>(std::max(d.line, 0));
+    const double diameter = d.cutter_diameter * units_factor(d.units, path_.units);
+    const double now = path_.cutter_changes.empty() ? path_.cutter_diameter
+                                                    : path_.cutter_changes.back().diameter;
+    if (path_.segments.empty() && path_.cutter_changes.empty()) {
+      path_.cutter_diameter = diameter;  // set before the first cut: the cutter at the start
+    } else if (std::abs(diameter - now) > 1e-9 * std::max(1.0, std::abs(now))) {
+      path_.cutter_changes.push_back({path_.segments.size(), diameter, line});
+      tool_ = static_cast<std::uint8_t>(std::min<std::size_t>(path_.cutter_changes.size(), 255));
     }
+    if (d.spindle_rpm != rpm_)
+      path_.spindle_changes.push_back({path_.segments.size(), rpm_ = d.spindle_rpm, line});
   }
   // Each move that made segments: its RunCount::moves and the segment after its last.
   std::vector<std::pair<std::size_t, std::size_t>> ends_;
 
  private:
+  // The path so far into `to`: its points, bounds and cutters.
+  void convert(Units to) {
+    const auto k = static_cast<float>(units_factor(path_.units, to));
+    path_.start *= k;
+    for (ToolpathSegment& g : path_.segments) g.x *= k, g.y *= k, g.z *= k;
+    if (!path_.bounds.isEmpty()) path_.bounds = Eigen::AlignedBox3f(path_.bounds.min() * k, path_.bounds.max() * k);
+    path_.cutter_diameter *= k;
+    for (Toolpath::CutterChange& c : path_.cutter_changes) c.diameter *= k;
+    path_.units = to;
+  }
+
   static constexpr std::size_t kReportEvery = 1 << 16;
   Toolpath& path_;
-  double tolerance_;
-  double cutter_;
+  double tolerance_;  // in the moves' units
+  Units moves_in_;    // the units the interpreter's moves are in
+  double rpm_ = 0;
+  std::uint8_t tool_ = 0;
   const ToolpathOptions& opts_;
   std::size_t next_report_ = kReportEvery;
-  bool cutter_line_pending_ = false;
 };
 
 // The planner's segments' end times, by their move's RunCount::moves.
@@ -106,6 +140,7 @@ class TimedSink : public MotionSink {
     planner_.settings_changed(s);
     also_.settings_changed(s);
   }
+  void drawing_changed(const DrawingState& d) override { also_.drawing_changed(d); }
   double seconds() const { return planner_.planned_time(); }
   const std::vector<double>& end_s() const { return timeline_.end_s; }
 
@@ -143,13 +178,13 @@ void Toolpath::add(const CanonMove& m, double chord_tolerance) {
              (Eigen::Vector3f(e.x, e.y, e.z) - from).norm() > 1e-5f) {
     // The tool was moved outside the moves (a keypad jog on the live machine): a jog joins
     // the two ends, so each segment still starts where the previous ended.
-    segments.push_back({from.x(), from.y(), from.z(), line, PathKind::Jog});
+    segments.push_back({from.x(), from.y(), from.z(), line, PathKind::Jog, 0, 0});
     bounds.extend(from);
   }
   const PathKind kind = path_kind(m);
   auto push = [&](const Vec6& p) {
     const Eigen::Vector3f q = drawn(p);
-    segments.push_back({q.x(), q.y(), q.z(), line, kind});
+    segments.push_back({q.x(), q.y(), q.z(), line, kind, 0, 0});
     bounds.extend(q);
   };
   // A line that turns a wrapped axis is a helix on the work: pieces of 2 degrees at most.
@@ -217,6 +252,7 @@ Toolpath first_segments(const Toolpath& path, std::size_t n) {
   out.estimated_time_s = path.estimated_time_s;
   out.violations = path.violations;
   out.units = path.units;
+  out.cutter_diameter = path.cutter_diameter;
   out.wrap_a = path.wrap_a;
   out.wrap_b = path.wrap_b;
   out.segments.assign(path.segments.begin(),

@@ -78,6 +78,8 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, cons
   m->memory = std::make_unique<MachineMemory>(machine_state_path(p.values_path));
   m->part_log = std::make_unique<RunLogger>(run_log_path(p.values_path));
   m->restored = m->memory->load(p.settings.units);
+  const session::SavedMachine last = m->memory->state();
+  m->part_log->close_unfinished(&last);  // runs a kill cut short get their end line
   if (!m->memory->first_start()) io.warn({SourceLoc{}, Severity::Warning, m->restored});
   LiveMachine& live = *m;
   m->memory->attach(*m->controller, [&live](const Controller::Activity& act) {

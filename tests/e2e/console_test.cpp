@@ -321,6 +321,46 @@ TEST(ConsolePiped, WordsHelpQuitAndTheKeypadNeedsATerminal) {
   EXPECT_NE(r.out.find("the keypad needs a terminal"), std::string::npos) << r.out;
 }
 
+// Issue 25: a bare value command shows the values in force, as SB3's sheets show them.
+TEST(ConsolePiped, ABareValueCommandShowsTheValuesInForce) {
+  const Result r = console_piped("VS\nMS, 1.5\nVS\nVC\nVD, , , 1\nVC\nVA\nVS, , , , , 5\n");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("> VS\nVS, Values for speeds (in force):\n"
+                       "   1  XY move speed  2 in/s\n"
+                       "   2  Z move speed   0.5 in/s\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("   5  XY jog speed   6 in/s\n   6  Z jog speed    3 in/s\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("   3  A move speed   10 deg/s\n"), std::string::npos) << r.out;
+  // MS changed the move speed: the next VS shows it.
+  EXPECT_NE(r.out.find("   1  XY move speed  1.5 in/s\n"), std::string::npos) << r.out;
+  // VC: the cutter, in inches, then in millimetres after VD.
+  EXPECT_NE(r.out.find("VC, Values for the cutter (in force):\n   1  cutter diameter    0.25 in\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("   1  cutter diameter    6.35 mm\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("   5  plunge direction   -\n"), std::string::npos) << r.out;
+  // VA: the working location and its table base value.
+  EXPECT_NE(r.out.find("VA, Values for axis locations (in force):\n   1  X location    0 mm\n"),
+            std::string::npos)
+      << r.out;
+  // Parameters given (blanks too) set, as before: nothing is shown.
+  EXPECT_EQ(r.out.find("> VS, , , , , 5\nVS, Values"), std::string::npos) << r.out;
+}
+
+TEST(ConsolePiped, ABareValueCommandInAPartFileShowsNothing) {
+  TempDir dir;
+  const fs::path part = dir.path() / "bare.sbp";
+  std::ofstream(part) << "VS\nVC\nMX, 1\n";
+  const Result r = console_piped(fmt::format("FP, {}\n", part.string()),
+                                 fmt::format("--card sim --allow-path '{}'", dir.path().string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.find("in force"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(readout("idle", {1, 0, 0, 0, 0, 0})), std::string::npos) << r.out;
+}
+
 // ---- the console at a terminal, under tmux -------------------------------------------------
 
 bool have_tmux() {

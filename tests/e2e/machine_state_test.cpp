@@ -101,6 +101,12 @@ TEST(MachineState, SigkillMidMoveRestoresThePositionUnconfirmed) {
   state = slurp(s.state());
   EXPECT_NE(state.find("\nmotion = \"moving\""), std::string::npos) << state;
   EXPECT_NE(state.find("x = 1.5"), std::string::npos) << state;  // where the move started
+  // The part-file log has the run's start line; its process is gone, so it reads as killed.
+  const auto killed_log = s.gantry("log --json");
+  const nlohmann::json killed_runs = nlohmann::json::parse(killed_log.out);
+  ASSERT_EQ(killed_runs.size(), 2u) << killed_log.out;
+  EXPECT_EQ(killed_runs[1]["file"], long_move);
+  EXPECT_EQ(killed_runs[1]["status"], "killed") << killed_log.out;
 
   // Session 3 (gantry state): restored, unconfirmed, and why.
   const auto shown = s.gantry("state");
@@ -147,12 +153,20 @@ TEST(MachineState, SigkillMidMoveRestoresThePositionUnconfirmed) {
   EXPECT_NE(after.out.find("; home to confirm"), std::string::npos) << after.out;
   EXPECT_EQ(after.out.find("UNCONFIRMED"), std::string::npos) << after.out;
 
-  // The part-file log: the runs that ended (the killed one left no line).
+  // The part-file log: the runs that ended, and the killed one, closed by the console's start
+  // (session 4) with where the state file last knew the tool.
   const auto log = s.gantry("log");
   EXPECT_NE(log.out.find("completed              " + s.part("first.sbp", "MX, 1\nZX\nMX, 0.5\n")),
             std::string::npos)
       << log.out;
-  EXPECT_EQ(log.out.find("long.sbp"), std::string::npos) << log.out;
+  EXPECT_NE(log.out.find("        ?  killed                 " + long_move +
+                         " (killed/unknown end; last known at X 1.5000 Y 0.0000 Z 0.0000 (in, "
+                         "table base; saved "),
+            std::string::npos)
+      << log.out;
+  EXPECT_NE(log.out.find(", mid-move)"), std::string::npos) << log.out;
+  const std::string raw = slurp(s.state().parent_path() / "part_files.log");
+  EXPECT_NE(raw.find("\"status\":\"killed\""), std::string::npos) << raw;  // on disk too
   const auto last = s.gantry("log --last 1 --json");
   const nlohmann::json runs = nlohmann::json::parse(last.out);
   ASSERT_EQ(runs.size(), 1u) << last.out;

@@ -219,4 +219,35 @@ TEST_F(PreviewCli, StockToolsSpindleAndPlayAreInTheSummary) {
   EXPECT_NE(text.out.find("played: "), std::string::npos) << text.out;
 }
 
+// Issue 25: the summary in the units the file sets (VD, G21); each VC a cutter in the legend.
+TEST_F(PreviewCli, TheSummaryIsInTheFilesUnitsAndListsEachCutter) {
+  const std::string sbp = write("mm.sbp", "VD, , , 1\nJZ, 10\nMZ, -3\nMX, 100\nMY, 50\nJZ, 10\n");
+  Result r = gantry(fmt::format("preview {} -o {}", sbp, path("mm.svg")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("bounds (mm): X 0.0000 to 100.0000, Y 0.0000 to 50.0000, Z -3.0000 to "
+                       "10.0000"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(read(path("mm.svg")).find("(100.0000 mm)"), std::string::npos);
+  const std::string nc = write("mm.nc", "G21 G90\nG0 Z5\nG1 Z-2 F300\nG1 X100 F600\nG1 Y50\nM2\n");
+  r = gantry(fmt::format("preview {} --json -o {}", nc, path("nc.png")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["units"], "mm");
+  EXPECT_NEAR(j["bounds"]["max"][0].get<double>(), 100, 1e-3);
+  const std::string vc = write("vc.sbp", "VC, 0.125\nJZ, 0.5\nMZ, -0.1\nMX, 2\nJZ, 0.5\n"
+                                         "VC, 0.5\nJ2, 0, 1\nMZ, -0.1\nMX, 2\nJZ, 0.5\n");
+  r = gantry(fmt::format("preview {} -o {}", vc, path("vc.svg")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("tool change at line 7 (segment "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cutter diameter 0.5\n"), std::string::npos) << r.out;
+  EXPECT_NE(read(path("vc.svg")).find(">cutters 0.125 in, 0.5 in from line 7</text>"),
+            std::string::npos);
+  r = gantry(fmt::format("preview {} --json -o {}", vc, path("vc.png")));
+  const json t = json::parse(r.out);
+  ASSERT_EQ(t["tools"].size(), 2u) << r.out;
+  EXPECT_EQ(t["tools"][0]["diameter"], 0.125);
+  EXPECT_EQ(t["tools"][1]["diameter"], 0.5);
+}
+
 }  // namespace

@@ -309,6 +309,56 @@ TEST(RunLog, AppendsLinesAndReadsTheLastSkippingBadOnes) {
   EXPECT_TRUE(read_run_log((f.dir / "none.log").string(), 3).empty());
 }
 
+// A run's start line goes to the log at once; a run whose process is gone without its end
+// line reads as killed, and the next start closes it with where the tool was last known.
+TEST(RunLog, AStartLineComesFirstAndAKilledRunIsClosedAtTheNextStart) {
+  Folder f;
+  RunLogger log(f.log());
+  Controller::Activity start;
+  start.part_file = true;
+  start.file = "live.sbp";
+  log.activity(start);
+  std::vector<RunRecord> runs = read_run_log(f.log(), 0);
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_EQ(runs[0].status, "running");  // this process is alive
+  EXPECT_EQ(runs[0].pid, static_cast<int>(getpid()));
+  // A run of a process that is gone (no pid is this large): killed, end unknown.
+  RunRecord gone;
+  gone.id = "2026-11-27T03:00:00Z-999999999-1";
+  gone.pid = 999'999'999;
+  gone.file = "gone.sbp";
+  gone.start = "2026-11-27T03:00:00Z";
+  gone.status = "running";
+  std::string why;
+  ASSERT_TRUE(append_run_record(f.log(), gone, &why)) << why;
+  runs = read_run_log(f.log(), 0);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[1].status, "killed");
+  EXPECT_NE(run_record_text(runs[1]).find("        ?  killed"), std::string::npos)
+      << run_record_text(runs[1]);
+  SavedMachine last;
+  last.table << 2, 3, 0.5, 0, 0, 0;
+  last.saved_at = "2026-11-27T03:00:01Z";
+  last.confirmed = false;
+  EXPECT_EQ(log.close_unfinished(&last), 1u);  // not the live one
+  EXPECT_EQ(log.close_unfinished(&last), 0u);  // once
+  runs = read_run_log(f.log(), 0);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[1].status, "killed");
+  EXPECT_EQ(runs[1].message,
+            "killed/unknown end; last known at X 2.0000 Y 3.0000 Z 0.5000 (in, table base; "
+            "saved 2026-11-27T03:00:01Z, mid-move)");
+  EXPECT_DOUBLE_EQ(runs[1].position[1], 3);
+  // The live run ends: its end line takes its start line's place.
+  Controller::Activity end = start;
+  end.at_rest = true;
+  log.activity(end);
+  runs = read_run_log(f.log(), 0);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].status, "completed");
+  EXPECT_EQ(runs[0].file, "live.sbp");
+}
+
 // The controller's runs: completed, stopped at a line, E-stop; jogs and typed lines are not runs.
 TEST(RunLog, TheControllerLogsEachPartFileRun) {
   Folder f;

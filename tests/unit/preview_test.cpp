@@ -228,7 +228,9 @@ TEST(Render, LinePicturesHaveTheirSizeAndDrawOnlyInsideTheToolpathsBox) {
       for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
           const Rgb c = image.at(x, y);
-          if (is(c, palette::background) || is(c, palette::table)) continue;
+          // The scale bar and the dimensions (issue 25) are text, outside the path's box.
+          if (is(c, palette::background) || is(c, palette::table) || is(c, palette::text))
+            continue;
           ++drawn;
           const Eigen::Vector2f p(x + 0.5f, y + 0.5f);
           EXPECT_LE(box.exteriorDistance(p), slack) << x << "," << y;
@@ -426,6 +428,111 @@ TEST(Render, SvgDrawsTheStockRectangleAtItsCorners) {
   EXPECT_EQ(image.at(737, 300), palette::stock);
 }
 
+
+// The units the file sets (VD, G20/G21) and its cutters (VC) ----------------------------
+
+TEST(Toolpath, AfterVdMillimetresTheBoundsAndTheTableAreInMillimetres) {
+  TempPart f("vd_mm.sbp", "VD, , , 1\nJZ, 10\nJ2, 10, 10\nMZ, -3\nMX, 100\nMY, 50\nJZ, 10\n");
+  const Settings s = default_settings();  // inches
+  const Toolpath path = load_toolpath(f.path(), s);
+  ASSERT_FALSE(path.has_errors()) << format(path.violations.front());
+  EXPECT_EQ(path.units, Units::Millimetres);
+  EXPECT_NEAR(path.bounds.max().x(), 100, 1e-3);
+  EXPECT_NEAR(path.bounds.max().y(), 50, 1e-3);
+  EXPECT_NEAR(path.bounds.min().z(), -3, 1e-3);
+  EXPECT_NEAR(path.cutter_diameter, 0.25 * 25.4, 1e-9);  // VC's, converted with the units
+  EXPECT_TRUE(path.cutter_changes.empty());              // the same cutter
+  for (const ToolpathSegment& g : path.segments)
+    EXPECT_EQ(g.units, static_cast<std::uint8_t>(Units::Millimetres));
+  // The table (24 x 18 in) is drawn in millimetres too, and the SVG says mm.
+  PreviewOptions opts;
+  EXPECT_NEAR(preview_box(path, s, opts).max().x(), 24 * 25.4, 1e-2);
+  const std::string svg = render_svg(path, s, opts);
+  EXPECT_NE(svg.find("X 0.0000 to 100.0000 (100.0000 mm)"), std::string::npos) << svg;
+}
+
+TEST(Toolpath, AGcodeFileInG21IsDrawnInMillimetres) {
+  TempPart f("g21.nc", "G21 G90\nG0 Z5\nG0 X10 Y10\nG1 Z-2 F300\nG1 X100 F600\nG1 Y50\n"
+                       "G0 Z5\nM2\n");
+  const Toolpath path = load_toolpath(f.path(), default_settings());
+  ASSERT_FALSE(path.has_errors()) << format(path.violations.front());
+  EXPECT_EQ(path.units, Units::Millimetres);
+  EXPECT_NEAR(path.bounds.max().x(), 100, 1e-3);
+  EXPECT_NEAR(path.bounds.max().y(), 50, 1e-3);
+  EXPECT_NEAR(path.bounds.min().z(), -2, 1e-3);
+  // G20 stays in inches, as the profile is.
+  TempPart g("g20.nc", "G20 G90\nG0 Z0.2\nG1 X4 F20\nM2\n");
+  const Toolpath inches = load_toolpath(g.path(), default_settings());
+  EXPECT_EQ(inches.units, Units::Inches);
+  EXPECT_NEAR(inches.bounds.max().x(), 4, 1e-5);
+}
+
+TEST(Toolpath, EachVcInTheFileIsACutterOfItsSegments) {
+  TempPart f("two_vc.sbp", "VC, 0.125\nJZ, 0.5\nMZ, -0.1\nMX, 2\nJZ, 0.5\nVC, 0.5\nJ2, 0, 1\n"
+                           "MZ, -0.1\nMX, 2\nJZ, 0.5\n");
+  const Toolpath path = load_toolpath(f.path(), default_settings());
+  ASSERT_FALSE(path.has_errors()) << format(path.violations.front());
+  EXPECT_DOUBLE_EQ(path.cutter_diameter, 0.125);  // set before the first move: the first cutter
+  ASSERT_EQ(path.cutter_changes.size(), 1u);
+  EXPECT_DOUBLE_EQ(path.cutter_changes[0].diameter, 0.5);
+  EXPECT_EQ(path.cutter_changes[0].line, 7u);  // the first move after it
+  EXPECT_EQ(path.segments.front().tool, 0);
+  EXPECT_EQ(path.segments.back().tool, 1);
+  EXPECT_EQ(path.segments[path.cutter_changes[0].first].tool, 1);
+  EXPECT_EQ(path.segments[path.cutter_changes[0].first - 1].tool, 0);
+  const std::string svg = render_svg(path, default_settings(), PreviewOptions{});
+  EXPECT_NE(svg.find(">cutters 0.125 in, 0.5 in from line 7</text>"), std::string::npos) << svg;
+}
+
+TEST(Toolpath, AToolChangeMacroThatSetsVcChangesTheCutter) {
+  // &Tool = n, then C9: this shop's C9 sets the cutter of each tool.
+  const fs::path macros = fs::temp_directory_path() / (std::to_string(getpid()) + "_macros");
+  fs::create_directories(macros);
+  std::ofstream(macros / "C9.sbp") << "IF &Tool = 2 THEN VC, 0.5\nIF &Tool = 1 THEN VC, 0.25\n";
+  TempPart f("toolchange.sbp", "&Tool = 1\nC9\nJZ, 0.5\nMX, 1\n&Tool = 2\nC9\nMX, 2\n");
+  ToolpathOptions topts;
+  topts.job.interpreter.macro_dir = macros.string();
+  const Toolpath path = load_toolpath(f.path(), default_settings(), topts);
+  fs::remove_all(macros);
+  ASSERT_FALSE(path.has_errors()) << format(path.violations.front());
+  ASSERT_EQ(path.cutter_changes.size(), 1u);
+  EXPECT_DOUBLE_EQ(path.cutter_changes[0].diameter, 0.5);
+  EXPECT_EQ(path.cutter_changes[0].line, 7u);
+}
+
+TEST(Render, ThePngHasAScaleBarAndTheDimensions) {
+  // The SVG's scale bar test's picture: 2 in, 135 pixels, from X 8 to 143 at Y 592.
+  TempPart f("grooves.sbp", kGrooves);
+  const Settings s = default_settings();
+  const Toolpath path = load_toolpath(f.path(), s);
+  PreviewOptions opts;
+  opts.table = false;
+  opts.stock = Eigen::AlignedBox3f(Eigen::Vector3f(0, 0, -0.5f), Eigen::Vector3f(10, 8, 0));
+  const Image image = render_lines(path, s, opts);
+  for (int x = 8; x <= 143; x += 5) EXPECT_EQ(image.at(x, 592), palette::text) << x;
+  EXPECT_EQ(image.at(8, 587), palette::text);    // its ends rise 6 pixels
+  EXPECT_EQ(image.at(143, 587), palette::text);
+  EXPECT_EQ(image.at(75, 587), palette::background);
+  auto text_pixels = [&](int x0, int y0, int x1, int y1) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) n += image.at(x, y) == palette::text;
+    return n;
+  };
+  // "2 in" right of the bar, on its line: the 2's 13 pixels and the i's and n's.
+  EXPECT_GT(text_pixels(147, 585, 147 + 4 * 6, 592), 25);
+  // The dimensions at the top left: "X 0.0000 to 5.0000 (5.0000 in), Y ...", 7 pixels tall.
+  EXPECT_GT(text_pixels(8, 8, 400, 15), 300);
+  EXPECT_EQ(text_pixels(8, 16, 400, 24), 0);  // one line: it fits 800 pixels
+  // The X: its corners at (8, 8) and (12, 8).
+  EXPECT_EQ(image.at(8, 8), palette::text);
+  EXPECT_EQ(image.at(12, 8), palette::text);
+  // Without them (a figure): no text.
+  opts.dimensions = false;
+  const Image plain = render_lines(path, s, opts);
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) ASSERT_NE(plain.at(x, y), palette::text);
+}
 
 TEST(Toolpath, SpindleSpeedsAreListedWithTheirSegment) {
   TempPart f("tr.sbp", "TR, 12000\nMX, 1\nTR, 18000\nMX, 2\n");

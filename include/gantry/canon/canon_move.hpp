@@ -78,6 +78,21 @@ struct InputTrigger {
   bool instant = false;
 };
 
+// What a file has set that changes how its moves are drawn, not how they run: the cutter
+// (VC, an &Tool + C9 tool change, G-code's M6), the units its numbers are written in (VD,
+// G-code's G20/G21) and the spindle speed (TR, S). A preview follows it (docs/preview.md).
+struct DrawingState {
+  double cutter_diameter = 0;        // VC's, in `units`
+  Units units = Units::Inches;       // of the canonical moves (VD's linear units)
+  Units file_units = Units::Inches;  // the file's numbers (VD; G20/G21 in a G-code file)
+  double spindle_rpm = 0;            // TR's
+  int line = 0;                      // the statement it was seen at (not compared)
+  bool same(const DrawingState& o) const {
+    return cutter_diameter == o.cutter_diameter && units == o.units &&
+           file_units == o.file_units && spindle_rpm == o.spindle_rpm;
+  }
+};
+
 // Receives canonical moves in order. `flush` marks the end of the stream: nothing more will
 // come, so everything buffered must be completed. The stream is one-way: what the live
 // machine answers (where the tool is, its inputs, the keypad) reaches the interpreter through
@@ -90,6 +105,9 @@ class MotionSink {
   // New values (VR ramps, VU steps per unit, VI channels) for the moves that follow; the
   // sender has brought the machine to rest just before (a Stop move).
   virtual void settings_changed(const Settings&) {}
+  // The drawing state, before the first move and before each move it changed for (and at a
+  // TR); nothing moves or rests for it. Only a preview takes it.
+  virtual void drawing_changed(const DrawingState&) {}
 };
 
 }  // namespace gantry

@@ -78,6 +78,9 @@ class CommandContext {
   void change_units(Units to, ValueScope scope, const SourceLoc& loc);
   // CN, C<n>: runs macro file number n (C<n>.sbp or macro_<n>.sbp) once this command returns.
   void call_macro(int number, const SourceLoc& loc);
+  // G-code's G20/G21 (nullopt: a new file, VD's units again): the units the file's numbers
+  // are in, for a preview to draw them in (DrawingState::file_units).
+  void set_file_units(std::optional<Units> u) { file_units_ = u; }
   // SM (and the end of a run): back from SP's preview to where the tool is.
   void end_preview();
   // SL: every &variable is deleted.
@@ -253,6 +256,8 @@ class CommandContext {
   // Every line, arc and dwell goes to the sink through here: a move of the axis MI moves is
   // refused, and an axis MI rested starts again first; the run's first motion is warned of.
   void emit(CanonMove& m);
+  // Tells the sink the drawing state when it changed since last told (DrawingState).
+  void note_drawing(const SourceLoc& loc);
   // SW and SO 4,-1..-3: before the run's first motion, switch 4 comes on and the machine
   // waits the warning time. end_motion_warning, at the run's end, switches it off again.
   void warn_before_motion(const SourceLoc& loc);
@@ -271,6 +276,8 @@ class CommandContext {
   bool checking_ = false;              // a check: a refused move still changes the location
   bool switch4_auto_ = false;          // ... and switch 4 came on with the warning
   bool spindle_speed_warned_ = false;  // TR with no speed output: this run was told once
+  std::optional<DrawingState> drawn_;  // the drawing state the sink was last told
+  std::optional<Units> file_units_;    // a G-code file's G20/G21 (none: VD's units)
 };
 
 }  // namespace gantry

@@ -35,6 +35,7 @@ inline constexpr Rgb jog{150, 150, 150};       // dashed
 inline constexpr Rgb keypad{150, 40, 190};     // a keypad jog
 inline constexpr Rgb start{34, 170, 34};       // the start and end dots
 inline constexpr Rgb end{204, 34, 34};
+inline constexpr Rgb text{0, 0, 0};            // the scale bar and the dimensions
 }  // namespace palette
 
 // Machine frame to picture: x right and y down in pixels, and a depth that grows toward
@@ -66,8 +67,8 @@ struct PreviewOptions {
   // The block of stock (machine frame, the file's units): its top rectangle is drawn and
   // the view fits it too; its size and origin are listed (docs/preview.md, "Stock").
   std::optional<Eigen::AlignedBox3f> stock;
-  // SVG: a scale bar (bottom left) and the path's bounding dimensions (top left), in the
-  // file's units. Figures for the docs leave them out.
+  // A scale bar (bottom left) and the path's bounding dimensions (top left), in the file's
+  // units; the SVG also lists the cutters. Figures for the docs leave them out.
   bool dimensions = true;
 };
 

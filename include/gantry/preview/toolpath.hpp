@@ -23,14 +23,19 @@ namespace gantry {
 // Cut: a move at move speed (M*, C*); Jog: at jog speed (J*); Keypad: a keypad jog.
 enum class PathKind : std::uint8_t { Cut, Jog, Keypad };
 
-// One straight piece of the path. It ends at (x, y, z) (machine frame, profile units) and
+// One straight piece of the path. It ends at (x, y, z) (machine frame, Toolpath::units) and
 // starts where the previous one ended (the first at Toolpath::start). `line`: the source
 // line of the statement that made it (in the file that statement is in: FP and C<n> files
-// number their own lines).
+// number their own lines). `tool`: the cutter it was cut with (0 the one at the start, k
+// cutter_changes[k - 1]; 255 for the 255th change and later); `units`: the units the file
+// wrote its numbers in when it was made (Units as a byte). Both fill bytes the struct has
+// anyway: it stays 20 bytes.
 struct ToolpathSegment {
   float x, y, z;
   std::uint32_t line;
   PathKind kind;
+  std::uint8_t tool = 0;
+  std::uint8_t units = 0;
 };
 
 struct Toolpath {
@@ -44,8 +49,6 @@ struct Toolpath {
   // the tool stays where it was, as it would on the machine.
   std::vector<Diagnostic> violations;
   bool cancelled = false;  // ToolpathOptions::cancel stopped the load part-way
-  // Where the cutter changed (G-code's M6 to a tool of the table with a diameter, which VC
-  // follows): from segment `first` on, the cutter is `diameter` across.
   // Where the cutter changed (G-code's M6, a VC in the file, an &Tool + C9 tool change):
   // from segment `first` on, the cutter is `diameter` across; `line` is the statement at
   // which it changed (the next move's line).
@@ -55,6 +58,7 @@ struct Toolpath {
     std::uint32_t line = 0;
   };
   std::vector<CutterChange> cutter_changes;
+  double cutter_diameter = 0;  // the cutter at the start (VC's), in `units`
   // Spindle speeds (TR, G-code's S): from segment `first` on, `rpm`.
   struct SpindleChange {
     std::size_t first;
@@ -69,8 +73,9 @@ struct Toolpath {
     double end_s;
   };
   std::vector<TimeMark> timeline;
-  // The units of the coordinates: the profile's (the interpreter's canonical moves stay in
-  // them whatever VD or G20/G21 the file sets; following the file's needs an interp hook).
+  // The units of the coordinates, the bounds and the cutter diameters: those the file left
+  // in force (VD, G-code's G20/G21), or the profile's. A file that changes units part-way
+  // has its earlier segments converted, so the whole path is in one unit.
   Units units = Units::Inches;
   // Rotary axes wrapped on a cylinder (VD's rotary unit degrees; load_toolpath sets them):
   // A turns about the X axis (a ShopBot indexer lies along X), B about the Y axis, each
