@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -125,6 +126,14 @@ class GuiWindow : public ::testing::Test {
     return im;
   }
 
+  // The documentation's figures are screenshots of passing tests: with GANTRY_FIGURES set
+  // (scripts/figures.sh), a test's screenshot is copied there under the figure's name.
+  void figure(const std::string& shot, const std::string& name) {
+    const char* dir = std::getenv("GANTRY_FIGURES");
+    if (dir == nullptr || HasFailure()) return;
+    fs::copy_file(dir_ / shot, fs::path(dir) / name, fs::copy_options::overwrite_existing);
+  }
+
   static bool has_line(const json& log, const std::string& text) {
     for (const json& l : log)
       if (l.get<std::string>().find(text) != std::string::npos) return true;
@@ -201,6 +210,7 @@ TEST_F(GuiWindow, ABareCodeOpensItsFillInSheet) {
   for (const json& f : refused["sheet"]["fields"]) errors += f["error"].get<std::string>();
   EXPECT_NE(errors.find("40"), std::string::npos) << errors;
   EXPECT_EQ(refused["position"], json({7, 0, 0, 0, 0, 0}));
+  figure("sheet.png", "console_sheet.png");
 }
 
 TEST_F(GuiWindow, TheValuesWindowEditsThroughTheCommandsSheets) {
@@ -762,3 +772,22 @@ TEST_F(GuiWindow, TheLightThemeHasLightBackgroundsAndDarkText) {
 
 }  // namespace
 
+
+// The window as the documentation shows it (docs/figures/console_window.png): the demo part
+// run to its end, with the listing, the offsets and the macros open.
+TEST_F(GuiWindow, TheDocumentationsPictureOfTheWindow) {
+  fs::create_directories(dir_ / "macros");
+  std::ofstream(dir_ / "macros/surface.sbp") << "MX, 2\n";
+  ASSERT_EQ(gui("wait idle\nclick Offsets\nclick Macros\nclick Start\nwait idle\nwait frames 3\n"
+                "dump s.json\nscreenshot window.png\n",
+                fmt::format("'{}/parts/demo.sbp' --size 1280x800 --macros macros", GANTRY_SOURCE_DIR)),
+            0)
+      << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["state"], "idle");
+  EXPECT_TRUE(s["offsets_window"]);
+  EXPECT_GT(s["listing"]["lines"].get<int>(), 30);
+  EXPECT_EQ(s["progress"]["line"], s["progress"]["lines"]);
+  EXPECT_GT(image("window.png").count(kPx0, kPy0, kPx1, kPy1, orange), 300);
+  figure("window.png", "console_window.png");
+}
