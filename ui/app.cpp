@@ -272,6 +272,9 @@ void App::run_line(const std::string& typed) {
       }
       return;
     }
+    case Word::Confirm:
+      return log(LogLine::Info, m_.memory ? m_.memory->confirm()
+                                          : "nothing to confirm: no machine state is kept");
     case Word::Keypad:
       kp_focus_ = true;
       ImGui::SetWindowFocus("Keypad");
@@ -577,8 +580,7 @@ void App::readout_window() {
                           why->c_str());
       ImGui::SameLine();
       if (button("Confirm", at_rest())) {
-        m_.memory->confirm();
-        log(LogLine::Info, "the position is confirmed: the tool is where the readout says");
+        log(LogLine::Info, m_.memory->confirm());
       }
     } else {
       ImGui::TextDisabled("card: %s", opt_.card.c_str());
@@ -640,7 +642,7 @@ void App::offsets_window() {
   panel_top_[1] = h;
   if (ImGui::Begin("Work offsets", &show_offsets_, kFixed)) {
     const std::string code = offsets_panel(
-        offset_rows(position(status_), modal_, axes, table_), units_name(settings_.units),
+        session::offset_rows(position(status_), modal_, axes, table_), units_name(settings_.units),
         at_rest(), [this](const std::string& label, bool enabled) {
           return button(label.c_str(), enabled);
         });
@@ -1245,7 +1247,7 @@ nlohmann::json App::state() const {
   s["offsets_window"] = show_offsets_;
   s["offsets"] = json::array();
   const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
-  for (const OffsetRow& r : offset_rows(p, modal_, axes, table_))
+  for (const OffsetRow& r : session::offset_rows(p, modal_, axes, table_))
     s["offsets"].push_back({{"axis", std::string(1, r.axis)},
                             {"machine", shown(r.table)},
                             {"offset", shown(r.offset)},

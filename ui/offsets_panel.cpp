@@ -6,19 +6,6 @@
 
 namespace gantry::ui {
 
-std::vector<OffsetRow> offset_rows(const Vec6& work, const ModalState& m, int axes,
-                                   const CommandTable& table) {
-  static const char kAxes[] = "XYZABC";
-  std::vector<OffsetRow> rows;
-  for (int i = 0; i < axes && i < kAxisCount; ++i) {
-    const double offset = m.zero[i] + m.applied_offset[i];
-    const std::string code = fmt::format("Z{}", kAxes[i]);
-    rows.push_back(
-        {kAxes[i], work[i] + offset, offset, work[i], table.find(code) ? code : std::string()});
-  }
-  return rows;
-}
-
 std::string offsets_panel(const std::vector<OffsetRow>& rows, const char* units, bool can_zero,
                           const std::function<bool(const std::string&, bool)>& button) {
   std::string run;

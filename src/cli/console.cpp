@@ -337,6 +337,10 @@ void Console::show_question(const std::string& text, const std::string& prompt) 
   editor_.start(prompt);
 }
 
+std::string Console::confirm() {
+  return (memory_ ? memory_->confirm() : "nothing to confirm: no machine state is kept") + "\n";
+}
+
 void Console::handle_line(const std::string& typed) {
   using Word = session::TypedLine::Word;
   const session::TypedLine t = session::read_typed_line(typed, single_step_);
@@ -356,6 +360,8 @@ void Console::handle_line(const std::string& typed) {
       if (o) snapshot();
       return write_out(o ? "E-stop acknowledged: the machine is ready\n" : o.reason + "\n");
     }
+    case Word::Confirm:
+      return write_out(confirm());
     case Word::Keypad:
       return enter_keypad(t.message);
     case Word::Step:
@@ -436,6 +442,10 @@ int Console::piped() {
     }
     if (t.word == Word::Status) {
       write_out(status_report());
+      continue;
+    }
+    if (t.word == Word::Confirm) {
+      write_out(confirm());
       continue;
     }
     if (t.word == Word::Ack) {

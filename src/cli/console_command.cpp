@@ -75,6 +75,7 @@ int run_console(const ConsoleArgs& a) {
   } stop_first{signals};
 
   console::Console console(controller, io, live->values, a, live->real_time, signal);
+  console.keep_state(live->memory.get());
   if (!interactive) return console.piped();
   const std::string banner = fmt::format(
       "gantry console: profile \"{}\" on the {}{}\nhelp lists the keys; quit leaves.\n",

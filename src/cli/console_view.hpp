@@ -15,6 +15,7 @@
 #include "gantry/machine/controller.hpp"     // Controller
 #include "gantry/session/live_machine.hpp"   // ValuesKeeper
 #include "gantry/session/live_position.hpp"  // LivePosition
+#include "gantry/session/machine_memory.hpp" // MachineMemory
 #include "gantry/session/operator_io.hpp"    // OperatorMailbox, Question
 #include "line_editor.hpp"                   // Key, LineEditor
 
@@ -38,6 +39,8 @@ class Console {
 
   int interactive(const std::string& banner);
   int piped();
+  // The machine state kept across sessions, for CONFIRM (none: nothing to confirm).
+  void keep_state(session::MachineMemory* memory) { memory_ = memory; }
 
  private:
   enum class Mode { Prompt, Job, Keypad };
@@ -47,6 +50,7 @@ class Console {
   std::string readout(const ControllerStatus& st) const;
   std::string help(const std::string& arg) const;
   std::string status_report() const;
+  std::string confirm();
   std::string refusal(const std::string& prefix, const std::string& line, const Outcome& o,
                       bool echo_first) const;
   std::string ended(const ControllerStatus& st) const;
@@ -78,6 +82,7 @@ class Console {
   Controller& c_;
   OperatorMailbox& io_;
   session::ValuesKeeper& values_;
+  session::MachineMemory* memory_ = nullptr;
   const ConsoleArgs& args_;
   bool realtime_;
   std::atomic<int>& signal_;

@@ -26,6 +26,8 @@ TypedLine read_typed_line(std::string_view typed, bool single_step) {
     t.word = TypedLine::Word::Status;
   } else if (word == "ACK" && bare) {
     t.word = TypedLine::Word::Ack;
+  } else if (word == "CONFIRM" && bare) {
+    t.word = TypedLine::Word::Confirm;
   } else if (word == "K" && bare) {
     t.word = TypedLine::Word::Keypad;
   } else if (word == "STEP" &&

@@ -269,13 +269,17 @@ SavedMachine MachineMemory::state() const {
   return now_;
 }
 
-void MachineMemory::confirm() {
+std::string MachineMemory::confirm() {
+  bool was;
   {
     std::lock_guard lock(m_);
+    was = now_.confirmed;
     now_.confirmed = true;
     now_.why.clear();
   }
   save();
+  return was ? "the position was confirmed already"
+             : "the position is confirmed: the tool is where the readout says";
 }
 
 }  // namespace gantry::session

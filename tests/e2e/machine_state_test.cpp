@@ -218,3 +218,21 @@ TEST(MachineState, NoLogLineWhenVdTurnsItOff) {
 }
 
 }  // namespace
+
+// The console's CONFIRM vouches for a restored position as `gantry state --confirm` does.
+TEST(MachineState, TheConsolesConfirmMarksTheRestoredPositionConfirmed) {
+  Sessions s;
+  fs::create_directories(s.state().parent_path());
+  std::ofstream(s.state()) << "motion = \"moving\"\nconfirmed = true\nunits = \"in\"\n"
+                              "position = { x = 3.0, y = 2.0 }\n";
+  const auto console = s.gantry("console --card sim --realtime", "confirm\nconfirm\n");
+  ASSERT_EQ(console.exit_code, 0) << console.err << console.out;
+  EXPECT_NE(console.out.find("the position is confirmed: the tool is where the readout says"),
+            std::string::npos)
+      << console.out;
+  EXPECT_NE(console.out.find("the position was confirmed already"), std::string::npos)
+      << console.out;
+  const std::string state = slurp(s.state());
+  EXPECT_NE(state.find("confirmed = true"), std::string::npos) << state;
+  EXPECT_EQ(s.gantry("state").out.find("UNCONFIRMED"), std::string::npos);
+}

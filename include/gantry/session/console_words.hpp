@@ -16,6 +16,7 @@ struct TypedLine {
     Ack,     // ACK: the E-stop acknowledged
     Keypad,  // K, or SK [, message]
     Step,    // STEP [ON|OFF]: single step
+    Confirm,  // CONFIRM: the restored position is right (the machine memory)
   };
   Word word = Word::None;
   std::string line;      // trimmed (empty: nothing to do)

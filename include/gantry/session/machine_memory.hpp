@@ -70,7 +70,8 @@ class MachineMemory {
   }
   const std::string& path() const { return path_; }
   // The operator's confirmation: the position is right (SB3: "keep the location").
-  void confirm();
+  // Returns what to tell the operator (the console and the window say the same).
+  std::string confirm();
 
  private:
   void activity(const Controller::Activity& a);
