@@ -251,7 +251,8 @@ std::shared_ptr<const Script> load_part_file(const std::string& file) {
 }
 
 // False (after saying why) when the profile or an --input is malformed. `estimate`: the
-// check also plans the motion and gives the cycle time, answering no question itself.
+// check also plans the motion and gives the cycle time, as the preview does: an operator
+// answers at the run (a wait for them counts no time) and an INPUT takes its default.
 // Nobody is at a check: on the simulated card, its machine answers PAUSE UNTIL or nothing does.
 // `control`: stops the check from another thread (a signal).
 bool load_and_check(const std::string& file, const std::string& settings_path,
@@ -264,7 +265,7 @@ bool load_and_check(const std::string& file, const std::string& settings_path,
   if (settings.card.type == "sim")
     out.opt.interpreter.unattended_inputs =
         unattended_inputs(simulated_world(settings), settings.inputs);
-  if (estimate) out.opt.operator_present = false;  // --yes and --input answer
+  if (estimate) out.opt.input_defaults = true;  // --input still answers first
   if (control) out.opt.stop = &control->stopped();
   out.script = load_part_file(file);
   std::optional<CycleTimer> timer;

@@ -148,6 +148,22 @@ TEST_F(PreviewCli, ThePreviewGoesOnPastInputWithItsDefault) {
   EXPECT_EQ(nlohmann::json::parse(answered.out)["violations"].size(), 0u) << answered.out;
 }
 
+// Issue 25: `estimate` refused a file that `preview` estimated (FabMo's macro 211: 742 s),
+// because a PAUSE waits for the operator. Both count the motion, not the waits, and an INPUT
+// takes its default: the two give one figure.
+TEST_F(PreviewCli, EstimateGoesOnPastPausesAndInputsAsThePreviewDoes) {
+  const std::string file = write(
+      "waits.sbp", "MX, 1\nPAUSE\n&D = 2\nINPUT \"How far\" : &D\nMX, &D\nMY, 3\n");
+  const Result preview = gantry(fmt::format("preview {} --json -o {}", file, path("w.png")));
+  ASSERT_EQ(preview.exit_code, 0) << preview.err;
+  const double previewed = nlohmann::json::parse(preview.out)["estimated_time_s"].get<double>();
+  EXPECT_GT(previewed, 1.0);
+  const Result estimate = gantry(fmt::format("estimate {} --json", file));
+  ASSERT_EQ(estimate.exit_code, 0) << estimate.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(estimate.out)["estimated_time_s"].get<double>(),
+                   previewed);
+}
+
 TEST_F(PreviewCli, MissingAndBadFilesGiveLocatedErrors) {
   const Result missing = gantry("preview parts/nosuch.sbp -o " + path("n.png"));
   EXPECT_EQ(missing.exit_code, 1);
