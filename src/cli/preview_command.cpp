@@ -169,7 +169,7 @@ int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions
                    "the material map shows uncut stock\n",
                    stock->max().z());
       const HeightMap map = carve(path, cut, *stock, std::max(opts.width, opts.height));
-      written = write_png(a.output, render_material(map, opts));
+      written = write_png(a.output, render_material(map, opts, &path));
     } else if (ext == "png") {
       written = write_png(a.output, render_lines(path, settings, opts));
     } else {

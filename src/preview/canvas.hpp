@@ -9,7 +9,8 @@
 #include <utility>  // move
 #include <vector>
 
-#include "gantry/preview/render.hpp"  // Image, Rgb
+#include "gantry/preview/render.hpp"    // Image, Rgb, Projection
+#include "gantry/preview/toolpath.hpp"  // Toolpath
 
 namespace gantry::preview_detail {
 
@@ -39,5 +40,8 @@ class Canvas {
   Image image_;
   std::vector<float> depth_;  // for triangles only: the nearest drawn so far per pixel
 };
+
+// A scale bar (bottom left) and the path's bounding dimensions (top left), in its units.
+void draw_dimensions(Canvas& canvas, const Projection& proj, const Toolpath& path);
 
 }  // namespace gantry::preview_detail

@@ -170,7 +170,7 @@ Projection material_projection(const HeightMap& map, const PreviewOptions& opts)
   return Projection(opts.view, stock_box(map), opts.width, opts.height);
 }
 
-Image render_material(const HeightMap& map, const PreviewOptions& opts) {
+Image render_material(const HeightMap& map, const PreviewOptions& opts, const Toolpath* path) {
   const Projection proj = material_projection(map, opts);
   preview_detail::Canvas canvas(proj.width(), proj.height(), palette::background);
   // Light from the viewer's upper left; the colour goes from light wood at the top to dark
@@ -215,6 +215,7 @@ Image render_material(const HeightMap& map, const PreviewOptions& opts) {
     quad(vertex(map, i, j, map.bottom), vertex(map, i, j + 1, map.bottom),
          vertex(map, i, j + 1, map.at(i, j + 1)), vertex(map, i, j, map.at(i, j)));
   }
+  if (opts.dimensions && path) preview_detail::draw_dimensions(canvas, proj, *path);
   return canvas.take();
 }
 

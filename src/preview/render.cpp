@@ -236,6 +236,33 @@ Rgb Image::at(int x, int y) const {
   return {p[0], p[1], p[2]};
 }
 
+// The SVG's scale bar (bottom left) and bounding dimensions (top left), in the pixel font:
+// its pixels twice as big from 1000 pixels up.
+void preview_detail::draw_dimensions(Canvas& canvas, const Projection& proj, const Toolpath& path) {
+  constexpr Rgb black = palette::text;
+  const int k = std::max(1, std::min(proj.width(), proj.height()) / 500);
+  const double bar = bar_length(proj);
+  const int bar_px = static_cast<int>(std::lround(bar * proj.pixels_per_unit()));
+  const int y = proj.height() - 8;
+  const Eigen::Vector2f p0(8, static_cast<float>(y - 6)), p1(8, static_cast<float>(y)),
+      p2(static_cast<float>(8 + bar_px), static_cast<float>(y)),
+      p3(static_cast<float>(8 + bar_px), static_cast<float>(y - 6));
+  canvas.line(p0, p1, black, 1);
+  canvas.line(p1, p2, black, 1);
+  canvas.line(p2, p3, black, 1);
+  canvas.text(12 + bar_px, y - 7 * k, bar_label(bar, path.units), black, k);
+  if (!path.bounds.isEmpty()) {
+    const std::array<std::string, 3> dims = dimension_texts(path);
+    const std::string one = dims[0] + ", " + dims[1] + ", " + dims[2];
+    const int advance = kGlyphAdvance * k;
+    if (8 + static_cast<int>(one.size()) * advance <= proj.width())
+      canvas.text(8, 8, one, black, k);
+    else
+      for (int i = 0; i < 3; ++i) canvas.text(8, 8 + i * 10 * k, dims[i], black, k);
+  }
+
+}
+
 Image render_lines(const Toolpath& path, const Settings& settings, const PreviewOptions& opts) {
   const std::vector<Style> style = styles(path, opts.leading_jogs);
   const Projection proj = line_projection(path, style, settings, opts);
@@ -264,31 +291,7 @@ Image render_lines(const Toolpath& path, const Settings& settings, const Preview
     canvas.dot(at(ends->first), 3 * w, palette::start);
     canvas.dot(at(ends->second), 2 * w, palette::end);
   }
-  if (opts.dimensions) {
-    // The SVG's scale bar (bottom left) and bounding dimensions (top left), in the pixel
-    // font: its pixels twice as big from 1000 pixels up.
-    constexpr Rgb black = palette::text;
-    const int k = std::max(1, std::min(proj.width(), proj.height()) / 500);
-    const double bar = bar_length(proj);
-    const int bar_px = static_cast<int>(std::lround(bar * proj.pixels_per_unit()));
-    const int y = proj.height() - 8;
-    const Eigen::Vector2f p0(8, static_cast<float>(y - 6)), p1(8, static_cast<float>(y)),
-        p2(static_cast<float>(8 + bar_px), static_cast<float>(y)),
-        p3(static_cast<float>(8 + bar_px), static_cast<float>(y - 6));
-    canvas.line(p0, p1, black, 1);
-    canvas.line(p1, p2, black, 1);
-    canvas.line(p2, p3, black, 1);
-    canvas.text(12 + bar_px, y - 7 * k, bar_label(bar, path.units), black, k);
-    if (!path.bounds.isEmpty()) {
-      const std::array<std::string, 3> dims = dimension_texts(path);
-      const std::string one = dims[0] + ", " + dims[1] + ", " + dims[2];
-      const int advance = preview_detail::kGlyphAdvance * k;
-      if (8 + static_cast<int>(one.size()) * advance <= proj.width())
-        canvas.text(8, 8, one, black, k);
-      else
-        for (int i = 0; i < 3; ++i) canvas.text(8, 8 + i * 10 * k, dims[i], black, k);
-    }
-  }
+  if (opts.dimensions) preview_detail::draw_dimensions(canvas, proj, path);
   return canvas.take();
 }
 

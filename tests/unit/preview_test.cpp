@@ -382,6 +382,26 @@ TEST(Material, DemoCutIsDarkerThanItsStock) {
             luminance(image.at(static_cast<int>(stock.x()), static_cast<int>(stock.y()))));
 }
 
+// Issue 25: the material picture had no scale; it has the line picture's scale bar and
+// dimensions (black text on the light background), and none without the path.
+TEST(Material, ThePictureHasTheScaleBarAndTheDimensions) {
+  const Toolpath path = load_toolpath((kParts / "demo.sbp").string(), default_settings());
+  const HeightMap map = carve(path, Cutter{}, 0, 400);
+  PreviewOptions opts;
+  auto text_pixels = [](const Image& image, int x0, int y0, int x1, int y1) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) n += image.at(x, y) == palette::text;
+    return n;
+  };
+  const Image with = render_material(map, opts, &path);
+  const int h = with.height;
+  EXPECT_GT(text_pixels(with, 8, 8, 400, 15), 300);      // "X 0.0000 to ..." at the top left
+  EXPECT_GT(text_pixels(with, 8, h - 16, 200, h), 20);  // the bar and its label
+  const Image without = render_material(map, opts);
+  EXPECT_EQ(text_pixels(without, 0, 0, without.width, without.height), 0);
+}
+
 // Issue 25: stock, tool changes, units and play ------------------------------------------
 
 TEST(Material, StockIsTheBlockGivenNotFittedToTheCuts) {

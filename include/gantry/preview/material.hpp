@@ -44,7 +44,10 @@ HeightMap carve(const Toolpath& path, const Cutter& cutter, const Eigen::Aligned
 
 // The carved stock, lit from the viewer's upper left, darker where deeper; the view fits
 // the stock block.
-Image render_material(const HeightMap& map, const PreviewOptions& opts);
+// With `path`, the scale bar and its dimensions as the line picture has them
+// (opts.dimensions).
+Image render_material(const HeightMap& map, const PreviewOptions& opts,
+                      const Toolpath* path = nullptr);
 Projection material_projection(const HeightMap& map, const PreviewOptions& opts);
 
 }  // namespace gantry
