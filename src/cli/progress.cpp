@@ -4,6 +4,9 @@
 #include <fmt/format.h>  // the line
 #include <unistd.h>      // isatty
 
+#include <algorithm>  // clamp
+#include <cmath>      // lround
+
 namespace gantry {
 
 StatusLine::StatusLine(std::FILE* stream)
@@ -42,7 +45,8 @@ StatusLine::Hold::~Hold() {
 
 std::string progress_line(const session::RunProgress& p) {
   constexpr int kWidth = 20;
-  const int filled = static_cast<int>(p.fraction * kWidth);
+  // Rounded as the percent beside it is, so "5 %" never stands beside an empty bar.
+  const int filled = std::clamp(static_cast<int>(std::lround(p.fraction * kWidth)), 0, kWidth);
   return fmt::format("[{:#<{}}{:<{}}] {:3.0f} %  line {} of {}  {}", "", filled, "",
                      kWidth - filled, 100 * p.fraction, p.line, p.lines, p.times());
 }
