@@ -341,6 +341,14 @@ TEST(Material, SlopedCutsAreDeepAtTheirLowEndOnly) {
   EXPECT_EQ(*map.height(0.8f, 1), 0.0f);  // behind the start: uncut
 }
 
+// The scale bar's and the dimensions' pixels (palette::text) in [x0, x1) x [y0, y1).
+int text_pixels(const Image& image, int x0, int y0, int x1, int y1) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) n += image.at(x, y) == palette::text;
+  return n;
+}
+
 float luminance(Rgb c) {
   return 0.299f * c[0] + 0.587f * c[1] + 0.114f * c[2];
 }
@@ -388,12 +396,6 @@ TEST(Material, ThePictureHasTheScaleBarAndTheDimensions) {
   const Toolpath path = load_toolpath((kParts / "demo.sbp").string(), default_settings());
   const HeightMap map = carve(path, Cutter{}, 0, 400);
   PreviewOptions opts;
-  auto text_pixels = [](const Image& image, int x0, int y0, int x1, int y1) {
-    int n = 0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) n += image.at(x, y) == palette::text;
-    return n;
-  };
   const Image with = render_material(map, opts, &path);
   const int h = with.height;
   EXPECT_GT(text_pixels(with, 8, 8, 400, 15), 300);      // "X 0.0000 to ..." at the top left
@@ -533,17 +535,11 @@ TEST(Render, ThePngHasAScaleBarAndTheDimensions) {
   EXPECT_EQ(image.at(8, 587), palette::text);    // its ends rise 6 pixels
   EXPECT_EQ(image.at(143, 587), palette::text);
   EXPECT_EQ(image.at(75, 587), palette::background);
-  auto text_pixels = [&](int x0, int y0, int x1, int y1) {
-    int n = 0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) n += image.at(x, y) == palette::text;
-    return n;
-  };
   // "2 in" right of the bar, on its line: the 2's 13 pixels and the i's and n's.
-  EXPECT_GT(text_pixels(147, 585, 147 + 4 * 6, 592), 25);
+  EXPECT_GT(text_pixels(image, 147, 585, 147 + 4 * 6, 592), 25);
   // The dimensions at the top left: "X 0.0000 to 5.0000 (5.0000 in), Y ...", 7 pixels tall.
-  EXPECT_GT(text_pixels(8, 8, 400, 15), 300);
-  EXPECT_EQ(text_pixels(8, 16, 400, 24), 0);  // one line: it fits 800 pixels
+  EXPECT_GT(text_pixels(image, 8, 8, 400, 15), 300);
+  EXPECT_EQ(text_pixels(image, 8, 16, 400, 24), 0);  // one line: it fits 800 pixels
   // The X: its corners at (8, 8) and (12, 8).
   EXPECT_EQ(image.at(8, 8), palette::text);
   EXPECT_EQ(image.at(12, 8), palette::text);
