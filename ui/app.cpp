@@ -19,12 +19,13 @@
 #include "gantry/session/console_help.hpp"   // help_answer, window_status, keys_help
 #include "gantry/session/console_words.hpp"  // read_typed_line
 #include "gantry/session/feed_override.hpp"  // stepped_feed_override
+#include "gantry/session/part_files.hpp"     // user_part_files
 #include "gantry/session/readout_lines.hpp"  // spindle_text
 #include "gantry/session/refusal.hpp"        // refusal_entries
 #include "gantry/session/run_progress.hpp"   // run_progress
 #include "gantry/session/source_place.hpp"   // kConsoleName
 #include "gantry/interp/file_system.hpp"     // user_macro_folder
-#include "macro_panel.hpp"                   // macro_panel, user_part_files
+#include "macro_panel.hpp"                   // macro_panel
 #include "offsets_panel.hpp"                 // offset_rows, offsets_panel
 #include "theme.hpp"                         // digits_font, palette
 
@@ -273,8 +274,7 @@ void App::run_line(const std::string& typed) {
       return;
     }
     case Word::Confirm:
-      return log(LogLine::Info, m_.memory ? m_.memory->confirm()
-                                          : "nothing to confirm: no machine state is kept");
+      return log(LogLine::Info, session::confirm_position(m_.memory));
     case Word::Keypad:
       kp_focus_ = true;
       ImGui::SetWindowFocus("Keypad");
@@ -654,7 +654,7 @@ void App::offsets_window() {
 // The macro buttons: each runs the line typing it runs (C2, or FP with the file).
 void App::macros_window() {
   const std::string folder = opt_.macros.empty() ? user_macro_folder() : opt_.macros;
-  if (!show_macros_was_) macro_files_ = user_part_files(folder);  // listed again at each opening
+  if (!show_macros_was_) macro_files_ = session::user_part_files(folder);  // listed again at each opening
   const float row = ImGui::GetFrameHeightWithSpacing();
   const float h = ImGui::GetFrameHeight() + 2 * ImGui::GetStyle().WindowPadding.y + 2 * row +
                   2 * ImGui::GetTextLineHeightWithSpacing() +
