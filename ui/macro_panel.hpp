@@ -12,10 +12,7 @@ namespace gantry::ui {
 // The custom cuts with a button.
 inline constexpr int kMacroCuts[] = {2, 3, 6, 7, 9};
 
-// The part files (.sbp) in `folder`, sorted by name; none when it is missing.
-std::vector<std::string> user_part_files(const std::string& folder);
-
-// Draws the buttons in the current window. `button(label, enabled)` draws a button as the
+// Draws the buttons in the current window (`files`: session::user_part_files). `button(label, enabled)` draws a button as the
 // window does (a script may click it by its label). Returns the line to run ("C2",
 // "FP, \"...\"") or "".
 std::string macro_panel(const std::vector<std::string>& files, const std::string& folder,

@@ -338,39 +338,68 @@ void Console::show_question(const std::string& text, const std::string& prompt) 
 }
 
 std::string Console::confirm() {
-  return (memory_ ? memory_->confirm() : "nothing to confirm: no machine state is kept") + "\n";
+  return session::confirm_position(memory_) + "\n";
+}
+
+// The console's words, typed at the terminal or piped in. Piped, a word that needs a terminal
+// (the keypad, STEP) and a refused ACK end the console with exit status 1.
+Console::WordEnd Console::console_word(const session::TypedLine& t, bool terminal) {
+  using Word = session::TypedLine::Word;
+  if (!terminal && t.first == "STEP") {
+    write_out("error: single step needs a terminal (standard input is not one)\n");
+    return WordEnd::Failed;
+  }
+  switch (t.word) {
+    case Word::Quit:
+      return WordEnd::Quit;
+    case Word::Help:
+      write_out(help(t.rest));
+      return WordEnd::Done;
+    case Word::Status:
+      write_out(status_report());
+      return WordEnd::Done;
+    case Word::Confirm:
+      write_out(confirm());
+      return WordEnd::Done;
+    case Word::Ack: {
+      const Outcome o = c_.acknowledge();
+      if (o) snapshot();
+      write_out(o ? "E-stop acknowledged: the machine is ready\n" : o.reason + "\n");
+      return o || terminal ? WordEnd::Done : WordEnd::Failed;
+    }
+    case Word::Keypad:
+      if (!terminal) {
+        write_out("error: the keypad needs a terminal (standard input is not one)\n");
+        return WordEnd::Failed;
+      }
+      enter_keypad(t.message);
+      return WordEnd::Done;
+    case Word::Step:
+      single_step_ = t.step_on;
+      c_.set_single_step(single_step_);
+      write_out(single_step_ ? "single step on: each statement holds once its motion has "
+                               "played; space or Enter runs the next, Esc ends the file\n"
+                             : "single step off\n");
+      return WordEnd::Done;
+    case Word::None:
+      break;
+  }
+  return WordEnd::NotAWord;
 }
 
 void Console::handle_line(const std::string& typed) {
-  using Word = session::TypedLine::Word;
   const session::TypedLine t = session::read_typed_line(typed, single_step_);
   if (t.line.empty()) return;
   // The line runs as typed (leading blanks too), so that its columns are the screen's.
   const std::string text = typed.substr(0, typed.find_last_not_of(" \t\r\n") + 1);
-  switch (t.word) {
-    case Word::Quit:
+  switch (console_word(t, true)) {
+    case WordEnd::Quit:
       quit_ = true;
       return;
-    case Word::Help:
-      return write_out(help(t.rest));
-    case Word::Status:
-      return write_out(status_report());
-    case Word::Ack: {
-      const Outcome o = c_.acknowledge();
-      if (o) snapshot();
-      return write_out(o ? "E-stop acknowledged: the machine is ready\n" : o.reason + "\n");
-    }
-    case Word::Confirm:
-      return write_out(confirm());
-    case Word::Keypad:
-      return enter_keypad(t.message);
-    case Word::Step:
-      single_step_ = t.step_on;
-      c_.set_single_step(single_step_);
-      return write_out(single_step_ ? "single step on: each statement holds once its motion has "
-                                      "played; space or Enter runs the next, Esc ends the file\n"
-                                    : "single step off\n");
-    case Word::None:
+    case WordEnd::Done:
+    case WordEnd::Failed:
+      return;
+    case WordEnd::NotAWord:
       break;
   }
   const Outcome o = c_.run_typed(Script::from_text(text, kConsoleName));
@@ -430,39 +459,14 @@ int Console::piped() {
   LineReader in(STDIN_FILENO);
   std::string typed;
   while (in.next(typed, signal_)) {
-    using Word = session::TypedLine::Word;
     const session::TypedLine t = session::read_typed_line(typed);
     const std::string& line = t.line;
     if (line.empty()) continue;
     write_out(prefix + line + "\n");
-    if (t.word == Word::Quit) return 0;
-    if (t.word == Word::Help) {
-      write_out(help(t.rest));
-      continue;
-    }
-    if (t.word == Word::Status) {
-      write_out(status_report());
-      continue;
-    }
-    if (t.word == Word::Confirm) {
-      write_out(confirm());
-      continue;
-    }
-    if (t.word == Word::Ack) {
-      const Outcome o = c_.acknowledge();
-      if (!o) return write_out(o.reason + "\n"), 1;
-      snapshot();
-      write_out("E-stop acknowledged: the machine is ready\n");
-      continue;
-    }
-    if (t.word == Word::Keypad) {
-      write_out("error: the keypad needs a terminal (standard input is not one)\n");
-      return 1;
-    }
-    if (t.first == "STEP") {
-      write_out("error: single step needs a terminal (standard input is not one)\n");
-      return 1;
-    }
+    const WordEnd w = console_word(t, false);
+    if (w == WordEnd::Quit) return 0;
+    if (w == WordEnd::Failed) return 1;
+    if (w == WordEnd::Done) continue;
     const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
     if (!o) return write_out(refusal(prefix, line, o, false)), 1;
     c_.wait();

@@ -13,6 +13,7 @@
 
 #include "console.hpp"                       // ConsoleArgs
 #include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/session/console_words.hpp"  // TypedLine
 #include "gantry/session/live_machine.hpp"   // ValuesKeeper
 #include "gantry/session/live_position.hpp"  // LivePosition
 #include "gantry/session/machine_memory.hpp" // MachineMemory
@@ -44,6 +45,7 @@ class Console {
 
  private:
   enum class Mode { Prompt, Job, Keypad };
+  enum class WordEnd { NotAWord, Done, Quit, Failed };  // what a console word did
 
   // Shared.
   void snapshot();  // at rest: the interpreter's exact position, the frame and units
@@ -54,6 +56,7 @@ class Console {
   std::string refusal(const std::string& prefix, const std::string& line, const Outcome& o,
                       bool echo_first) const;
   std::string ended(const ControllerStatus& st) const;
+  WordEnd console_word(const session::TypedLine& t, bool terminal);
 
   // Interactive.
   void on_key(const Key& k);

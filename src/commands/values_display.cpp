@@ -11,29 +11,28 @@
 namespace gantry {
 
 std::string setting_value_text(const SettingRow& row, const Settings& s, int i) {
-  Settings& m = const_cast<Settings&>(s);  // the rows' members are read only
   switch (row.kind) {
     case SettingKind::Number:
       return format_number(row.get(s, i));
     case SettingKind::Integer:
-      return std::to_string(*static_cast<const int*>(row.field(m, i)));
+      return std::to_string(*row.member<int>(s, i));
     case SettingKind::Bool:
-      return *static_cast<const bool*>(row.field(m, i)) ? "1" : "0";
+      return *row.member<bool>(s, i) ? "1" : "0";
     case SettingKind::Choice: {
-      const int k = row.choice_get ? row.choice_get(s, i) : *static_cast<const int*>(row.field(m, i));
+      const int k = row.choice_get ? row.choice_get(s, i) : *row.member<int>(s, i);
       return k >= 0 && static_cast<std::size_t>(k) < row.names.size() ? std::string(row.names[k])
                                                                        : std::to_string(k);
     }
     case SettingKind::IntList:
-      return std::to_string(static_cast<const int*>(row.field(m, 0))[i]);
+      return std::to_string(row.member<int>(s)[i]);
     case SettingKind::NumberList:
-      return format_number(static_cast<const double*>(row.field(m, 0))[i]);
+      return format_number(row.member<double>(s)[i]);
     case SettingKind::Coded: {
       const std::string text = row.encode(s);
       return static_cast<std::size_t>(i) < text.size() ? text.substr(i, 1) : text;
     }
     case SettingKind::Text:
-      return *static_cast<const std::string*>(row.field(m, i));
+      return *row.member<std::string>(s, i);
     default:
       return "";
   }

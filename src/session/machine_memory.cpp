@@ -282,4 +282,8 @@ std::string MachineMemory::confirm() {
              : "the position is confirmed: the tool is where the readout says";
 }
 
+std::string confirm_position(MachineMemory* memory) {
+  return memory ? memory->confirm() : "nothing to confirm: no machine state is kept";
+}
+
 }  // namespace gantry::session

@@ -8,9 +8,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "answering_io.hpp"
+#include "gantry/core/diagnostic.hpp"
 #include "gantry/core/vec6.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/operator_io.hpp"
@@ -89,22 +91,63 @@ class InterpreterFixture : public ::testing::Test {
 
 // One interpreter, made at its first use with `settings` and `options`, runs program after
 // program and keeps its state; the operator answers yes and its PRINT text goes to `printed`.
-class KeptInterpreterFixture : public ::testing::Test {
+// The hooks a test may use: `options` (its files, the profile), `profile` (a second Settings,
+// the machine's profile when options.profile points to it), fresh_interp() for a test that
+// runs each program on a new interpreter, operator_io() for another operator, `Sink` for a
+// sink that records more.
+template <class Sink = RecordingSink>
+class BasicKeptInterpreterFixture : public ::testing::Test {
  protected:
   Interpreter& interp() {
-    if (!interp_) interp_.emplace(settings, sink, io, store, options);
+    if (!interp_) interp_.emplace(settings, sink, operator_io(), store, options);
     return *interp_;
+  }
+  // The operator the interpreter is made with (when it is made): `io` unless overridden.
+  virtual OperatorIO& operator_io() { return io; }
+  // A new interpreter in place of the kept one (made now, with `settings` and `options` now).
+  Interpreter& fresh_interp() {
+    interp_.reset();
+    return interp();
   }
   const ModalState& state() { return interp().state(); }
   const std::vector<CanonMove>& moves() const { return sink.moves; }
 
+  // Runs `script` on interp(); a script that did not load, or an error, fails the test.
+  void run_program(const std::shared_ptr<const Script>& script) {
+    ASSERT_TRUE(script->ok()) << format(script->errors().front());
+    try {
+      interp().run(script);
+    } catch (const GantryError& e) {
+      FAIL() << format(e.diagnostic());
+    }
+  }
+  // Runs `script` on interp() expecting an error: returns it; a test failure naming the
+  // program `text` when there is none.
+  Diagnostic program_error(const std::shared_ptr<const Script>& script, std::string_view text) {
+    try {
+      interp().run(script);
+    } catch (const GantryError& e) {
+      return e.diagnostic();
+    }
+    ADD_FAILURE() << "no error from:\n" << text;
+    return {};
+  }
+  // The warnings the operator was given, one a line.
+  std::string warnings() const {
+    std::string out;
+    for (const Diagnostic& d : io.warnings()) out += format(d) + "\n";
+    return out;
+  }
+
   Settings settings = default_settings();
+  Settings profile = default_settings();
   InterpreterOptions options;
-  RecordingSink sink;
+  Sink sink;
   std::string printed;
   ScriptedIO io{true, {}, &printed};
   PersistentStore store;
   std::optional<Interpreter> interp_;
 };
+using KeptInterpreterFixture = BasicKeptInterpreterFixture<>;
 
 }  // namespace gantry

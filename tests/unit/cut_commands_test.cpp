@@ -14,7 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
+#include "../support/memory_files.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/file_system.hpp"
@@ -31,20 +32,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-class MemoryFiles : public FileSystem {
- public:
-  std::shared_ptr<const Script> load_script(const std::string& path,
-                                            const IsCommand& is_command) override {
-    const auto it = texts.find(path);
-    return it == texts.end() ? Script::load(path, is_command)
-                             : Script::from_text(it->second, path, is_command);
-  }
-  bool is_file(const std::string& path) override { return texts.count(path) > 0; }
-  std::shared_ptr<std::istream> open_read(const std::string&) override { return nullptr; }
-  std::shared_ptr<std::ostream> open_write(const std::string&, bool) override { return nullptr; }
-  std::map<std::string, std::string> texts;
-};
-
 struct P3 {
   double x, y, z;
 };
@@ -53,40 +40,23 @@ double dist2(double ax, double ay, double bx, double by) {
   return std::hypot(ax - bx, ay - by);
 }
 
-class CutCommands : public ::testing::Test {
+class CutCommands : public KeptInterpreterFixture {
  protected:
-  CutCommands() { settings.machine.limit_checking = false; }
+  CutCommands() {
+    settings.machine.limit_checking = false;
+    options.files = &files;
+  }
 
   // Each run starts with no recorded moves (the interpreter keeps its state).
   void run(std::string_view text) {
     sink.moves.clear();
-    auto script = Script::from_text(std::string(text), "part.sbp");
-    ASSERT_TRUE(script->ok()) << format(script->errors().front());
-    try {
-      interp().run(script);
-    } catch (const GantryError& e) {
-      FAIL() << format(e.diagnostic());
-    }
+    run_program(Script::from_text(std::string(text), "part.sbp"));
   }
   Diagnostic run_error(std::string_view text) {
     sink.moves.clear();
     auto script = Script::from_text(std::string(text), "part.sbp");
-    try {
-      if (!script->ok()) throw GantryError(script->errors().front());
-      interp().run(script);
-    } catch (const GantryError& e) {
-      return e.diagnostic();
-    }
-    ADD_FAILURE() << "no error from:\n" << text;
-    return {};
-  }
-  Interpreter& interp() {
-    if (!interp_) {
-      InterpreterOptions options;
-      options.files = &files;
-      interp_.emplace(settings, sink, io, store, options);
-    }
-    return *interp_;
+    if (!script->ok()) return script->errors().front();
+    return program_error(script, text);
   }
 
   // Lines and arcs, in order.
@@ -132,15 +102,7 @@ class CutCommands : public ::testing::Test {
   }
   static double arc_r(const CanonMove& m) { return arc_radius(m); }
 
-  Settings settings = default_settings();
-  RecordingSink sink;
   MemoryFiles files;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
-
- private:
-  std::optional<Interpreter> interp_;
 };
 
 std::vector<std::string_view> names(std::string_view code, Dialect d = Dialect::SB3) {

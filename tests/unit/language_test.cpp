@@ -3,7 +3,6 @@
 // (spec language.md §6, with the expectations of §7), regression tests for defects found in
 // FabMo's interpreter, and every program statement with its error cases.
 #include <gtest/gtest.h>
-#include <unistd.h>  // getpid, for unique temporary directories
 
 #include <atomic>
 #include <cmath>
@@ -19,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "../support/interpreter_fixture.hpp"
+#include "../support/temp_dir.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/core/diagnostic_log.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -37,7 +38,7 @@ namespace fs = std::filesystem;
 // ---- helpers ----------------------------------------------------------------------------
 
 // Collects every move, and when each flush came (how many moves had been emitted by then).
-class RecordingSink : public MotionSink {
+class FlushTrackingSink : public MotionSink {
  public:
   void move(const CanonMove& m) override {
     if (m.kind == MoveKind::Stop) {  // MS and JS punctuation: tested in interpreter_test
@@ -123,48 +124,6 @@ class RecordingIO : public OperatorIO {
   std::optional<std::string> choice;               // MSGBOX: the button pressed (default: default)
 };
 
-// A fresh directory under the system's temporary directory, removed with its contents.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() / ("gantry_language_test_" + std::to_string(::getpid()) +
-                                         "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string path(const std::string& name = "") const {
-    return name.empty() ? path_.string() : (path_ / name).string();
-  }
-  // Writes `text` byte for byte as `name` (sub-folders created); returns its full path.
-  std::string write(const std::string& name, std::string_view text) const {
-    const fs::path p = path_ / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream out(p, std::ios::binary | std::ios::trunc);
-    out << text;
-    return p.string();
-  }
-  std::string read(const std::string& name) const { return read_path(path_ / name); }
-  bool exists(const std::string& name) const { return fs::exists(path_ / name); }
-
-  static std::string read_path(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
- private:
-  fs::path path_;
-};
-
 // "FILE:LINE:COL" of a location, so that one expectation checks all three.
 std::string where(const SourceLoc& loc) {
   return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
@@ -245,25 +204,21 @@ struct Outcome {
   Diagnostic diag;
 };
 
-class LanguageTest : public ::testing::Test {
+class LanguageTest : public BasicKeptInterpreterFixture<FlushTrackingSink> {
  protected:
-  Interpreter& interp() {
-    if (!interp_) {
-      if (!use_recording_io) scripted_.emplace(yes, inputs, &printed);
-      OperatorIO& io = use_recording_io ? static_cast<OperatorIO&>(rec) : *scripted_;
-      interp_.emplace(settings, sink, io, store, options);
-    }
-    return *interp_;
+  // The scripted operator made from `yes` and `inputs` as the test set them, or `rec`.
+  OperatorIO& operator_io() override {
+    if (use_recording_io) return rec;
+    scripted_.emplace(yes, inputs, &printed);
+    return *scripted_;
   }
   const ScriptedIO& scripted() {
     interp();
     return *scripted_;
   }
-  const std::vector<CanonMove>& moves() const { return sink.moves; }
-  const ModalState& state() { return interp().state(); }
 
   TempDir& dir() {
-    if (!dir_) dir_.emplace();
+    if (!dir_) dir_.emplace("language_test");
     return *dir_;
   }
 
@@ -282,7 +237,7 @@ class LanguageTest : public ::testing::Test {
   }
   // Runs a script on an interpreter of its own (same settings and options, no operator).
   Outcome execute_fresh(const std::shared_ptr<const Script>& script) {
-    RecordingSink s;
+    FlushTrackingSink s;
     ScriptedIO io(true, {});
     PersistentStore st;
     Interpreter fresh(settings, s, io, st, options);
@@ -338,21 +293,15 @@ class LanguageTest : public ::testing::Test {
     EXPECT_EQ(v->str(), expected) << "&" << name;
   }
 
-  Settings settings = default_settings();
-  InterpreterOptions options;
-  RecordingSink sink;
-  PersistentStore store;
   // The scripted operator (the CLI's --yes / --input), unless use_recording_io.
   bool yes = true;
   std::map<std::string, std::string> inputs;
-  std::string printed;
   bool use_recording_io = false;
   RecordingIO rec;
 
  private:
   std::optional<TempDir> dir_;
   std::optional<ScriptedIO> scripted_;
-  std::optional<Interpreter> interp_;
 };
 
 const std::string kUnknownSuffix = "; see docs/commands.md for the commands Gantry knows";
@@ -1941,13 +1890,13 @@ TEST_F(LanguageTest, RegistryUserValuePersistsAcrossRuns) {
   const std::string path = dir().path("state/persistent.json");
   {
     PersistentStore file_store(path);
-    RecordingSink s;
+    FlushTrackingSink s;
     ScriptedIO io(true, {});
     Interpreter first(settings, s, io, file_store);
     first.run(Script::from_text("SetUsrVal, 7.5\nSetSpindleStatus, 1\n", "a.sbp"));
   }
   PersistentStore reloaded(path);
-  RecordingSink s;
+  FlushTrackingSink s;
   ScriptedIO io(true, {});
   Interpreter second(settings, s, io, reloaded);
   second.run(Script::from_text("GetUsrVal, &v\nGetSpindleStatus, &s\nGetPartFileName, &name\n",
@@ -2075,14 +2024,14 @@ TEST_F(LanguageTest, PersistentVariablesAreSavedAndReloaded) {
   const std::string path = dir().path("persistent.json");
   {
     PersistentStore file_store(path);
-    RecordingSink s;
+    FlushTrackingSink s;
     ScriptedIO io(true, {});
     Interpreter first(settings, s, io, file_store);
     first.run(Script::from_text("$tool.diameter = 0.25\n$count = 1\n", "a.sbp"));
   }
   ASSERT_TRUE(fs::exists(path));
   PersistentStore reloaded(path);
-  RecordingSink s;
+  FlushTrackingSink s;
   ScriptedIO io(true, {});
   Interpreter second(settings, s, io, reloaded);
   second.run(Script::from_text("$count = $count + 1\n&d = $tool.diameter\n", "b.sbp"));

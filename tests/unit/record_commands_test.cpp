@@ -1,7 +1,6 @@
 // The command record (RA RI RP RR RS RZ), SI, MN and MI: what is recorded, what playing it
 // back moves, the files RS and SI write, and their errors (located, nothing moved).
 #include <gtest/gtest.h>
-#include <unistd.h>  // getpid
 
 #include <filesystem>
 #include <fstream>
@@ -9,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
+#include "../support/temp_dir.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -34,34 +34,25 @@ bool contains(const std::string& text, const std::string& part) {
 
 // One interpreter for the whole test, as a console session keeps one. type() runs a line as
 // the console does (each line on its own) and records it; run() runs a part file.
-class RecordTest : public ::testing::Test {
+class RecordTest : public KeptInterpreterFixture {
  protected:
   RecordTest() {
-    static int counter = 0;
-    dir_ = fs::temp_directory_path() /
-           ("gantry_record_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     settings.axes[0].max = 40;  // room for SB3's drilling example (X to 32.5)
-    interp = std::make_unique<Interpreter>(settings, sink, io, store, options);
-  }
-  ~RecordTest() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
+    interp();
   }
 
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path(const std::string& name) const { return (fs::path(dir_.path()) / name).string(); }
 
   // A line typed at the console: run, then recorded (as the console front ends do).
   void type(const std::string& line) {
     auto script = Script::from_text(line + "\n", path("console"));
     ASSERT_TRUE(script->ok()) << format(script->errors().front());
     try {
-      interp->run(script);
+      interp().run(script);
     } catch (const GantryError& e) {
       FAIL() << line << ": " << format(e.diagnostic());
     }
-    interp->record_typed(line);
+    interp().record_typed(line);
   }
   void type_all(const std::vector<std::string>& lines) {
     for (const std::string& l : lines) type(l);
@@ -69,38 +60,15 @@ class RecordTest : public ::testing::Test {
   // A typed line expected to fail (not recorded, as the console leaves it out).
   Diagnostic type_error(const std::string& line) { return run_error(line + "\n"); }
 
-  void run(const std::string& text) {
-    auto script = Script::from_text(text, path("part.sbp"));
-    ASSERT_TRUE(script->ok()) << format(script->errors().front());
-    try {
-      interp->run(script);
-    } catch (const GantryError& e) {
-      FAIL() << format(e.diagnostic());
-    }
-  }
+  void run(const std::string& text) { run_program(Script::from_text(text, path("part.sbp"))); }
   Diagnostic run_error(const std::string& text) {
-    auto script = Script::from_text(text, path("part.sbp"));
-    try {
-      interp->run(script);
-    } catch (const GantryError& e) {
-      return e.diagnostic();
-    }
-    ADD_FAILURE() << "no error from:\n" << text;
-    return {};
+    return program_error(Script::from_text(text, path("part.sbp")), text);
   }
 
-  std::vector<std::string> recorded() const { return interp->recorder().last(1000); }
-
-  Settings settings = default_settings();
-  InterpreterOptions options;
-  RecordingSink sink;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
-  std::unique_ptr<Interpreter> interp;
+  std::vector<std::string> recorded() { return interp().recorder().last(1000); }
 
  private:
-  fs::path dir_;
+  TempDir dir_{"record_test"};
 };
 
 // The straight moves' end points and speed classes, which replaying must reproduce.
@@ -123,7 +91,7 @@ std::vector<Leg> legs(const std::vector<CanonMove>& moves, size_t from = 0) {
 // ---- what is recorded -------------------------------------------------------------------------
 
 TEST_F(RecordTest, Fact148_TypedLinesAreRecordedFromTheStart) {
-  EXPECT_TRUE(interp->recorder().active());
+  EXPECT_TRUE(interp().recorder().active());
   type_all({"JX, 1", "  MY, 2  ", "&D = 0.5", "' a comment"});
   EXPECT_EQ(recorded(), (std::vector<std::string>{"JX, 1", "MY, 2", "&D = 0.5"}));
 }
@@ -131,12 +99,12 @@ TEST_F(RecordTest, Fact148_TypedLinesAreRecordedFromTheStart) {
 TEST_F(RecordTest, RecordCommandsLabelsAndBrokenLinesAreNotRecorded) {
   type_all({"JX, 1", "RA", "RZ", "JX, 2", "RI", "RA", "RP", "RR, 1", "RS, keep"});
   EXPECT_EQ(recorded(), std::vector<std::string>{"JX, 2"});
-  EXPECT_FALSE(interp->record_typed("START:"));
-  EXPECT_FALSE(interp->record_typed("IF 1 THEN"));
-  EXPECT_FALSE(interp->record_typed("GOTO"));
-  EXPECT_FALSE(interp->record_typed(""));
-  EXPECT_TRUE(interp->record_typed("MX, 3"));
-  EXPECT_EQ(interp->recorder().size(), 2u);
+  EXPECT_FALSE(interp().record_typed("START:"));
+  EXPECT_FALSE(interp().record_typed("IF 1 THEN"));
+  EXPECT_FALSE(interp().record_typed("GOTO"));
+  EXPECT_FALSE(interp().record_typed(""));
+  EXPECT_TRUE(interp().record_typed("MX, 3"));
+  EXPECT_EQ(interp().recorder().size(), 2u);
 }
 
 TEST_F(RecordTest, LinesRunFromPartFilesAreNotRecorded) {
@@ -154,20 +122,20 @@ TEST_F(RecordTest, Fact149_RiPausesWithoutErasingAndRaResumes) {
 
 TEST_F(RecordTest, Fact153_RzEmptiesTheRecordAndKeepsItsState) {
   type_all({"JX, 1", "JX, 2", "RZ"});
-  EXPECT_EQ(interp->recorder().size(), 0u);
-  EXPECT_TRUE(interp->recorder().active());
+  EXPECT_EQ(interp().recorder().size(), 0u);
+  EXPECT_TRUE(interp().recorder().active());
   type_all({"RI", "JX, 3", "RZ", "JX, 4"});
-  EXPECT_EQ(interp->recorder().size(), 0u);
-  EXPECT_FALSE(interp->recorder().active());
+  EXPECT_EQ(interp().recorder().size(), 0u);
+  EXPECT_FALSE(interp().recorder().active());
   EXPECT_TRUE(contains(printed, "Record cleared; recording is paused (RA resumes)")) << printed;
 }
 
 TEST_F(RecordTest, Fact151_TheLast100LinesAreKept) {
-  for (int i = 1; i <= 105; ++i) EXPECT_TRUE(interp->record_typed("MX, " + std::to_string(i % 20)));
-  ASSERT_EQ(interp->recorder().size(), 100u);
+  for (int i = 1; i <= 105; ++i) EXPECT_TRUE(interp().record_typed("MX, " + std::to_string(i % 20)));
+  ASSERT_EQ(interp().recorder().size(), 100u);
   EXPECT_EQ(recorded().front(), "MX, 6");  // lines 1 to 5 went
   EXPECT_EQ(recorded().back(), "MX, 5");
-  EXPECT_EQ(interp->recorder().last(2), (std::vector<std::string>{"MX, 4", "MX, 5"}));
+  EXPECT_EQ(interp().recorder().last(2), (std::vector<std::string>{"MX, 4", "MX, 5"}));
 }
 
 // ---- playing back -----------------------------------------------------------------------------
@@ -177,8 +145,8 @@ TEST_F(RecordTest, Fact154_RrARepeatsTheTypedDrillingStep) {
   const size_t typed = sink.moves.size();
   type("RR, A, 20");
   // 20 more holes, 1.5 apart: the tool ends at X 32.5, Z .2 (21 holes from X 1 to 31).
-  EXPECT_NEAR(interp->state().position[0], 32.5, 1e-9);
-  EXPECT_NEAR(interp->state().position[2], 0.2, 1e-9);
+  EXPECT_NEAR(interp().state().position[0], 32.5, 1e-9);
+  EXPECT_NEAR(interp().state().position[2], 0.2, 1e-9);
   const std::vector<Leg> played = legs(sink.moves, typed);
   ASSERT_EQ(played.size(), 60u);
   int holes = 0;
@@ -210,7 +178,7 @@ TEST_F(RecordTest, ReplayMakesTheSameMovesAsTypingAgain) {
   const std::vector<Leg> expected = legs(by_hand.moves, typed);
   ASSERT_EQ(replayed.size(), 15u);
   EXPECT_EQ(replayed, expected);
-  EXPECT_TRUE(interp->state().position.isApprox(other.state().position, 1e-12));
+  EXPECT_TRUE(interp().state().position.isApprox(other.state().position, 1e-12));
 }
 
 TEST_F(RecordTest, Fact150_RpPlaysEverythingOnce) {
@@ -221,7 +189,7 @@ TEST_F(RecordTest, Fact150_RpPlaysEverythingOnce) {
   ASSERT_EQ(played.size(), 2u);
   EXPECT_EQ(played[0].to[0], 2);
   EXPECT_EQ(played[1].to[1], 4);
-  EXPECT_FALSE(interp->state().absolute);  // SR was played too
+  EXPECT_FALSE(interp().state().absolute);  // SR was played too
 }
 
 TEST_F(RecordTest, Fact151_RrDefaultsToTheLastLineAndCountsBack) {
@@ -281,7 +249,7 @@ TEST_F(RecordTest, PlayingAnEmptyRecordSaysSo) {
 
 TEST_F(RecordTest, AnErrorInAPlayedLineIsLocatedInTheRecord) {
   settings.axes[0].max = 24;
-  interp = std::make_unique<Interpreter>(settings, sink, io, store, options);
+  fresh_interp();
   type_all({"SR", "JY, 1", "JX, 10"});
   const Diagnostic d = run_error("RR, 2, 3\n");  // the second pass's JX reaches X 30 > 24
   ASSERT_TRUE(d.loc.file);
@@ -289,20 +257,20 @@ TEST_F(RecordTest, AnErrorInAPlayedLineIsLocatedInTheRecord) {
   EXPECT_EQ(d.loc.line, 2);
   ASSERT_EQ(d.via.size(), 1u);
   EXPECT_EQ(d.via[0].line, 1);  // the RR line
-  EXPECT_NEAR(interp->state().position[0], 20, 1e-12);
+  EXPECT_NEAR(interp().state().position[0], 20, 1e-12);
 }
 
 TEST_F(RecordTest, PlayedLinesChangeValuesForGoodAsTypedOnes) {
   // In a part file, VS and SF last until the file ends; played from the record, as typed
   // lines, they stay, even when the file that plays them set its own speed before.
   run("VS, 3\nSF, 0\n");
-  EXPECT_EQ(interp->state().speeds.move.xy, 2);
-  EXPECT_TRUE(interp->settings().machine.limit_checking);
-  interp->record_typed("VS, 3");
-  interp->record_typed("SF, 0");
+  EXPECT_EQ(interp().state().speeds.move.xy, 2);
+  EXPECT_TRUE(interp().settings().machine.limit_checking);
+  interp().record_typed("VS, 3");
+  interp().record_typed("SF, 0");
   run("VS, 2.5\nRP\n");
-  EXPECT_EQ(interp->state().speeds.move.xy, 3);
-  EXPECT_FALSE(interp->settings().machine.limit_checking);
+  EXPECT_EQ(interp().state().speeds.move.xy, 3);
+  EXPECT_FALSE(interp().settings().machine.limit_checking);
 }
 
 TEST_F(RecordTest, PlayedLinesAreNotScaledByTheFileThatPlaysThem) {
@@ -403,7 +371,7 @@ TEST_F(RecordTest, Fact160_SiRunsItsLinesAndSavesThemInTempCode) {
   EXPECT_EQ(l[1].to[1], 2);
   EXPECT_EQ(l[1].cls, SpeedClass::Move);
   EXPECT_EQ(l[2].to[0], 1.5);
-  EXPECT_FALSE(interp->state().absolute);
+  EXPECT_FALSE(interp().state().absolute);
   EXPECT_EQ(slurp(path("temp_code.sbp")), "JX, 1\nMY, 2\nSR\nJX, 0.5\n");
   // The SI line itself is what the record keeps: playing it sends the lines again.
   EXPECT_EQ(recorded(), std::vector<std::string>{"SI, \"JX, 1\", \"MY, 2\", SR, \"JX, 0.5\""});
@@ -435,13 +403,13 @@ TEST_F(RecordTest, Fact128_MnMovesTheToolAndKeepsItsLocation) {
   ASSERT_EQ(sink.moves.size(), 2u);
   EXPECT_TRUE(sink.moves[1].to.isApprox(Vec6(1.1, 1.8, 0.5, 0, 0, 0)));
   EXPECT_EQ(sink.moves[1].speed_class, SpeedClass::Move);
-  const ModalState& st = interp->state();
+  const ModalState& st = interp().state();
   EXPECT_TRUE(st.position.isApprox(Vec6(1, 2, 0.5, 0, 0, 0)));  // the location reads the same
-  EXPECT_TRUE(interp->snapshot().table_base.isApprox(Vec6(1.1, 1.8, 0.5, 0, 0, 0)));
+  EXPECT_TRUE(interp().snapshot().table_base.isApprox(Vec6(1.1, 1.8, 0.5, 0, 0, 0)));
   // What follows is shifted by the nudge; ST gives the true location back.
   run("MX, 3\nST\n");
   EXPECT_NEAR(sink.moves.back().to[0], 3.1, 1e-12);
-  EXPECT_TRUE(interp->state().position.isApprox(Vec6(3.1, 1.8, 0.5, 0, 0, 0)));
+  EXPECT_TRUE(interp().state().position.isApprox(Vec6(3.1, 1.8, 0.5, 0, 0, 0)));
 }
 
 TEST_F(RecordTest, MnOutsideTheLimitsChangesNothing) {
@@ -449,8 +417,8 @@ TEST_F(RecordTest, MnOutsideTheLimitsChangesNothing) {
   const Diagnostic d = run_error("MN, , 30\n");
   EXPECT_EQ(d.loc.line, 1);
   EXPECT_EQ(sink.moves.size(), 1u);
-  EXPECT_TRUE(interp->state().zero.isZero(0));
-  EXPECT_TRUE(interp->state().position.isApprox(Vec6(1, 0, 0, 0, 0, 0)));
+  EXPECT_TRUE(interp().state().zero.isZero(0));
+  EXPECT_TRUE(interp().state().position.isApprox(Vec6(1, 0, 0, 0, 0, 0)));
 }
 
 TEST_F(RecordTest, MnWithoutADistanceSaysSo) {
@@ -480,7 +448,7 @@ TEST_F(RecordTest, MiTurnsAnAxisBesideTheMovesUntilItIsStopped) {
   EXPECT_EQ(start.independent.speed, 45);
   EXPECT_EQ(start.independent.accel, settings.axes[4].max_accel);
   EXPECT_EQ(start.loc.line, 1);
-  EXPECT_FALSE(interp->state().independent);
+  EXPECT_FALSE(interp().state().independent);
 }
 
 TEST_F(RecordTest, MiDirectionZeroOrMinusOneTurnsTheOtherWayAndOscillatesToThatSide) {
@@ -544,7 +512,7 @@ TEST_F(RecordTest, MiRefusesWhatItCannotDoAndNothingMoves) {
 TEST_F(RecordTest, MiTypedAloneIsRefusedAndMiStopOfNothingSaysSo) {
   const auto typed = [&](const std::string& line) -> Diagnostic {
     try {
-      interp->run(Script::from_text(line + "\n", path("console")), /*typed=*/true);
+      interp().run(Script::from_text(line + "\n", path("console")), /*typed=*/true);
     } catch (const GantryError& e) {
       return e.diagnostic();
     }

@@ -14,7 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
+#include "../support/memory_files.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/file_system.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -24,20 +25,6 @@
 
 namespace gantry {
 namespace {
-
-class MemoryFiles : public FileSystem {
- public:
-  std::shared_ptr<const Script> load_script(const std::string& path,
-                                            const IsCommand& is_command) override {
-    const auto it = texts.find(path);
-    return it == texts.end() ? Script::load(path, is_command)
-                             : Script::from_text(it->second, path, is_command);
-  }
-  bool is_file(const std::string& path) override { return texts.count(path) > 0; }
-  std::shared_ptr<std::istream> open_read(const std::string&) override { return nullptr; }
-  std::shared_ptr<std::ostream> open_write(const std::string&, bool) override { return nullptr; }
-  std::map<std::string, std::string> texts;
-};
 
 // Answers nothing by itself: a PAUSE or MSGBOX that reaches it is counted (and continued);
 // PRINT "MARK" calls `mark` the first time, with the interpreter between two statements.
@@ -82,11 +69,21 @@ struct Snapshot {
   size_t moves_before = 0;  // moves the sink had received by then
 };
 
-class StartAtLine : public ::testing::Test {
+class StartAtLine : public KeptInterpreterFixture {
  protected:
   StartAtLine() {
     settings.machine.limit_checking = false;
     settings.cutter.safe_z = 0.75;
+  }
+  OperatorIO& operator_io() override { return io; }  // the MarkIO below
+
+  // A new interpreter that starts its files at line `from` (0: all of it).
+  Interpreter& start_at(int from, bool dry_run = false) {
+    options = InterpreterOptions();
+    options.files = &files;
+    options.start_line = from;
+    options.dry_run = dry_run;
+    return fresh_interp();
   }
 
   // Runs `text` as part.sbp from line `from` (0: all of it) on a fresh interpreter.
@@ -98,15 +95,12 @@ class StartAtLine : public ::testing::Test {
     sink = RecordingSink();
     io = MarkIO();
     snap.reset();
-    InterpreterOptions options;
-    options.files = &files;
-    options.start_line = from;
-    interp.emplace(settings, sink, io, store, options);
+    start_at(from);
     io.mark = [this] { snap = take(); };
     auto script = Script::from_text(std::string(text), "part.sbp");
     if (!script->ok()) return script->errors().front();
     try {
-      interp->run(script);
+      interp().run(script);
     } catch (const GantryError& e) {
       return e.diagnostic();
     }
@@ -115,19 +109,14 @@ class StartAtLine : public ::testing::Test {
   // The same, through check(): the diagnostics.
   std::vector<Diagnostic> check(std::string_view text, int from) {
     sink = RecordingSink();
-    InterpreterOptions options;
-    options.files = &files;
-    options.start_line = from;
-    options.dry_run = true;
-    interp.emplace(settings, sink, io, store, options);
-    return interp->check(Script::from_text(std::string(text), "part.sbp"));
+    return start_at(from, true).check(Script::from_text(std::string(text), "part.sbp"));
   }
-  Snapshot take() const {
+  Snapshot take() {
     Snapshot s;
-    s.state = interp->state();
-    s.settings = interp->settings();
+    s.state = interp().state();
+    s.settings = interp().settings();
     for (const char* name : names) {
-      const Value* v = interp->variable(name);
+      const Value* v = interp().variable(name);
       s.vars[name] = v ? std::optional<std::string>(v->to_string()) : std::nullopt;
     }
     s.moves_before = sink.moves.size();
@@ -141,12 +130,8 @@ class StartAtLine : public ::testing::Test {
     return out;
   }
 
-  Settings settings = default_settings();
   MemoryFiles files;
-  RecordingSink sink;
-  MarkIO io;
-  PersistentStore store;
-  std::optional<Interpreter> interp;
+  MarkIO io;  // the operator, in place of the fixture's
   std::optional<Snapshot> snap;
   std::optional<Diagnostic> run_result;
   std::vector<const char*> names = {"DEPTH", "COUNT", "N", "ANSWER", "SUBS"};
@@ -301,7 +286,7 @@ TEST_F(StartAtLine, TheApproachRisesToSafeZCrossesAndGoesDown) {
       "M2, 3, 3\n";        // 6
   run(text, 6);
   ASSERT_EQ(sink.moves.size(), 4u);
-  EXPECT_EQ(interp->moves_emitted(), 4u);  // the moves of lines 3-5 are not counted
+  EXPECT_EQ(interp().moves_emitted(), 4u);  // the moves of lines 3-5 are not counted
   const struct {
     std::array<double, 3> from, to;
     SpeedClass cls;
@@ -373,17 +358,14 @@ TEST_F(StartAtLine, TheMachineCatchesUpWithValuesAndOutputsAndTheOperatorIsNotAs
       "PRINT \"after\"\n"             // 9
       "MX, 1\n";                      // 10
   sink = RecordingSink();
-  InterpreterOptions options;
-  options.files = &files;
-  options.start_line = 9;
   io.answers["&ANSWER"] = "7";
-  interp.emplace(settings, sink, io, store, options);
-  interp->run(Script::from_text(text, "part.sbp"));
+  start_at(9);
+  interp().run(Script::from_text(text, "part.sbp"));
   EXPECT_EQ(io.printed, "after\n");
   EXPECT_EQ(io.questions, 0);
   EXPECT_EQ(io.asked, 1);
-  ASSERT_NE(interp->variable("ANSWER"), nullptr);
-  EXPECT_EQ(interp->variable("ANSWER")->to_string(), "7");
+  ASSERT_NE(interp().variable("ANSWER"), nullptr);
+  EXPECT_EQ(interp().variable("ANSWER")->to_string(), "7");
   ASSERT_EQ(sink.changes.size(), 1u);
   EXPECT_EQ(sink.changes[0].ramps.move_ramp_speed.xy, 0.3);
   // A stop (for the values), output 2 on, the move of line 10; then the end of the run

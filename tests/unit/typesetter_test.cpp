@@ -2,7 +2,6 @@
 // box, and the part file TT writes engraves the letters where and how deep it was asked.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>  // getpid
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
+#include "../support/temp_dir.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/commands/stroke_font.hpp"
 #include "gantry/core/diagnostic.hpp"
@@ -90,47 +90,19 @@ TEST(StrokeFont, LettersSitOnTheirLines) {
 
 // ---- TT -------------------------------------------------------------------------------------
 
-class TypesetterTest : public ::testing::Test {
+class TypesetterTest : public KeptInterpreterFixture {
  protected:
-  TypesetterTest() {
-    static int counter = 0;
-    dir_ = fs::temp_directory_path() / ("gantry_typesetter_test_" + std::to_string(::getpid()) +
-                                        "_" + std::to_string(counter++));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  ~TypesetterTest() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string slurp(const std::string& name) const {
-    std::ifstream in(path(name), std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  std::string path(const std::string& name) const { return (fs::path(dir_.path()) / name).string(); }
+  std::string slurp(const std::string& name) const { return dir_.read(name); }
 
   void run(const std::string& text) {
-    auto script = Script::from_text(text, path("part.sbp"));
-    ASSERT_TRUE(script->ok()) << format(script->errors().front());
-    interp = std::make_unique<Interpreter>(settings, sink, io, store);
-    try {
-      interp->run(script);
-    } catch (const GantryError& e) {
-      FAIL() << format(e.diagnostic());
-    }
+    fresh_interp();
+    run_program(Script::from_text(text, path("part.sbp")));
   }
   Diagnostic run_error(const std::string& text) {
     auto script = Script::from_text(text, path("part.sbp"));
-    interp = std::make_unique<Interpreter>(settings, sink, io, store);
-    try {
-      interp->run(script);
-    } catch (const GantryError& e) {
-      return e.diagnostic();
-    }
-    ADD_FAILURE() << "no error from:\n" << text;
-    return {};
+    fresh_interp();
+    return program_error(script, text);
   }
 
   // The XY box of the moves made below the surface.
@@ -152,15 +124,8 @@ class TypesetterTest : public ::testing::Test {
     return b;
   }
 
-  Settings settings = default_settings();
-  RecordingSink sink;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
-  std::unique_ptr<Interpreter> interp;
-
  private:
-  fs::path dir_;
+  TempDir dir_{"typesetter_test"};
 };
 
 TEST_F(TypesetterTest, TtEngravesTheLettersWhereAsked) {

@@ -2,7 +2,6 @@
 // writes or changes, and their errors (located, nothing changed).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>  // getpid
 
 #include <cmath>    // llround
 #include <cstdlib>  // unsetenv
@@ -12,7 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "../support/recording_sink.hpp"
+#include "../support/interpreter_fixture.hpp"
+#include "../support/temp_dir.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -37,25 +37,16 @@ bool contains(const std::string& text, const std::string& part) {
 }
 
 // Each test gets its own folder; part.sbp runs from there.
-class UtilityFileTest : public ::testing::Test {
+class UtilityFileTest : public KeptInterpreterFixture {
  protected:
   UtilityFileTest() {
-    static int counter = 0;
-    dir_ = fs::temp_directory_path() / ("gantry_utility_file_test_" + std::to_string(::getpid()) +
-                                        "_" + std::to_string(counter++));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     options.profile = &profile;
     options.profile_path = "/profiles/desk.toml";
     options.values_path = "/config/values/desk.toml";
   }
-  ~UtilityFileTest() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
 
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string folder() const { return dir_.string(); }
+  std::string path(const std::string& name) const { return (fs::path(dir_.path()) / name).string(); }
+  std::string folder() const { return fs::path(dir_.path()).string(); }
   void write(const std::string& name, const std::string& text) const {
     fs::create_directories(fs::path(path(name)).parent_path());
     std::ofstream(path(name), std::ios::binary) << text;
@@ -64,48 +55,22 @@ class UtilityFileTest : public ::testing::Test {
     fs::copy_file(fs::path(GANTRY_SOURCE_DIR) / "tests/data/convert" / name, path(name));
   }
 
-  // Runs `text` as part.sbp; errors fail the test. The interpreter stays for inspection.
+  // Runs `text` as part.sbp on a new interpreter; errors fail the test. The interpreter stays
+  // for inspection.
   void run(const std::string& text) {
-    auto script = Script::from_text(text, path("part.sbp"));
-    ASSERT_TRUE(script->ok()) << format(script->errors().front());
-    interp = std::make_unique<Interpreter>(settings, sink, io, store, options);
-    try {
-      interp->run(script);
-    } catch (const GantryError& e) {
-      FAIL() << format(e.diagnostic());
-    }
+    fresh_interp();
+    run_program(Script::from_text(text, path("part.sbp")));
   }
 
-  // Runs `text` expecting an error; returns it.
+  // Runs `text` on a new interpreter expecting an error; returns it.
   Diagnostic run_error(const std::string& text) {
     auto script = Script::from_text(text, path("part.sbp"));
-    interp = std::make_unique<Interpreter>(settings, sink, io, store, options);
-    try {
-      interp->run(script);
-    } catch (const GantryError& e) {
-      return e.diagnostic();
-    }
-    ADD_FAILURE() << "no error from:\n" << text;
-    return {};
+    fresh_interp();
+    return program_error(script, text);
   }
-
-  std::string warnings() const {
-    std::string out;
-    for (const Diagnostic& d : io.warnings()) out += format(d) + "\n";
-    return out;
-  }
-
-  Settings profile = default_settings();
-  Settings settings = default_settings();
-  InterpreterOptions options;
-  RecordingSink sink;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
-  std::unique_ptr<Interpreter> interp;
 
  private:
-  fs::path dir_;
+  TempDir dir_{"utility_file_test"};
 };
 
 // ---- UL, VV, UU -----------------------------------------------------------------------------
@@ -122,8 +87,8 @@ TEST_F(UtilityFileTest, VvDefinesVariablesInPairs) {
   // The values are evaluated before any is set: &OLD * 2 is the old &OLD's.
   run("&OLD = 1\nVV, &DEPTH, 0.5, MATERIAL, Oak, &old, &OLD * 2, &T, \"a b\"\nUL\n");
   EXPECT_EQ(printed, "&DEPTH = 0.5\n&MATERIAL = \"Oak\"\n&OLD = 2\n&T = \"a b\"\n");
-  ASSERT_NE(interp->variable("DEPTH"), nullptr);
-  EXPECT_EQ(interp->variable("DEPTH")->num(), 0.5);
+  ASSERT_NE(interp().variable("DEPTH"), nullptr);
+  EXPECT_EQ(interp().variable("DEPTH")->num(), 0.5);
   // The values are the variables' like any others: commands read them.
   run("VV, &X, 2, &Y, 3\nJ2, &X, &Y\n");
   ASSERT_EQ(sink.moves.size(), 1u);
@@ -149,7 +114,7 @@ TEST_F(UtilityFileTest, VvErrorsAreLocatedAndSetNothing) {
     EXPECT_EQ(d.loc.line, c.line.starts_with("$") ? 2 : 1) << c.line;
     EXPECT_EQ(d.loc.column, c.column) << c.line;
     EXPECT_TRUE(contains(d.message, c.message)) << c.line << format(d);
-    EXPECT_EQ(interp->variable("A"), nullptr) << c.line;  // the good pair was not set either
+    EXPECT_EQ(interp().variable("A"), nullptr) << c.line;  // the good pair was not set either
   }
 }
 
@@ -178,7 +143,7 @@ TEST_F(UtilityFileTest, UnCannotChangeTheEditorFromAPartFile) {
                            "the machine profile, [machine] editor = \"touch /tmp/gantry-pwned ;\" "
                            "(docs/security.md); FE uses vi (neither the machine profile, $VISUAL "
                            "nor $EDITOR names one)");
-  EXPECT_EQ(interp->settings().machine.editor, "");
+  EXPECT_EQ(interp().settings().machine.editor, "");
   // Sent as typed lines from a part file (SI), it is still the part file's.
   EXPECT_TRUE(contains(run_error("SI, \"UN, sh\"\n").message, "from a part file"));
 }
@@ -314,9 +279,9 @@ TEST_F(UtilityFileTest, Fact179_UdAndUvSaveTheirReportsToAFile) {
 
 TEST_F(UtilityFileTest, Fact181_UsSavesTheSettingsAndUrLoadsThemBack) {
   run("VC, 0.5\nMS, 1.5\nUS, saved.toml\nVC, 0.75\nMS, 2.5\nVU, 2000\nUR, saved.toml\nUV\n");
-  EXPECT_EQ(interp->settings().cutter.diameter, 0.5);
-  EXPECT_EQ(interp->settings().axes[0].steps_per_unit, profile.axes[0].steps_per_unit);
-  EXPECT_EQ(interp->state().speeds.move.xy, 1.5);
+  EXPECT_EQ(interp().settings().cutter.diameter, 0.5);
+  EXPECT_EQ(interp().settings().axes[0].steps_per_unit, profile.axes[0].steps_per_unit);
+  EXPECT_EQ(interp().state().speeds.move.xy, 1.5);
   EXPECT_TRUE(contains(printed, "US saved the current settings to " + path("saved.toml")));
   EXPECT_TRUE(contains(printed, "UR loaded " + path("saved.toml") + " as the current values"));
   // The file is a complete profile.
@@ -333,18 +298,18 @@ TEST_F(UtilityFileTest, Fact181_UrBlankReturnsToTheProfilesValues) {
   settings.cutter.diameter = 0.125;  // as a values file left it
   settings.speeds.move.xy = 0.5;
   run("VD, , , 1\nUR\n");  // millimetres first: UR's profile is in inches
-  EXPECT_EQ(interp->settings().cutter.diameter, profile.cutter.diameter);
-  EXPECT_EQ(interp->settings().units, Units::Inches);
-  EXPECT_EQ(interp->state().speeds.move.xy, profile.speeds.move.xy);
+  EXPECT_EQ(interp().settings().cutter.diameter, profile.cutter.diameter);
+  EXPECT_EQ(interp().settings().units, Units::Inches);
+  EXPECT_EQ(interp().state().speeds.move.xy, profile.speeds.move.xy);
   // Nothing differs from the profile: the values file empties.
-  EXPECT_FALSE(contains(values_text(interp->settings(), profile), "diameter"));
+  EXPECT_FALSE(contains(values_text(interp().settings(), profile), "diameter"));
 }
 
 TEST_F(UtilityFileTest, UrValuesOutlastTheFileThatLoadedThem) {
   write("sub.sbp", "VS, 0.25\nUR\n");
   settings.speeds.move.xy = 0.5;
   run("FP, sub.sbp\n");
-  EXPECT_EQ(interp->state().speeds.move.xy, profile.speeds.move.xy);  // not undone to 0.5
+  EXPECT_EQ(interp().state().speeds.move.xy, profile.speeds.move.xy);  // not undone to 0.5
 }
 
 TEST_F(UtilityFileTest, UrRefusesAnotherMachineAndBadFilesChangingNothing) {
@@ -355,11 +320,11 @@ TEST_F(UtilityFileTest, UrRefusesAnotherMachineAndBadFilesChangingNothing) {
   EXPECT_EQ(d.loc.column, 5);
   EXPECT_TRUE(contains(d.message, "other.toml describes another machine (card differs"))
       << d.message;
-  EXPECT_EQ(interp->settings().cutter.diameter, 0.5);
+  EXPECT_EQ(interp().settings().cutter.diameter, 0.5);
   d = run_error("VC, 0.5\nUR, bad.toml\n");
   EXPECT_TRUE(contains(d.message, "bad.toml:2:12: error: cutter.diameter = -1 is out of range"))
       << d.message;
-  EXPECT_EQ(interp->settings().cutter.diameter, 0.5);
+  EXPECT_EQ(interp().settings().cutter.diameter, 0.5);
   d = run_error("UR, missing.toml\n");
   EXPECT_EQ(d.message, "UR: cannot read " + path("missing.toml") + "; nothing was changed");
   d = run_error("US\n");
@@ -392,16 +357,16 @@ TEST_F(UtilityFileTest, Fact178_ScSelectsTableBaseOrUserCoordinates) {
   ASSERT_EQ(sink.moves.size(), 3u);
   EXPECT_EQ(sink.moves[1].to[0], 1);  // table base X 1
   EXPECT_EQ(sink.moves[2].to[0], 3);  // user X 1 is table base 3
-  EXPECT_EQ(interp->state().zero[0], 2);
-  EXPECT_FALSE(interp->state().user_zero);
+  EXPECT_EQ(interp().state().zero[0], 2);
+  EXPECT_FALSE(interp().state().user_zero);
   run("JX, 2\nZX\nSC, 0\nUV\n");
-  EXPECT_EQ(interp->state().position[0], 2);
+  EXPECT_EQ(interp().state().position[0], 2);
   EXPECT_TRUE(contains(printed, "Coordinate system (SC): 0, table base")) << printed;
 }
 
 TEST_F(UtilityFileTest, ZeroingWhileTableBaseIsSelectedMakesANewUserSystem) {
   run("JX, 2\nZX\nSC, 0\nJX, 5\nZX\nSC, 1\nJX, 1\n");
-  EXPECT_EQ(interp->state().zero[0], 5);  // the offsets set aside (2) are dropped
+  EXPECT_EQ(interp().state().zero[0], 5);  // the offsets set aside (2) are dropped
   EXPECT_EQ(sink.moves.back().to[0], 6);
   const Diagnostic d = run_error("SC, 2\n");
   EXPECT_EQ(d.loc.column, 5);

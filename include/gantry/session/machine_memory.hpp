@@ -87,4 +87,8 @@ class MachineMemory {
   Units units_at_start_ = Units::Inches;  // ... and its units
 };
 
+// CONFIRM typed at a front end: `memory`'s confirm(), or, when no state is kept (null), that
+// there is nothing to confirm.
+std::string confirm_position(MachineMemory* memory);
+
 }  // namespace gantry::session

@@ -97,6 +97,11 @@ struct SettingRow {
   // The Number (or family member) as a reference.
   double& number(Settings& s, int i = 0) const { return *static_cast<double*>(field(s, i)); }
   double get(const Settings& s, int i = 0) const { return number(const_cast<Settings&>(s), i); }
+  // The member, read only, as its type per `kind` (a list's first item).
+  template <class T>
+  const T* member(const Settings& s, int i = 0) const {
+    return static_cast<const T*>(field(const_cast<Settings&>(s), i));
+  }
   double fallback() const;  // a Number's value in a default-constructed Settings
   // The range in force in `s`: `range`, its top lowered to `most(s, i)` when the row has one.
   SettingRange range_in(const Settings& s, int i = 0) const;
