@@ -147,7 +147,11 @@ void App::poll() {
   // motion, so a released jog slowing to rest leaves every key working.
   if (activity_.ended(status_)) {
     snapshot();
-    if (job_running_) listing_line_ = session::run_progress(status_).line;  // where it ended
+    if (job_running_) {  // where it ended
+      const session::RunProgress p = session::run_progress(status_);
+      listing_line_ = p.file_line;
+      listing_file_ = p.file;
+    }
     job_running_ = false;
     kp_continuous_ = false;
     kp_key_ = -1;
@@ -185,6 +189,7 @@ void App::poll() {
     path_ = std::move(done);
     listing_.set(std::move(text));
     listing_line_ = 0;
+    listing_file_.reset();
     gl_->set_path(*path_);
     loading_ = false;
     fit_ = true;
@@ -462,6 +467,7 @@ void App::menu_bar() {
   if (clicked("Offsets")) show_offsets_ = !show_offsets_;
   if (clicked("Macros")) show_macros_ = !show_macros_;
   if (clicked("Light theme")) light_ = !light_;
+  if (clicked("File > Open...")) file_dialog_.open_beside(file_);
   if (!ImGui::BeginMainMenuBar()) return;
   for (const Menu& menu : menus_) {
     if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
@@ -480,6 +486,7 @@ void App::menu_bar() {
     }
     if (menu.title == "File") {
       ImGui::Separator();
+      if (ImGui::MenuItem("Open...##menu", "Ctrl+O")) file_dialog_.open_beside(file_);
       if (ImGui::MenuItem("Quit")) quit_ = true;
     }
     ImGui::EndMenu();
@@ -552,6 +559,15 @@ void App::lay_out() {
   kReadout = std::max(
       std::min(fixed + static_cast<float>(axes) * (digits_px_ + style.ItemSpacing.y), left),
       4 * text);
+  // The program listing gets its rows before the digits grow past twice the text's size.
+  const float short_of = ProgramListing::kRows * text - (left - kReadout);
+  const float smallest =
+      fixed + static_cast<float>(axes) * (2 * ImGui::GetFontSize() + style.ItemSpacing.y);
+  if (const float give = std::min(short_of, kReadout - smallest); give > 0) {
+    kReadout -= give;
+    digits_px_ = std::max((kReadout - fixed) / static_cast<float>(axes) - style.ItemSpacing.y,
+                          ImGui::GetFontSize());
+  }
 }
 
 void App::readout_window() {
@@ -770,9 +786,7 @@ void App::job_window() {
   ImGui::SameLine();
   const bool ctrl_o = ImGui::GetIO().KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_O, false) &&
                       !file_dialog_.showing() && !sheet_open_ && !dialog_shown_;
-  if (button("Open...") || ctrl_o)
-    file_dialog_.open(file_.empty() ? std::string()
-                                    : std::filesystem::path(file_).parent_path().string());
+  if (button("Open...") || ctrl_o) file_dialog_.open_beside(file_);
   const bool rest = at_rest(), paused = status_.state == MachineState::Paused ||
                                         status_.state == MachineState::Keypad;
   if (button("Start", rest && !file_.empty())) start_file(1);
@@ -782,12 +796,12 @@ void App::job_window() {
   ImGui::SameLine();
   if (button("Stop", !rest)) report(c_.stop(), "stop");
   ImGui::SameLine();
-  ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.1f, 0.1f, 1));
+  push_estop_colours();
   if (button("E-STOP")) {
     m_.io.cancel();
     report(c_.estop(), "E-stop");
   }
-  ImGui::PopStyleColor();
+  ImGui::PopStyleColor(kEStopColours);
   if (status_.state == MachineState::EStop) {
     ImGui::SameLine();
     if (button("Ack")) run_line("ack");
@@ -822,9 +836,9 @@ void App::job_window() {
   ImGui::TextUnformatted(progress.times().c_str());
   // The listing: the line the card plays while the file runs, else where the last run ended;
   // a click at rest chooses the line "Start at line" starts at.
-  const std::size_t chosen =
-      listing_.draw(job_running_ ? progress.line : listing_line_, job_running_ && !rest, rest,
-                    start_line_, pending_click_);
+  const std::size_t chosen = listing_.draw(job_running_ ? progress.file_line : listing_line_,
+                                           job_running_ ? progress.file : listing_file_,
+                                           job_running_ && !rest, rest, start_line_, pending_click_);
   if (chosen > 0) start_line_ = static_cast<int>(chosen);
   ImGui::End();
   if (const std::optional<std::string> f = file_dialog_.draw(
