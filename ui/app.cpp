@@ -95,7 +95,11 @@ void App::poll() {
   // motion, so a released jog slowing to rest leaves every key working.
   if (activity_.ended(status_)) {
     snapshot();
-    if (job_running_) listing_line_ = session::run_progress(status_).line;  // where it ended
+    if (job_running_) {  // where it ended
+      const session::RunProgress p = session::run_progress(status_);
+      listing_line_ = p.file_line;
+      listing_file_ = p.file;
+    }
     job_running_ = false;
     kp_continuous_ = false;
     kp_key_ = -1;
@@ -133,6 +137,7 @@ void App::poll() {
     path_ = std::move(done);
     listing_.set(std::move(text));
     listing_line_ = 0;
+    listing_file_.reset();
     gl_->set_path(*path_);
     loading_ = false;
     fit_ = true;
@@ -271,6 +276,7 @@ void App::menu_bar() {
   if (clicked("Offsets")) show_offsets_ = !show_offsets_;
   if (clicked("Macros")) show_macros_ = !show_macros_;
   if (clicked("Light theme")) light_ = !light_;
+  if (clicked("File > Open...")) file_dialog_.open_beside(file_);
   if (!ImGui::BeginMainMenuBar()) return;
   for (const Menu& menu : menus_) {
     if (!ImGui::BeginMenu(fmt::format("{}##{}", menu.title, menu.key).c_str())) continue;
@@ -289,6 +295,7 @@ void App::menu_bar() {
     }
     if (menu.title == "File") {
       ImGui::Separator();
+      if (ImGui::MenuItem("Open...##menu", "Ctrl+O")) file_dialog_.open_beside(file_);
       if (ImGui::MenuItem("Quit")) quit_ = true;
     }
     ImGui::EndMenu();
@@ -361,6 +368,15 @@ void App::lay_out() {
   kReadout = std::max(
       std::min(fixed + static_cast<float>(axes) * (digits_px_ + style.ItemSpacing.y), left),
       4 * text);
+  // The program listing gets its rows before the digits grow past twice the text's size.
+  const float short_of = ProgramListing::kRows * text - (left - kReadout);
+  const float smallest =
+      fixed + static_cast<float>(axes) * (2 * ImGui::GetFontSize() + style.ItemSpacing.y);
+  if (const float give = std::min(short_of, kReadout - smallest); give > 0) {
+    kReadout -= give;
+    digits_px_ = std::max((kReadout - fixed) / static_cast<float>(axes) - style.ItemSpacing.y,
+                          ImGui::GetFontSize());
+  }
 }
 
 // A panel over the preview's top right corner (offsets, macros), `row` panels down.

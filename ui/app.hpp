@@ -164,6 +164,7 @@ class App {
   ProgramListing listing_;
   bool job_running_ = false;      // a file we started has not ended yet
   std::size_t listing_line_ = 0;  // highlighted at rest: where the last run ended or stopped
+  std::shared_ptr<const std::string> listing_file_;  // ... in this file (null: the loaded one)
   FileDialog file_dialog_;
   session::RecentFiles recent_{opt_.recent_files};
 

@@ -41,8 +41,13 @@ void FileDialog::open(const std::string& folder) {
   list();
 }
 
+void FileDialog::open_beside(const std::string& file) {
+  open(file.empty() ? std::string() : fs::path(file).parent_path().string());
+}
+
 void FileDialog::list() {
   entries_.clear();
+  marked_ = -1;
   std::error_code ec;
   std::vector<Entry> folders, files;
   for (fs::directory_iterator it(folder_, ec), end; !ec && it != end; it.increment(ec)) {
@@ -73,11 +78,17 @@ std::optional<std::string> FileDialog::go(const std::string& name) {
   p = p.lexically_normal();
   std::error_code ec;
   if (fs::is_directory(p, ec)) {
+    const fs::path from(folder_);
     folder_ = p.string();
     if (folder_.size() > 1 && folder_.back() == '/') folder_.pop_back();
     typed_.clear();
     error_.clear();
     list();
+    // Up to the parent: the folder left is marked, so Enter goes back into it.
+    const std::string left = from.filename().string() + "/";
+    if (from.parent_path() == fs::path(folder_))
+      for (std::size_t i = 0; i < entries_.size(); ++i)
+        if (entries_[i].name == left) marked_ = static_cast<int>(i), scroll_to_mark_ = true;
     return std::nullopt;
   }
   if (fs::is_regular_file(p, ec)) {
@@ -105,11 +116,19 @@ std::optional<std::string> FileDialog::draw(
   fresh_ = false;
   std::optional<std::string> chosen;
   ImGui::TextDisabled("in %s", folder_.c_str());
-  if (fresh) ImGui::SetKeyboardFocusHere();
+  if (fresh || refocus_) ImGui::SetKeyboardFocusHere();
+  refocus_ = false;
   ImGui::SetNextItemWidth(-120);
-  if (ImGui::InputTextWithHint("##path", "type a file or folder name; Enter opens it", &typed_,
-                               ImGuiInputTextFlags_EnterReturnsTrue))
-    chosen = go(typed_);
+  const bool path_was_empty = typed_.empty();
+  if (ImGui::InputTextWithHint("##path", "type a name, or Up/Down and Enter; Backspace: up",
+                               &typed_, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    // Enter: the name typed, else the entry Up/Down marked. The keys stay in the field.
+    const bool mark = scan::trim(typed_).empty() && marked_ >= 0 &&
+                      marked_ < static_cast<int>(entries_.size());
+    chosen = go(mark ? entries_[static_cast<std::size_t>(marked_)].name : typed_);
+    refocus_ = true;
+  }
+  if (!fresh && !chosen) chosen = walk_keys(path_was_empty);
   ImGui::SameLine();
   if (ImGui::Button("Up") || clicked("Up")) {
     typed_.clear();
@@ -130,10 +149,16 @@ std::optional<std::string> FileDialog::draw(
   }
   ImGui::TextDisabled("folders and part files");
   ImGui::BeginChild("entries", ImVec2(0, -ImGui::GetFrameHeightWithSpacing()), true);
-  for (const Entry& e : entries_) {
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    const Entry& e = entries_[i];
+    const bool marked = static_cast<int>(i) == marked_;
     if (e.folder) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.5f, 0.85f, 1, 1));
-    const bool pick = ImGui::Selectable(e.name.c_str()) || clicked(e.name);
+    const bool pick = ImGui::Selectable(e.name.c_str(), marked) || clicked(e.name);
     if (e.folder) ImGui::PopStyleColor();
+    if (marked && scroll_to_mark_) {
+      ImGui::SetScrollHereY();
+      scroll_to_mark_ = false;
+    }
     if (pick && !chosen) {
       chosen = go(e.name);
       break;  // the list may have changed
@@ -151,6 +176,25 @@ std::optional<std::string> FileDialog::draw(
   return chosen;
 }
 
+std::optional<std::string> FileDialog::walk_keys(bool path_was_empty) {
+  const int n = static_cast<int>(entries_.size());
+  if (n > 0 && ImGui::IsKeyPressed(GLFW_KEY_DOWN, true)) {
+    marked_ = std::min(marked_ + 1, n - 1);
+    scroll_to_mark_ = true;
+  }
+  if (n > 0 && ImGui::IsKeyPressed(GLFW_KEY_UP, true)) {
+    marked_ = std::max(marked_ - 1, 0);
+    scroll_to_mark_ = true;
+  }
+  // Backspace in a path that was empty before this frame: the parent folder (a Backspace that
+  // deleted the last letter typed stays in the field).
+  if (path_was_empty && ImGui::IsKeyPressed(GLFW_KEY_BACKSPACE, false)) {
+    refocus_ = true;
+    return go("..");
+  }
+  return std::nullopt;
+}
+
 nlohmann::json FileDialog::state() const {
   nlohmann::json entries = nlohmann::json::array();
   for (const Entry& e : entries_) entries.push_back(e.name);
@@ -158,7 +202,10 @@ nlohmann::json FileDialog::state() const {
           {"folder", folder_},
           {"typed", typed_},
           {"error", error_},
-          {"entries", entries}};
+          {"entries", entries},
+          {"marked", marked_ >= 0 && marked_ < static_cast<int>(entries_.size())
+                         ? entries_[static_cast<std::size_t>(marked_)].name
+                         : std::string()}};
 }
 
 }  // namespace gantry::ui

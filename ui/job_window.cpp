@@ -60,9 +60,7 @@ void App::job_window() {
   ImGui::SameLine();
   const bool ctrl_o = ImGui::GetIO().KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_O, false) &&
                       !file_dialog_.showing() && !sheet_open_ && !dialog_shown_;
-  if (button("Open...") || ctrl_o)
-    file_dialog_.open(file_.empty() ? std::string()
-                                    : std::filesystem::path(file_).parent_path().string());
+  if (button("Open...") || ctrl_o) file_dialog_.open_beside(file_);
   const bool rest = at_rest(), paused = status_.state == MachineState::Paused ||
                                         status_.state == MachineState::Keypad;
   if (button("Start", rest && !file_.empty())) start_file(1);
@@ -72,12 +70,12 @@ void App::job_window() {
   ImGui::SameLine();
   if (button("Stop", !rest)) report(c_.stop(), "stop");
   ImGui::SameLine();
-  ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.1f, 0.1f, 1));
+  push_estop_colours();
   if (button("E-STOP")) {
     m_.io.cancel();
     report(c_.estop(), "E-stop");
   }
-  ImGui::PopStyleColor();
+  ImGui::PopStyleColor(kEStopColours);
   if (status_.state == MachineState::EStop) {
     ImGui::SameLine();
     if (button("Ack")) run_line("ack");
@@ -112,9 +110,9 @@ void App::job_window() {
   ImGui::TextUnformatted(progress.times().c_str());
   // The listing: the line the card plays while the file runs, else where the last run ended;
   // a click at rest chooses the line "Start at line" starts at.
-  const std::size_t chosen =
-      listing_.draw(job_running_ ? progress.line : listing_line_, job_running_ && !rest, rest,
-                    start_line_, pending_click_);
+  const std::size_t chosen = listing_.draw(job_running_ ? progress.file_line : listing_line_,
+                                           job_running_ ? progress.file : listing_file_,
+                                           job_running_ && !rest, rest, start_line_, pending_click_);
   if (chosen > 0) start_line_ = static_cast<int>(chosen);
   ImGui::End();
   if (const std::optional<std::string> f = file_dialog_.draw(

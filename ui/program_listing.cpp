@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 #include "gantry/core/text_file.hpp"  // read_text_file
 
@@ -24,6 +25,7 @@ std::shared_ptr<const ListingText> ListingText::read(const std::string& path) {
   std::optional<std::string> bytes = read_text_file(path);
   if (!bytes) return nullptr;
   auto t = std::make_shared<ListingText>();
+  t->path = path;
   t->text = std::move(*bytes);
   // Lines as the interpreter numbers them: each \n ends one; a last line without one counts.
   for (std::size_t i = 0; i < t->text.size();) {
@@ -36,12 +38,38 @@ std::shared_ptr<const ListingText> ListingText::read(const std::string& path) {
 
 void ProgramListing::set(std::shared_ptr<const ListingText> text) {
   text_ = std::move(text);
+  called_.reset();
+  checked_.clear();
+  checked_other_ = false;
+  shown_ = text_.get();
   highlighted_ = followed_ = first_shown_ = last_shown_ = 0;
 }
 
-std::size_t ProgramListing::draw(std::size_t playing, bool follow, bool pick, int start_line,
+const ListingText* ProgramListing::called(const std::shared_ptr<const std::string>& file) {
+  if (!file || !text_) return nullptr;
+  if (*file != checked_) {  // a new name: the same file as the loaded one, or another
+    checked_ = *file;
+    std::error_code e1, e2;
+    checked_other_ =
+        *file != text_->path && std::filesystem::weakly_canonical(*file, e1) !=
+                                    std::filesystem::weakly_canonical(text_->path, e2);
+    if (checked_other_ && (!called_ || called_->path != *file))
+      called_ = ListingText::read(*file);  // null: not a file (a typed line), nothing to show
+  }
+  return checked_other_ && called_ ? called_.get() : nullptr;
+}
+
+std::size_t ProgramListing::draw(std::size_t playing, const std::shared_ptr<const std::string>& file,
+                                 bool follow, bool pick, int start_line,
                                  std::string& pending_click) {
-  const std::size_t lines = text_ ? text_->lines() : 0;
+  // The file that plays: the loaded one, or one it called (FP, C#) while that plays.
+  const ListingText* other = called(file);
+  if (file && text_ && checked_other_ && !other) playing = 0;  // a line of no file shown
+  const ListingText* shown = other ? other : text_.get();
+  if (shown != shown_) followed_ = 0;  // another file: bring its line into view
+  shown_ = shown;
+  pick = pick && !other;  // the start line is a line of the loaded file
+  const std::size_t lines = shown ? shown->lines() : 0;
   highlighted_ = playing <= lines ? playing : 0;
   std::size_t chosen = 0;
   // A script names a line "line N"; it may be out of view, so it is taken here, not drawn.
@@ -55,8 +83,16 @@ std::size_t ProgramListing::draw(std::size_t playing, bool follow, bool pick, in
     }
   }
   const float row = ImGui::GetTextLineHeightWithSpacing();
+  if (other) {  // say which file plays
+    const std::string name = std::filesystem::path(other->path).filename().string();
+    const std::string top = std::filesystem::path(text_->path).filename().string();
+    ImGui::TextColored(ImVec4(1, 0.85f, 0.3f, 1), "playing %s (called from %s)", name.c_str(),
+                       top.c_str());
+  }
   const float height = std::max(ImGui::GetContentRegionAvail().y, 4 * row + 8);
-  ImGui::BeginChild("listing", ImVec2(0, height), true, ImGuiWindowFlags_HorizontalScrollbar);
+  // Each file its own child (and scroll position): the called file's, the loaded one's.
+  ImGui::BeginChild(other ? "listing_called" : "listing", ImVec2(0, height), true,
+                    ImGuiWindowFlags_HorizontalScrollbar);
   if (lines == 0) {
     ImGui::TextDisabled("the part file's lines show here once it is loaded");
     first_shown_ = last_shown_ = 0;
@@ -89,7 +125,7 @@ std::size_t ProgramListing::draw(std::size_t playing, bool follow, bool pick, in
       if (ImGui::Selectable("##line", n == highlighted_) && pick) chosen = n;
       if (pick && ImGui::IsItemHovered()) ImGui::SetTooltip("start at line %zu", n);
       ImGui::SameLine(x);
-      const std::string_view text = text_->line(n);
+      const std::string_view text = shown->line(n);
       const std::string number = fmt::format("{}{:>6}  ", is_start ? ">" : " ", n);
       ImGui::TextColored(n == highlighted_ ? playing_colour
                          : is_start        ? start_colour
@@ -106,7 +142,9 @@ std::size_t ProgramListing::draw(std::size_t playing, bool follow, bool pick, in
 }
 
 nlohmann::json ProgramListing::state() const {
-  return {{"lines", text_ ? text_->lines() : 0},
+  return {{"lines", shown_ ? shown_->lines() : 0},
+          {"file", shown_ ? shown_->path : std::string()},
+          {"called", shown_ != nullptr && shown_ != text_.get()},
           {"highlighted", highlighted_},
           {"first_shown", first_shown_},
           {"last_shown", last_shown_}};

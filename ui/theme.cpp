@@ -78,4 +78,11 @@ void apply_style(bool light, float scale) {
   style.ScaleAllSizes(scale);
 }
 
+void push_estop_colours() {
+  ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.1f, 0.1f, 1));
+  ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(0.82f, 0.12f, 0.12f, 1));
+  ImGui::PushStyleColor(ImGuiCol_ButtonActive, ImVec4(0.55f, 0.05f, 0.05f, 1));
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 1, 1, 1));
+}
+
 }  // namespace gantry::ui

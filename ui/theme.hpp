@@ -23,4 +23,10 @@ float digits_font_size();  // the size it was rasterised at, in pixels
 // The colours and sizes (padding, rounding, scroll bars) of the theme at `scale`.
 void apply_style(bool light, float scale);
 
+// The E-STOP button's colours, the same in both themes: white text on a strong red (6.9:1),
+// hovered and held in reds too (the light theme's blue hover under white text would not
+// read). Pop them with ImGui::PopStyleColor(kEStopColours).
+void push_estop_colours();
+inline constexpr int kEStopColours = 4;
+
 }  // namespace gantry::ui

@@ -13,8 +13,9 @@ namespace gantry {
 struct ConsoleArgs : session::LiveMachineOptions {
   bool yes = false;
   std::vector<std::string> inputs;  // NAME=VALUE
-  // Keypad: a held key is released when no key repeat arrives within `release_ms`, or before
-  // the first repeat within `repeat_delay_ms` (the terminal's delay before it repeats).
+  // Keypad (KeyTaps): a key repeating within `release_ms` is held (a continuous jog, released
+  // when the repeats stop); a press is one step; `repeat_delay_ms` is the terminal's delay
+  // before it repeats a held key (the same key later than that is a new press).
   int release_ms = 150;
   int repeat_delay_ms = 600;
 };

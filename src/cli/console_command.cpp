@@ -34,7 +34,8 @@ CLI::App* add_console_command(CLI::App& app, ConsoleArgs& a) {
                   "Keypad: a continuous jog stops when its key has not repeated for this long")
       ->check(CLI::Range(30, 2000));
   cmd->add_option("--key-repeat-delay-ms", a.repeat_delay_ms,
-                  "Keypad: the terminal's delay before a held key repeats (the first window)")
+                  "Keypad: the terminal's delay before a held key repeats; the same key later "
+                  "than this is a new press (a step)")
       ->check(CLI::Range(50, 3000));
   return cmd;
 }

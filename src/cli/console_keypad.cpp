@@ -1,6 +1,6 @@
 // The terminal console's keypad (K, or SK in a file): the arrows jog, S and F switch fixed
-// steps and speed; a terminal sends key repeats, not key-up, so a continuous jog is released
-// once the repeats stop.
+// steps and speed; a terminal sends key repeats, not key-up, so a tap is one step and a
+// continuous jog runs while the key repeats (KeyTaps).
 #include <fmt/format.h>
 
 #include "console_terminal.hpp"  // write_out
@@ -8,14 +8,13 @@
 
 namespace gantry::console {
 
-using std::chrono::milliseconds;
-
 void Console::enter_keypad(const std::string& message, bool file) {
   if (c_.state() == MachineState::EStop) {
     write_out("E-stop: type ack before the keypad\n");
     return;
   }
   kp_ = Keypad{};
+  kp_.taps = KeyTaps(KeyTaps::ms(args_.release_ms), KeyTaps::ms(args_.repeat_delay_ms));
   kp_.file = file;
   mode_ = Mode::Keypad;
   if (file) snapshot();  // the file's frame, and where its moves left the tool
@@ -28,7 +27,7 @@ void Console::enter_keypad(const std::string& message, bool file) {
   if (!realtime_)
     write_out(
         "  (virtual time: a continuous jog would run to the soft limit at once, so it needs\n"
-        "  --realtime; fixed steps work: press S)\n");
+        "  --realtime; here a held key steps, as fixed steps (S) do)\n");
   draw_status(true);
 }
 
@@ -90,6 +89,7 @@ void Console::keypad_key(const Key& k) {
   // A jog from a file's SK is released (stop would end the file); at the prompt, stopped.
   auto stop_jog = [&] {
     kp_.queued.reset();
+    kp_.waiting.reset();
     if (!kp_.active || kp_.released) return;
     if (kp_.file)
       c_.jog_release();
@@ -119,34 +119,60 @@ void Console::keypad_key(const Key& k) {
   draw_status(true);
 }
 
+namespace {
+
+// The key of a jog (its direction and speed) as KeyTaps names keys.
+std::uint32_t key_of(const JogRequest& j) {
+  std::uint32_t id = j.fast ? 1 : 0;
+  for (int d : j.direction) id = id * 3 + static_cast<std::uint32_t>(d + 1);
+  return id;
+}
+
+bool same_key(const JogRequest& a, const JogRequest& b) {
+  return a.direction == b.direction && a.fast == b.fast;
+}
+
+}  // namespace
+
+void Console::step_jog(const JogRequest& j) {
+  // One step per press; a press while a step is under way waits (one, not a backlog).
+  if (kp_.active)
+    kp_.queued = j;
+  else
+    start_jog(j);
+}
+
+// Fixed-step mode: every key event is a step. Continuous mode (docs/console.md, "Taps and
+// held keys"): a tap is one step of the keypad step, and a jog runs only while the key
+// repeats, as a terminal repeats a held key.
 void Console::jog_key(const std::array<int, kAxisCount>& dir, bool fast) {
   const Clock::time_point now = Clock::now();
   JogRequest j;
   j.direction = dir;
   j.fast = fast;
-  j.step = kp_.step;
-  if (j.step) {
-    // One step per press; a press while a step is under way waits (one, not a backlog).
-    if (kp_.active)
-      kp_.queued = j;
-    else
-      start_jog(j);
+  j.step = true;
+  if (kp_.step) return step_jog(j);
+  const KeyTaps::Meaning meaning = kp_.taps.key(key_of(j), now);
+  kp_.waiting.reset();
+  const bool running = kp_.active && !kp_.current.step && !kp_.released;
+  if (meaning != KeyTaps::Meaning::Held) {
+    if (running) {  // another key, or the same after a pause: this jog is over
+      c_.jog_release();
+      kp_.released = true;
+    }
+    if (meaning == KeyTaps::Meaning::Step) return step_jog(j);
+    kp_.waiting = j;  // KeyTaps::Wait: keypad_tick steps unless a repeat comes first
     return;
   }
-  if (!realtime_) {
-    flash("continuous jogs need --realtime on the simulated card; S switches to fixed steps");
-    return;
-  }
-  if (kp_.active && !kp_.released && kp_.current.direction == dir && kp_.current.fast == fast) {
-    kp_.last_key = now;  // the key repeats: it is still held
-    ++kp_.repeats;
-    return;
-  }
-  if (kp_.active) {  // another key: release this jog, then start that one once at rest
-    if (!kp_.released) c_.jog_release();
-    kp_.released = true;
+  if (running && same_key(kp_.current, j)) return;  // the key repeats: it is still held
+  if (!realtime_) return step_jog(j);  // in virtual time a held key steps, as S does
+  j.step = false;
+  if (kp_.active) {  // a step (the tap that began the hold) first, then on from there
+    if (running) {
+      c_.jog_release();
+      kp_.released = true;
+    }
     kp_.queued = j;
-    kp_.queued_at = now;
     return;
   }
   start_jog(j);
@@ -161,26 +187,25 @@ bool Console::start_jog(const JogRequest& j) {
   kp_.active = true;
   kp_.released = false;
   kp_.current = j;
-  kp_.repeats = 0;
-  kp_.last_key = Clock::now();
   draw_status(true);
   return true;
 }
 
 // Key release: a terminal sends key repeats, not key-up. A continuous jog is released once
-// no repeat has come for `release_ms`, or, before the first repeat, for `repeat_delay_ms`
-// (the terminal waits that long before it starts repeating a held key).
+// its key has not repeated for `release_ms` (KeyTaps::held).
 void Console::keypad_tick(Clock::time_point now) {
+  if (kp_.waiting && kp_.taps.step_due(now)) {  // no repeat followed: it was a tap
+    const JogRequest j = *kp_.waiting;
+    kp_.waiting.reset();
+    step_jog(j);
+  }
   if (kp_.active) {
     ControllerStatus st = c_.status();
     const MachineState s = st.state;
     if (!at_rest(s) && s != MachineState::Keypad) {
-      if (!kp_.current.step && !kp_.released) {
-        const milliseconds window(kp_.repeats == 0 ? args_.repeat_delay_ms : args_.release_ms);
-        if (now - kp_.last_key > window) {
-          c_.jog_release();
-          kp_.released = true;
-        }
+      if (!kp_.current.step && !kp_.released && !kp_.taps.held(key_of(kp_.current), now)) {
+        c_.jog_release();
+        kp_.released = true;
       }
       return;
     }
@@ -202,9 +227,9 @@ void Console::keypad_tick(Clock::time_point now) {
   if (kp_.leaving) return leave_keypad();
   if (kp_.queued) {
     const JogRequest j = *kp_.queued;
-    const bool fresh = j.step || now - kp_.queued_at < milliseconds(args_.repeat_delay_ms);
     kp_.queued.reset();
-    if (fresh) start_jog(j);
+    // A continuous jog waits for the step before it; it starts only if the key still repeats.
+    if (j.step || kp_.taps.held(key_of(j), now)) start_jog(j);
   }
 }
 

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "console.hpp"                       // ConsoleArgs
+#include "key_taps.hpp"                      // KeyTaps
 #include "gantry/machine/controller.hpp"     // Controller
 #include "gantry/session/console_words.hpp"  // TypedLine
 #include "gantry/session/live_machine.hpp"   // ValuesKeeper
@@ -79,6 +80,7 @@ class Console {
   void leave_keypad();
   void jog_key(const std::array<int, kAxisCount>& dir, bool fast);
   bool start_jog(const JogRequest& j);
+  void step_jog(const JogRequest& j);  // now, or once the jog under way is at rest
   void keypad_tick(Clock::time_point now);
   std::string keypad_text() const;
 
@@ -116,10 +118,9 @@ class Console {
     bool leaving = false;   // Esc: leave once at rest
     bool file = false;      // a file waits at SK: leaving resumes it
     JogRequest current;
-    int repeats = 0;  // key repeats seen for the current jog
-    Clock::time_point last_key{};
     std::optional<JogRequest> queued;  // the next press, while a jog is under way
-    Clock::time_point queued_at{};
+    KeyTaps taps{KeyTaps::ms(150), KeyTaps::ms(600)};  // continuous mode: tap or held
+    std::optional<JogRequest> waiting;  // a KeyTaps::Wait: a step unless the key repeats
   } kp_;
 };
 

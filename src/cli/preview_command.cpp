@@ -203,10 +203,15 @@ int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions
     }
     // The cutter per range of segments: VC's at the start, then each change.
     j["tools"] = nlohmann::ordered_json::array();
-    j["tools"].push_back({{"first_segment", 0}, {"line", 0}, {"diameter", cut.diameter}});
+    j["tools"].push_back({{"first_segment", 0},
+                          {"line", 0},
+                          {"diameter", cut.diameter},
+                          {"tool", path.tool}});
     for (const Toolpath::CutterChange& c : path.cutter_changes)
-      j["tools"].push_back(
-          {{"first_segment", c.first}, {"line", c.line}, {"diameter", c.diameter}});
+      j["tools"].push_back({{"first_segment", c.first},
+                            {"line", c.line},
+                            {"diameter", c.diameter},
+                            {"tool", c.tool}});
     j["spindle"] = nlohmann::ordered_json::array();
     for (const Toolpath::SpindleChange& c : path.spindle_changes)
       j["spindle"].push_back({{"first_segment", c.first}, {"line", c.line}, {"rpm", c.rpm}});
@@ -227,8 +232,8 @@ int run_preview(const PreviewArgs& a, const Settings& settings, const JobOptions
                stock->min().x(), stock->max().x(), stock->min().y(), stock->max().y(),
                stock->min().z(), stock->max().z());
     for (const Toolpath::CutterChange& c : path.cutter_changes)
-      fmt::print("tool change at line {} (segment {}): cutter diameter {:g}\n", c.line, c.first,
-                 c.diameter);
+      fmt::print("tool change at line {} (segment {}): {}cutter diameter {:g}\n", c.line, c.first,
+                 c.tool ? fmt::format("tool {}, ", c.tool) : "", c.diameter);
     for (const Toolpath::SpindleChange& c : path.spindle_changes)
       fmt::print("spindle at line {} (segment {}): {:g} RPM\n", c.line, c.first, c.rpm);
     if (a.play_s || a.play_line)

@@ -309,6 +309,7 @@ void CommandContext::dwell(double seconds, const SourceLoc& loc) {
 void CommandContext::note_drawing(const SourceLoc& loc) {
   DrawingState d;
   d.cutter_diameter = settings_.cutter.diameter;
+  d.tool = state_.gcode.tool;
   d.units = settings_.units;
   d.file_units = file_units_.value_or(settings_.units);
   d.spindle_rpm = state_.spindle_rpm;

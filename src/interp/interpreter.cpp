@@ -12,6 +12,7 @@
 #include "gantry/core/diagnostic_log.hpp"    // DiagnosticLog
 #include "gantry/core/file_problem.hpp"      // shown_path
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
+#include "gantry/interp/tool_table.hpp"      // tool_into_spindle
 #include "gantry/lang/scan.hpp"              // looks_like_expression
 #include "interp_private.hpp"                // Frame, UserFile
 #include "persistent_path.hpp"               // describe_path
@@ -1025,6 +1026,19 @@ std::vector<std::string> Interpreter::macro_folders() const {
   return folders;
 }
 
+// &Tool = n, then C9 (SB3's tool change, as CAM posts write it): tool n is in the spindle
+// from here on, whatever the macro does (the shipped C9 sets no VC), so a preview draws the
+// cuts after it with tool n's cutter, and the change is told at the C9 line. A &Tool that
+// is not a tool number is left to the macro to refuse.
+void Interpreter::tool_change(const SourceLoc& loc) {
+  const Value* t = user_variable("TOOL");
+  if (!t || !t->is_number()) return;
+  const double n = t->num();
+  if (n < 1 || n > 1e9 || n != std::floor(n)) return;
+  tool_into_spindle(ctx_, static_cast<int>(n), loc);
+  ctx_.note_drawing(loc);
+}
+
 void Interpreter::call_macro(int number, const SourceLoc& loc) {
   const std::vector<std::string> folders = macro_folders();
   for (const std::string& dir : folders)
@@ -1035,6 +1049,7 @@ void Interpreter::call_macro(int number, const SourceLoc& loc) {
       if (!found.error.empty()) fail(loc, found.error);
       if (files_system_->is_file(found.path)) {
         check_reach(found.path, FileAccess::Read, loc);  // a macro may be a link out
+        if (number == 9) tool_change(loc);
         FileCall call;
         call.path = found.path;
         call.resolved = true;

@@ -1,11 +1,13 @@
 // SB3's cutter (VC) and G-code's tool table in step (docs/gcode.md, "Tool table"): M6/M61
-// give VC the diameter of the tool in the spindle (gcode_tools.cpp); a VC that changes the
-// diameter writes it back as that tool's D, through the same atomic writer as G10 L1.
+// (gcode_tools.cpp) and an &Tool + C9 change give VC the diameter of the tool in the spindle;
+// a VC that changes the diameter writes it back as that tool's D, through the same atomic
+// writer as G10 L1.
 #include <fmt/format.h>  // messages
 
 #include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
 #include "gantry/interp/command_context.hpp"
 #include "gantry/interp/tool_table.hpp"
+#include "gantry/interp/value.hpp"  // format_number
 
 namespace gantry {
 
@@ -35,6 +37,30 @@ void cutter_to_tool_table(CommandContext& ctx, double diameter, const SourceLoc&
     changed = ToolTable::parse(out, path);
   }
   table = std::move(changed);
+}
+
+void tool_into_spindle(CommandContext& ctx, int number, const SourceLoc& loc) {
+  GcodeOffsets& o = ctx.state().gcode;
+  o.tool = number;  // the drawing state carries it to a preview with the next move
+  const std::string& path = ctx.settings().tool_table_path;
+  if (path.empty() || number == 0) return;  // no file: the cutter stays VC's
+  ToolTable& table = o.tools;
+  const std::optional<std::string> text = read_text_file(path);
+  if (table.path() != path || !text || *text != table.source_text())
+    table = load_tool_table(path, loc);
+  const ToolEntry* e = table.find(number);
+  if (!e) {
+    ctx.warn(loc, fmt::format("tool {} is not in the tool table {}, so the cutter stays VC's "
+                              "({}); add a line T{} P{} D<diameter> for it",
+                              number, path, format_number(ctx.settings().cutter.diameter),
+                              number, number));
+    return;
+  }
+  if (e->diameter <= 0 || e->diameter == ctx.settings().cutter.diameter) return;
+  // As M6 does: the cutter (VC) is the tool in the spindle; the motion stream hears of it at
+  // rest, so a preview draws the cuts after it with this cutter.
+  ctx.change_values(ValueScope::Permanent).cutter.diameter = e->diameter;
+  ctx.values_reach_motion(loc);
 }
 
 }  // namespace gantry

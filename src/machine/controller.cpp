@@ -356,6 +356,7 @@ ControllerStatus Controller::status() const {
   s.line = line_.load(std::memory_order_relaxed);
   s.lines = lines_.load(std::memory_order_relaxed);
   s.playing_line = feed_.playing_line();
+  s.playing_file = feed_.playing_file();
   const OutputLevels out = feed_.outputs();
   s.outputs = out.switches;
   s.spindle_rpm = out.spindle_rpm;

@@ -373,9 +373,11 @@ std::string render_svg(const Toolpath& path, const Settings& settings, const Pre
         dims[0], dims[1], dims[2]);
   }
   // The cutters: VC's at the start, then each tool change with the line it came at.
-  std::string cutters = fmt::format("{:g} {}", path.cutter_diameter, units);
+  // A named tool (&Tool + C9, M6) is given as T<n> before its diameter.
+  auto named = [](int tool) { return tool ? fmt::format("T{} ", tool) : std::string(); };
+  std::string cutters = fmt::format("{}{:g} {}", named(path.tool), path.cutter_diameter, units);
   for (const Toolpath::CutterChange& c : path.cutter_changes)
-    cutters += fmt::format(", {:g} {} from line {}", c.diameter, units, c.line);
+    cutters += fmt::format(", {}{:g} {} from line {}", named(c.tool), c.diameter, units, c.line);
   out += fmt::format(
       "<text class=\"tools\" x=\"8\" y=\"30\" font-family=\"sans-serif\" font-size=\"11\" "
       "fill=\"#000000\">cutter{} {}</text>\n",

@@ -72,12 +72,17 @@ class ToolpathSink : public MotionSink {
     moves_in_ = d.units;
     const auto line = static_cast<std::uint32_t>(std::max(d.line, 0));
     const double diameter = d.cutter_diameter * units_factor(d.units, path_.units);
-    const double now = path_.cutter_changes.empty() ? path_.cutter_diameter
-                                                    : path_.cutter_changes.back().diameter;
-    if (path_.segments.empty() && path_.cutter_changes.empty()) {
+    const bool first = path_.cutter_changes.empty();
+    const double now = first ? path_.cutter_diameter : path_.cutter_changes.back().diameter;
+    const int tool = first ? path_.tool : path_.cutter_changes.back().tool;
+    if (path_.segments.empty() && first) {
       path_.cutter_diameter = diameter;  // set before the first cut: the cutter at the start
-    } else if (std::abs(diameter - now) > 1e-9 * std::max(1.0, std::abs(now))) {
-      path_.cutter_changes.push_back({path_.segments.size(), diameter, line});
+      path_.tool = d.tool;
+    } else if (d.tool != tool ||
+               std::abs(diameter - now) > 1e-9 * std::max(1.0, std::abs(now))) {
+      // A tool change with the same diameter is a change too: the cuts after it are another
+      // tool's (the material map and the SVG say which).
+      path_.cutter_changes.push_back({path_.segments.size(), diameter, line, d.tool});
       tool_ = static_cast<std::uint8_t>(std::min<std::size_t>(path_.cutter_changes.size(), 255));
     }
     if (d.spindle_rpm != rpm_)

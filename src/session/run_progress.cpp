@@ -38,12 +38,16 @@ RunProgress run_progress(const ControllerStatus& s) {
   auto by_time = [&] { return std::clamp(s.elapsed_s / (s.elapsed_s + s.remaining_s), 0.0, 1.0); };
   if (short_end) {  // where the motion came to rest
     p.line = s.stopped_at.line > 0 ? static_cast<std::size_t>(s.stopped_at.line) : s.line;
+    if (s.stopped_at.line > 0) p.file = s.stopped_at.file;
+    p.file_line = p.line;
     p.fraction = s.remaining_s > 0 ? by_time() : by_lines();
   } else if (p.over) {
-    p.line = s.line;
+    p.line = p.file_line = s.line;
     p.fraction = p.lines > 0 ? 1.0 : 0.0;
   } else {
     p.line = s.playing_line > 0 ? static_cast<std::size_t>(s.playing_line) : s.line;
+    if (s.playing_line > 0) p.file = s.playing_file;
+    p.file_line = p.line;
     if (p.lines > 0) p.line = std::min(p.line, p.lines);
     if (s.remaining_s > 0) p.remaining_s = s.remaining_s;
     p.fraction = s.remaining_s > 0 ? by_time() : by_lines();

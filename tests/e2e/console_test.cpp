@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/key_taps.hpp"
 #include "cli/line_editor.hpp"
 
 namespace {
@@ -194,6 +195,39 @@ TEST(ConsoleLine, EditorSubmitsTheEditedLineAndRemembersIt) {
   EXPECT_EQ(ed.buffer().text(), "MX 3");
   EXPECT_EQ(type("\x03"), gantry::LineEditor::Event::Interrupt);
   EXPECT_NE(screen.find("gantry> MX 3"), std::string::npos);
+}
+
+// ---- taps and held keys (the terminal keypad's rule, docs/console.md) ---------------------
+
+TEST(ConsoleKeyTaps, APressIsAStepAndRepeatsFasterThanTheReleaseTimeAreAHeldKey) {
+  using gantry::console::KeyTaps;
+  using M = KeyTaps::Meaning;
+  using ms = std::chrono::milliseconds;
+  KeyTaps taps(ms(150), ms(600));
+  const auto t0 = KeyTaps::Clock::time_point{} + std::chrono::hours(1);
+  // A key held at a terminal: the press, the repeat delay (500 ms), then a repeat every 33.
+  EXPECT_EQ(taps.key(1, t0), M::Step);
+  EXPECT_FALSE(taps.step_due(t0 + ms(400)));
+  EXPECT_FALSE(taps.held(1, t0 + ms(400)));
+  EXPECT_EQ(taps.key(1, t0 + ms(500)), M::Wait);  // the first repeat, or a second tap
+  EXPECT_FALSE(taps.step_due(t0 + ms(520)));
+  EXPECT_EQ(taps.key(1, t0 + ms(533)), M::Held);  // a second repeat: nobody taps that fast
+  EXPECT_FALSE(taps.step_due(t0 + ms(800)));      // the first repeat was no tap
+  EXPECT_TRUE(taps.held(1, t0 + ms(650)));
+  EXPECT_FALSE(taps.held(2, t0 + ms(650)));
+  EXPECT_EQ(taps.key(1, t0 + ms(566)), M::Held);
+  EXPECT_TRUE(taps.held(1, t0 + ms(716)));
+  EXPECT_FALSE(taps.held(1, t0 + ms(717)));  // 150 ms without a repeat: the key is up
+  // Two taps 300 ms apart: a step, and a step once no repeat has followed the second.
+  EXPECT_EQ(taps.key(1, t0 + ms(5000)), M::Step);
+  EXPECT_EQ(taps.key(1, t0 + ms(5300)), M::Wait);
+  EXPECT_FALSE(taps.step_due(t0 + ms(5450)));
+  EXPECT_TRUE(taps.step_due(t0 + ms(5451)));
+  EXPECT_FALSE(taps.step_due(t0 + ms(5500)));  // once
+  // Another key, or the same key after the repeat delay, is a press at once.
+  EXPECT_EQ(taps.key(2, t0 + ms(5550)), M::Step);
+  EXPECT_EQ(taps.key(1, t0 + ms(5560)), M::Step);
+  EXPECT_EQ(taps.key(1, t0 + ms(6200)), M::Step);
 }
 
 // ---- the console through a pipe ------------------------------------------------------------
@@ -399,6 +433,14 @@ class TmuxConsole {
 
   void keys(const std::string& tmux_keys) { tmux("send-keys -t main " + tmux_keys); }
   void type(const std::string& text) { tmux("send-keys -t main -l " + quoted(text)); }
+  // A key held for `ms` milliseconds, as a terminal repeats it: sent every 25 ms.
+  void hold(const std::string& tmux_key, int ms) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+    while (std::chrono::steady_clock::now() < end) {
+      keys(tmux_key);
+      std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    }
+  }
   void line(const std::string& text) {
     type(text);
     keys("Enter");
@@ -627,28 +669,39 @@ TEST(ConsoleTerminal, BangIsTheEStopAndAckIsNeededBeforeTheNextMove) {
   ASSERT_TRUE(t.wait_for_line(readout("idle", {1, 0, 0, 0, 0, 0}), 40)) << t.text();
 }
 
-TEST(ConsoleTerminal, AContinuousJogStopsOnceTheKeyNoLongerRepeats) {
+// Issue 25: a tap at a terminal jogged until the repeat delay had passed (1.28 in with the
+// defaults; 0.42 in the window). Now a tap is one keypad step, exactly, and a jog runs while
+// the key repeats and slows to rest once the repeats stop. The release time is 400 ms here
+// so that a loaded machine's late key sends still read as repeats.
+TEST(ConsoleTerminal, ATapIsOneStepAndAHeldKeyJogsUntilItsRepeatsStop) {
   REQUIRE_TMUX();
-  TmuxConsole t("--card sim --realtime");
+  TmuxConsole t("--card sim --realtime --key-release-ms 400 --key-repeat-delay-ms 1000");
   ASSERT_TRUE(t.started());
   ASSERT_TRUE(t.wait_for_prompt()) << t.text();
   t.line("K");
   const std::string prefix = "[keypad continuous slow] ";
   ASSERT_TRUE(t.wait_for_last(prefix + readout("idle", {0, 0, 0, 0, 0, 0}))) << t.text();
-  t.keys("Up");  // one press, no repeats: released after the repeat delay, then at rest
-  // At rest again, and idle: a released jog is no stopped file.
+  t.keys("Up");  // a tap: one press, no repeats
   ASSERT_TRUE(t.wait_for([&] {
     const std::string l = t.last_line();
-    return l.starts_with(prefix + "idle ") && readout_x(l.substr(prefix.size())) == 0.0 &&
-           l.find(" Y 0.0000 ") == std::string::npos;
+    return l.starts_with(prefix + "idle ") && l.find(" Y 0.0000 ") == std::string::npos;
   })) << t.text();
+  std::this_thread::sleep_for(std::chrono::milliseconds(1200));  // nothing more comes
+  EXPECT_EQ(t.last_line(), prefix + readout("idle", {0, 0.1, 0, 0, 0, 0})) << t.text();
+  // Held for 1.5 s: a step, then a continuous jog while the repeats come, then at rest.
+  t.hold("Right", 1500);
+  ASSERT_TRUE(t.wait_for([&] {
+    const std::string l = t.last_line();
+    return l.starts_with(prefix + "idle ") && l.find(" X 0.0000 ") == std::string::npos;
+  })) << t.text();
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
   const std::string l = t.last_line();
-  const size_t y = l.find(" Y ");
-  ASSERT_NE(y, std::string::npos) << l;
-  const double at = std::stod(l.substr(y + 3));
-  EXPECT_GT(at, 0.0);
-  EXPECT_LT(at, 18.0);  // it did not run to the end of the table
-  EXPECT_EQ(readout_x(l.substr(prefix.size())), 0.0);
+  ASSERT_TRUE(l.starts_with(prefix + "idle ")) << t.text();
+  const std::optional<double> x = readout_x(l.substr(prefix.size()));
+  ASSERT_TRUE(x) << l;
+  EXPECT_GT(*x, 0.5);   // more than the step: it ran while held (1.5 s at 2 in/s is 3 in)
+  EXPECT_LT(*x, 6.0);   // and stopped once the repeats did, far from the table's end
+  EXPECT_NE(l.find(" Y 0.1000 "), std::string::npos) << l;
   t.keys("Escape");
   ASSERT_TRUE(t.wait_for_prompt()) << t.text();
 }
@@ -676,7 +729,7 @@ TEST(ConsoleTerminal, AfterAnEStopAndAckTheKeypadStillHearsBangWhileAJogSlowsToR
   t.line("K");
   const std::string prefix = "[keypad continuous slow] ";
   ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with(prefix + "idle "); })) << t.text();
-  t.keys("Right");  // one press: released after the repeat delay, then seconds slowing down
+  t.hold("Right", 1500);  // held: a step, a continuous jog, released, then seconds slowing down
   ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with(prefix + "jogging "); }))
       << t.text();
   std::this_thread::sleep_for(std::chrono::milliseconds(800));  // released, still slowing

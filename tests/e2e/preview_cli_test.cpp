@@ -266,4 +266,31 @@ TEST_F(PreviewCli, TheSummaryIsInTheFilesUnitsAndListsEachCutter) {
   EXPECT_EQ(t["tools"][1]["diameter"], 0.5);
 }
 
+// Issue 25: "&Tool = 3" then C9 (the shipped macro, which sets no VC) left the preview's
+// cutter the old one. The preview follows the tool, with its diameter from the tool table.
+TEST_F(PreviewCli, AToolChangeByC9TakesTheToolsDiameterFromTheToolTable) {
+  write("tools.tbl", "T1 P1 D0.125\nT3 P3 D0.5\n");
+  const std::string sbp = write("tc.sbp",
+                                "&Tool = 1\nC9\nJZ, 0.5\nMZ, -0.1\nMX, 2\nJZ, 0.5\n"
+                                "&Tool = 3\nC9\nJ2, 0, 1\nMZ, -0.1\nMX, 2\nJZ, 0.5\n");
+  Result r = gantry(fmt::format("preview {} --tool-table {} -o {}", sbp, path("tools.tbl"),
+                                path("tc.svg")));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("tool change at line 8 (segment "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("tool 3, cutter diameter 0.5\n"), std::string::npos) << r.out;
+  EXPECT_NE(read(path("tc.svg")).find(">cutters T1 0.125 in, T3 0.5 in from line 8</text>"),
+            std::string::npos)
+      << read(path("tc.svg"));
+  r = gantry(fmt::format("preview {} --tool-table {} --json -o {}", sbp, path("tools.tbl"),
+                         path("tc.png")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json t = json::parse(r.out)["tools"];
+  ASSERT_EQ(t.size(), 2u) << r.out;
+  EXPECT_EQ(t[0]["tool"], 1);
+  EXPECT_EQ(t[0]["diameter"], 0.125);
+  EXPECT_EQ(t[1]["tool"], 3);
+  EXPECT_EQ(t[1]["diameter"], 0.5);
+  EXPECT_EQ(t[1]["line"], 8);
+}
+
 }  // namespace

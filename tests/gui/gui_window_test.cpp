@@ -770,6 +770,113 @@ TEST_F(GuiWindow, TheLightThemeHasLightBackgroundsAndDarkText) {
   EXPECT_GT(l.count(0, 60, 370, 200, dark), 1000);
 }
 
+// Issue 25: while a file FP called played, the listing highlighted that file's line number in
+// the top file's text. It shows the file that plays, and says which it is.
+TEST_F(GuiWindow, TheListingShowsTheCalledFileWhileItPlays) {
+  write("main.sbp", "SW, 0\nMX, 0.5\nFP, sub.sbp\nMX, 0\n");
+  write("sub.sbp", "' the called file\nMY, 0.5\nMY, 1\nPAUSE \"in the called file\"\nMY, 0\n");
+  ASSERT_EQ(gui("wait idle\ndump loaded.json\nclick Start\nwait dialog\nwait frames 3\n"
+                "dump called.json\nscreenshot called.png\nclick Continue\nwait idle\n"
+                "wait frames 2\ndump done.json\n",
+                "main.sbp"),
+            0)
+      << out_;
+  const json loaded = state("loaded.json")["listing"];
+  EXPECT_EQ(loaded["lines"], 4);
+  EXPECT_EQ(fs::path(loaded["file"].get<std::string>()).filename(), "main.sbp");
+  EXPECT_FALSE(loaded["called"]);
+  const json called = state("called.json")["listing"];
+  EXPECT_TRUE(called["called"]) << called.dump();
+  EXPECT_EQ(fs::path(called["file"].get<std::string>()).filename(), "sub.sbp") << called.dump();
+  EXPECT_EQ(called["lines"], 5);
+  EXPECT_EQ(called["highlighted"], 3) << called.dump();  // MY, 1: the motion before the PAUSE
+  const json done = state("done.json")["listing"];  // over: the top file again
+  EXPECT_FALSE(done["called"]) << done.dump();
+  EXPECT_EQ(fs::path(done["file"].get<std::string>()).filename(), "main.sbp");
+}
+
+// Issue 25: at 1280 x 800 the listing showed about 4 lines; it gets 8 before the readout's
+// digits grow past twice the text.
+TEST_F(GuiWindow, TheListingShowsEightLinesAt1280By800) {
+  std::string part;
+  for (int i = 1; i <= 60; ++i) part += i % 2 ? "MX, 1\n" : "MX, 0\n";
+  write("many.sbp", part);
+  ASSERT_EQ(gui("wait idle\nwait frames 2\ndump s.json\nscreenshot s.png\n", "many.sbp"), 0)
+      << out_;
+  const json s = state("s.json");
+  EXPECT_EQ(s["layout"]["display"], json({1280, 800}));
+  const json& l = s["listing"];
+  EXPECT_GE(l["last_shown"].get<int>() - l["first_shown"].get<int>() + 1, 8) << l.dump();
+  EXPECT_GT(s["layout"]["digits_px"].get<double>(), 2 * s["layout"]["font_px"].get<double>() - 1);
+  for (const auto& [name, b] : s["buttons"].items()) EXPECT_TRUE(b["whole"]) << name;
+}
+
+// Issue 25: the file dialog walks with the keys: Down/Up mark an entry, Enter opens it (a
+// folder: goes in), Backspace in an empty path goes to the parent with the folder left marked.
+TEST_F(GuiWindow, TheFileDialogWalksWithTheArrowKeys) {
+  write("a.sbp", "MX, 1\n");
+  write("pick.sbp", "MX, 2\n");
+  fs::create_directories(dir_ / "sub");
+  write("sub/other.nc", "G0 X1 Y1\n");
+  ASSERT_EQ(gui("wait idle\nkey ctrl+o\nwait frames 3\nkey Down\nkey Down\nwait frames 2\n"
+                "dump marked.json\nscreenshot marked.png\nkey Enter\nwait frames 2\n"
+                "dump sub.json\nkey Backspace\nwait frames 2\ndump up.json\nkey Down\nkey Down\n"
+                "key Up\nwait frames 2\ndump a.json\nkey Enter\nwait idle\nwait frames 2\n"
+                "dump loaded.json\n"),
+            0)
+      << out_;
+  const json marked = state("marked.json")["file_dialog"];
+  EXPECT_EQ(marked["entries"], json({"config/", "sub/", "a.sbp", "pick.sbp"})) << marked.dump();
+  EXPECT_EQ(marked["marked"], "sub/") << marked.dump();
+  const json sub = state("sub.json")["file_dialog"];
+  EXPECT_EQ(sub["folder"], (dir_ / "sub").string()) << sub.dump();
+  EXPECT_EQ(sub["entries"], json({"other.nc"}));
+  const json up = state("up.json")["file_dialog"];
+  EXPECT_EQ(up["folder"], dir_.string()) << up.dump();
+  EXPECT_EQ(up["marked"], "sub/") << up.dump();
+  EXPECT_EQ(state("a.json")["file_dialog"]["marked"], "a.sbp");
+  const json loaded = state("loaded.json");
+  EXPECT_FALSE(loaded["file_dialog"]["showing"]);
+  EXPECT_EQ(loaded["preview"]["file"], (dir_ / "a.sbp").string());
+}
+
+// Issue 25: File > Open... opens the dialog Ctrl+O opens, in the loaded file's folder.
+TEST_F(GuiWindow, FileOpenInTheMenuOpensTheFileDialog) {
+  fs::create_directories(dir_ / "jobs");
+  write("jobs/one.sbp", "MX, 1\n");
+  ASSERT_EQ(gui("wait idle\nclick File > Open...\nwait frames 3\ndump s.json\n"
+                "screenshot s.png\n",
+                "jobs/one.sbp"),
+            0)
+      << out_;
+  const json d = state("s.json")["file_dialog"];
+  EXPECT_TRUE(d["showing"]) << d.dump();
+  EXPECT_EQ(d["folder"], (dir_ / "jobs").string()) << d.dump();
+  EXPECT_EQ(d["entries"], json({"one.sbp"}));
+}
+
+// Issue 25: E-STOP was black on dark red in the light theme; it is white on red in both.
+TEST_F(GuiWindow, TheEStopReadsWhiteOnRedInBothThemes) {
+  ASSERT_EQ(gui("wait idle\nwait frames 2\ndump dark.json\nscreenshot dark.png\n"
+                "click Light theme\nwait frames 3\ndump light.json\nscreenshot light.png\n"),
+            0)
+      << out_;
+  const auto white = [](int r, int g, int b) { return r > 220 && g > 220 && b > 220; };
+  const auto red = [](int r, int g, int b) { return r > 140 && g < 60 && b < 60; };
+  const auto black = [](int r, int g, int b) { return r < 60 && g < 60 && b < 60; };
+  for (const char* theme : {"dark", "light"}) {
+    const json& b = state(fmt::format("{}.json", theme))["buttons"]["E-STOP"]["rect"];
+    ASSERT_TRUE(b.is_array()) << theme;
+    auto at = [&](int i, int inset) { return static_cast<int>(b[i].get<double>()) + inset; };
+    const int x0 = at(0, 2), y0 = at(1, 2), x1 = at(2, -2), y1 = at(3, -2);
+    const Image im = image(fmt::format("{}.png", theme));
+    const int area = (x1 - x0) * (y1 - y0);
+    EXPECT_GT(im.count(x0, y0, x1, y1, red), area / 2) << theme;
+    EXPECT_GT(im.count(x0, y0, x1, y1, white), 20) << theme << ": the letters are not white";
+    EXPECT_EQ(im.count(x0, y0, x1, y1, black), 0) << theme << ": dark letters on red";
+  }
+}
+
 }  // namespace
 
 

@@ -1,7 +1,7 @@
 // The tool table (docs/gcode.md, "Tool table"): LinuxCNC's file read and written back,
 // malformed lines located, G43 H / M6 T / M61 Q / G10 L1 L10 L11 against LinuxCNC 2.9's
 // rs274 (its numbers are the golden values below), the implicit table when none is
-// configured, and VC following the tool in the spindle.
+// configured, and VC following the tool in the spindle (M6, and OpenSBP's &Tool + C9).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -460,6 +460,106 @@ TEST_F(GcodeToolTable, ThePreviewCutsWithTheDiameterOfTheToolInTheSpindle) {
   EXPECT_LT(*map.height(2, 0.2), -0.09);   // within the first cutter
   EXPECT_GT(*map.height(2, 1.2), -0.001);  // outside the second
   EXPECT_LT(*map.height(2, 1.03), -0.09);  // within the second
+}
+
+
+// OpenSBP's tool change (&Tool = n, then C9) as M6: tool n is in the spindle, its D is VC's
+// when the table gives one, and the drawing state tells a preview the tool and its cutter at
+// the C9 line. This shop's C9 sets no VC (the shipped one does not either).
+class SbpToolChange : public GcodeToolTable {
+ protected:
+  // A recorder of the drawing states the interpreter tells its sink.
+  struct DrawingSink : RecordingSink {
+    void drawing_changed(const DrawingState& d) override { drawn.push_back(d); }
+    std::vector<DrawingState> drawn;
+  };
+  void SetUp() override {
+    GcodeToolTable::SetUp();
+    fs::create_directories(dir_ / "macros");
+    std::ofstream(dir_ / "macros" / "C9.sbp") << "' a tool change without VC\nJZ, 1\n";
+    options.macro_dir = (dir_ / "macros").string();
+  }
+  // Runs `text` (an .sbp) into `drawing`; the settings it left.
+  Settings run_sbp(const std::string& text) {
+    drawing = DrawingSink();
+    Interpreter interp(settings, drawing, io, store, options);
+    interp.run(Script::from_text(text, "t.sbp"));
+    state = interp.state();
+    return interp.settings();
+  }
+  InterpreterOptions options;
+  DrawingSink drawing;
+};
+
+TEST_F(SbpToolChange, TheToolOfC9IsInTheSpindleAndItsTableDiameterIsVcs) {
+  table_file(kTable);
+  settings.cutter.diameter = 0.75;
+  Settings after = run_sbp("JZ, 0.5\nMX, 1\n&Tool = 2\nC9\nMX, 2\n");
+  EXPECT_EQ(state.gcode.tool, 2);
+  EXPECT_EQ(after.cutter.diameter, 0.125);  // tool 2's D
+  ASSERT_EQ(drawing.drawn.size(), 2u);
+  EXPECT_EQ(drawing.drawn[0].tool, 0);
+  EXPECT_EQ(drawing.drawn[0].cutter_diameter, 0.75);
+  EXPECT_EQ(drawing.drawn[1].tool, 2);
+  EXPECT_EQ(drawing.drawn[1].cutter_diameter, 0.125);
+  EXPECT_EQ(drawing.drawn[1].line, 4);  // the C9 line
+  // Tool 4 has no D: VC's stays; tool 7 is not in the table: VC's stays, with a warning.
+  settings = after;
+  after = run_sbp("&Tool = 4\nC9\n");
+  EXPECT_EQ(state.gcode.tool, 4);
+  EXPECT_EQ(after.cutter.diameter, 0.125);
+  io.warnings.clear();
+  after = run_sbp("&Tool = 7\nC9\n");
+  EXPECT_EQ(state.gcode.tool, 7);
+  EXPECT_EQ(after.cutter.diameter, 0.125);
+  ASSERT_EQ(io.warnings.size(), 1u);
+  EXPECT_NE(io.warnings[0].message.find("tool 7 is not in the tool table"), std::string::npos)
+      << io.warnings[0].message;
+  EXPECT_EQ(io.warnings[0].loc.line, 2);
+  // CN, 9 is C9 too.
+  settings = after;
+  after = run_sbp("&Tool = 3\nCN, 9\n");
+  EXPECT_EQ(after.cutter.diameter, 0.5);
+}
+
+TEST_F(SbpToolChange, WithoutATableTheToolNumberStillReachesThePreview) {
+  settings.tool_table_path.clear();
+  settings.cutter.diameter = 0.25;
+  const Settings after = run_sbp("&Tool = 3\nC9\nMX, 1\n");
+  EXPECT_EQ(after.cutter.diameter, 0.25);  // VC's: nothing tells another
+  ASSERT_FALSE(drawing.drawn.empty());
+  EXPECT_EQ(drawing.drawn.back().tool, 3);
+  EXPECT_TRUE(io.warnings.empty());
+}
+
+// The preview: a cut with tool 1 (D0.25), then &Tool = 3 and C9 (D0.5): the cuts after it
+// are tool 3's, with its cutter, from the C9 line; the same diameter is a change too.
+TEST_F(SbpToolChange, ThePreviewFollowsAToolChangeByC9) {
+  table_file(kTable);
+  settings.cutter.diameter = 0.25;
+  const fs::path program = dir_ / "two_tools.sbp";
+  std::ofstream(program) << "&Tool = 1\nC9\nMZ, -0.1\nMX, 4\nJZ, 0.5\n"
+                            "&Tool = 3\nC9\nJ2, 0, 1\nMZ, -0.1\nMX, 4\nJZ, 0.5\n"
+                            "&Tool = 1\nC9\nMX, 0\n";
+  ToolpathOptions topts;
+  topts.job.interpreter.macro_dir = options.macro_dir;
+  const Toolpath path = load_toolpath(program.string(), settings, topts);
+  ASSERT_FALSE(path.has_errors()) << format(path.violations.front());
+  EXPECT_EQ(path.tool, 1);  // named before the first cut
+  EXPECT_EQ(path.cutter_diameter, 0.25);
+  ASSERT_EQ(path.cutter_changes.size(), 2u);
+  EXPECT_EQ(path.cutter_changes[0].tool, 3);
+  EXPECT_EQ(path.cutter_changes[0].diameter, 0.5);
+  EXPECT_EQ(path.cutter_changes[0].line, 7u);  // the C9 line
+  EXPECT_EQ(path.cutter_changes[1].tool, 1);
+  EXPECT_EQ(path.cutter_changes[1].diameter, 0.25);
+  EXPECT_EQ(path.segments[path.cutter_changes[0].first].tool, 1);
+  EXPECT_EQ(path.segments.back().tool, 2);
+  Cutter flat;
+  flat.diameter = 0.25;
+  const HeightMap map = carve(path, flat, 0, 400);
+  EXPECT_GT(*map.height(2, 0.2), -0.001);  // outside tool 1's cut along Y = 0
+  EXPECT_LT(*map.height(2, 1.2), -0.09);   // within tool 3's along Y = 1
 }
 
 }  // namespace

@@ -83,12 +83,13 @@ struct InputTrigger {
 // G-code's G20/G21) and the spindle speed (TR, S). A preview follows it (docs/preview.md).
 struct DrawingState {
   double cutter_diameter = 0;        // VC's, in `units`
+  int tool = 0;                      // the tool in the spindle (&Tool at C9, M6, M61); 0: none
   Units units = Units::Inches;       // of the canonical moves (VD's linear units)
   Units file_units = Units::Inches;  // the file's numbers (VD; G20/G21 in a G-code file)
   double spindle_rpm = 0;            // TR's
   int line = 0;                      // the statement it was seen at (not compared)
   bool same(const DrawingState& o) const {
-    return cutter_diameter == o.cutter_diameter && units == o.units &&
+    return cutter_diameter == o.cutter_diameter && tool == o.tool && units == o.units &&
            file_units == o.file_units && spindle_rpm == o.spindle_rpm;
   }
 };

@@ -127,6 +127,7 @@ class Interpreter : private EvalEnv {
                     const SourceLoc& loc);
   void exec(const CustomCutStmt& s, const SourceLoc& loc);
   void call_macro(int number, const SourceLoc& loc);
+  void tool_change(const SourceLoc& loc);  // C9: &Tool is in the spindle (tool_into_spindle)
   void exec(const LabelStmt&, const SourceLoc&) {}
   void exec(const AssignStmt& s, const SourceLoc& loc);
   void exec(const JumpStmt& s, const SourceLoc& loc);

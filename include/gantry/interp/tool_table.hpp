@@ -84,5 +84,9 @@ class CommandContext;
 // (not T0) in the spindle, it becomes that tool's D in the file (tool_table_cutter.cpp), the
 // other lines as they were; a check or a preview changes the table in memory only.
 void cutter_to_tool_table(CommandContext& ctx, double diameter, const SourceLoc& loc);
+// An OpenSBP tool change (&Tool = n, then C9): tool `number` is in the spindle from here on,
+// and with a tool table file configured its D, when it gives one, becomes VC's diameter
+// (M6's rule); a tool the file does not list is a warning and keeps VC's.
+void tool_into_spindle(CommandContext& ctx, int number, const SourceLoc& loc);
 
 }  // namespace gantry

@@ -168,6 +168,10 @@ class FeederThread {
   std::int64_t tick() const { return tick_.load(); }
   std::uint32_t inputs() const { return inputs_.load(std::memory_order_acquire); }
   int playing_line() const { return playing_line_.load(std::memory_order_relaxed); }
+  // The file of playing_line (a file FP called, say); null: none.
+  std::shared_ptr<const std::string> playing_file() const {
+    return playing_file_.load(std::memory_order_relaxed);
+  }
   bool warning() const { return warning_.load(std::memory_order_relaxed); }
   // The outputs in the words the card has played (StepGenerator::played_levels).
   OutputLevels outputs() const {
@@ -210,6 +214,10 @@ class FeederThread {
   std::atomic<std::int64_t> tick_{0};
   std::atomic<std::uint32_t> inputs_{0};  // the card's input bits, as last published
   std::atomic<int> playing_line_{0};
+  // Stored only when the file changes (published_file_, feeder thread only, tells), so the
+  // feeder rarely takes the shared pointer's lock; the pointer it holds keeps the name alive.
+  std::atomic<std::shared_ptr<const std::string>> playing_file_;
+  const std::string* published_file_ = nullptr;
   std::atomic<bool> warning_{false};
   std::atomic<std::uint32_t> outputs_{0};
   std::atomic<double> spindle_rpm_{0};

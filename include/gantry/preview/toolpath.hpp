@@ -50,15 +50,18 @@ struct Toolpath {
   std::vector<Diagnostic> violations;
   bool cancelled = false;  // ToolpathOptions::cancel stopped the load part-way
   // Where the cutter changed (G-code's M6, a VC in the file, an &Tool + C9 tool change):
-  // from segment `first` on, the cutter is `diameter` across; `line` is the statement at
-  // which it changed (the next move's line).
+  // from segment `first` on, the cutter is tool `tool` (0: none named), `diameter` across
+  // (from the tool table when one is configured, else VC's); `line` is the statement at
+  // which it changed (the C9 or M6 line, or the next move's for a VC).
   struct CutterChange {
     std::size_t first;
     double diameter;
     std::uint32_t line = 0;
+    int tool = 0;
   };
   std::vector<CutterChange> cutter_changes;
   double cutter_diameter = 0;  // the cutter at the start (VC's), in `units`
+  int tool = 0;                // the tool in the spindle at the start (0: none named)
   // Spindle speeds (TR, G-code's S): from segment `first` on, `rpm`.
   struct SpindleChange {
     std::size_t first;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <string>
 
 #include "gantry/machine/controller.hpp"  // ControllerStatus
@@ -10,6 +11,11 @@ namespace gantry::session {
 
 struct RunProgress {
   std::size_t line = 0, lines = 0;  // the line shown: the one the card plays while under way
+  // Where the run is in the file that plays (a file the run called, FP or C#, while it plays
+  // or where the run stopped in it; null: the top-level file): `line` is kept to the top-level
+  // file's lines for the label, `file_line` is not (a program listing highlights it).
+  std::shared_ptr<const std::string> file;
+  std::size_t file_line = 0;
   double fraction = 0;              // 0 to 1
   double elapsed_s = 0;
   double remaining_s = -1;  // < 0: none to show (no estimate, or the run is over)
