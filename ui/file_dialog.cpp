@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "gantry/lang/scan.hpp"  // trim
+#include "theme.hpp"                // current_palette
 
 namespace gantry::ui {
 namespace {
@@ -137,7 +138,7 @@ std::optional<std::string> FileDialog::draw(
   ImGui::SameLine();
   if (ImGui::Checkbox("all", &all_files_)) list();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("every file, not only .sbp .nc .ngc .tap .gcode");
-  if (!error_.empty()) ImGui::TextColored(ImVec4(1, 0.35f, 0.35f, 1), "%s", error_.c_str());
+  if (!error_.empty()) ImGui::TextColored(current_palette().red, "%s", error_.c_str());
   const float row = ImGui::GetTextLineHeightWithSpacing();
   if (!recent.empty()) {
     ImGui::TextDisabled("recent");
@@ -152,7 +153,7 @@ std::optional<std::string> FileDialog::draw(
   for (std::size_t i = 0; i < entries_.size(); ++i) {
     const Entry& e = entries_[i];
     const bool marked = static_cast<int>(i) == marked_;
-    if (e.folder) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.5f, 0.85f, 1, 1));
+    if (e.folder) ImGui::PushStyleColor(ImGuiCol_Text, current_palette().cyan);
     const bool pick = ImGui::Selectable(e.name.c_str(), marked) || clicked(e.name);
     if (e.folder) ImGui::PopStyleColor();
     if (marked && scroll_to_mark_) {

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "gantry/core/text_file.hpp"  // read_text_file
+#include "theme.hpp"                    // current_palette
 
 namespace gantry::ui {
 
@@ -86,7 +87,7 @@ std::size_t ProgramListing::draw(std::size_t playing, const std::shared_ptr<cons
   if (other) {  // say which file plays
     const std::string name = std::filesystem::path(other->path).filename().string();
     const std::string top = std::filesystem::path(text_->path).filename().string();
-    ImGui::TextColored(ImVec4(1, 0.85f, 0.3f, 1), "playing %s (called from %s)", name.c_str(),
+    ImGui::TextColored(current_palette().yellow, "playing %s (called from %s)", name.c_str(),
                        top.c_str());
   }
   const float height = std::max(ImGui::GetContentRegionAvail().y, 4 * row + 8);
@@ -112,7 +113,9 @@ std::size_t ProgramListing::draw(std::size_t playing, const std::shared_ptr<cons
   const float top = ImGui::GetScrollY();
   first_shown_ = static_cast<std::size_t>(std::floor(top / row)) + 1;
   last_shown_ = std::min(lines, static_cast<std::size_t>(std::floor((top + view) / row)));
-  const ImVec4 playing_colour(1, 0.85f, 0.3f, 1), start_colour(0.5f, 0.85f, 1, 1);
+  // The theme's colours (yellow, cyan, grey on dark; their darker kin on light).
+  const Palette& colours = current_palette();
+  const ImVec4 playing_colour = colours.yellow, start_colour = colours.cyan;
   ImGuiListClipper clip;
   clip.Begin(static_cast<int>(lines), row);
   while (clip.Step())
@@ -129,7 +132,7 @@ std::size_t ProgramListing::draw(std::size_t playing, const std::shared_ptr<cons
       const std::string number = fmt::format("{}{:>6}  ", is_start ? ">" : " ", n);
       ImGui::TextColored(n == highlighted_ ? playing_colour
                          : is_start        ? start_colour
-                                           : ImVec4(0.6f, 0.6f, 0.6f, 1),
+                                           : colours.grey,
                          "%s", number.c_str());
       ImGui::SameLine(0, 0);
       if (n == highlighted_) ImGui::PushStyleColor(ImGuiCol_Text, playing_colour);

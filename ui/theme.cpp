@@ -31,6 +31,11 @@ const Palette& palette(bool light) {
   return light ? bright : dark;
 }
 
+const Palette& current_palette() {
+  const ImVec4& bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  return palette(bg.x + bg.y + bg.z > 1.5f);
+}
+
 void build_fonts(float scale) {
   ImFontAtlas& atlas = *ImGui::GetIO().Fonts;
   atlas.Clear();

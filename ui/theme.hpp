@@ -12,6 +12,9 @@ struct Palette {
   ImVec4 background;  // behind the windows (the GL clear colour)
 };
 const Palette& palette(bool light);
+// The palette of the theme in use (apply_style's window background tells which), for the
+// parts that draw text in colours (the listing, the file dialog).
+const Palette& current_palette();
 
 // Rebuilds the font atlas for `scale` (outside a frame; the renderer's font texture must be
 // made again after it): the text font at 13 px times the scale, and the readout's digits,

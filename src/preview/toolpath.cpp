@@ -81,8 +81,13 @@ class ToolpathSink : public MotionSink {
     } else if (d.tool != tool ||
                std::abs(diameter - now) > 1e-9 * std::max(1.0, std::abs(now))) {
       // A tool change with the same diameter is a change too: the cuts after it are another
-      // tool's (the material map and the SVG say which).
-      path_.cutter_changes.push_back({path_.segments.size(), diameter, line, d.tool});
+      // tool's (the material map and the SVG say which). Changes with no segment between
+      // them (C9 names the tool, then its macro sets VC) are one: the last.
+      const Toolpath::CutterChange c{path_.segments.size(), diameter, line, d.tool};
+      if (!first && path_.cutter_changes.back().first == c.first)
+        path_.cutter_changes.back() = c;
+      else
+        path_.cutter_changes.push_back(c);
       tool_ = static_cast<std::uint8_t>(std::min<std::size_t>(path_.cutter_changes.size(), 255));
     }
     if (d.spindle_rpm != rpm_)

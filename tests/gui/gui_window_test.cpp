@@ -865,7 +865,8 @@ TEST_F(GuiWindow, TheEStopReadsWhiteOnRedInBothThemes) {
   const auto red = [](int r, int g, int b) { return r > 140 && g < 60 && b < 60; };
   const auto black = [](int r, int g, int b) { return r < 60 && g < 60 && b < 60; };
   for (const char* theme : {"dark", "light"}) {
-    const json& b = state(fmt::format("{}.json", theme))["buttons"]["E-STOP"]["rect"];
+    const json dump = state(fmt::format("{}.json", theme));
+    const json& b = dump["buttons"]["E-STOP"]["rect"];
     ASSERT_TRUE(b.is_array()) << theme;
     auto at = [&](int i, int inset) { return static_cast<int>(b[i].get<double>()) + inset; };
     const int x0 = at(0, 2), y0 = at(1, 2), x1 = at(2, -2), y1 = at(3, -2);
