@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -156,6 +157,11 @@ HoldRun run_with_pause(const Settings& s, Card& inner, double length, std::uint6
 void expect_hold_in_words(const HoldRun& r, const std::vector<std::uint32_t>& ref) {
   ASSERT_GE(r.request_tick, 0);
   ASSERT_GE(r.hold_tick, r.request_tick);
+  // The figure, for the docs: request to the ramp's first word, in the card's ticks.
+  ::testing::Test::RecordProperty("hold_latency_ticks", static_cast<int>(r.hold_tick - r.request_tick));
+  std::printf("hold latency: %lld ticks (lead %lld, block %lld)\n",
+              static_cast<long long>(r.hold_tick - r.request_tick),
+              static_cast<long long>(r.lead_ticks), static_cast<long long>(r.block));
   EXPECT_LE(r.hold_tick - r.request_tick, r.lead_ticks + r.block)
       << "lead " << r.lead_ticks << " block " << r.block;
   ASSERT_LE(static_cast<std::size_t>(r.hold_tick), r.words.size());
