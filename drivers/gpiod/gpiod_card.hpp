@@ -44,6 +44,10 @@ class GpiodCard : public Card {
   std::uint64_t ticks_played() const override { return player_.ticks_played(); }
   std::uint32_t inputs() const override { return player_.inputs(); }
   CardFault fault() const override { return player_.fault(); }
+  // The step generator bounds its lead over ticks_played(); a stream starts at
+  // map.start_words, which the lead never goes below.
+  bool queues_words() const override { return true; }
+  std::uint64_t start_words() const override { return map_.start_words; }
   void set_trips(const InputTrip& estop, const InputTrip& limits) override {
     player_.set_trips(estop, limits);
   }

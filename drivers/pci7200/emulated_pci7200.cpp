@@ -31,6 +31,7 @@ EmulatedPci7200::EmulatedPci7200(EmulatedPci7200Config config)
       host_memory_(config.dma_words),
       stepped_(config.stepped) {
   config_.fifo_words = std::max<std::size_t>(1, config_.fifo_words);
+  wall_last_ = std::chrono::steady_clock::now();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -250,6 +251,16 @@ DmaBuffer EmulatedPci7200::dma_buffer() {
 void EmulatedPci7200::pause() {
   std::unique_lock lock(mutex_);
   ++pauses_;
+  if (!stepped_ && config_.wall_clock) {
+    lock.unlock();
+    std::this_thread::sleep_for(config_.poll_interval);
+    lock.lock();
+    const auto now = std::chrono::steady_clock::now();
+    const std::uint64_t most = (config_.fifo_words - 1) * nominal_period_cycles();
+    run_cycles(std::min(most, cycles_of(now - wall_last_)));
+    wall_last_ = now;
+    return;
+  }
   if (!stepped_) {
     run_cycles(poll_cycles_);
     lock.unlock();

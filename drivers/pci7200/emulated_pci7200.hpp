@@ -28,6 +28,11 @@ struct EmulatedPci7200Config {
   std::chrono::nanoseconds poll_interval{10'000};
   // Stepped time: virtual time passes only in advance(), which runs the feeder in lockstep.
   bool stepped = false;
+  // Wall-clock time (not stepped): each pause sleeps poll_interval and then plays the ticks
+  // the wall clock has moved on, at most a FIFO's worth less one (a descheduled feeder makes
+  // the emulated card slow down rather than miss a DMA reload, which on a real card needs a
+  // PREEMPT_RT kernel): the pace of a real card, for the hold-latency bench.
+  bool wall_clock = false;
   // Whether the DIO register reads back the underrun flag (public sources do not settle it).
   bool flags_underrun = true;
 };
@@ -120,6 +125,8 @@ class EmulatedPci7200 final : public Pci7200Bus {
   std::uint64_t cycles_in_period_ = 0;
   std::vector<std::uint32_t> played_;
   std::uint64_t underrun_ticks_ = 0;
+
+  std::chrono::steady_clock::time_point wall_last_;  // wall_clock: the last pause's time
 
   // Lockstep with the feeder.
   bool stepped_;

@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>  // max
+#include <cmath>      // llround
+
 #include "gantry/hal/input_roles.hpp"  // input_roles
 #include "gantry/hal/pin_map.hpp"
 #include "pci7200/pacer_divisor.hpp"
@@ -45,6 +48,10 @@ std::optional<pci7200::Pci7200Options> pci7200_options_for(const Settings& setti
   out.charge_pump_bit = options.charge_pump_bit;
   out.charge_pump_hz = options.charge_pump_hz;
   out.idle_word = pins.idle_word();
+  // The step generator keeps at most card.lead_ms queued (docs/controller.md): output starts
+  // with half of it, so the lead (never below this plus one block) can fill it.
+  out.prime_words = std::max<std::size_t>(
+      64, static_cast<std::size_t>(std::llround(card.lead_ms * 1e-3 * card.pacer_hz() / 2)));
   out.realtime = options.realtime;
   // The E-stop and limit inputs stop the pacer in the feeder, tick-exact.
   const InputRoles roles = input_roles(settings);

@@ -85,10 +85,10 @@ void Pci7200Card::start(double pacer_hz) {
     pump_ = ChargePump(options_.charge_pump_bit, static_cast<std::uint32_t>(std::max(1.0, half)));
   }
   stream_position_ = 0;
-  prime_words_ = options_.prime_words > 0 ? options_.prime_words
-                 : output_.uses_dma()     ? output_.half_words()
-                                          : kPioPrimeWords;
-  prime_words_ = std::min(prime_words_, ring_.capacity());
+  const std::size_t prime = options_.prime_words > 0 ? options_.prime_words
+                            : output_.uses_dma()     ? output_.half_words()
+                                                     : kPioPrimeWords;
+  prime_words_.store(std::min(prime, ring_.capacity()), std::memory_order_release);
   ticks_.store(0, std::memory_order_release);
   fault_.store(CardFault::None, std::memory_order_release);
   drains_done_.store(drains_requested_.load(std::memory_order_acquire), std::memory_order_release);
@@ -198,7 +198,7 @@ void Pci7200Card::pass() {
         if (drain_pending) acknowledge_drain(drain_request);
         return;
       }
-      if (queued >= prime_words_ || drain_pending) begin_output();
+      if (queued >= prime_words_.load(std::memory_order_relaxed) || drain_pending) begin_output();
       return;
     }
     case Phase::Running:
@@ -261,7 +261,7 @@ void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, bool limit_close
       return;
     case Phase::Drained:
       // After a drain the next words start a new stretch of output, as at start().
-      if (queued > 0 && (queued >= prime_words_ || drain_pending)) return begin_output();
+      if (queued > 0 && (queued >= prime_words_.load(std::memory_order_relaxed) || drain_pending)) return begin_output();
       if (queued == 0 && drain_pending) acknowledge_drain(drain_request);
       return;
     default:

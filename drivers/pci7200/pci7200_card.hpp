@@ -56,6 +56,12 @@ class Pci7200Card : public Card, private WordSource {
   // by up to the FIFO depth.
   std::uint64_t ticks_played() const override { return ticks_.load(std::memory_order_acquire); }
   std::uint32_t inputs() const override { return inputs_.load(std::memory_order_acquire); }
+  // The step generator bounds its lead over ticks_played(); output starts at prime_words
+  // (Pci7200Options), which the lead never goes below.
+  bool queues_words() const override { return true; }
+  std::uint64_t start_words() const override {
+    return prime_words_.load(std::memory_order_acquire);
+  }
   CardFault fault() const override { return fault_.load(std::memory_order_acquire); }
   void set_trips(const InputTrip& estop, const InputTrip& limits) override;
   // The feeder compares every sample of the inputs (each pass, well under a millisecond):
@@ -99,7 +105,7 @@ class Pci7200Card : public Card, private WordSource {
   std::uint32_t last_inputs_ = 0;      // the sample before: limit switches trip on closing
   EdgeDetector watcher_;
   std::optional<InputEdge> fired_;
-  std::size_t prime_words_ = 0;
+  std::atomic<std::size_t> prime_words_{0};
   double tick_seconds_ = 0;
 
   std::atomic<Phase> phase_{Phase::Idle};

@@ -36,7 +36,8 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
       realtime_(realtime),
       tick_s_(1.0 / settings.card.pacer_hz()),
       limits_(limits_of(settings)),
-      monitor_(limits_, tick_s_) {
+      monitor_(limits_, tick_s_),
+      lead_s_(settings.card.lead_ms * 1e-3) {
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
   for (int i = 0; i < kAxisCount; ++i) {
@@ -175,6 +176,14 @@ std::chrono::steady_clock::time_point SimCard::wall_at(std::uint64_t tick) const
                            std::chrono::duration<double>(static_cast<double>(tick) * tick_s_));
 }
 
+std::uint64_t SimCard::clock_tick() const {
+  if (!realtime_ || !streaming_) return tick_;  // at rest the clock waits for the next word
+  const double due =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count() /
+      tick_s_;
+  return std::min(tick_, static_cast<std::uint64_t>(std::max(0.0, due)));
+}
+
 void SimCard::drain() {
   if (realtime_ && !stopped_ && fault_ == CardFault::None)
     std::this_thread::sleep_until(wall_at(tick_));
@@ -198,10 +207,18 @@ void SimCard::write(std::span<const std::uint32_t> words) {
     if (!streaming_) {
       if (now > dry) wall_start_ += now - dry;
       streaming_ = true;
+      stream_first_ = tick_;
     } else if (now > dry) {
       late_s_ = std::chrono::duration<double>(now - dry).count();
       fault_ = CardFault::Underrun;
       return;
+    } else if (static_cast<double>(tick_ - stream_first_) * tick_s_ >= lead_s_) {
+      const double held = std::chrono::duration<double>(dry - now).count();
+      block_seen_ = std::max(block_seen_, words.size());  // the generator's block: its largest write
+      const double refill = lead_s_ - static_cast<double>(block_seen_) * tick_s_;
+      feed_.least_queue_s = feed_.blocks == 0 ? held : std::min(feed_.least_queue_s, held);
+      feed_.worst_late_s = std::max(feed_.worst_late_s, refill - held);
+      ++feed_.blocks;
     }
   }
   std::uint64_t event_tick = next_event_tick();

@@ -49,6 +49,11 @@ class SimCard : public Card {
   void end_stream() override { streaming_ = false; }
   void stop(std::uint32_t idle_word) override;
   std::uint64_t ticks_played() const override { return tick_; }
+  // Real time: words queue ahead of the wall clock, and the step generator bounds its lead
+  // over clock_tick(), the tick the wall clock has reached (a word is decoded, and counted
+  // played, when written). Virtual time: words play as they are written.
+  bool queues_words() const override { return realtime_; }
+  std::uint64_t clock_tick() const override;
   std::uint32_t inputs() const override { return inputs_; }
   // A switch worked by hand at any time, the machine at rest or not (a stop button): input
   // `bit` reads `high` from the next word on.
@@ -61,6 +66,15 @@ class SimCard : public Card {
   static constexpr double kRealtimeQueueS = 0.05;
   void set_realtime_queue(double seconds) { queue_s_ = seconds; }
   std::optional<double> late_s() const { return late_s_; }  // an underrun's lateness
+  // Real time: how the feeder kept up, over the blocks written once a stream had played for
+  // card.lead_ms (the start of a stream fills an empty queue). least_queue_s: the least the
+  // queue held when a block came (0: an underrun); worst_late_s: how far below the lead's
+  // refill point (lead less that block) it had fallen then.
+  struct FeedFigures {
+    std::uint64_t blocks = 0;
+    double least_queue_s = 0, worst_late_s = 0;
+  };
+  FeedFigures feed_figures() const { return feed_; }
   void calibration_changed(const Settings& s) override;
   void set_trips(const InputTrip& estop, const InputTrip& limits) override;
   // Exact: every word's inputs are compared, and a `stop` bit stops the card at its word.
@@ -128,6 +142,10 @@ class SimCard : public Card {
   bool streaming_ = false;
   double queue_s_ = kRealtimeQueueS;
   std::optional<double> late_s_;
+  double lead_s_ = 0;                 // card.lead_ms
+  std::uint64_t stream_first_ = 0;    // the tick the stream began at
+  std::size_t block_seen_ = 0;
+  FeedFigures feed_;
 };
 
 const char* rule_name(TimingRule r);

@@ -403,6 +403,12 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
         start_table[i] + static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
   report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
   if (sim) add_card_checks(report, *sim);
+  if (sim && choice.realtime && !a.json)  // how the feeder kept up (bench/soak.sh reads it)
+    if (const SimCard::FeedFigures f = sim->feed_figures(); f.blocks > 0)
+      fmt::print(stderr,
+                 "gantry: real time: lead {:.0f} ms; {} blocks; the card's queue held at least "
+                 "{:.2f} ms; the feeder's worst lateness {:.2f} ms\n",
+                 settings.card.lead_ms, f.blocks, f.least_queue_s * 1e3, f.worst_late_s * 1e3);
 
   print_errors(report.errors);
   if (!report.error_summary.empty()) fmt::print(stderr, "gantry: {}\n", report.error_summary);

@@ -91,6 +91,7 @@ void MotionFeeder::play(const PlannedSegment& s) {
   rest_loc_ = s.loc;
   if (halt_at_.load(std::memory_order_acquire) <= steps_.tick()) return halt_now();
   hold_at_ = steps_.kNever;
+  hold_tick_.store(steps_.tick(), std::memory_order_release);
   const Trapezoid& p = s.profile;
   if (s.output > 0 || p.length == 0) {  // at rest already: an output, or a dwell
     PlannedSegment rest = s;

@@ -13,9 +13,13 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
     : timing_(StepTiming::from(settings.card)),
       card_(card),
       placement_(settings, timing_),
-      writer_(settings, timing_, card, block_words),
+      lead_(settings, card, block_words),
+      writer_(settings, timing_, card, lead_.block_words()),
       log_(std::llround(settings.card.pacer_hz())) {
-  writer_.on_block([this] { check_card(); });
+  writer_.on_block([this] {
+    check_card();
+    lead_.after_block(writer_.sent(), [this] { check_card(); });
+  });
 }
 
 // At rest (the planner stopped first): pending pulses go out, then steps per unit and the
@@ -133,6 +137,7 @@ void StepGenerator::flush() {
   writer_.finish_pulses(segment_end_);
   segment_end_ = writer_.cursor();  // the next segment starts after the words sent
   if (writer_.write_block()) check_card();
+  lead_.rest();
   card_.end_stream();  // at rest: the card may run dry now
 }
 

@@ -95,12 +95,14 @@ bool WordWriter::write_block() {
   if (block_.empty()) return false;
   card_.write(block_);
   block_.clear();
+  sent_ = cursor_;
   return true;
 }
 
 void WordWriter::halt() {
   if (!block_.empty()) card_.write(block_);
   block_.clear();
+  sent_ = cursor_;
   card_.stop(pins_.idle_word());  // outputs off, as an E-stop must
 }
 
@@ -109,6 +111,7 @@ void WordWriter::restart() {
   level_word_ = pins_.idle_word();
   card_.start(1.0 / timing_.tick_s);
   cursor_ = static_cast<std::int64_t>(card_.ticks_played());  // its new count
+  sent_ = cursor_;
 }
 
 // `count` words from cursor_ on. The charge pump's bit flips every pump_half_ticks_ ticks,
@@ -137,6 +140,7 @@ void WordWriter::write_run(std::uint32_t word, std::int64_t count) {
     if (block_.size() == block_words_) {
       card_.write(block_);
       block_.clear();
+      sent_ = tick;
       if (on_block_) on_block_();
     }
   }

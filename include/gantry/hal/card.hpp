@@ -97,6 +97,19 @@ class Card {
   // The same with its tick. Exact on the simulated card (virtual time); a card that samples
   // in its own thread may lag by its sampling interval.
   virtual InputSample sample_inputs() const { return {ticks_played(), inputs()}; }
+  // The bounded lead (docs/controller.md): whether words written wait in a queue and play in
+  // real time, one per tick (a real card; the simulator with --realtime). Then the step
+  // generator keeps at most the profile's card.lead_ms of words over clock_tick(), so that a
+  // hold begins within that lead. false: words play as they are written (the simulator in
+  // virtual time), and the generator writes as far ahead as it goes.
+  virtual bool queues_words() const { return false; }
+  // The tick the card's clock has reached: ticks_played(), except on a card that plays (and
+  // counts) a word when it is written but times it by the wall clock (the simulator in real
+  // time), where it is the tick now due.
+  virtual std::uint64_t clock_tick() const { return ticks_played(); }
+  // The words a stream needs queued before it starts playing (the card's start threshold, 0:
+  // the first word starts it): the lead is never below it (plus one block).
+  virtual std::uint64_t start_words() const { return 0; }
   // Why the card stopped by itself; None while it plays or after a clean stop.
   virtual CardFault fault() const = 0;
   // More about the fault where the card knows it ("the producer was 12.3 ms late"), or "".

@@ -137,6 +137,9 @@ struct CardSettings {
   int pacer_divisor = 20;                  // pacer = clock / divisor
   double step_pulse_us = 5;
   double dir_setup_us = 5;
+  // The bounded lead: at most this much motion (ms) generated ahead of the tick a real card
+  // has played; a hold begins within it (docs/controller.md, "The lead into the card").
+  double lead_ms = 20;
 
   double pacer_hz() const { return clock_hz / pacer_divisor; }
 };

@@ -65,6 +65,9 @@ class MotionFeeder : public SegmentSink {
   std::uint64_t flushes_completed() const { return flushes_; }
   // The source line of the segment where the hold or halt came to rest.
   const SourceLoc& rest_loc() const { return rest_loc_; }
+  // The tick of the first word of the last hold's ramp down (the first word that differs
+  // from the plan), or -1 before any: what the hold-latency bench and tests measure. Any thread.
+  std::int64_t hold_tick() const { return hold_tick_.load(std::memory_order_acquire); }
 
  private:
   struct Kept {  // what arrived while held, in order
@@ -86,6 +89,7 @@ class MotionFeeder : public SegmentSink {
   bool catching_up_ = false;  // after a rest: below the plan's speeds until it reaches them
   std::deque<Kept> kept_;
   SourceLoc rest_loc_;
+  std::atomic<std::int64_t> hold_tick_{-1};
   std::uint64_t flushes_ = 0;
   std::optional<IndependentMotion> parked_;  // rested by a hold, to start again on resume
   std::atomic<bool> pausing_{false}, every_output_{false};

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "gantry/hal/card.hpp"                // Card
+#include "gantry/step/card_lead.hpp"          // CardLead
 #include "gantry/motion/planned_segment.hpp"  // PlannedSegment, SegmentSink
 #include "gantry/step/independent_axis.hpp"   // IndependentMotion
 #include "gantry/step/step_log.hpp"           // StepLog
@@ -115,6 +116,9 @@ class StepGenerator : public SegmentSink {
   void new_run() { ran_ = {}; }                          // at rest, before a run's first move
   bool warning() const { return warning_; }              // ... is SW's warning
   const StepTiming& timing() const { return timing_; }
+  // The bounded lead into a card that queues words (card_lead.hpp): its size and how the
+  // generator kept up.
+  const CardLead& lead() const { return lead_; }
 
  private:
   void emit_until(std::int64_t tick);  // words for [tick(), tick), independent steps merged
@@ -125,6 +129,7 @@ class StepGenerator : public SegmentSink {
   StepTiming timing_;
   Card& card_;
   StepPlacement placement_;
+  CardLead lead_;  // before writer_: it sizes the writer's blocks
   WordWriter writer_;
   StepLog log_;
   std::int64_t segment_end_ = 0;  // where the next segment starts

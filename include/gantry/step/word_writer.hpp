@@ -58,6 +58,7 @@ class WordWriter {
   bool write_block();
 
   std::int64_t cursor() const { return cursor_; }  // next tick to emit: words emitted so far
+  std::int64_t sent() const { return sent_; }      // the tick after the last word sent to the card
   // The tick each axis's step line goes idle again.
   const std::array<std::int64_t, kAxisCount>& pulse_end() const { return pulse_end_; }
   std::size_t block_words() const { return block_words_; }
@@ -100,6 +101,7 @@ class WordWriter {
   std::array<std::int64_t, kAxisCount> pulse_end_{};
   std::uint32_t level_word_ = 0;  // direction levels and idle step levels
   std::int64_t cursor_ = 0;       // next tick to emit
+  std::int64_t sent_ = 0;         // next tick not yet handed to the card
   std::vector<std::uint32_t> block_;
   std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
   std::vector<int> aux_bits_;
