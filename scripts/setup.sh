@@ -20,6 +20,8 @@ PACKAGES=(
   dpkg-dev
   # console window, pendants, GPIO (the optional backends)
   libglfw3-dev libimgui-dev libusb-1.0-0-dev libgpiod-dev xvfb
+  # pendants and gamepads tested on emulated devices (USB and evdev)
+  umockdev libumockdev-dev
 )
 
 missing=()
