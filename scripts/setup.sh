@@ -20,6 +20,8 @@ PACKAGES=(
   dpkg-dev
   # console window, pendants, GPIO (the optional backends)
   libglfw3-dev libimgui-dev libusb-1.0-0-dev libgpiod-dev xvfb
+  # the pendant's end-to-end test emulates it for libusb (umockdev-run)
+  umockdev libumockdev-dev
 )
 
 missing=()
