@@ -6,7 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "gantry/lang/script.hpp"  // Script
+#include "gantry/lang/script.hpp"              // Script
+#include "gantry/session/feed_override.hpp"  // stepped_feed_override
 
 namespace gantry::session {
 
@@ -189,8 +190,8 @@ void PendantInput::button(const PendantEvent& e) {
       }
     case PendantButton::FeedPlus:
     case PendantButton::FeedMinus: {
-      const double step = e.button == PendantButton::FeedPlus ? 0.1 : -0.1;
-      c_.set_feed_override(std::clamp(std::round((st.feed_override + step) * 10) / 10, 0.1, 2.0));
+      c_.set_feed_override(
+          stepped_feed_override(st.feed_override, e.button == PendantButton::FeedPlus ? 1 : -1));
       return;
     }
     case PendantButton::SpindlePlus:
