@@ -69,6 +69,7 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, cons
       nullptr,
       nullptr,
       {},
+      nullptr,
       nullptr});
   m->card = open_live_card(a, p.settings, &m->card_type);
   if (!m->card) return nullptr;
@@ -85,10 +86,15 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, cons
   m->memory->attach(*m->controller, [&live](const Controller::Activity& act) {
     if (live.values.settings().display.part_file_log) live.part_log->activity(act);
   });
+  m->pendant = std::make_unique<PendantService>(
+      *m->controller, [&live] { return live.values.settings(); }, PendantBindings{},
+      [&io](const std::string& text) { io.warn({SourceLoc{}, Severity::Warning, "pendant: " + text}); },
+      pendant::open_libusb_port(nullptr));
   return m;
 }
 
 LiveMachine::~LiveMachine() {
+  pendant.reset();  // no pendant event reaches the controller as it goes
   controller.reset();  // its threads end: nothing moves after the last save
   if (memory) memory->save();
 }
