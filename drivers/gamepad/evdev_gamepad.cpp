@@ -81,7 +81,7 @@ std::unique_ptr<EvdevGamepad> EvdevGamepad::open(const std::string& path, std::s
     if (err == EACCES || err == EPERM)
       *error = "cannot open the gamepad " + path + ": " + std::strerror(err) +
                ". Add your user to the 'input' group (sudo usermod -aG input $USER, then log in "
-               "again), or install Gantry's udev rule (docs/hardware.md, \"Pendants\")";
+               "again), or install Gantry's udev rule (docs/hardware.md, \"A gamepad as a pendant\")";
     else
       *error = "cannot open the gamepad " + path + ": " + std::strerror(err) +
                ". Check that it is plugged in (ls -l /dev/input/by-id)";

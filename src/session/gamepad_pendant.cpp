@@ -18,7 +18,7 @@ std::optional<PendantEvent> pendant_button_named(std::string_view name) {
   for (int b = 0; b <= static_cast<int>(PendantButton::Macro); ++b) {
     const auto button = static_cast<PendantButton>(b);
     if (button == PendantButton::Macro) continue;
-    if (name == button_name(button)) {
+    if (name == ascii::lower(button_name(button))) {
       e.button = button;
       return e;
     }

@@ -15,6 +15,7 @@
 #include "gantry/machine/controller.hpp"          // Controller
 #include "gantry/session/machine_memory.hpp"      // MachineMemory
 #include "gantry/session/machine_profile.hpp"     // MachineProfile
+#include "gantry/session/gamepad_service.hpp"     // GamepadService
 #include "gantry/session/pendant_service.hpp"     // PendantService
 #include "gantry/session/run_log.hpp"             // RunLogger
 
@@ -81,6 +82,7 @@ struct LiveMachine {
   std::unique_ptr<Controller> controller;
   // The pendants (the XHC USB pendant, whenever plugged in): both front ends get them.
   std::unique_ptr<PendantService> pendant;
+  std::unique_ptr<GamepadService> gamepad;  // the profile's [pendant] gamepad, into `pendant`
 
   ~LiveMachine();  // the pendants, the controller, then the state saved at exit
 
