@@ -20,6 +20,8 @@ PACKAGES=(
   dpkg-dev
   # console window, pendants, GPIO (the optional backends)
   libglfw3-dev libimgui-dev libusb-1.0-0-dev libgpiod-dev xvfb
+  # the pendant's and the gamepad's end-to-end tests emulate them (umockdev-run: usbfs, evdev)
+  umockdev libumockdev-dev
 )
 
 missing=()

@@ -426,6 +426,9 @@ CanonMove Controller::keypad_move(const JogRequest& j) const {
   m.to = target + origin;
   m.speed_class = j.fast ? SpeedClass::Jog : SpeedClass::Move;
   m.speeds = j.fast ? st.speeds.jog : st.speeds.move;
+  if (j.speed_fraction > 0 && j.speed_fraction < 1)
+    for (double* v : {&m.speeds.xy, &m.speeds.z, &m.speeds.a, &m.speeds.b, &m.speeds.c})
+      *v *= j.speed_fraction;
   m.keypad = true;
   return m;
 }

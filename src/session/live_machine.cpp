@@ -69,6 +69,8 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, cons
       nullptr,
       nullptr,
       {},
+      nullptr,
+      nullptr,
       nullptr});
   m->card = open_live_card(a, p.settings, &m->card_type);
   if (!m->card) return nullptr;
@@ -85,10 +87,29 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, cons
   m->memory->attach(*m->controller, [&live](const Controller::Activity& act) {
     if (live.values.settings().display.part_file_log) live.part_log->activity(act);
   });
+  m->pendant = std::make_unique<PendantService>(
+      *m->controller, [&live] { return live.values.settings(); }, PendantBindings{},
+      [&io](const std::string& text) { io.warn({SourceLoc{}, Severity::Warning, "pendant: " + text}); },
+      pendant::open_libusb_port(nullptr));
+  if (const PendantSettings& ps = p.settings.pendant; ps.gamepad != "off") {
+    std::string error;
+    if (auto b = GamepadBindings::parse(ps.gamepad_jog, ps.gamepad_buttons, &error))
+      m->gamepad = std::make_unique<GamepadService>(
+          ps.gamepad, std::move(*b),
+          [&live](const PendantEvent& e) { live.pendant->input().handle(e); },
+          [&io](const std::string& text) {
+            io.warn({SourceLoc{}, Severity::Warning, "pendant: " + text});
+          });
+    else
+      io.warn({SourceLoc{}, Severity::Error,
+               "profile: " + error + "; the gamepad is not used until this is put right"});
+  }
   return m;
 }
 
 LiveMachine::~LiveMachine() {
+  gamepad.reset();  // the gamepad sends into the pendant's input: it goes first
+  pendant.reset();  // no pendant event reaches the controller as it goes
   controller.reset();  // its threads end: nothing moves after the last save
   if (memory) memory->save();
 }

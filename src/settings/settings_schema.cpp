@@ -59,6 +59,12 @@ std::string folder_rule(std::string_view folder) {
   return fmt::format("must list folders as absolute paths or ~/..., not \"{}\"", folder);
 }
 
+std::string gamepad_rule(std::string_view device) {
+  if (device == "off" || device == "auto" || device.starts_with("/dev/")) return "";
+  return fmt::format("must be \"off\", \"auto\" or a device path (/dev/input/event5), not \"{}\"",
+                     device);
+}
+
 std::string channels_text(const Settings& s) {
   std::string channels;
   for (int axis : s.drivers.channel_axis) channels += "XYZABC"[axis];
@@ -318,6 +324,21 @@ const SettingRow kRows[] = {
    .help = "folders part files may read and write in besides their job's folder and Gantry's data folder (`--allow-path DIR` adds one for a run). Read from the profile only (docs/security.md)",
    .optional = true, .optional_table = true, .check = folder_rule,
    .docs_allowed = "absolute paths or `~/...`; the `[files]` table is optional"},
+
+  {.section = "pendant", .key = "gamepad", .kind = SettingKind::Text,
+   .field = GANTRY_FIELD(std::string, pendant.gamepad),
+   .help = "a Linux gamepad or joystick as a pendant: `\"off\"`, `\"auto\"` (the first one found, looked for every second) or its device (`/dev/input/event5`); off unless set, as a gamepad may be meant for something else (docs/hardware.md, \"A gamepad as a pendant\")",
+   .optional = true, .optional_table = true, .check = gamepad_rule,
+   .docs_allowed = "`\"off\"`, `\"auto\"` or `/dev/...`; the `[pendant]` table is optional"},
+  {.section = "pendant", .key = "gamepad_<x..c>", .kind = SettingKind::Text,
+   .field = [](Settings& s, int i) -> void* { return &s.pendant.gamepad_jog[static_cast<size_t>(i)]; },
+   .help = "the gamepad's sticks that jog the axis, the kernel's names with a minus to reverse one (`\"-ABS_Y, -ABS_HAT0Y\"`), or `\"none\"`; left out: X the left stick and the hat across, Y them up and down, Z the right stick up and down",
+   .family = SettingFamily::Axes, .optional = true, .optional_table = true,
+   .docs_allowed = "`ABS_*` names, `none`"},
+  {.section = "pendant", .key = "gamepad_buttons", .kind = SettingKind::Text,
+   .field = GANTRY_FIELD(std::string, pendant.gamepad_buttons),
+   .help = "the gamepad's buttons: `\"BTN_SOUTH = start/pause, BTN_NORTH = macro 1\"` (the pendant's buttons: reset, stop, start/pause, feed +, feed -, spindle +, spindle -, machine home, safe Z, work home, spindle on/off, probe Z, macro 1 to 10); left out: A start/pause, B stop, the shoulders feed - and +, Select reset",
+   .optional = true, .optional_table = true, .docs_allowed = "`BTN_* = action, ...`"},
 
   INT("outputs", "charge_pump_bit", outputs.charge_pump_bit, -1, 31, "a square wave while pulses flow (-1: none)", .owner = SettingOwner::MachineTable),
   NUM("outputs", "charge_pump_hz", outputs.charge_pump_hz, kPositive, None, "its frequency", .owner = SettingOwner::MachineTable),

@@ -13,7 +13,8 @@ check_tree() {  # $1: the prefix holding bin/gantry
   local p="$1"
   for f in bin/gantry share/man/man1/gantry.1 share/applications/gantry.desktop \
            share/gantry/macros/C2.sbp share/gantry/profiles/handibot.toml \
-           share/doc/gantry/LICENSE share/icons/hicolor/scalable/apps/gantry.svg; do
+           share/doc/gantry/LICENSE share/icons/hicolor/scalable/apps/gantry.svg \
+           lib/udev/rules.d/70-gantry-pendant.rules; do
     [[ -f "$p/$f" ]] || fail "$p/$f is missing"
   done
   grep -q '^Exec=gantry gui' "$p/share/applications/gantry.desktop" || fail "desktop entry's Exec"

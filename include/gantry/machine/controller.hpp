@@ -58,6 +58,7 @@ struct JogRequest {
   bool fast = false;  // jog speed; otherwise move speed
   bool step = false;
   double step_size = 0;  // a step's length (units); 0: VD's keypad step
+  double speed_fraction = 1;  // the share of the speed (a pendant's knob), 0-1
 };
 
 struct Outcome {

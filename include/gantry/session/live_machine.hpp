@@ -15,6 +15,8 @@
 #include "gantry/machine/controller.hpp"          // Controller
 #include "gantry/session/machine_memory.hpp"      // MachineMemory
 #include "gantry/session/machine_profile.hpp"     // MachineProfile
+#include "gantry/session/gamepad_service.hpp"     // GamepadService
+#include "gantry/session/pendant_service.hpp"     // PendantService
 #include "gantry/session/run_log.hpp"             // RunLogger
 
 namespace gantry::session {
@@ -78,8 +80,11 @@ struct LiveMachine {
   std::unique_ptr<RunLogger> part_log;
   std::string restored;
   std::unique_ptr<Controller> controller;
+  // The pendants (the XHC USB pendant, whenever plugged in): both front ends get them.
+  std::unique_ptr<PendantService> pendant;
+  std::unique_ptr<GamepadService> gamepad;  // the profile's [pendant] gamepad, into `pendant`
 
-  ~LiveMachine();  // the controller first, then the state saved at exit
+  ~LiveMachine();  // the pendants, the controller, then the state saved at exit
 
   bool sim() const { return card_type == "sim"; }
 };

@@ -224,6 +224,14 @@ struct FilesSettings {
   std::vector<std::string> allow;  // folders, absolute or ~/...
 };
 
+// [pendant]: a gamepad used as a pendant (the XHC USB pendant needs no setting: it is found
+// when plugged in). docs/hardware.md, "A gamepad as a pendant".
+struct PendantSettings {
+  std::string gamepad = "off";               // "off", "auto" (the first found) or a device path
+  std::array<std::string, kAxisCount> gamepad_jog{};  // per axis: the sticks, "-ABS_Y, -ABS_HAT0Y"; "": usual
+  std::string gamepad_buttons;               // "BTN_SOUTH = start/pause, ..."; "": the usual ones
+};
+
 struct Settings {
   std::string name;
   Units units = Units::Inches;
@@ -261,6 +269,7 @@ struct Settings {
   CalibrationSettings calibration;
   MachineSettings machine;
   FilesSettings files;
+  PendantSettings pendant;
 };
 
 // The result of loading a profile: settings, or every problem found in it.
