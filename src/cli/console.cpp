@@ -356,6 +356,9 @@ Console::WordEnd Console::console_word(const session::TypedLine& t, bool termina
       write_out(help(t.rest));
       return WordEnd::Done;
     case Word::Status:
+      // A pendant's jog between two lines is an activity the console did not start: what is
+      // kept of the machine is read again, so the position is where the jog left the tool.
+      if (at_rest(c_.status().state)) snapshot();
       write_out(status_report());
       return WordEnd::Done;
     case Word::Confirm:
