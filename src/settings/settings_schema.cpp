@@ -210,7 +210,7 @@ const SettingRow kRows[] = {
    .help = "type gpiod: which line sets each input-word bit", .names = kLineBit,
    .docs_allowed = "`\"LINE:BIT, ...\"`", .owner = SettingOwner::MachineTable},
   NUM("card", "lead_ms", card.lead_ms, (SettingRange{1, 1000}), None,
-      "a real card (and --realtime): at most this much motion, ms, generated ahead of the tick played; a hold, stop or jog release begins within it. Shorter: faster holds, more underrun risk (docs/hardware.md)", .owner = SettingOwner::MachineTable),
+      "a real card (and --realtime): at most this much motion, ms, generated ahead of the tick played; a hold, stop or jog release begins within it. Shorter: faster holds, more underrun risk (docs/hardware.md). Left out: 20 (a profile written before it keeps working)", .optional = true, .owner = SettingOwner::MachineTable),
 
   AXIS_INT("pins.<x..c>", "step_bit", pins[i].step_bit, 0, 31, "the step bit of the output word; each bit used once", .owner = SettingOwner::MachineTable),
   AXIS_INT("pins.<x..c>", "dir_bit", pins[i].dir_bit, 0, 31, "the direction bit of the output word; each bit used once", .owner = SettingOwner::MachineTable),
