@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/memory_files.hpp"
 #include "../support/recording_sink.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/diagnostic.hpp"
@@ -36,22 +37,6 @@ namespace gantry {
 namespace {
 
 // ---- helpers ----------------------------------------------------------------------------
-
-// Every canonical move the interpreter emits, Stop and Output included.
-// Part files for FP, held in memory by name.
-class MemoryFiles : public FileSystem {
- public:
-  std::shared_ptr<const Script> load_script(const std::string& path,
-                                            const IsCommand& is_command) override {
-    const auto it = texts.find(path);
-    return it == texts.end() ? Script::load(path, is_command)
-                             : Script::from_text(it->second, path, is_command);
-  }
-  bool is_file(const std::string& path) override { return texts.count(path) > 0; }
-  std::shared_ptr<std::istream> open_read(const std::string&) override { return nullptr; }
-  std::shared_ptr<std::ostream> open_write(const std::string&, bool) override { return nullptr; }
-  std::map<std::string, std::string> texts;
-};
 
 std::string where(const SourceLoc& loc) {
   return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +

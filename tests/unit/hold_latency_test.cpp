@@ -92,17 +92,21 @@ struct HoldRun {
   std::vector<std::uint32_t> words;
 };
 
-void play_move(const Settings& s, Card& card, double length) {
-  StepGenerator steps(s, card);
-  MotionFeeder feeder(steps);
-  LookAheadPlanner planner(s, feeder);
+CanonMove x_move(const Settings& s, double length) {
   CanonMove m;
   m.from = Vec6::Zero();
   m.to = Vec6::Zero();
   m.to[0] = length;
   m.speed_class = SpeedClass::Move;
   m.speeds = s.speeds.move;
-  planner.move(m);
+  return m;
+}
+
+void play_move(const Settings& s, Card& card, double length) {
+  StepGenerator steps(s, card);
+  MotionFeeder feeder(steps);
+  LookAheadPlanner planner(s, feeder);
+  planner.move(x_move(s, length));
   planner.flush();
 }
 
@@ -128,13 +132,7 @@ HoldRun run_with_pause(const Settings& s, Card& inner, double length, std::uint6
   r.block = static_cast<std::int64_t>(steps.lead().block_words());
   std::atomic<bool> done{false};
   std::thread gen([&] {
-    CanonMove m;
-    m.from = Vec6::Zero();
-    m.to = Vec6::Zero();
-    m.to[0] = length;
-    m.speed_class = SpeedClass::Move;
-    m.speeds = s.speeds.move;
-    planner.move(m);
+    planner.move(x_move(s, length));
     planner.flush();
     done = true;
   });
