@@ -200,6 +200,10 @@ void FeederThread::main() {
     if (feeder_.phase() != last_phase_) on_feeder_event();
     publish();
   }
+  // The controller's destructor E-stops before it quits: the card's outputs go off (the
+  // spindle relay, the charge pump) every time, not only when this loop saw the request
+  // before quit_. A card keeps its last word after the process ends.
+  if (cmd_halt_.exchange(false)) feeder_.halt_now();
 }
 
 // The card faulted and stopped by itself, while playing `item` (a lost flush is counted

@@ -144,7 +144,8 @@ TEST(FeedOverride, FasterAndSlowerRunsStayWithinTheLimitsAndMatchTheirEstimates)
 // trace_reversal (3 X steps out, 2 back: the direction bit 8 rises between the pulses, at
 // least the setup time before the first step back), trace_output (output 1, bit 18, on from
 // the first word, off one word after X's two steps). The charge pump toggles bit 16 every
-// 10 ticks throughout.
+// 10 ticks throughout. Every trace ends at the idle word (all zero): as the process ends the
+// controller switches the card's outputs off, every time (it once raced its own quit).
 class PinTrace : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(PinTrace, MatchesTheGoldenTrace) {
@@ -160,6 +161,7 @@ TEST_P(PinTrace, MatchesTheGoldenTrace) {
   fs::remove(out);
   EXPECT_EQ(g.str(), w.str());
   EXPECT_GT(w.str().size(), 1000u);
+  EXPECT_TRUE(w.str().ends_with(" 00000000\n"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Golden, PinTrace,
@@ -541,9 +543,11 @@ TEST(Check, ShopBotsOwnSpellingsRead) {
   const Result r = gantry("check tests/data/spellings/shopbot_spellings.sbp");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err,
-            "tests/data/spellings/shopbot_spellings.sbp:8:36: warning: CR takes 9 parameters; parameter 10 "
+            "tests/data/spellings/shopbot_spellings.sbp:8:36: warning: CR takes 9 parameters; "
+            "parameter 10 "
             "and those after it are ignored, as SB3 ignores them\n");
-  const Result moves = gantry("moves tests/data/spellings/shopbot_spellings.sbp --format jsonl --yes");
+  const Result moves =
+      gantry("moves tests/data/spellings/shopbot_spellings.sbp --format jsonl --yes");
   ASSERT_EQ(moves.exit_code, 0) << moves.err;
   std::istringstream in(moves.out);
   std::string line, last;
@@ -610,7 +614,7 @@ TEST(Help, OneCommandListsItsParametersInOrder) {
 // listed with the words of its first error.
 struct CorpusFile {
   const char* name;
-  bool fabmo_machine;  // needs the FabMo machine above
+  bool fabmo_machine;   // needs the FabMo machine above
   const char* refused;  // "" runs clean; else why not, as the first error says it
 };
 
@@ -676,8 +680,8 @@ TEST(Corpus, EveryFileRunsCleanOrNamesWhyNot) {
       fs::copy_file(standard, store, fs::copy_options::overwrite_existing);
       fs::copy_file(kSource / "tests/data/fabmo/fabmo_machine.toml", values,
                     fs::copy_options::overwrite_existing);
-      options += fmt::format(" --profile handibot --persistent '{}' --values '{}'",
-                             store.string(), values.string());
+      options += fmt::format(" --profile handibot --persistent '{}' --values '{}'", store.string(),
+                             values.string());
     }
     const std::string file = (corpus / f.name).string();
     const Result check = gantry(fmt::format("check '{}'{}", file, options));
@@ -865,8 +869,8 @@ TEST(Profiles, AShippedProfileIsFoundByNameFromAnyDirectory) {
 // FabMo's Handibot plate macro (C77) on the shipped Handibot profile runs to its end: it drives
 // Z to its top, touches the plate twice and records the second touch (working Z, zeroed at the
 // first) as the plate's height, on the FabMo machine (tests/data/fabmo/fabmo_machine.toml:
-// FabMo's dialect, soft limits off). With the plate's top at Z 2.0 both touches are at the first step at or
-// below it, so the height reads 0 and Z ends 0.5 above that step.
+// FabMo's dialect, soft limits off). With the plate's top at Z 2.0 both touches are at the first
+// step at or below it, so the height reads 0 and Z ends 0.5 above that step.
 TEST(Corpus, FabmoPlateMacroTouchesThePlateOnTheHandibot) {
   const fs::path corpus = kSource.parent_path() / "shared" / "corpus";
   ASSERT_TRUE(fs::exists(corpus)) << "no shared/corpus beside the repository (CI lays it there)";
@@ -1023,9 +1027,9 @@ TEST(Signals, AStopAndADoubleSigintAreReportedByNameWithWhatRan) {
   for (const int signals : {1, 2}) {
     const fs::path out = fs::temp_directory_path() / fmt::format("gantry_e2e_int_{}.out", getpid());
     // A live run keeps the machine's state next to its values file: this test's own.
-    const std::string cmd =
-        fmt::format("exec '{}' run '{}' --realtime --json --values '{}.values.toml' 2>/dev/null >'{}'",
-                    GANTRY_BIN, file, out.string(), out.string());
+    const std::string cmd = fmt::format(
+        "exec '{}' run '{}' --realtime --json --values '{}.values.toml' 2>/dev/null >'{}'",
+        GANTRY_BIN, file, out.string(), out.string());
     pid_t pid = 0;
     const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
     ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
