@@ -5,7 +5,7 @@
 
 #include <bit>  // countr_zero
 
-#include "gantry/core/bounded.hpp"  // checked_llround
+#include "gantry/core/bounded.hpp"          // checked_llround
 #include "gantry/interp/program_check.hpp"  // check_program
 #include "gantry/motion/cycle_timer.hpp"    // the estimate
 
@@ -42,8 +42,7 @@ class Controller::ForwardSink : public MotionSink, public MachineLink {
   MotionReport sync() override {
     to->flush();
     c_.wait_for_motion();
-    if (c_.feed_.aborted())
-      throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
+    if (c_.feed_.aborted()) throw GantryError(Diagnostic{{}, Severity::Error, "stopped"});
     MotionReport r;
     r.machine = c_.played_machine();
     r.fired = c_.feed_.take_fired();  // the feeder is idle: its flush is done
@@ -85,7 +84,7 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
   forward_->to = planner_.get();
   options.stop_check = &feed_.abort_flag();  // a stop ends even a file that loops without moving
   interp_ = std::make_unique<Interpreter>(settings, *forward_, forward_.get(), io, store,
-                                         std::move(options));
+                                          std::move(options));
   interp_->on_progress([this](std::size_t done, std::size_t total) {
     line_.store(done, std::memory_order_relaxed);
     lines_.store(total, std::memory_order_relaxed);
@@ -180,7 +179,8 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
         // file had reached.
         if (!feed_.aborted() || !stopped_at_.file) stopped_at_ = e.diagnostic().loc;
         if (!error_)
-          error_ = feed_.aborted() ? Diagnostic{stopped_at_, Severity::Error, message_} : e.diagnostic();
+          error_ =
+              feed_.aborted() ? Diagnostic{stopped_at_, Severity::Error, message_} : e.diagnostic();
         feed_.abort();
       }
     });
@@ -192,9 +192,8 @@ Outcome Controller::pause() {
 }
 
 Outcome Controller::pause(bool every_output) {
-  return refuse_or(Request::Pause, [&] {
-    feed_.hold(0, /*discard=*/false, /*pause=*/true, every_output);
-  });
+  return refuse_or(Request::Pause,
+                   [&] { feed_.hold(0, /*discard=*/false, /*pause=*/true, every_output); });
 }
 
 Outcome Controller::resume() {
@@ -570,9 +569,10 @@ void Controller::job_main() {
       interp_->set_last_stop(stopped_at_);
     else if (running_file_ && !typed_)  // a part file ran to its end
       interp_->set_last_stop({});
-    if (cut)
+    if (cut) {
       interp_->set_machine_position(played_machine());  // where the pulses brought the tool
-    else if (jog_target_)
+      if (fault_ != CardFault::None) say_where_the_card_stopped();
+    } else if (jog_target_)
       interp_->set_machine_position(*jog_target_);  // exact: fixed steps never drift
     feed_.clear_abort();
     if (state_ != MachineState::EStop)
@@ -590,6 +590,20 @@ void Controller::job_main() {
     ++activities_ended_;
     cv_.notify_all();
   }
+}
+
+// Job thread, the position settled: a card fault's message ends with where the tool is, in
+// the coordinates the readout and the file use (the card's own count differs by the origin
+// a restored session, a home or a zero set).
+void Controller::say_where_the_card_stopped() {
+  const ModalState& st = interp_->state();
+  std::string where;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (i < 3 || st.position[i] != 0)
+      where +=
+          fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), st.position[i]);
+  message_ += fmt::format("; the tool is at{} (the pulses played)", where);
+  if (error_) error_->message = message_;
 }
 
 // Job thread, the state settled.

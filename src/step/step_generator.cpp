@@ -45,13 +45,12 @@ void StepGenerator::watch_inputs(const InputWatch& w, std::function<void(const I
 }
 
 // After each block the card has played up to ticks_played(): steps before it are confirmed.
-// A fault stops everything: the rest of the job is dropped, and the error names where the
-// tool stopped, counted from the pulses the card actually played.
+// A fault stops everything: the rest of the job is dropped, and the error names when the
+// card stopped.
 void StepGenerator::check_card() {
   const std::uint64_t played = card_.ticks_played();
   log_.confirm(played);
-  while (level_changes_.size() > 1 &&
-         level_changes_[1].first <= static_cast<std::int64_t>(played))
+  while (level_changes_.size() > 1 && level_changes_[1].first <= static_cast<std::int64_t>(played))
     level_changes_.pop_front();
   if (on_block_) on_block_();
   if (on_edge_)
@@ -63,18 +62,13 @@ void StepGenerator::check_card() {
   const CardFault f = card_.fault();
   if (f == CardFault::None || faulted_) return;
   faulted_ = true;
-  const Steps6 at = played_position();
-  std::string where;  // the message is built once, on the way out of a run
-  for (int i = 0; i < kAxisCount; ++i)
-    if (at[i] != 0 || i < 3)
-      where += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'),
-                           static_cast<double>(at[i]) / placement_.steps_per_unit()[i]);
+  // Where the tool stopped is said by the controller: it knows the operator's frame (a
+  // restored or homed origin, the zero), which step counts alone do not.
   const std::string detail = card_.fault_detail();
-  throw GantryError(Diagnostic{
-      current_loc_, Severity::Error,
-      fmt::format("{}{}: the card stopped at {:.4f} s; the tool is at{} (the pulses played)",
-                  fault_name(f), detail.empty() ? "" : " (" + detail + ")",
-                  static_cast<double>(played) * timing_.tick_s, where)});
+  throw GantryError(Diagnostic{current_loc_, Severity::Error,
+                               fmt::format("{}{}: the card stopped at {:.4f} s", fault_name(f),
+                                           detail.empty() ? "" : " (" + detail + ")",
+                                           static_cast<double>(played) * timing_.tick_s)});
 }
 
 void StepGenerator::segment(const PlannedSegment& seg) {
@@ -87,7 +81,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
   warning_ = seg.warning;
   const std::int64_t t0 = segment_end_;
   if (seg.count.moves > 0 && stops.now() > t0) ran_ = seg.count;  // some of it plays
-  if (seg.independent) {  // at rest, like an output
+  if (seg.independent) {                                          // at rest, like an output
     if (stops.now() <= t0) return 0.0;
     emit_until(segment_end_);
     start_independent(*seg.independent);

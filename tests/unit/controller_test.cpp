@@ -2,6 +2,7 @@
 // keypad jogs at chosen machine times; positions to the step.
 #include "gantry/machine/controller.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -216,6 +217,32 @@ TEST(Controller, InRealTimeALateProducerIsAnUnderrunFaultWithItsLateness) {
   EXPECT_EQ(s.moves, s.lines - 1);  // MS, then the moves that reached the card: not the loop
 }
 
+// A card fault's message said where the tool was by the card's own count: after a zero (or
+// a restored session, a home) that is not where the readout and the file say it is.
+TEST(Controller, ACardFaultSaysWhereTheToolIsInTheFilesCoordinates) {
+  Settings settings = default_settings();
+  SimWorld world;
+  world.stall_at_s = 1.8;  // in the second move
+  SimCard card{settings, false, world};
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{settings, card, io, store};
+  ASSERT_TRUE(c.run(Script::from_text("MS, 2\nMX, 2\nZX\nMX, 3\n", "part.sbp")));
+  c.wait();
+  const Controller::Summary s = c.summary();
+  ASSERT_EQ(s.fault, CardFault::Underrun);
+  ASSERT_TRUE(s.error.has_value());
+  const double card_x = static_cast<double>(card.steps()[0]) / settings.axes[0].steps_per_unit;
+  ASSERT_GT(card_x, 2.05);
+  ASSERT_LT(card_x, 4.95);
+  EXPECT_DOUBLE_EQ(c.modal().position[0], card_x - 2);
+  EXPECT_NE(s.error->message.find(fmt::format("the tool is at X={:.4f} Y=0.0000 Z=0.0000 (the "
+                                              "pulses played)",
+                                              card_x - 2)),
+            std::string::npos)
+      << s.error->message;
+}
+
 TEST(Controller, EStopStopsThePulsesAtOnceAndNeedsAcknowledging) {
   Machine m;
   m.c.schedule(Request::EStop, 1.0);
@@ -288,7 +315,8 @@ TEST(Controller, InRealTimeTheMoveAfterAnAcknowledgedEStopPlaysAtOnce) {
   const auto t0 = std::chrono::steady_clock::now();
   ASSERT_TRUE(c.run(Script::from_text("MX, 3.9\n", "part.sbp")));  // a few tenths of an inch
   c.wait();
-  const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(c.state(), MachineState::Idle);
   EXPECT_EQ(c.status().steps[0], std::llround(3.9 * settings.axes[0].steps_per_unit));
   EXPECT_GT(played_before_s, 2.0);

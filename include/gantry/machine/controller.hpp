@@ -47,8 +47,8 @@ struct ControllerStatus {
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
   std::shared_ptr<const std::string> playing_file;  // ... and that file (null: none)
-  double elapsed_s = 0;             // machine time since it started
-  double remaining_s = 0;           // the check's cycle-time estimate less elapsed (0: none)
+  double elapsed_s = 0;                             // machine time since it started
+  double remaining_s = 0;  // the check's cycle-time estimate less elapsed (0: none)
 };
 
 // A keypad jog: each axis -1, 0 or +1 (several: a diagonal). Continuous: runs towards the
@@ -57,7 +57,7 @@ struct JogRequest {
   std::array<int, kAxisCount> direction{};
   bool fast = false;  // jog speed; otherwise move speed
   bool step = false;
-  double step_size = 0;  // a step's length (units); 0: VD's keypad step
+  double step_size = 0;       // a step's length (units); 0: VD's keypad step
   double speed_fraction = 1;  // the share of the speed (a pendant's knob), 0-1
 };
 
@@ -78,16 +78,16 @@ class Controller : private FeederEvents {
   // An activity's start (before any motion) and its end (at rest), told on the job thread:
   // what the session keeps across sessions (session/machine_memory) and logs (run_log).
   struct Activity {
-    bool at_rest = false;     // false: it is about to move
-    bool part_file = false;   // a file run (not a jog, not a typed line)
-    std::string file;         // the file's name (part_file)
-    ModalState modal;         // the interpreter's state: the position, zero, offsets
+    bool at_rest = false;    // false: it is about to move
+    bool part_file = false;  // a file run (not a jog, not a typed line)
+    std::string file;        // the file's name (part_file)
+    ModalState modal;        // the interpreter's state: the position, zero, offsets
     Units units = Units::Inches;
     // At rest only: how it ended.
-    bool estop = false;       // an E-stop or a card fault: the pulses stopped at once
+    bool estop = false;                 // an E-stop or a card fault: the pulses stopped at once
     CardFault fault = CardFault::None;  // the card's, if it stopped by itself
-    std::optional<Diagnostic> error;  // why it stopped short (stopped_at: where)
-    double elapsed_s = 0;     // machine time it took
+    std::optional<Diagnostic> error;    // why it stopped short (stopped_at: where)
+    double elapsed_s = 0;               // machine time it took
   };
   void on_activity(std::function<void(const Activity&)> f);
   // Before anything runs: `edit` changes the interpreter's state, given where the card's
@@ -135,8 +135,8 @@ class Controller : private FeederEvents {
     // The motion was cut (a stop, an E-stop, a card fault): lines and moves count only what reached
     // the card, not what the interpreter had read ahead.
     bool cut = false;
-    Steps6 commanded{};                // steps the generator emitted
-    double planned_time_s = 0;         // the planner's sum of segment durations
+    Steps6 commanded{};         // steps the generator emitted
+    double planned_time_s = 0;  // the planner's sum of segment durations
   };
   Summary summary() const;
   // The speeds' factor (0.1-2). While a file runs it reaches the moves not planned yet (the
@@ -161,7 +161,7 @@ class Controller : private FeederEvents {
                     bool typed);
   void start_activity(std::function<void()> work);
   void job_main();
-  bool settled() const;     // what wait() waits for; under m_
+  bool settled() const;    // what wait() waits for; under m_
   void wait_for_motion();  // job thread: every flush pushed has played (or was dropped)
   // FeederEvents, on the feeder thread.
   void feeder_phase_changed(FeedPhase phase, const SourceLoc& rest) override;
@@ -182,6 +182,7 @@ class Controller : private FeederEvents {
   double elapsed_s() const;       // the card's clock since the activity began; takes m_
   MotionReport keypad_session();  // job thread: SK's wait, playing jogs
   void after_statement();         // job thread: single step, a new feed override
+  void say_where_the_card_stopped();
   Activity activity(bool at_rest) const;  // job thread: for on_activity
 
   Settings settings_;
@@ -198,7 +199,7 @@ class Controller : private FeederEvents {
   std::unique_ptr<ForwardSink> forward_;
   std::unique_ptr<LookAheadPlanner> planner_;
   std::unique_ptr<Interpreter> interp_;
-  std::optional<Vec6> jog_target_;        // the jog's commanded end (machine frame)
+  std::optional<Vec6> jog_target_;  // the jog's commanded end (machine frame)
   // SK: the file waits on the job thread, which plays the operator's jogs (pending_jog_)
   // until resume closes the keypad (keypad_open_ false).
   bool keypad_open_ = false;
@@ -209,7 +210,7 @@ class Controller : private FeederEvents {
   std::condition_variable cv_;
   bool quit_ = false;  // the destructor: the job thread ends (under m_)
   MachineState state_ = MachineState::Idle;
-  bool busy_ = false;  // an activity is under way on the job thread
+  bool busy_ = false;                   // an activity is under way on the job thread
   std::uint64_t activities_ended_ = 0;  // ControllerStatus::activities_ended
   std::function<void()> work_;
   std::vector<std::pair<Request, double>> scheduled_;
@@ -229,8 +230,8 @@ class Controller : private FeederEvents {
   bool running_file_ = false;  // the activity is a file (not a jog)
   bool typed_ = false;         // ... typed at the console (not a part file of its own)
   std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
-  std::function<void(const Activity&)> activity_;  // the caller's (set while idle)
-  std::string activity_file_;  // the part file the activity runs
+  std::function<void(const Activity&)> activity_;           // the caller's (set while idle)
+  std::string activity_file_;                               // the part file the activity runs
   // Job thread -> status() (relaxed: display only). Set by start_run under m_, then by the
   // interpreter's progress call on the job thread.
   std::atomic<std::size_t> line_{0}, lines_{0};
