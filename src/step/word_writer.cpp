@@ -14,10 +14,10 @@ WordWriter::WordWriter(const Settings& settings, const StepTiming& timing, Card&
       timing_(timing),
       card_(card),
       block_words_(block_words),
+      block_(block_words),
       roles_(input_roles(settings)) {  // the card has them from the same profile
   pulse_end_.fill(0);
   level_word_ = pins_.idle_word();
-  block_.reserve(block_words_);
   if (settings.outputs.charge_pump_bit >= 0) {
     pump_mask_ = 1u << settings.outputs.charge_pump_bit;
     pump_half_ticks_ = std::max<std::int64_t>(
@@ -120,7 +120,7 @@ void WordWriter::restart() {
 void WordWriter::write_run(std::uint32_t word, std::int64_t count) {
   std::int64_t tick = cursor_;
   while (count > 0) {
-    const auto room = static_cast<std::int64_t>(block_words_ - block_.size());
+    const auto room = static_cast<std::int64_t>(block_.room());
     std::int64_t n = std::min(room, count);
     std::uint32_t w = word;
     if (pump_mask_) {
@@ -134,7 +134,7 @@ void WordWriter::write_run(std::uint32_t word, std::int64_t count) {
       n = std::min(n, (high ? pwm_high_ticks_ : pwm_period_ticks_) - phase);
       if (high) w |= pwm_mask_;
     }
-    block_.insert(block_.end(), static_cast<std::size_t>(n), w);
+    block_.append(static_cast<std::size_t>(n), w);
     count -= n;
     tick += n;
     if (block_.size() == block_words_) {
