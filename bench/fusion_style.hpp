@@ -23,7 +23,7 @@ inline std::string fusion_style_gcode(int lines) {
   for (int k = 0; k < 4; ++k, n += 2)
     out += fmt::format("G3 X1.9 Y2. Z{:.4f} I-0.1 J0.\nG3 X2.1 Y2. Z{:.4f} I0.1 J0.\n",
                        0.03 - 0.03 * k, 0.015 - 0.03 * k);
-  const double r = 0.12;  // the loop's radius
+  const double r = 0.12;     // the loop's radius
   const double step = 0.06;  // the path advances this much per loop
   double x = 2.1, y = 2.0, depth = -0.125;
   int row = 0;

@@ -9,10 +9,11 @@
 #include <new>      // bad_alloc
 #include <random>   // move generation
 
+#include "fusion_style.hpp"  // fusion_style_gcode
+
 #include "gantry/interp/interpreter.hpp"   // Interpreter
 #include "gantry/lang/script.hpp"          // Script
 #include "gantry/machine/job.hpp"          // run_job
-#include "fusion_style.hpp"                // fusion_style_gcode
 #include "gantry/step/step_generator.hpp"  // StepGenerator
 #include "sim/sim_card.hpp"                // SimCard
 
@@ -241,7 +242,10 @@ void BM_FullPipeline(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   full_pipeline(state, generated_file(n), "bench.sbp", n);
 }
-BENCHMARK(BM_FullPipeline)->Arg(200)->Unit(benchmark::kMillisecond)->UseRealTime()
+BENCHMARK(BM_FullPipeline)
+    ->Arg(200)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
     ->MeasureProcessCPUTime();
 
 // Issue 27's target (>= 2,000x real time): a 35k-line Fusion 360-style adaptive clearing
@@ -250,7 +254,10 @@ void BM_FullPipelineFusion(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   full_pipeline(state, gantry::bench::fusion_style_gcode(n), "fusion.nc", n);
 }
-BENCHMARK(BM_FullPipelineFusion)->Arg(35000)->Unit(benchmark::kMillisecond)->UseRealTime()
+BENCHMARK(BM_FullPipelineFusion)
+    ->Arg(35000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
     ->MeasureProcessCPUTime();
 
 }  // namespace

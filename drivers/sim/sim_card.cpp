@@ -277,8 +277,7 @@ void SimCard::write(std::span<const std::uint32_t> words) {
     }
     // The run of words like the last one, up to the next event's tick at most.
     const std::uint64_t room = event_tick - tick_;
-    const std::uint32_t* const stop =
-        static_cast<std::uint64_t>(end - p) > room ? p + room : end;
+    const std::uint32_t* const stop = static_cast<std::uint64_t>(end - p) > room ? p + room : end;
     const std::uint32_t* const edge = skip_run(p, stop, prev_, edge_bits);
     if (edge != p) {
       tick_ += static_cast<std::uint64_t>(edge - p);
