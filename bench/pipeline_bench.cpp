@@ -3,9 +3,13 @@
 #include <benchmark/benchmark.h>  // the harness
 #include <fmt/format.h>           // generated part files
 
+#include <chrono>   // wall time of the threaded pipeline
 #include <cstdlib>  // malloc for the counting operator new
+#include <ctime>    // clock: the process CPU time
 #include <new>      // bad_alloc
 #include <random>   // move generation
+
+#include "fusion_style.hpp"  // fusion_style_gcode
 
 #include "gantry/interp/interpreter.hpp"   // Interpreter
 #include "gantry/lang/script.hpp"          // Script
@@ -200,21 +204,60 @@ void BM_StepGeneratorSixAxesAt100kHz(benchmark::State& state) {
 }
 BENCHMARK(BM_StepGeneratorSixAxesAt100kHz)->Unit(benchmark::kMillisecond);
 
-// The whole job on the simulated card: machine seconds per wall second.
-void BM_FullPipeline(benchmark::State& state) {
-  const std::string text = generated_file(static_cast<int>(state.range(0)));
+// The whole job on the simulated card in virtual time: machine seconds per WALL second. The
+// work runs on the controller's threads (job, feeder), not the benchmark's, so the figures
+// are wall time (UseRealTime) and the process's CPU time (MeasureProcessCPUTime); the main
+// thread's own CPU time, which is nearly nothing, would make them look a thousand times
+// better than they are.
+void full_pipeline(benchmark::State& state, const std::string& text, const char* name,
+                   double lines) {
   const Settings settings = default_settings();
-  double machine_s = 0;
+  double machine_s = 0, wall_s = 0, cpu_s = 0;
   for (auto _ : state) {
     SimCard card(settings);
     std::string printed;
     ScriptedIO io(true, {}, &printed);
     PersistentStore store;
-    run_job(Script::from_text(text, "bench.sbp"), settings, card, io, store);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();  // the process's CPU time: every thread's
+    const JobResult r = run_job(Script::from_text(text, name), settings, card, io, store);
+    wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    cpu_s += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    if (!r.ok()) {
+      state.SkipWithError(r.errors.front().message.c_str());
+      return;
+    }
     machine_s += card.time_s();
   }
-  state.counters["x_realtime"] = benchmark::Counter(machine_s, benchmark::Counter::kIsRate);
+  state.counters["x_realtime"] = machine_s / wall_s;  // by wall clock
+  // By the process's CPU time (all threads): what a quiet machine's wall clock tends to
+  // when the threads do not overlap; on a loaded one it shows the work the load hides.
+  state.counters["x_realtime_cpu"] = machine_s / cpu_s;
+  state.counters["machine_s"] = machine_s / static_cast<double>(state.iterations());
+  state.counters["lines/s"] = lines * static_cast<double>(state.iterations()) / wall_s;
 }
-BENCHMARK(BM_FullPipeline)->Arg(200)->Unit(benchmark::kMillisecond);
+
+// 200 (or more) random M3 moves across the table: long moves, mostly at speed.
+void BM_FullPipeline(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  full_pipeline(state, generated_file(n), "bench.sbp", n);
+}
+BENCHMARK(BM_FullPipeline)
+    ->Arg(200)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
+
+// Issue 27's target (>= 2,000x real time): a 35k-line Fusion 360-style adaptive clearing
+// job in G-code (bench/fusion_style.hpp): short G1 chords, arcs, feed changes.
+void BM_FullPipelineFusion(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  full_pipeline(state, gantry::bench::fusion_style_gcode(n), "fusion.nc", n);
+}
+BENCHMARK(BM_FullPipelineFusion)
+    ->Arg(35000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <fmt/format.h>  // fault_detail
 
 #include <algorithm>  // min
+#include <bit>        // countr_one
 #include <cmath>      // llround
 #include <iomanip>    // the trace's hex words
 #include <limits>     // numeric_limits
@@ -11,10 +12,35 @@
 
 #include "gantry/core/bounded.hpp"  // checked_llround
 
+#if defined(__SSE2__)
+#include <emmintrin.h>  // skip_run's compares
+#endif
+
 namespace gantry {
 namespace {
 
 constexpr std::int64_t kLongAgo = std::numeric_limits<std::int64_t>::min() / 2;
+
+// The first word from `p` on whose `mask` bits differ from `w`'s, or `stop`: eight words
+// compared at a time in two SSE2 vectors where there are (x86-64 always has them), one at a
+// time elsewhere. Most words are like the one before (the idle words between pulses).
+const std::uint32_t* skip_run(const std::uint32_t* p, const std::uint32_t* stop, std::uint32_t w,
+                              std::uint32_t mask) {
+#if defined(__SSE2__)
+  const __m128i want = _mm_set1_epi32(static_cast<int>(w & mask));
+  const __m128i m = _mm_set1_epi32(static_cast<int>(mask));
+  while (stop - p >= 8) {
+    const __m128i a = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), m);
+    const __m128i b = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 4)), m);
+    const auto same = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi32(a, want))) |
+                      static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi32(b, want))) << 16;
+    if (same != 0xffffffffu) return p + std::countr_one(same) / 4;
+    p += 8;
+  }
+#endif
+  while (p != stop && ((*p ^ w) & mask) == 0) ++p;
+  return p;
+}
 
 std::array<AxisLimits, kAxisCount> limits_of(const Settings& s) {
   std::array<AxisLimits, kAxisCount> out{};
@@ -221,8 +247,16 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       ++feed_.blocks;
     }
   }
+  // Only an edge (a word unlike the one before) or an event (an input, the E-stop, a stall)
+  // does anything: the words between play in one step, and the timing rules are checked at
+  // the edges, as before, at their own ticks. Without a trace or an input watch, a change of
+  // the other outputs alone (the charge pump's flips, every few ticks) is no edge either:
+  // nothing but the trace and the watch's sampling looks at it.
   std::uint64_t event_tick = next_event_tick();
-  for (std::uint32_t w : words) {
+  const std::uint32_t edge_bits = !trace_ && watcher_.watch().mask == 0 ? axis_bits_ : ~0u;
+  const std::uint32_t* p = words.data();
+  const std::uint32_t* const end = p + words.size();
+  while (p != end) {
     while (next_input_ < input_ticks_.size() && tick_ >= input_ticks_[next_input_]) {
       const SimInputEvent& e = world_.input_events[next_input_++];
       const std::uint32_t before = inputs_;
@@ -241,15 +275,24 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       }
       break;
     }
-    if (w != prev_) {
-      decode(w);
-      sample_watch(tick_ + 1);
-      if (fault_ != CardFault::None || stopped_) {  // a switch tripped by this word's step
-        ++tick_;
-        break;
-      }
+    // The run of words like the last one, up to the next event's tick at most.
+    const std::uint64_t room = event_tick - tick_;
+    const std::uint32_t* const stop = static_cast<std::uint64_t>(end - p) > room ? p + room : end;
+    const std::uint32_t* const edge = skip_run(p, stop, prev_, edge_bits);
+    if (edge != p) {
+      tick_ += static_cast<std::uint64_t>(edge - p);
+      prev_ = edge[-1];  // the output lines now (they differ from prev_ outside edge_bits only)
+      p = edge;
     }
+    if (p == stop) continue;  // the run reached the event (or the end of the words)
+    const std::uint32_t w = *p++;
+    if (((w ^ prev_) & axis_bits_) == 0 && !trace_)  // no step or direction line: no rule
+      prev_ = w;
+    else
+      decode(w);
+    if (watcher_.watch().mask != 0) sample_watch(tick_ + 1);
     ++tick_;
+    if (fault_ != CardFault::None || stopped_) break;  // a switch tripped by this word's step
   }
   if (realtime_)  // the queue holds up to queue_s_ of words not yet played
     std::this_thread::sleep_until(wall_at(tick_) -

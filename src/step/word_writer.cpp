@@ -14,10 +14,10 @@ WordWriter::WordWriter(const Settings& settings, const StepTiming& timing, Card&
       timing_(timing),
       card_(card),
       block_words_(block_words),
+      block_(block_words),
       roles_(input_roles(settings)) {  // the card has them from the same profile
   pulse_end_.fill(0);
   level_word_ = pins_.idle_word();
-  block_.reserve(block_words_);
   if (settings.outputs.charge_pump_bit >= 0) {
     pump_mask_ = 1u << settings.outputs.charge_pump_bit;
     pump_half_ticks_ = std::max<std::int64_t>(
@@ -116,25 +116,40 @@ void WordWriter::restart() {
 
 // `count` words from cursor_ on. The charge pump's bit flips every pump_half_ticks_ ticks,
 // and the spindle speed's bit is high for the first pwm_high_ticks_ of each period (both by
-// the tick's own number, so the square waves are unbroken across runs and blocks).
+// the tick's own number, so the square waves are unbroken across runs and blocks). Where
+// they stand is found once per run (a division) and stepped on from flip to flip: the pump
+// splits a run every few ticks.
 void WordWriter::write_run(std::uint32_t word, std::int64_t count) {
   std::int64_t tick = cursor_;
+  std::int64_t pump_phase = 0, pump_flip = 0, pwm_base = 0;  // pwm_base: the period's first tick
+  auto locate = [&] {  // at the start, and after a block (its callback may change the speed)
+    pump_phase = tick / pump_half_ticks_;
+    pump_flip = (pump_phase + 1) * pump_half_ticks_;
+    pwm_base = tick - tick % pwm_period_ticks_;
+  };
+  locate();
   while (count > 0) {
-    const auto room = static_cast<std::int64_t>(block_words_ - block_.size());
+    const auto room = static_cast<std::int64_t>(block_.room());
     std::int64_t n = std::min(room, count);
     std::uint32_t w = word;
     if (pump_mask_) {
-      const std::int64_t phase = tick / pump_half_ticks_;
-      n = std::min(n, (phase + 1) * pump_half_ticks_ - tick);
-      if (phase & 1) w |= pump_mask_;
+      if (tick == pump_flip) {
+        ++pump_phase;
+        pump_flip += pump_half_ticks_;
+      }
+      n = std::min(n, pump_flip - tick);
+      if (pump_phase & 1) w |= pump_mask_;
     }
     if (pwm_high_ticks_ > 0) {
-      const std::int64_t phase = tick % pwm_period_ticks_;
-      const bool high = phase < pwm_high_ticks_;
-      n = std::min(n, (high ? pwm_high_ticks_ : pwm_period_ticks_) - phase);
+      if (tick == pwm_base + pwm_period_ticks_) pwm_base = tick;
+      const bool high = tick - pwm_base < pwm_high_ticks_;
+      n = std::min(n, pwm_base + (high ? pwm_high_ticks_ : pwm_period_ticks_) - tick);
       if (high) w |= pwm_mask_;
     }
-    block_.insert(block_.end(), static_cast<std::size_t>(n), w);
+    // Eight at a time: a fill of a constant eight words is two vector stores.
+    auto left = static_cast<std::size_t>(n);
+    for (; left >= 8; left -= 8) block_.append(8, w);
+    block_.append(left, w);
     count -= n;
     tick += n;
     if (block_.size() == block_words_) {
@@ -142,6 +157,7 @@ void WordWriter::write_run(std::uint32_t word, std::int64_t count) {
       block_.clear();
       sent_ = tick;
       if (on_block_) on_block_();
+      locate();
     }
   }
 }

@@ -8,6 +8,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -494,6 +497,121 @@ TEST(SimCardTiming, ViolationsOnDifferentAxesAreAttributed) {
   EXPECT_EQ(card.first_violations()[0].rule, TimingRule::PulseWidth);
   EXPECT_EQ(card.first_violations()[1].axis, 0);
   EXPECT_EQ(card.first_violations()[1].rule, TimingRule::DirSetup);
+}
+
+// The card plays a run of identical words in one step and checks the rules at the edges
+// only (issue 27): an edge inside long runs is judged at its own tick.
+std::vector<std::uint32_t> runs(std::initializer_list<std::pair<std::uint32_t, int>> parts) {
+  std::vector<std::uint32_t> words;
+  for (const auto& [w, n] : parts) words.insert(words.end(), static_cast<std::size_t>(n), w);
+  return words;
+}
+
+TEST(SimCardRuns, AShortPulseBetweenLongRunsIsReportedAtItsTick) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;  // 2 ticks
+  SimCard card(s);
+  play(card, runs({{0, 5001}, {kXStep, 1}, {0, 7000}}));  // 1 tick wide, ends at tick 5002
+  EXPECT_EQ(card.steps()[0], 1);
+  EXPECT_EQ(card.ticks_played(), 12002u);
+  ASSERT_EQ(card.timing_violations(), 1u);
+  EXPECT_EQ(card.first_violations()[0].rule, TimingRule::PulseWidth);
+  EXPECT_EQ(card.first_violations()[0].tick, 5002u);
+}
+
+TEST(SimCardRuns, ADirectionChangeTooCloseToAStepInsideLongRunsIsReported) {
+  Settings s = default_settings();
+  s.card.dir_setup_us = 10;  // 2 ticks
+  SimCard card(s);
+  // Direction at 3000, the step one tick later; then a long pulse with the direction
+  // changed under it at 9000.
+  play(card, runs({{0, 3000}, {kXDir, 1}, {kXDir | kXStep, 4000}, {kXStep, 3000}, {0, 999}}));
+  EXPECT_EQ(card.steps()[0], -1);
+  ASSERT_EQ(card.timing_violations(), 2u);
+  EXPECT_EQ(card.first_violations()[0].rule, TimingRule::DirSetup);
+  EXPECT_EQ(card.first_violations()[0].tick, 3001u);
+  EXPECT_EQ(card.first_violations()[1].rule, TimingRule::DirDuringPulse);
+  EXPECT_EQ(card.first_violations()[1].tick, 7001u);
+}
+
+TEST(SimCardRuns, AnEStopInsideARunStopsTheCardAtItsTick) {
+  SimWorld w;
+  w.estop_at_s = 12345 * 5e-6;
+  SimCard card(default_settings(), false, w);
+  card.start(200000);
+  play(card, std::vector<std::uint32_t>(20000, 0));
+  EXPECT_EQ(card.fault(), CardFault::EStop);
+  EXPECT_EQ(card.ticks_played(), 12345u);
+}
+
+TEST(SimCardRuns, AnInputEventInsideARunFiresTheWatchAtItsTick) {
+  SimWorld w;
+  w.input_events = {{7777 * 5e-6, 12, true}};
+  SimCard card(default_settings(), false, w);
+  card.start(200000);
+  card.watch({1u << 12, 1u << 12, 1u << 12});  // stop the card on it
+  play(card, std::vector<std::uint32_t>(10000, 0));
+  ASSERT_TRUE(card.watch_fired());
+  EXPECT_EQ(card.watch_fired()->tick, 7777u);
+  EXPECT_EQ(card.ticks_played(), 7777u);
+}
+
+// The same words written at once and one at a time: the same steps, violations (and their
+// ticks), time and trace. One word per write has no run to skip.
+TEST(SimCardRuns, WordsInOneWriteDecodeAsWordsWrittenOneByOne) {
+  Settings s = default_settings();
+  s.card.step_pulse_us = 10;
+  s.card.dir_setup_us = 10;
+  std::vector<std::uint32_t> words;
+  std::uint32_t state = 0;
+  for (int k = 0; k < 3000; ++k) {  // pulses, direction changes and the pump, some too close
+    const int n = 1 + (k * 7919) % 23;
+    switch (k % 5) {
+      case 0: state ^= kXStep; break;
+      case 1: state ^= 1u << 16; break;  // the charge pump: no rule
+      case 2: state ^= kYStep; break;
+      case 3: state ^= (k % 3 == 0 ? kXDir : kYDir); break;
+      default: state ^= kXStep | kYStep;
+    }
+    words.insert(words.end(), static_cast<std::size_t>(n), state);
+  }
+  const std::string trace_a = testing::TempDir() + "runs_a.trace";
+  const std::string trace_b = testing::TempDir() + "runs_b.trace";
+  {
+    SimCard a(s, false, {}, trace_a), b(s, false, {}, trace_b);
+    play(a, words);
+    for (std::uint32_t w : words) play(b, {w});
+    EXPECT_EQ(a.steps(), b.steps());
+    EXPECT_EQ(a.ticks_played(), b.ticks_played());
+    EXPECT_GT(a.timing_violations(), 0u);
+    EXPECT_EQ(a.timing_violations(), b.timing_violations());
+    ASSERT_EQ(a.first_violations().size(), b.first_violations().size());
+    for (std::size_t k = 0; k < a.first_violations().size(); ++k) {
+      EXPECT_EQ(a.first_violations()[k].tick, b.first_violations()[k].tick);
+      EXPECT_EQ(a.first_violations()[k].rule, b.first_violations()[k].rule);
+      EXPECT_EQ(a.first_violations()[k].axis, b.first_violations()[k].axis);
+    }
+    a.stop(0);
+    b.stop(0);
+  }  // the traces are complete once the cards are gone
+  {  // without a trace the pump's flips are no edge: the same again, and the same last word
+    SimCard a(s), b(s);
+    play(a, words);
+    for (std::uint32_t w : words) play(b, {w});
+    EXPECT_EQ(a.steps(), b.steps());
+    EXPECT_EQ(a.ticks_played(), b.ticks_played());
+    EXPECT_EQ(a.last_word(), b.last_word());
+    EXPECT_EQ(a.last_word(), words.back());
+    EXPECT_EQ(a.timing_violations(), b.timing_violations());
+    ASSERT_EQ(a.first_violations().size(), b.first_violations().size());
+    for (std::size_t k = 0; k < a.first_violations().size(); ++k)
+      EXPECT_EQ(a.first_violations()[k].tick, b.first_violations()[k].tick);
+  }
+  std::ifstream fa(trace_a), fb(trace_b);
+  const std::string ta((std::istreambuf_iterator<char>(fa)), {}),
+      tb((std::istreambuf_iterator<char>(fb)), {});
+  EXPECT_GT(ta.size(), 1000u);
+  EXPECT_EQ(ta, tb);
 }
 
 TEST(SimCardTiming, RuleNamesAreDistinct) {

@@ -1041,6 +1041,24 @@ TEST(ChargePump, SquareWaveAtItsRateUnbrokenAcrossBlocksWhilePulsesFlow) {
             target_steps(0.05, s.axes[0].steps_per_unit));
 }
 
+// The spindle speed's square wave beside the pump's, each by the tick's own number, across
+// runs cut by pulses and by small blocks: the writer steps from flip to flip (issue 27).
+TEST(ChargePump, SpindleSpeedWaveUnbrokenBesideThePumpAcrossBlocks) {
+  Settings s = default_settings();
+  s.spindle.pwm_bit = 30;  // 1 kHz on the 200 kHz pacer: a 200-tick period
+  RecordingCard card;
+  StepGenerator gen(s, card, /*block_words=*/37);
+  gen.set_spindle_speed(0.3 * s.spindle.max_rpm);  // high for the first 60 ticks of each
+  gen.segment(rest_to_rest(Vec6::Zero(), vec(0.05), 1.0));
+  gen.flush();
+  const auto& w = card.words();
+  ASSERT_GT(w.size(), 1000u);
+  for (std::size_t t = 0; t < w.size(); ++t) {
+    ASSERT_EQ((w[t] >> 16) & 1u, (t / 10) & 1u) << "tick " << t;
+    ASSERT_EQ((w[t] >> 30) & 1u, t % 200 < 60 ? 1u : 0u) << "tick " << t;
+  }
+}
+
 TEST(SpindleOutput, FollowsSetSpindleFromTheNextWord) {
   Settings s = steps_only();
   RecordingCard card;

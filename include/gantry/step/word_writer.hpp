@@ -2,6 +2,7 @@
 // charge pump, the spindle and output bits, blocks handed to the card, the card's trips.
 #pragma once
 
+#include <algorithm>  // fill_n
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -17,6 +18,28 @@
 namespace gantry {
 
 struct Settings;
+
+// The words of one block, stored once: a run of `n` copies is a fill of its memory, with
+// none of vector::insert's per-call work (the runs between pulses are short: the charge
+// pump flips every few ticks). Read by the card as a span.
+class WordBlock {
+ public:
+  explicit WordBlock(std::size_t capacity) : words_(capacity) {}
+  void append(std::size_t n, std::uint32_t w) {  // n <= room()
+    std::fill_n(words_.data() + size_, n, w);
+    size_ += n;
+  }
+  std::size_t room() const { return words_.size() - size_; }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  void clear() { size_ = 0; }
+  const std::uint32_t* begin() const { return words_.data(); }
+  const std::uint32_t* end() const { return words_.data() + size_; }
+
+ private:
+  std::vector<std::uint32_t> words_;
+  std::size_t size_ = 0;
+};
 
 // Words go out in tick order from cursor() on: each is the levels set so far (directions,
 // idle step levels, spindle, outputs) with the step lines of pulses not yet over flipped
@@ -102,7 +125,7 @@ class WordWriter {
   std::uint32_t level_word_ = 0;  // direction levels and idle step levels
   std::int64_t cursor_ = 0;       // next tick to emit
   std::int64_t sent_ = 0;         // next tick not yet handed to the card
-  std::vector<std::uint32_t> block_;
+  WordBlock block_;
   std::uint32_t pump_mask_ = 0, spindle_mask_ = 0;
   std::vector<int> aux_bits_;
   std::int64_t pump_half_ticks_ = 1;
