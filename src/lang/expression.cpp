@@ -9,6 +9,7 @@
 #include <span>       // a call's arguments
 
 #include "gantry/lang/expr_node.hpp"
+#include "gantry/lang/check_only.hpp"  // ExprCheckOnly
 #include "gantry/core/any_bytes.hpp"  // echoed: a token quoted in a message is capped
 #include "gantry/core/text.hpp"  // upper
 #include "gantry/lang/number_literal.hpp"  // literal::scan, literal::value
@@ -125,6 +126,16 @@ struct Scratch {
     arg_index.clear();
   }
 };
+
+thread_local bool t_check_only = false;  // see ExprCheckOnly
+
+// What a checked expression gives under ExprCheckOnly: the number 0, owning nothing.
+const ExprTree kPlaceholderTree{};
+const ExprNode kPlaceholder = [] {
+  ExprNode n;
+  n.tree = &kPlaceholderTree;
+  return n;
+}();
 
 Scratch& thread_scratch() {
   thread_local Scratch s;
@@ -447,6 +458,8 @@ class Parser {
 
   // The tree, its nodes, call arguments and strings in one heap block (one allocation).
   Expr finish(int root) {
+    if (t_check_only)  // aliasing an empty owner: no allocation, no reference count
+      return Expr(std::shared_ptr<const ExprNode>(std::shared_ptr<const void>(), &kPlaceholder));
     const size_t node_bytes = protos_.size() * sizeof(ExprNode);
     const size_t arg_bytes = arg_index_.size() * sizeof(const ExprNode*);
     static_assert(alignof(ExprNode) >= alignof(const ExprNode*));
@@ -926,6 +939,14 @@ std::string_view function_name(ExprFunc f) {
   for (const FuncInfo& info : kFunctions)
     if (info.id == f) return info.name;
   return "?";
+}
+
+ExprCheckOnly::ExprCheckOnly() : was_(t_check_only) {
+  t_check_only = true;
+}
+
+ExprCheckOnly::~ExprCheckOnly() {
+  t_check_only = was_;
 }
 
 ExprParse parse_expression(std::string_view text, const SourceLoc& at, bool bare_words) {

@@ -8,6 +8,7 @@
 #include <cmath>      // floor
 
 #include "gantry/core/any_bytes.hpp"  // echoed: quoted source text is capped
+#include "gantry/lang/check_only.hpp"      // check_line
 #include "gantry/lang/number_literal.hpp"  // parse_number_literal
 #include "line_parser.hpp"          // LineParser
 #include "gantry/lang/scan.hpp"                 // character helpers
@@ -309,6 +310,12 @@ LineParse parse_line(std::string_view line, const std::shared_ptr<const std::str
     out.error = err.diagnostic();
   }
   return out;
+}
+
+LineParse check_line(std::string_view line, const std::shared_ptr<const std::string>& file,
+                     int line_no) {
+  const ExprCheckOnly check;
+  return parse_line(line, file, line_no);
 }
 
 }  // namespace gantry
