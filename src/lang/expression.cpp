@@ -913,7 +913,7 @@ class Parser {
   }
 
   std::string_view text_;
-  SourceLoc at_;  // the location of text[0]; columns are base_ + offset
+  const SourceLoc& at_;  // the location of text[0] (the caller's: it outlives the parse)
   std::int32_t base_;
   size_t pos_;
   int nesting_;
