@@ -201,5 +201,35 @@ TEST(ExpressionStorage, CheckLineFindsWhatParseLineFinds) {
   }
 }
 
+TEST(ExpressionStorage, AssignmentTargetsReadAsParseLvalueReadsThem) {
+  // LineParser reads a plain `&name` target itself; every other target goes to parse_lvalue.
+  const auto file = std::make_shared<const std::string>("t.sbp");
+  const char* targets[] = {"&x", "&Abc_1", "&_9", "  &tool_Z  ", "&3zero", "&x[1]", "&x.y",
+                           "$p", "$p[&i].z", "&", "&x y", "&x-1"};
+  for (const char* target : targets) {
+    const std::string text = std::string(target) + " = 2";
+    const LineParse line = parse_line(text, file, 4);
+    const std::string_view t(target);
+    const size_t b = t.find_first_not_of(' ');
+    const size_t e = t.find_last_not_of(' ') + 1;
+    std::optional<Diagnostic> err;
+    const std::optional<LValue> want = parse_lvalue(
+        t.substr(b, e - b), SourceLoc{file, 4, static_cast<int>(b) + 1}, &err);
+    if (!want) {
+      ASSERT_TRUE(line.error) << text;
+      EXPECT_EQ(format(*line.error), format(*err)) << text;
+      continue;
+    }
+    ASSERT_TRUE(line.statement) << text << ": " << (line.error ? format(*line.error) : "");
+    const auto& got = std::get<AssignStmt>(line.statement->body).target;
+    EXPECT_EQ(got.persistent, want->persistent) << text;
+    EXPECT_EQ(got.name, want->name) << text;
+    EXPECT_EQ(got.path.size(), want->path.size()) << text;
+    EXPECT_EQ(got.loc.file, want->loc.file) << text;
+    EXPECT_EQ(got.loc.line, want->loc.line) << text;
+    EXPECT_EQ(got.loc.column, want->loc.column) << text;
+  }
+}
+
 }  // namespace
 }  // namespace gantry
