@@ -85,11 +85,11 @@ TEST(ExpressionStorage, TreesOutliveTheParserBuffersTheyWereBuiltIn) {
   // not see a later one's nodes or names.
   std::vector<Expr> kept;
   for (int k = 0; k < 50; ++k)
-    kept.push_back(parse(k % 2 ? fmt::format("&x * {} + MAX({}, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10)", k, k)
-                               : fmt::format("{} - &LONG_variable_name_of_many_letters", k)));
+    kept.push_back(parse(k % 2
+                             ? fmt::format("&x * {} + MAX({}, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10)", k, k)
+                             : fmt::format("{} - &LONG_variable_name_of_many_letters", k)));
   for (int k = 0; k < 50; ++k)
-    EXPECT_EQ(num(kept[static_cast<size_t>(k)]), k % 2 ? 5.0 * k + std::max(k, 10) : k - 2.0)
-        << k;
+    EXPECT_EQ(num(kept[static_cast<size_t>(k)]), k % 2 ? 5.0 * k + std::max(k, 10) : k - 2.0) << k;
   EXPECT_EQ(kept[1].root()->tree->nodes.size(), 16u);  // its own nodes only
 }
 
@@ -158,9 +158,7 @@ TEST(ExpressionStorage, CheckOnlyGivesPlaceholders) {
     const ExprParse good = parse_expression("&x + $p[&i].z * 2", at());
     ASSERT_TRUE(good.expr);
     EXPECT_EQ(good.expr->root()->op, ExprOp::Number);
-    {
-      const ExprCheckOnly nested;
-    }
+    { const ExprCheckOnly nested; }
     const ExprParse bad = parse_expression("&x + (2", at(4));
     ASSERT_TRUE(bad.error);
     EXPECT_EQ(bad.error->message, "this '(' is never closed; add ')'");
@@ -204,8 +202,8 @@ TEST(ExpressionStorage, CheckLineFindsWhatParseLineFinds) {
 TEST(ExpressionStorage, AssignmentTargetsReadAsParseLvalueReadsThem) {
   // LineParser reads a plain `&name` target itself; every other target goes to parse_lvalue.
   const auto file = std::make_shared<const std::string>("t.sbp");
-  const char* targets[] = {"&x", "&Abc_1", "&_9", "  &tool_Z  ", "&3zero", "&x[1]", "&x.y",
-                           "$p", "$p[&i].z", "&", "&x y", "&x-1"};
+  const char* targets[] = {"&x",   "&Abc_1", "&_9",      "  &tool_Z  ", "&3zero", "&x[1]",
+                           "&x.y", "$p",     "$p[&i].z", "&",           "&x y",   "&x-1"};
   for (const char* target : targets) {
     const std::string text = std::string(target) + " = 2";
     const LineParse line = parse_line(text, file, 4);
@@ -213,8 +211,8 @@ TEST(ExpressionStorage, AssignmentTargetsReadAsParseLvalueReadsThem) {
     const size_t b = t.find_first_not_of(' ');
     const size_t e = t.find_last_not_of(' ') + 1;
     std::optional<Diagnostic> err;
-    const std::optional<LValue> want = parse_lvalue(
-        t.substr(b, e - b), SourceLoc{file, 4, static_cast<int>(b) + 1}, &err);
+    const std::optional<LValue> want =
+        parse_lvalue(t.substr(b, e - b), SourceLoc{file, 4, static_cast<int>(b) + 1}, &err);
     if (!want) {
       ASSERT_TRUE(line.error) << text;
       EXPECT_EQ(format(*line.error), format(*err)) << text;
