@@ -5,8 +5,11 @@
 #include <fmt/format.h>  // messages
 
 #include <algorithm>  // max
+#include <new>        // operator new for the tree's one block
+#include <span>       // a call's arguments
 
 #include "gantry/lang/expr_node.hpp"
+#include "gantry/lang/check_only.hpp"  // ExprCheckOnly
 #include "gantry/core/any_bytes.hpp"  // echoed: a token quoted in a message is capped
 #include "gantry/core/text.hpp"  // upper
 #include "gantry/lang/number_literal.hpp"  // literal::scan, literal::value
@@ -110,17 +113,78 @@ struct Proto {
   int height = 1;
 };
 
+// The growing buffers of one parse. A top-level parse reuses its thread's (their capacity
+// stays from expression to expression, so a steady stream of lines allocates nothing for
+// them); the sub-parse of a `$name[index]` has its own.
+struct Scratch {
+  std::vector<Proto> protos;
+  std::string strings;
+  std::vector<int> arg_index;
+  void clear() {
+    protos.clear();
+    strings.clear();
+    arg_index.clear();
+  }
+};
+
+thread_local bool t_check_only = false;  // see ExprCheckOnly
+
+// What a checked expression gives under ExprCheckOnly: the number 0, owning nothing.
+const ExprTree kPlaceholderTree{};
+const ExprNode kPlaceholder = [] {
+  ExprNode n;
+  n.tree = &kPlaceholderTree;
+  return n;
+}();
+
+Scratch& thread_scratch() {
+  thread_local Scratch s;
+  s.clear();
+  return s;
+}
+
+// An allocator that allocates `extra` bytes after the object it is asked for, and says where
+// they start: allocate_shared then makes a tree, its control block and its nodes in one block.
+template <class T>
+struct TailAllocator {
+  using value_type = T;
+  TailAllocator(size_t extra, char** tail) : extra(extra), tail(tail) {}
+  template <class U>
+  TailAllocator(const TailAllocator<U>& o) : extra(o.extra), tail(o.tail) {}  // NOLINT
+  static constexpr size_t head_bytes(size_t n) {
+    constexpr size_t a = alignof(std::max_align_t);
+    return (n * sizeof(T) + a - 1) / a * a;
+  }
+  T* allocate(size_t n) {
+    char* p = static_cast<char*>(::operator new(head_bytes(n) + extra));
+    *tail = p + head_bytes(n);
+    return reinterpret_cast<T*>(p);
+  }
+  void deallocate(T* p, size_t) noexcept { ::operator delete(p); }
+  template <class U>
+  bool operator==(const TailAllocator<U>&) const {
+    return true;
+  }
+  size_t extra;
+  char** tail;
+};
+
 class Parser {
  public:
   // `at` locates text[0]; a location without a column (0) counts text[0] as column 1.
+  // `scratch`: the buffers to build in (null: the parser's own).
   Parser(std::string_view text, const SourceLoc& at, size_t pos, int nesting,
-         bool bare_words = false)
+         bool bare_words = false, Scratch* scratch = nullptr)
       : text_(text),
         at_(at),
         base_(at.column > 0 ? at.column : 1),
         pos_(pos),
         nesting_(nesting),
-        bare_words_(bare_words) {}
+        bare_words_(bare_words),
+        s_(scratch ? *scratch : own_),
+        protos_(s_.protos),
+        strings_(s_.strings),
+        arg_index_(s_.arg_index) {}
 
   Expr parse_whole() {
     advance();
@@ -375,6 +439,12 @@ class Parser {
     protos_[node].text_len = static_cast<std::uint32_t>(s.size());
     strings_ += s;
   }
+  // set_text of `s` in upper case, without a temporary string.
+  void set_upper_text(int node, std::string_view s) {
+    set_text(node, s);
+    for (size_t i = strings_.size() - s.size(); i < strings_.size(); ++i)
+      strings_[i] = upper(strings_[i]);
+  }
 
   // Nesting guard for the recursive descent; see kMaxNesting.
   struct Nest {
@@ -386,28 +456,40 @@ class Parser {
     Parser& p_;
   };
 
+  // The tree, its nodes, call arguments and strings in one heap block (one allocation).
   Expr finish(int root) {
-    auto tree = std::make_shared<ExprTree>();
+    if (t_check_only)  // aliasing an empty owner: no allocation, no reference count
+      return Expr(std::shared_ptr<const ExprNode>(std::shared_ptr<const void>(), &kPlaceholder));
+    const size_t node_bytes = protos_.size() * sizeof(ExprNode);
+    const size_t arg_bytes = arg_index_.size() * sizeof(const ExprNode*);
+    static_assert(alignof(ExprNode) >= alignof(const ExprNode*));
+    char* tail = nullptr;
+    auto tree = std::allocate_shared<ExprTree>(
+        TailAllocator<ExprTree>(node_bytes + arg_bytes + strings_.size(), &tail));
+    auto* nodes = reinterpret_cast<ExprNode*>(tail);
+    auto* args = reinterpret_cast<const ExprNode**>(tail + node_bytes);
+    char* pool_chars = tail + node_bytes + arg_bytes;
+    strings_.copy(pool_chars, strings_.size());
+    const std::string_view pool(pool_chars, strings_.size());
     tree->at = at_;
-    tree->strings = std::move(strings_);
     tree->paths = std::move(paths_);
-    tree->nodes.resize(protos_.size());
-    tree->arglist.resize(arg_index_.size());
-    for (size_t k = 0; k < arg_index_.size(); ++k) tree->arglist[k] = &tree->nodes[arg_index_[k]];
-    const std::string_view pool(tree->strings);
+    for (size_t k = 0; k < arg_index_.size(); ++k)
+      new (&args[k]) const ExprNode*(&nodes[arg_index_[k]]);
     for (size_t i = 0; i < protos_.size(); ++i) {
       const Proto& p = protos_[i];
-      ExprNode& n = tree->nodes[i];
-      n = p.node;
+      ExprNode& n = *new (&nodes[i]) ExprNode(p.node);
       n.tree = tree.get();
-      if (p.a >= 0) n.a = &tree->nodes[p.a];
-      if (p.b >= 0) n.b = &tree->nodes[p.b];
+      if (p.a >= 0) n.a = &nodes[p.a];
+      if (p.b >= 0) n.b = &nodes[p.b];
       n.text = pool.substr(p.text_off, p.text_len);
       n.spelling = pool.substr(p.spell_off, p.spell_len);
-      if (p.args_begin >= 0) n.args = tree->arglist.data() + p.args_begin;
+      if (p.args_begin >= 0) n.args = args + p.args_begin;
       if (p.path >= 0) n.path = &tree->paths[p.path];
     }
-    const ExprNode* r = &tree->nodes[root];
+    tree->nodes = std::span<const ExprNode>(nodes, protos_.size());
+    tree->strings = pool;
+    tree->arglist = std::span<const ExprNode* const>(args, arg_index_.size());
+    const ExprNode* r = &nodes[root];
     return Expr(std::shared_ptr<const ExprNode>(std::move(tree), r));
   }
 
@@ -663,17 +745,31 @@ class Parser {
     const Token open = tok_;
     Nest nest(*this, open.pos);
     advance();
-    std::vector<int> args;
+    // The arguments' nodes; calls take few, so they are kept on the stack (a nested call's
+    // arguments are parsed in between, so they cannot go to arg_index_ yet).
+    constexpr int kInline = 8;
+    int inline_args[kInline];
+    std::vector<int> more;  // past kInline: all of them
+    int count = 0;
     if (tok_.kind != Tok::RParen) {
       while (true) {
-        args.push_back(parse_or());
+        const int a = parse_or();
+        if (count < kInline) {
+          inline_args[count] = a;
+        } else {
+          if (more.empty()) more.assign(inline_args, inline_args + kInline);
+          more.push_back(a);
+        }
+        ++count;
         if (tok_.kind != Tok::Comma) break;
         advance();
       }
     }
-    expect_close(Tok::RParen, open, fmt::format("the arguments of {}", f->name));
+    const std::span<const int> args(count <= kInline ? inline_args : more.data(),
+                                    static_cast<size_t>(count));
+    if (tok_.kind != Tok::RParen)  // the message is made only when it is needed
+      expect_close(Tok::RParen, open, fmt::format("the arguments of {}", f->name));
     advance();
-    const int count = static_cast<int>(args.size());
     if (count < f->min_args || count > f->max_args) {
       std::string want;
       if (f->min_args == f->max_args)
@@ -717,7 +813,7 @@ class Parser {
         reject_user_accessor(t);
         advance();
         const int node = add(ExprOp::UserVar, t.pos);
-        set_text(node, upper(text_.substr(t.pos + 1, t.len - 1)));
+        set_upper_text(node, text_.substr(t.pos + 1, t.len - 1));
         Proto& p = protos_[node];
         p.spell_off = static_cast<std::uint32_t>(strings_.size());
         p.spell_len = static_cast<std::uint32_t>(t.len);
@@ -728,7 +824,7 @@ class Parser {
         std::vector<Accessor> path = accessors();
         advance();
         const int node = add(ExprOp::PersistVar, t.pos);
-        set_text(node, upper(text_.substr(t.pos + 1, t.len - 1)));
+        set_upper_text(node, text_.substr(t.pos + 1, t.len - 1));
         protos_[node].path = static_cast<int>(paths_.size());
         paths_.push_back(std::move(path));
         return node;
@@ -748,7 +844,8 @@ class Parser {
         advance();
         if (tok_.kind == Tok::RParen) fail(loc(tok_.pos), "expected a value inside '( )'");
         const int inner = parse_or();
-        expect_close(Tok::RParen, t, "the '(' at column " + std::to_string(col(t.pos)));
+        if (tok_.kind != Tok::RParen)  // the message is made only when it is needed
+          expect_close(Tok::RParen, t, "the '(' at column " + std::to_string(col(t.pos)));
         advance();
         // A parenthesised sub-expression starts at its '(' (errors about its value point
         // there); its own tokens keep their columns.
@@ -816,15 +913,17 @@ class Parser {
   }
 
   std::string_view text_;
-  SourceLoc at_;  // the location of text[0]; columns are base_ + offset
+  const SourceLoc& at_;  // the location of text[0] (the caller's: it outlives the parse)
   std::int32_t base_;
   size_t pos_;
   int nesting_;
   bool bare_words_;  // unquoted words beside a comparison are text (IF tests)
   Token tok_, prev_;
-  std::vector<Proto> protos_;
-  std::string strings_;
-  std::vector<int> arg_index_;
+  Scratch own_;
+  Scratch& s_;
+  std::vector<Proto>& protos_;
+  std::string& strings_;
+  std::vector<int>& arg_index_;
   std::vector<std::vector<Accessor>> paths_;
 };
 
@@ -842,10 +941,18 @@ std::string_view function_name(ExprFunc f) {
   return "?";
 }
 
+ExprCheckOnly::ExprCheckOnly() : was_(t_check_only) {
+  t_check_only = true;
+}
+
+ExprCheckOnly::~ExprCheckOnly() {
+  t_check_only = was_;
+}
+
 ExprParse parse_expression(std::string_view text, const SourceLoc& at, bool bare_words) {
   ExprParse out;
   try {
-    out.expr = Parser(text, at, 0, 0, bare_words).parse_whole();
+    out.expr = Parser(text, at, 0, 0, bare_words, &thread_scratch()).parse_whole();
   } catch (const GantryError& e) {
     out.error = e.diagnostic();
   }

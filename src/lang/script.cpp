@@ -12,6 +12,7 @@
 #include <xxhash.h>    // XXH3_64bits: the blocks' hashes
 
 #include "gantry/core/file_problem.hpp"  // read_problem: why a part file cannot be opened
+#include "gantry/lang/check_only.hpp"    // check_line: the load pass builds no tree
 #include "gcode_oword.hpp"               // OwordIndexer
 
 namespace gantry {
@@ -313,7 +314,7 @@ void Script::index(const IsCommand& is_command) {
       c = next;
       continue;
     }
-    LineParse lp = parse_line(text, name_, c.line);
+    LineParse lp = check_line(text, name_, c.line);
     if (lp.error) errors_.push_back(*lp.error);
     if (lp.statement) {
       if (is_command) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -108,12 +109,14 @@ struct ExprNode {
 };
 
 // Owns every node of one expression and the storage their views and pointers refer to.
-// Immutable once built, so an Expr shares it freely.
+// Immutable once built, so an Expr shares it freely. The nodes, the call arguments and the
+// strings live in the same heap block as the tree (one allocation per expression, see
+// expression.cpp's finish), so the spans below view memory the tree owns.
 struct ExprTree {
   SourceLoc at;                              // file and line; columns are stored per node
-  std::vector<ExprNode> nodes;               // root last
-  std::string strings;                       // names and string literals, viewed by nodes
-  std::vector<const ExprNode*> arglist;      // call arguments, viewed by nodes
+  std::span<const ExprNode> nodes;           // root last
+  std::string_view strings;                  // names and string literals, viewed by nodes
+  std::span<const ExprNode* const> arglist;  // call arguments, viewed by nodes
   std::vector<std::vector<Accessor>> paths;  // persistent-variable accessors
 };
 
