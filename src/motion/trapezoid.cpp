@@ -46,26 +46,26 @@ double ramp_distance(double u, double v, double a, double j) {
 }
 
 // With jerk, a ramp's distance is the larger of its accel-limited one, 0.75 |v^2 - u^2| / a,
-// and its jerk-limited one, (u + v) / 2 sqrt(6 |v - u| / j); both grow with the higher speed,
-// so the reach is the lower of the two speeds that cover d exactly. Speeding up from u by
-// w = q^2 within d, the jerk-limited one gives
-//     (u + q^2 / 2) q sqrt(6 / j) = d   <=>   q^3 + 3 r q - 2 h = 0,   r = 2u/3, h = d sqrt(j/6),
-// a depressed cubic with r >= 0, h > 0: increasing in q, one real root. Cardano's formula gives
-// it as q = A - B with A = cbrt(h + sqrt(h^2 + r^3)) and B = r / A (so A B = r and
-// A^3 - B^3 = 2h). As written that cancels when u dominates (A ~ B); dividing
-// A^3 - B^3 = (A - B)(A^2 + A B + B^2) instead gives
-//     q = 2h / (A^2 + r + B^2),
-// a quotient of positive terms: accurate to a few units in the last place everywhere, with
-// one sqrt and one cbrt where Newton's method took four divisions on average (and was
-// called for every block re-planned).
+// and its jerk-limited one, (u + v) / 2 sqrt(6 |v - u| / j); both grow with the higher speed.
+// Speeding up from u by w = q^2 within d, the jerk-limited one gives
+//     (u + q^2 / 2) q sqrt(6 / j) = d   <=>   q^3 + 2 u q - 2 d sqrt(j / 6) = 0,
+// a cubic with one real root. The reach is the lower of the two speeds, so only a root below
+// q = sqrt(by_accel - u) matters. Newton starts from the lower of that and c / 2u (the root
+// without its q^3 term), both above the root; the cubic is convex and rising for q > 0, so
+// it descends onto the root without overshooting.
 double ramp_reach(double u, double d, double a, double j) {
   if (j <= 0) return std::sqrt(u * u + 2 * a * d);
   const double by_accel = std::sqrt(u * u + 4 * a * d / 3);
-  const double h = d * std::sqrt(j / 6), r = 2 * u / 3;
-  if (h <= 0) return by_accel;  // no distance (A would be 0 from rest)
-  const double A = std::cbrt(h + std::sqrt(h * h + r * r * r)), B = r / A;
-  const double q = 2 * h / (A * A + r + B * B);
-  return std::min(by_accel, u + q * q);
+  const double p = 2 * u, c = 2 * d * std::sqrt(j / 6);
+  double q = std::sqrt(by_accel - u);
+  if (q * q * q + p * q - c <= 0) return by_accel;  // the acceleration limit binds first
+  if (p > 0) q = std::min(q, c / p);  // also above the root; close to it when u dominates
+  for (int i = 0; i < 100; ++i) {
+    const double step = (q * q * q + p * q - c) / (3 * q * q + p);
+    q -= step;
+    if (step <= 1e-14 * q) break;
+  }
+  return u + q * q;
 }
 
 // The jerk-limited reach is not monotonic in u: with w = v - u, (u + w / 2) sqrt(6 w / j) = d
