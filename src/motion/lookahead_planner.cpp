@@ -283,7 +283,7 @@ void LookAheadPlanner::backward(double tail_exit) {
     b.back = bound;
     exit = bound;
     changed = k;
-    if (!settled) {  // the settled block nearest the tail guards all before it
+    if (!settled && !eager_) {  // the settled block nearest the tail guards all before it
       least = std::min(b.max_entry, least_reach(least, b));
       settled = least == b.max_entry;
       if (settled) settled_ = std::max(settled_, k + 1);
