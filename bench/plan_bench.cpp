@@ -66,14 +66,16 @@ class NullSegments : public SegmentSink {
 };
 
 // Plans `pts` in `mode` (with S-curve ramps of `jerk`, if above 0); returns the machine time.
+// `eager`: re-plan every held block a new one changes as it arrives (before issue 27).
 double plan(const std::vector<Vec6>& pts, PlannerMode mode, std::size_t* held = nullptr,
-            double jerk = 0) {
+            double jerk = 0, bool eager = false) {
   static const Settings base = default_settings();
   Settings s = base;
   s.planner.mode = mode;
   s.planner.jerk = jerk;
   NullSegments out;
   LookAheadPlanner planner(s, out);
+  planner.set_eager(eager);
   CanonMove m;
   m.speeds = s.speeds.move;
   for (std::size_t i = 1; i < pts.size(); ++i) {
@@ -87,9 +89,9 @@ double plan(const std::vector<Vec6>& pts, PlannerMode mode, std::size_t* held = 
 }
 
 void blocks_per_second(benchmark::State& state, const std::vector<Vec6>& pts, PlannerMode mode,
-                       double jerk = 0) {
+                       double jerk = 0, bool eager = false) {
   std::size_t held = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(plan(pts, mode, &held, jerk));
+  for (auto _ : state) benchmark::DoNotOptimize(plan(pts, mode, &held, jerk, eager));
   state.counters["blocks/s"] = benchmark::Counter(
       static_cast<double>(pts.size() - 1) * static_cast<double>(state.iterations()),
       benchmark::Counter::kIsRate);
@@ -111,7 +113,20 @@ void BM_PlanZigzagJunction(benchmark::State& st) {
 void BM_PlanAdaptiveJunctionJerk200(benchmark::State& st) {
   blocks_per_second(st, adaptive_path(), PlannerMode::Junction, 200);
 }
+// The same, re-planning eagerly as before issue 27: old and new in one run.
+void BM_PlanAdaptiveJunctionJerk200Eager(benchmark::State& st) {
+  blocks_per_second(st, adaptive_path(), PlannerMode::Junction, 200, true);
+}
+void BM_PlanAdaptiveSb3Jerk200(benchmark::State& st) {
+  blocks_per_second(st, adaptive_path(), PlannerMode::SB3, 200);
+}
+void BM_PlanZigzagJunctionJerk200(benchmark::State& st) {
+  blocks_per_second(st, zigzag_path(), PlannerMode::Junction, 200);
+}
 BENCHMARK(BM_PlanAdaptiveSb3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanAdaptiveJunctionJerk200Eager)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanAdaptiveSb3Jerk200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanZigzagJunctionJerk200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanAdaptiveJunctionJerk200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanAdaptiveJunction)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanZigzagSb3)->Unit(benchmark::kMillisecond);

@@ -11,11 +11,27 @@
 // (With a jerk limit the square roots become the S-curve reach, ramp_reach.)
 //
 // A block's exit is the next block's entry; its profile is the trapezoid between them.
-// Appending a block only raises the tail's exit (from 0 to its corner speed), so backward
-// bounds only grow, and the backward pass stops at the first bound that does not change:
-// the blocks before it keep their plan (grbl's "planned" pointer, found on the fly). The
-// forward pass starts where the backward one stopped. Ending at 0 while streaming is what
-// makes releasing the front safe: whatever comes later, the plan already held can stop.
+// Ending at 0 while streaming is what makes releasing the front safe: whatever comes later,
+// the plan already held can stop.
+//
+// When the passes run. The bounds b_k are the fixed point of the backward recursion over the
+// blocks held, whenever and in whatever steps it is computed; the entries e_k likewise follow
+// from the b_k and the front's entry. So a backward pass from the tail stops at the first
+// bound it leaves unchanged (the blocks before it keep theirs), and the passes need to run
+// only when a result is used: when the front is sent, which needs its successor's entry.
+// That entry cannot change while a block beyond it is "settled": at its corner limit
+// (b_k = c_k) whatever blocks come after (grbl's "planned" pointer). Without a jerk limit the
+// reach rises with the speed it starts from, so bounds only rise as blocks are added (the
+// tail's exit rises from 0) and a block at its corner limit is settled. With one, the reach
+// falls with the start speed u while the gain w exceeds 2u (ramp_reach_least), so a pass also
+// carries the least bound each block can ever fall to (from a tail exit of 0 up), and a block
+// is settled once that is its corner limit. The backward pass thus runs only when no settled
+// block guards the front, over the blocks added since the last pass (each once) and the ramp
+// down to rest at the old tail; the forward pass runs once per block, as it comes to the
+// front. Re-planning after every block added instead recomputes the whole ramp down at the
+// tail each time: on an adaptive-clearing path with S-curve ramps, about 21 bounds and 21
+// entries per block, each a cubic. Both orders give the same plan, bit for bit: the same
+// recursions over the same values (set_eager keeps the eager order for tests and benches).
 #include "gantry/motion/lookahead_planner.hpp"
 
 #include <algorithm>  // min, max, clamp
@@ -38,6 +54,13 @@ LookAheadPlanner::LookAheadPlanner(const Settings& settings, SegmentSink& out)
 
 double LookAheadPlanner::reach(double v, const Block& b) const {
   return ramp_reach(v, b.length, b.accel, settings_.planner.jerk);
+}
+
+double LookAheadPlanner::least_reach(double v, const Block& b) const {
+  const double j = settings_.planner.jerk;
+  if (j <= 0) return reach(v, b);  // rises with v, rounded as well: exact
+  // Later passes round differently from this bound: keep well clear of it.
+  return ramp_reach_least(v, b.length, b.accel, j) * (1 - 1e-9);
 }
 
 void LookAheadPlanner::move(const CanonMove& m) {
@@ -159,7 +182,9 @@ void LookAheadPlanner::feed_override(double factor) {
     floor = ramp_floor(floor, b.length, b.accel, settings_.planner.jerk);
     b.back = -1;  // bounds may fall as well as rise: re-plan everything held
   }
-  replan(0);
+  settled_ = planned_ = 0;
+  forwarded_ = std::min<size_t>(forwarded_, front_locked_ ? 1 : 0);
+  if (eager_) replan_all();
   release();
 }
 
@@ -189,9 +214,10 @@ void LookAheadPlanner::feedhold() {
     v = ramp_floor(v, b.length, b.accel, 0);
     emit_front(v, 0);
   }
-  // What is left starts from rest once resumed.
+  // What is left starts from rest once resumed (feed_override re-plans it all).
   if (!q_.empty()) q_.front().from_rest = true;
   front_locked_ = false;
+  settled_ = planned_ = forwarded_ = 0;
   held_length_ = 0;
   for (size_t k = 1; k < q_.size(); ++k) held_length_ += q_[k].length;
 }
@@ -228,37 +254,67 @@ void LookAheadPlanner::add(Block b) {
   stop_distance_ =
       std::max(stop_distance_, ramp_distance(v_top, 0, b.accel, settings_.planner.jerk));
   if (!q_.empty()) held_length_ += b.length;
+  b.back = -1;  // not planned yet
   q_.push_back(std::move(b));
   most_held_ = std::max(most_held_, q_.size());
-  replan(0);  // streaming: the plan ends at rest after the last block held
-  release();
+  if (eager_) replan_all();
+  release();  // streaming: the plan ends at rest after the last block held
 }
 
 void LookAheadPlanner::release() {
   if (held_) return;  // the machine waits at rest; moves keep arriving
   const size_t lookahead = static_cast<size_t>(settings_.planner.lookahead);
   while (q_.size() > 64 * lookahead || (q_.size() > lookahead && held_length_ >= stop_distance_))
-    emit_front(q_[1].entry);
+    emit_front(entry(1));
 }
 
-void LookAheadPlanner::replan(double tail_exit) {
+void LookAheadPlanner::backward(double tail_exit) {
   const size_t n = q_.size();
   const size_t first = front_locked_ ? 1 : 0;
   double exit = tail_exit;
   size_t changed = n;
+  double least = 0;  // the least each bound can fall to, whatever comes after the tail
+  bool settled = false;
   for (size_t k = n; k-- > first;) {
     Block& b = q_[k];
     const double bound = std::min(b.max_entry, reach(exit, b));
     if (k + 1 < n && bound == b.back) break;  // nothing before it changes either
+    ++replanned_;
     b.back = bound;
     exit = bound;
     changed = k;
+    if (!settled && !eager_) {  // the settled block nearest the tail guards all before it
+      least = std::min(b.max_entry, least_reach(least, b));
+      settled = least == b.max_entry;
+      if (settled) settled_ = std::max(settled_, k + 1);
+    }
   }
-  for (size_t k = changed; k < n; ++k) {
-    Block& b = q_[k];
-    const Block* p = k == 0 ? nullptr : &q_[k - 1];
-    b.entry = p ? std::min(b.back, reach(p->entry, *p)) : b.back;
+  planned_ = n;
+  forwarded_ = std::min(forwarded_, changed);
+}
+
+void LookAheadPlanner::forward(size_t k) {
+  for (; forwarded_ <= k; ++forwarded_) {
+    Block& b = q_[forwarded_];
+    if (forwarded_ == 0) {
+      b.entry = b.back;
+    } else {
+      const Block& p = q_[forwarded_ - 1];
+      b.entry = std::min(b.back, reach(p.entry, p));
+    }
   }
+}
+
+double LookAheadPlanner::entry(size_t k) {
+  if (settled_ <= k && planned_ < q_.size()) backward(0);
+  forward(k);
+  return q_[k].entry;
+}
+
+void LookAheadPlanner::replan_all() {
+  if (q_.empty()) return;
+  backward(0);
+  forward(q_.size() - 1);
 }
 
 void LookAheadPlanner::emit_front(double exit, double jerk) {
@@ -281,6 +337,8 @@ void LookAheadPlanner::emit_front(double exit, double jerk) {
   rested_s_ = 0;
   out_.segment(seg);
   q_.pop_front();
+  for (size_t* i : {&settled_, &planned_, &forwarded_})
+    if (*i > 0) --*i;  // the counts of front blocks shift with the queue
   if (!q_.empty()) held_length_ -= q_.front().length;
   front_locked_ = !q_.empty();
 }
@@ -293,7 +351,8 @@ void LookAheadPlanner::stop() {
   if (!q_.empty()) {
     // The last block may end at its rest speed (SB3 stops from the ramp speed).
     const double end = q_.back().rest;
-    replan(end);
+    backward(end);
+    forward(q_.size() - 1);
     while (q_.size() > 1) emit_front(q_[1].entry);
     const Block& last = q_.front();
     emit_front(std::min(end, reach(last.entry, last)));

@@ -68,6 +68,17 @@ double ramp_reach(double u, double d, double a, double j) {
   return u + q * q;
 }
 
+// The jerk-limited reach is not monotonic in u: with w = v - u, (u + w / 2) sqrt(6 w / j) = d
+// gives dw/du = -2w / (u + 3w/2), so dv/du = (u - w/2) / (u + 3w/2): while w > 2u, starting
+// faster reaches a lower top speed (the larger change takes longer). w falls as u rises, so
+// past the turn, w = 2u, where 2u sqrt(12 u / j) = d, i.e. u*^3 = d^2 j / 48 and v = 3 u*, the
+// reach rises for good. Below u*, its least value over the speeds from u on is 3 u*; the
+// accel-limited reach always rises, so the least of the two is at least the lower of them.
+double ramp_reach_least(double u, double d, double a, double j) {
+  if (j <= 0 || 48 * u * u * u >= d * d * j) return ramp_reach(u, d, a, j);
+  return std::min(std::sqrt(u * u + 4 * a * d / 3), 3 * std::cbrt(d * d * j / 48));
+}
+
 // Slowing from u by w = q^2, the jerk-limited distance (u - q^2 / 2) q sqrt(6 / j) first
 // grows (to w = 2u/3) and then falls: stopping outright can be shorter than slowing almost
 // to rest. The floor is the lowest speed of the unbroken range of feasible speeds below u,

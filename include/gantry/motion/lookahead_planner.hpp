@@ -13,8 +13,9 @@ namespace gantry {
 // Moves are held until enough path lies ahead of them: at least `planner.lookahead` moves
 // and at least the longest stopping distance seen, up to 64 x lookahead moves (tiny moves
 // beyond that are planned with less look-ahead, never with less safety: the plan always
-// ends at rest after the last move held). Each new move re-plans only the moves whose
-// speeds it can still raise. docs/planner.md gives the model and its derivations.
+// ends at rest after the last move held). The passes run when the front is sent, and only
+// over the moves whose speeds the new ones can still raise. docs/planner.md gives the model
+// and its derivations.
 class LookAheadPlanner : public MotionSink {
  public:
   LookAheadPlanner(const Settings& settings, SegmentSink& out);
@@ -34,6 +35,11 @@ class LookAheadPlanner : public MotionSink {
 
   double planned_time() const { return planned_time_; }  // sum of segment durations, s
   size_t most_held() const { return most_held_; }        // the largest look-ahead used
+  // Entry bounds the backward passes computed, in all: the re-planning work.
+  size_t replanned() const { return replanned_; }
+  // Tests and the benchmark: re-plan every held block a new one changes as soon as it arrives
+  // (the planner before issue 27). The plan is the same; only the work differs.
+  void set_eager(bool eager) { eager_ = eager; }
 
  private:
   struct Block {
@@ -47,8 +53,8 @@ class LookAheadPlanner : public MotionSink {
     bool from_rest = false;   // starts from rest after a feed hold
     double rest = 0;          // the speed it may start or stop at
     double max_entry = 0;     // the corner speed with the previous block (rest after a stop)
-    double back = 0;          // entry bound from the backward pass: can still stop in time
-    double entry = 0;         // planned entry speed
+    double back = -1;         // entry bound from the backward pass (< 0: not yet planned)
+    double entry = 0;         // planned entry speed (forward pass)
     SpeedClass speed_class = SpeedClass::Move;
     SourceLoc loc;
     RunCount count;
@@ -59,8 +65,14 @@ class LookAheadPlanner : public MotionSink {
   void set_speeds(Block& b, const Block* prev) const;
   void release();  // emits the front blocks beyond which enough path is held
   double reach(double v, const Block& b) const;  // the speed reachable from v over b
-  // Backward pass from the tail (which ends at `tail_exit`), forward pass over what changed.
-  void replan(double tail_exit);
+  double least_reach(double v, const Block& b) const;  // ... from any speed >= v, at least
+  // Backward pass from the tail (which ends at `tail_exit`) over what the new blocks change.
+  void backward(double tail_exit);
+  // Forward pass: plans the entries up to block k.
+  void forward(size_t k);
+  // Block k's planned entry, brought up to date with the blocks held (tail ending at rest).
+  double entry(size_t k);
+  void replan_all();  // both passes over everything they change, at once (eager)
   // Sends the front block to `exit` with ramps of `jerk` (the profile's, unless a hold).
   void emit_front(double exit) { emit_front(exit, settings_.planner.jerk); }
   void emit_front(double exit, double jerk);
@@ -86,6 +98,14 @@ class LookAheadPlanner : public MotionSink {
   double rested_s_ = 0;
   double planned_time_ = 0;
   size_t most_held_ = 0;
+  // The front blocks whose backward bound no block added can change (up to the last one
+  // settled at its corner speed), and those whose entry the forward pass has planned.
+  // planned_: the front blocks the last backward pass covered (the others are new).
+  size_t settled_ = 0;
+  size_t planned_ = 0;
+  size_t forwarded_ = 0;
+  size_t replanned_ = 0;
+  bool eager_ = false;
 };
 
 }  // namespace gantry

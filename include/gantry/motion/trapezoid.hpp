@@ -48,6 +48,8 @@ double ramp_time(double u, double v, double a, double j);
 double ramp_distance(double u, double v, double a, double j);
 // The highest speed reachable from u within distance d, speeding up.
 double ramp_reach(double u, double d, double a, double j);
+// A lower bound of ramp_reach(w, d, a, j) over every w >= u (with jerk it is not monotonic).
+double ramp_reach_least(double u, double d, double a, double j);
 // The lowest speed u can be brought down to within distance d.
 double ramp_floor(double u, double d, double a, double j);
 
