@@ -128,8 +128,8 @@ void BM_ScriptTenMillionLinesPeakRss(benchmark::State& state) {
     std::string chunk;
     out << "SA\n";
     for (long i = 0; i < lines - 1; ++i) {
-      chunk += fmt::format("M3, {}.{:04}, {}.5, -0.{:03}\n", 1 + i % 20, i % 10000, 1 + i % 15,
-                           i % 500);
+      chunk +=
+          fmt::format("M3, {}.{:04}, {}.5, -0.{:03}\n", 1 + i % 20, i % 10000, 1 + i % 15, i % 500);
       if (chunk.size() > (size_t{1} << 20)) {
         out << chunk;
         chunk.clear();
