@@ -141,11 +141,8 @@ std::string_view Script::file_line_at(Cursor c, Cursor* next) const {
   size_t b = c.offset / kBlock;
   std::string_view block = file_->last();
   if (file_->last_start() != b * kBlock || block.empty()) {
-    block = block_or_throw(b, c);
-    const size_t stop = line_end(block, c.offset - b * kBlock);
-    if (stop + 1 < block.size() || (stop < block.size() && block[stop] == '\n') ||
-        b * kBlock + block.size() == size_)
-      return line_at(c, next);  // the fast path now
+    block_or_throw(b, c);
+    return line_at(c, next);  // the fast path now, or back here with the block for the slow one
   }
   const size_t in = c.offset - b * kBlock;
   joined_.assign(block.substr(in));

@@ -33,11 +33,12 @@ std::optional<std::string_view> ScriptFile::find_or_read(size_t index) {
                                 [](const Slot& a, const Slot& b) { return a.used < b.used; });
     }
     if (!read(*slot, index)) {
-      last_ = &none_;
+      last_ = prev_ = &none_;
       return std::nullopt;
     }
   }
   slot->used = ++clock_;
+  prev_ = last_ == slot ? &none_ : last_;
   last_ = slot;
   last_start_ = index * kBlock;
   return std::string_view(slot->bytes.get(), slot->size);

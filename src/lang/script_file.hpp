@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string_view>
+#include <utility>  // swap
 #include <vector>
 
 namespace gantry {
@@ -41,6 +42,12 @@ class ScriptFile {
   // size or modification time differ, or this block's bytes hash differently).
   std::optional<std::string_view> block(size_t index) {
     if (index == last_->index) return std::string_view(last_->bytes.get(), last_->size);
+    if (index == prev_->index) {  // a GOSUB's RETURN, or the next GOSUB: no search
+      std::swap(last_, prev_);
+      last_start_ = index * kBlock;
+      last_->used = ++clock_;
+      return std::string_view(last_->bytes.get(), last_->size);
+    }
     return find_or_read(index);
   }
   // The block `block` gave last (none before the first and after a failed read) and its offset
@@ -65,6 +72,7 @@ class ScriptFile {
   std::vector<Slot> slots_;            // up to kSlots, allocated as first used
   Slot none_;                          // last_ before any read
   Slot* last_ = &none_;
+  Slot* prev_ = &none_;  // the block given before last_
   size_t last_start_ = 0;
   std::uint64_t clock_ = 0;
 };
