@@ -8,12 +8,12 @@
 
 #include <fcntl.h>     // open
 #include <sys/stat.h>  // fstat: only regular files
-#include <unistd.h>    // pread, close
-#include <xxhash.h>    // XXH3_64bits: the blocks' hashes
+#include <unistd.h>    // close
 
 #include "gantry/core/file_problem.hpp"  // read_problem: why a part file cannot be opened
 #include "gantry/lang/check_only.hpp"    // check_line: the load pass builds no tree
 #include "gcode_oword.hpp"               // OwordIndexer
+#include "script_file.hpp"               // ScriptFile: the file's blocks
 
 namespace gantry {
 namespace {
@@ -28,8 +28,8 @@ void collect_jumps(const Statement& st, std::vector<const JumpStmt*>& out) {
 
 // The index of the first '\r' or '\n' at or after `from`, or s.size(). memchr for each in
 // chunks: find_first_of with a set calls memchr once per character, and one memchr over the
-// whole window for '\n' would read a megabyte per line of a '\r'-only file.
-size_t line_end(std::string_view s, size_t from) {
+// rest of the text for '\n' would read all of it for each line of a '\r'-only file.
+[[gnu::always_inline]] inline size_t line_end(std::string_view s, size_t from) {
   constexpr size_t kChunk = 256;
   const char* base = s.data();
   for (size_t at = from; at < s.size(); at += kChunk) {
@@ -51,8 +51,10 @@ void collect_commands(const Statement& st, std::vector<const Statement*>& out) {
     if (o->action) collect_commands(*o->action, out);
 }
 
-constexpr size_t kWindow = size_t{1} << 20;  // bytes read at a time from a file
-constexpr size_t kBlock = size_t{1} << 16;   // bytes per hash; windows hold whole blocks
+// The bytes at the start of a file that decide whether it is G-code (is_gcode_file): the
+// window the file was first read through before blocks replaced it.
+constexpr size_t kFirstText = size_t{1} << 20;
+constexpr size_t kBlock = ScriptFile::kBlock;
 
 }  // namespace
 
@@ -62,15 +64,11 @@ std::string unknown_command_message(std::string_view code) {
 }
 
 Script::Script(std::string text, const std::string& name)
-    : size_(text.size()),
-      window_(std::move(text)),
-      name_(std::make_shared<const std::string>(name)) {
-  if (window_.rfind("\xEF\xBB\xBF", 0) == 0) text_start_ = 3;
+    : size_(text.size()), text_(std::move(text)), name_(std::make_shared<const std::string>(name)) {
+  if (text_.rfind("\xEF\xBB\xBF", 0) == 0) text_start_ = 3;
 }
 
-Script::~Script() {
-  if (fd_ >= 0) ::close(fd_);
-}
+Script::~Script() = default;
 
 std::shared_ptr<const Script> Script::load(const std::string& path, const IsCommand& is_command) {
   std::shared_ptr<Script> s(new Script(std::string(), path));
@@ -85,14 +83,13 @@ std::shared_ptr<const Script> Script::load(const std::string& path, const IsComm
                                       why.empty() ? "it is not a regular file" : why)});
     return s;
   }
-  s->fd_ = fd;
   s->size_ = static_cast<size_t>(st.st_size);
-  s->mtime_ = st.st_mtim;
-  s->block_hashes_.assign((s->size_ + kBlock - 1) / kBlock, 0);
+  s->file_ = std::make_unique<ScriptFile>(fd, s->size_, st.st_mtim);
   try {
-    s->read_or_throw(Cursor{}, kWindow);
-    if (s->window_.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
-    s->gcode_ = is_gcode_file(path, std::string_view(s->window_).substr(s->text_start_));
+    const std::string_view first = s->bytes(0, std::min(s->size_, kFirstText), Cursor{});
+    if (first.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
+    s->gcode_ = is_gcode_file(path, first.substr(s->text_start_));
+    std::string().swap(s->joined_);  // a mebibyte for a line across blocks is seldom needed
     s->index(is_command);
   } catch (const GantryError& e) {  // written while being loaded
     s->errors_.push_back(e.diagnostic());
@@ -100,42 +97,10 @@ std::shared_ptr<const Script> Script::load(const std::string& path, const IsComm
   return s;
 }
 
-bool Script::read_window(size_t offset, size_t len) const {
-  if (fd_ < 0) return true;  // text scripts hold everything already
-  offset = std::min(offset, size_);
-  const size_t begin = offset / kBlock * kBlock;
-  const size_t end =
-      std::min(size_, (offset + std::min(len, size_ - offset) + kBlock - 1) / kBlock * kBlock);
-  window_.resize(end - begin);
-  size_t got = 0;
-  while (got < window_.size()) {
-    const ssize_t n =
-        ::pread(fd_, window_.data() + got, window_.size() - got, static_cast<off_t>(begin + got));
-    if (n <= 0) break;
-    got += static_cast<size_t>(n);
-  }
-  window_start_ = begin;
-  struct stat st {};
-  bool same = got == window_.size() && ::fstat(fd_, &st) == 0 &&
-              static_cast<size_t>(st.st_size) == size_ && st.st_mtim.tv_sec == mtime_.tv_sec &&
-              st.st_mtim.tv_nsec == mtime_.tv_nsec;
-  window_.resize(got);
-  // The first read of a block records its hash (|1: never 0), every later one compares.
-  for (size_t at = 0; same && at < got; at += kBlock) {
-    const size_t n = std::min(kBlock, got - at);
-    const std::uint64_t h = XXH3_64bits(window_.data() + at, n) | 1u;
-    std::uint64_t& known = block_hashes_[(begin + at) / kBlock];
-    if (known == 0) known = h;
-    same = known == h;
-  }
-  if (!same) window_.clear();
-  return same;
-}
-
 std::shared_ptr<const Script> Script::from_text(std::string text, const std::string& name,
                                                 const IsCommand& is_command) {
   std::shared_ptr<Script> s(new Script(std::move(text), name));
-  s->gcode_ = is_gcode_file(name, std::string_view(s->window_).substr(s->text_start_));
+  s->gcode_ = is_gcode_file(name, std::string_view(s->text_).substr(s->text_start_));
   s->index(is_command);
   return s;
 }
@@ -146,58 +111,98 @@ bool Script::ok() const {
   return true;
 }
 
-// Lines end at "\n", "\r\n" or a lone "\r" (DOS, Unix and old Mac files alike). The window
-// is moved (and grown for a very long line) until it holds the whole line and the byte after
-// its terminator, so that "\r\n" is seen as one.
+// Lines end at "\n", "\r\n" or a lone "\r" (DOS, Unix and old Mac files alike); "\r\n" is one
+// terminator wherever it falls. The fast path: the line, its terminator and the byte after it
+// are in the text, or in the block of the file read last (ScriptFile::last).
 std::string_view Script::line_at(Cursor c, Cursor* next) const {
   if (c.offset >= size_) {
     if (next) *next = {size_, c.line + 1};
     return {};
   }
-  size_t want = kWindow;
-  while (true) {
-    const size_t end = window_start_ + window_.size();
-    if (c.offset < window_start_ || c.offset >= end) {
-      read_or_throw(c, want);
-      continue;
+  const std::string_view w = file_ ? file_->last() : std::string_view(text_);
+  const size_t base = file_ ? file_->last_start() : 0;
+  if (c.offset >= base && c.offset - base < w.size()) {
+    const size_t at = c.offset - base;
+    const size_t stop = line_end(w, at);
+    if (stop + 1 < w.size() || (stop < w.size() && w[stop] == '\n') || base + w.size() == size_) {
+      size_t after = base + stop;
+      if (after < size_)
+        after += (w[stop] == '\r' && stop + 1 < w.size() && w[stop + 1] == '\n') ? 2 : 1;
+      if (next) *next = {after, c.line + 1};
+      return w.substr(at, stop - at);
     }
-    const size_t stop = line_end(window_, c.offset - window_start_);
-    const size_t abs_stop = window_start_ + stop;
-    const bool complete = abs_stop + 1 < end || end == size_;  // terminator and next byte seen
-    if (!complete) {
-      want = std::max(want, 2 * (end - c.offset));  // a line longer than the window left
-      read_or_throw(c, want);
-      continue;
-    }
-    size_t after = abs_stop;
-    if (after < size_)
-      after += (window_[stop] == '\r' && after + 1 < size_ && window_[stop + 1] == '\n') ? 2 : 1;
-    if (next) *next = {after, c.line + 1};
-    return std::string_view(window_).substr(c.offset - window_start_, abs_stop - c.offset);
   }
+  return file_line_at(c, next);
 }
 
-void Script::read_or_throw(Cursor c, size_t len) const {
-  if (read_window(c.offset, len)) return;
-  throw GantryError({SourceLoc{name_, c.line, 0}, Severity::Error,
+// The line at `c` when it is not in the block read last: its block is read (or found kept);
+// a line that runs into the next block, or whose "\r" is its block's last byte, is copied
+// into joined_ up to its terminator and the byte after it.
+std::string_view Script::file_line_at(Cursor c, Cursor* next) const {
+  size_t b = c.offset / kBlock;
+  std::string_view block = file_->last();
+  if (file_->last_start() != b * kBlock || block.empty()) {
+    block_or_throw(b, c);
+    return line_at(c, next);  // the fast path now, or back here with the block for the slow one
+  }
+  const size_t in = c.offset - b * kBlock;
+  joined_.assign(block.substr(in));
+  bool after_cr = line_end(block, in) < block.size();  // the block ends with the "\r"
+  while (c.offset + joined_.size() < size_) {
+    const std::string_view more = block_or_throw(++b, c);
+    if (after_cr) {  // the byte that tells "\r\n" from a lone "\r"
+      joined_ += more.front();
+      break;
+    }
+    const size_t stop = line_end(more, 0);
+    if (stop == more.size() || (more[stop] == '\r' && stop + 1 == more.size())) {
+      joined_.append(more);  // the line goes on, or its "\r" ends this block too
+      after_cr = stop < more.size();
+      continue;
+    }
+    joined_.append(more.substr(0, stop + 2));  // to the terminator and the byte after it
+    break;
+  }
+  const size_t stop = line_end(joined_, 0);
+  size_t after = c.offset + stop;
+  if (after < size_)
+    after +=
+        (joined_[stop] == '\r' && stop + 1 < joined_.size() && joined_[stop + 1] == '\n') ? 2 : 1;
+  if (next) *next = {after, c.line + 1};
+  return std::string_view(joined_).substr(0, stop);
+}
+
+std::string_view Script::block_or_throw(size_t n, Cursor at) const {
+  if (const std::optional<std::string_view> b = file_->block(n)) return *b;
+  throw GantryError({SourceLoc{name_, at.line, 0}, Severity::Error,
                      "the part file changed on disk after it was checked (it was written over "
                      "while loaded); stopped here: nothing from this line on ran. Save a new "
                      "file under a new name, or run this one again to check it anew"});
 }
 
+std::string_view Script::bytes(size_t begin, size_t end, Cursor at) const {
+  if (!file_) return std::string_view(text_).substr(begin, end - begin);
+  if (begin >= end) return {};
+  const size_t first = begin / kBlock, last = (end - 1) / kBlock;
+  if (first == last) return block_or_throw(first, at).substr(begin % kBlock, end - begin);
+  joined_.clear();
+  for (size_t i = first; i <= last; ++i) joined_.append(block_or_throw(i, at));
+  return std::string_view(joined_).substr(begin % kBlock, end - begin);
+}
+
 std::optional<std::string_view> Script::line_before(Cursor c) const {
   if (c.offset <= text_start_ || c.offset > size_) return std::nullopt;
-  // Read back up to 64 KiB: a comment worth showing is never longer.
-  const size_t from = c.offset > 65536 ? c.offset - 65536 : 0;
-  if (from < window_start_ || c.offset > window_start_ + window_.size())
-    read_or_throw(Cursor{from, 0}, c.offset - from);
-  const std::string_view w = std::string_view(window_).substr(0, c.offset - window_start_);
+  // Read back up to 64 KiB (from the start of its block): a comment worth showing is never
+  // longer. A script made from text looks back to its start.
+  const size_t window_start =
+      file_ ? (c.offset > 65536 ? c.offset - 65536 : 0) / kBlock * kBlock : 0;
+  const std::string_view w = bytes(window_start, c.offset, Cursor{c.offset, 0});
   size_t end = w.size();  // strip the previous line's terminator
   if (end > 0 && w[end - 1] == '\n') --end;
   if (end > 0 && w[end - 1] == '\r') --end;
   size_t begin = end == 0 ? std::string_view::npos : w.find_last_of("\r\n", end - 1);
   if (begin == std::string_view::npos) {
-    if (window_start_ > 0) return std::nullopt;  // longer than we look back
+    if (window_start > 0) return std::nullopt;  // longer than we look back
     begin = text_start_;
   } else {
     ++begin;
@@ -241,7 +246,7 @@ std::shared_ptr<const Script> Script::called(
   auto it = called_.find(key);
   if (it != called_.end()) return it->second;
   std::shared_ptr<const Script> s = load();
-  if (s && s->fd_ >= 0 && s->ok()) called_.emplace(key, s);
+  if (s && s->file_ && s->ok()) called_.emplace(key, s);
   return s;
 }
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <ctime>  // timespec
 #include <functional>
 #include <map>
 #include <memory>
@@ -17,6 +16,8 @@
 #include "gantry/lang/parser.hpp"      // LineParse
 
 namespace gantry {
+
+class ScriptFile;  // src/lang/script_file.hpp
 
 // The start of a physical line.
 struct Cursor {
@@ -47,15 +48,20 @@ using IsCommand = std::function<bool(std::string_view code)>;
 std::string unknown_command_message(std::string_view code);
 
 // Statements are parsed when they are executed, so memory does not grow with the file: a
-// script loaded from disk keeps the file open and reads it through a window of about a
-// mebibyte (pread), plus one entry per label. Loading makes one pass over every line to
-// index the labels and to find every syntax error, duplicate label and jump to a missing
-// label (and, given `is_command`, every unknown command) before anything runs.
+// script loaded from disk keeps the file open and reads it in 64 KiB blocks (pread), keeping
+// the 16 most recently used (1 MiB), plus one entry per label. A line is found by its byte
+// offset (Cursor), so a jump or RETURN anywhere in the file costs one lookup, and no read while
+// its block is kept: a loop or subroutine far from its caller is read from the disk once.
+// Loading makes one pass over every line to index the labels and to find every syntax error,
+// duplicate label and jump to a missing label (and, given `is_command`, every unknown command)
+// before anything runs.
 //
 // What runs is what was checked: that pass also records a hash of every 64 KiB block, and
 // every later read of a block must give the same hash, the file the same size and
 // modification time, or line_at throws (a CAM program writing over the file in place while
 // it runs). A file replaced by a new one (rename) is no change: the open file is the old one.
+// A block kept in memory is what was read and checked; why the file is not memory-mapped:
+// src/lang/script_file.hpp.
 class Script {
  public:
   // Reads `path`; an unreadable file gives a script with one error and no text.
@@ -113,18 +119,17 @@ class Script {
  private:
   Script(std::string text, const std::string& name);
   void index(const IsCommand& is_command);
-  // Makes the window hold whole blocks covering [offset, offset + len), or up to the end of
-  // the file; false when the file is no longer the one loaded.
-  bool read_window(size_t offset, size_t len) const;
-  void read_or_throw(Cursor at, size_t len) const;  // read_window, or say the file changed
+  // The file's block `n` (ScriptFile::block), or throws, located at `at`: the file changed.
+  std::string_view block_or_throw(size_t n, Cursor at) const;
+  // The file's bytes [begin, end) in one piece: a view into a block, or a copy in joined_.
+  std::string_view bytes(size_t begin, size_t end, Cursor at) const;
+  std::string_view file_line_at(Cursor c, Cursor* next) const;
 
-  int fd_ = -1;       // the open file; -1 for a script made from text
-  size_t size_ = 0;   // bytes in the file (or text)
-  timespec mtime_{};  // the file's modification time when loaded
-  mutable std::vector<std::uint64_t> block_hashes_;  // 0: not read yet
-  size_t text_start_ = 0;                            // past a UTF-8 byte-order mark
-  mutable std::string window_;  // bytes [window_start_, window_start_ + size())
-  mutable size_t window_start_ = 0;
+  std::unique_ptr<ScriptFile> file_;  // the open file; null for a script made from text
+  size_t size_ = 0;                   // bytes in the file (or text)
+  size_t text_start_ = 0;             // past a UTF-8 byte-order mark
+  std::string text_;                  // a script made from text: all of it
+  mutable std::string joined_;        // a file's line (or lines) across blocks
   std::shared_ptr<const std::string> name_;
   struct CachedParse {
     size_t offset = 0;
