@@ -14,12 +14,14 @@ namespace gantry {
 // SIGINT, SIGTERM, SIGHUP and SIGQUIT are blocked from construction on, in this thread and in
 // every thread started after (the controller's: construct this first), and taken by one
 // watcher thread, which calls `on_signal` from an ordinary thread (a signal handler could not
-// E-stop: that takes a lock). stop() ends the watcher; the destructor restores the mask.
+// E-stop: that takes a lock). stop() ends the watcher at once (it wakes it with kWake, which
+// the watcher takes and drops; waiting out the wait's period made every command 100 ms
+// slower, `gantry check` on a one-line file 0.11 s); the destructor restores the mask.
 class SignalWatch {
  public:
   SignalWatch() {
     sigemptyset(&set_);
-    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&set_, s);
+    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, kWake}) sigaddset(&set_, s);
     pthread_sigmask(SIG_BLOCK, &set_, &old_);
   }
   ~SignalWatch() {
@@ -33,16 +35,19 @@ class SignalWatch {
       const timespec period{0, 100'000'000};
       while (!done_) {
         const int sig = sigtimedwait(&set_, nullptr, &period);
-        if (sig > 0) f(sig);
+        if (sig > 0 && sig != kWake) f(sig);
       }
     });
   }
   void stop() {
     done_ = true;
-    if (thread_.joinable()) thread_.join();
+    if (!thread_.joinable()) return;
+    pthread_kill(thread_.native_handle(), kWake);  // pending until its next wait, if not in one
+    thread_.join();
   }
 
  private:
+  static constexpr int kWake = SIGUSR1;
   sigset_t set_{}, old_{};
   std::atomic<bool> done_{false};
   std::thread thread_;
