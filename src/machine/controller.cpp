@@ -169,6 +169,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
     running_file_ = true;
     typed_ = typed;
     activity_file_ = script->name() ? *script->name() : std::string();
+    top_file_ = typed ? nullptr : script->name();
     start_activity([this, script, typed] {
       try {
         interp_->run(script, typed);
@@ -346,6 +347,7 @@ ControllerStatus Controller::status() const {
     s.state = state_;
     s.message = message_;
     s.stopped_at = stopped_at_;
+    s.file = top_file_;
     s.step_hold = step_waiting_;
     s.warning = busy_ && feed_.warning();
     s.settled = settled();

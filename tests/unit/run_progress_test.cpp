@@ -51,6 +51,32 @@ TEST(RunProgress, AStoppedRunShowsWhereTheMotionStoppedNotHowFarItWasRead) {
   EXPECT_EQ(run_progress(s).line, 24u);
 }
 
+// Issue 25: while a file FP called played its line 3, the label said "line 3 of 4", the
+// called file's line against the top-level file's count. The label keeps the calling line;
+// the listing follows the called file (file, file_line).
+TEST(RunProgress, WhileACalledFilePlaysTheLabelKeepsTheLineThatCalledIt) {
+  ControllerStatus s = status(MachineState::Running, 2, 4, 3, 1, 0);
+  s.file = std::make_shared<const std::string>("top.sbp");
+  s.playing_file = std::make_shared<const std::string>("called.sbp");
+  RunProgress p = run_progress(s);
+  EXPECT_EQ(p.label(), "line 2 of 4 (25 %)");
+  EXPECT_EQ(*p.file, "called.sbp");
+  EXPECT_EQ(p.file_line, 3u);
+  // Stopped in it: the same.
+  s.state = MachineState::Stopped;
+  s.message = "stopped by the operator";
+  s.stopped_at.line = 3;
+  s.stopped_at.file = s.playing_file;
+  p = run_progress(s);
+  EXPECT_EQ(p.line, 2u);
+  EXPECT_EQ(p.file_line, 3u);
+  // Its own lines: the line playing (a pointer of its own, the same name).
+  s = status(MachineState::Running, 3, 4, 3, 1, 0);
+  s.file = std::make_shared<const std::string>("top.sbp");
+  s.playing_file = std::make_shared<const std::string>("top.sbp");
+  EXPECT_EQ(run_progress(s).label(), "line 3 of 4 (50 %)");
+}
+
 TEST(RunProgress, ACompletedRunIsWholeAndHasNothingRemaining) {
   const RunProgress p = run_progress(status(MachineState::Idle, 58, 58, 58, 118.6, 3));
   EXPECT_EQ(p.label(), "line 58 of 58 (100 %)");

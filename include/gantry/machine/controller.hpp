@@ -47,6 +47,7 @@ struct ControllerStatus {
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
   std::shared_ptr<const std::string> playing_file;  // ... and that file (null: none)
+  std::shared_ptr<const std::string> file;          // the top-level file (null: typed, none)
   double elapsed_s = 0;                             // machine time since it started
   double remaining_s = 0;  // the check's cycle-time estimate less elapsed (0: none)
 };
@@ -231,6 +232,7 @@ class Controller : private FeederEvents {
   bool typed_ = false;         // ... typed at the console (not a part file of its own)
   std::function<void(std::size_t, std::size_t)> progress_;  // the caller's
   std::function<void(const Activity&)> activity_;           // the caller's (set while idle)
+  std::shared_ptr<const std::string> top_file_;             // the file run (null: a typed line)
   std::string activity_file_;                               // the part file the activity runs
   // Job thread -> status() (relaxed: display only). Set by start_run under m_, then by the
   // interpreter's progress call on the job thread.
