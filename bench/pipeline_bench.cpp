@@ -66,19 +66,22 @@ class NullSink : public MotionSink {
 };
 
 // Loads `text` as `name` (.nc: G-code) with its syntax pass and runs it into a null sink;
-// reports lines per second.
+// returns the statements run.
+std::uint64_t run_text(const Settings& settings, const std::string& text, const char* name) {
+  NullSink sink;
+  std::string printed;
+  ScriptedIO io(true, {}, &printed);
+  PersistentStore store;
+  Interpreter interp(settings, sink, io, store);
+  interp.run(Script::from_text(text, name));
+  return interp.statements_executed();
+}
+
+// run_text once an iteration; reports `lines` a pass per second.
 void interpret_text(benchmark::State& state, const std::string& text, double lines,
                     const char* name = "bench.sbp") {
   const Settings settings = default_settings();
-  for (auto _ : state) {
-    NullSink sink;
-    std::string printed;
-    ScriptedIO io(true, {}, &printed);
-    PersistentStore store;
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, name));
-    benchmark::DoNotOptimize(interp.statements_executed());
-  }
+  for (auto _ : state) benchmark::DoNotOptimize(run_text(settings, text, name));
   state.counters["lines/s"] = benchmark::Counter(lines * static_cast<double>(state.iterations()),
                                                  benchmark::Counter::kIsRate);
 }
@@ -182,15 +185,7 @@ void BM_InterpretMixedFile(benchmark::State& state) {
   const std::string text = mixed_file(static_cast<int>(state.range(0)));
   const Settings settings = default_settings();
   std::uint64_t statements = 0;
-  for (auto _ : state) {
-    NullSink sink;
-    std::string printed;
-    ScriptedIO io(true, {}, &printed);
-    PersistentStore store;
-    Interpreter interp(settings, sink, io, store);
-    interp.run(Script::from_text(text, "bench.sbp"));
-    statements += interp.statements_executed();
-  }
+  for (auto _ : state) statements += run_text(settings, text, "bench.sbp");
   state.counters["lines/s"] =
       benchmark::Counter(static_cast<double>(statements), benchmark::Counter::kIsRate);
   state.counters["lines"] =  // run per pass

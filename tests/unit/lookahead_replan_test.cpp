@@ -14,14 +14,8 @@
 namespace gantry {
 namespace {
 
+using test::Collect;
 using test::vec;
-
-class Collect : public SegmentSink {
- public:
-  void segment(const PlannedSegment& s) override { segs.push_back(s); }
-  void flush() override {}
-  std::vector<PlannedSegment> segs;
-};
 
 CanonMove line(const Vec6& from, const Vec6& to, const Settings& s) {
   CanonMove m;
@@ -60,7 +54,7 @@ struct Planned {
 };
 
 Planned plan(const Settings& s, const std::vector<Vec6>& pts, bool eager,
-         const std::vector<Event>& events = {}) {
+             const std::vector<Event>& events = {}) {
   Collect out;
   LookAheadPlanner p(s, out);
   p.set_eager(eager);

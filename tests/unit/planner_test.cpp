@@ -18,15 +18,8 @@
 namespace gantry {
 namespace {
 
+using test::Collect;
 using test::vec;
-
-class Collect : public SegmentSink {
- public:
-  void segment(const PlannedSegment& s) override { segs.push_back(s); }
-  void flush() override { ++flushes; }
-  std::vector<PlannedSegment> segs;
-  int flushes = 0;
-};
 
 // Planned segments go both to the simulated card (through the step generator) and to a list.
 struct CardRun {

@@ -1,6 +1,8 @@
 // Test helpers: positions and planned segments written in one line.
 #pragma once
 
+#include <vector>
+
 #include "gantry/motion/planned_segment.hpp"
 
 namespace gantry::test {
@@ -20,5 +22,14 @@ inline PlannedSegment segment(const Vec6& from, const Vec6& to, double v_entry, 
   s.profile = Trapezoid::plan((to - from).norm(), v_entry, v_max, v_exit, accel);
   return s;
 }
+
+// Keeps every segment the planner sends, and counts its flushes.
+class Collect : public SegmentSink {
+ public:
+  void segment(const PlannedSegment& s) override { segs.push_back(s); }
+  void flush() override { ++flushes; }
+  std::vector<PlannedSegment> segs;
+  int flushes = 0;
+};
 
 }  // namespace gantry::test
