@@ -101,8 +101,11 @@ void App::poll() {
       listing_file_ = p.file;
     }
     job_running_ = false;
-    kp_continuous_ = false;
-    kp_key_ = -1;
+    // A continuous jog that ended (released, stopped, at the limit) or anything cut short
+    // forgets its key; a tap's step that played out keeps it: held on, it becomes a jog.
+    if (kp_press_.continuous() ||
+        (status_.state != MachineState::Idle && status_.state != MachineState::Keypad))
+      kp_press_.reset();
     if (status_.state == MachineState::EStop)
       log(LogLine::Error, "E-STOP: the pulses stopped at once. Nothing moves until Ack (or ack).");
     else if (status_.state == MachineState::Stopped)

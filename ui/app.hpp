@@ -24,6 +24,7 @@
 #include "gantry/session/live_position.hpp"   // LivePosition
 #include "gantry/session/recent_files.hpp"    // RecentFiles
 #include "gui.hpp"
+#include "jog_press.hpp"  // JogPress
 #include "preview_gl.hpp"
 #include "program_listing.hpp"
 
@@ -97,7 +98,11 @@ class App {
   void choose(const CommandSpec& spec);  // a menu item: run it, or ask for its parameters
   void start_file(int from_line);
   void report(const Outcome& o, const std::string& what);
-  void jog(const std::array<int, kAxisCount>& dir);
+  bool jog(const std::array<int, kAxisCount>& dir, bool step);  // false: refused (logged)
+  bool taps_step() const;  // continuous mode's tap-or-hold rule applies (jog_press.hpp)
+  void jog_pressed(const std::array<int, kAxisCount>& dir, int id);
+  void jog_released(int id);
+  void jog_held();
   void jog_keys();
   void global_keys();
   void log(LogLine::Kind kind, std::string text);
@@ -148,8 +153,8 @@ class App {
   bool single_step_ = false;  // the controller holds after each statement
   bool kp_step_ = true, kp_fast_ = false;
   bool kp_focus_ = false;       // the keyboard jogs (the keypad window has the focus)
-  bool kp_continuous_ = false;  // a continuous jog we started runs until its key is released
-  int kp_key_ = -1;             // the key (or on-screen button id) holding it
+  JogPress kp_press_;           // continuous mode: the key or button held (its jog)
+  std::array<int, kAxisCount> kp_dir_{};  // its direction
   bool kp_file_ = false;        // a file waits at SK: the keypad is its
   int kp_preset_ = -1;          // the step preset chosen (-1: VD's keypad step)
 

@@ -10,30 +10,66 @@
 #include "window_common.hpp"  // kFixed, place, the palette colours
 
 namespace gantry::ui {
+namespace {
+constexpr int kButtonIds = 1000;  // the on-screen buttons' ids in JogPress; below: GLFW keys
+}  // namespace
 
 bool App::can_jog() const {
   return at_rest() || status_.state == MachineState::Keypad;
 }
 
 void App::stop_jog() {
+  kp_press_.reset();  // a key still held after Space does not start a jog again
   if (status_.state != MachineState::Jogging) return;
   // In a file's SK a stop would end the file: the jog is released instead.
   report(kp_file_ ? c_.jog_release() : c_.stop(), "stop");
 }
 
-void App::jog(const std::array<int, kAxisCount>& dir) {
+bool App::jog(const std::array<int, kAxisCount>& dir, bool step) {
   JogRequest j;
   j.direction = dir;
   j.fast = kp_fast_;
-  j.step = kp_step_;
+  j.step = step;
   j.step_size = jog_step();
-  if (!j.step && !opt_.realtime) {
-    log(LogLine::Error, "continuous jogs need --realtime on the simulated card; S: fixed steps");
-    return;
-  }
   const Outcome o = c_.jog(j);
   report(o, "jog");
-  if (o) kp_continuous_ = !j.step;
+  return static_cast<bool>(o);
+}
+
+// Continuous mode's tap-or-hold rule (docs/console.md, "Taps and held keys"), as the terminal
+// has it: a press is one step of the keypad step, at once; a key or button still down
+// JogPress::kHold after it (and once that step has played) jogs until it is let go. In
+// virtual time (the simulated card without --realtime) a continuous jog would reach the soft
+// limit at once, so there every press and key repeat is a step, as in fixed-step mode.
+bool App::taps_step() const {
+  return !kp_step_ && opt_.realtime;
+}
+
+void App::jog_pressed(const std::array<int, kAxisCount>& dir, int id) {
+  if (!can_jog()) return;
+  kp_press_.press(id, JogPress::Clock::now());
+  kp_dir_ = dir;
+  jog(dir, /*step=*/true);
+}
+
+void App::jog_released(int id) {
+  if (kp_press_.release(id) && status_.state == MachineState::Jogging)
+    report(c_.jog_release(), "release");
+}
+
+// Each frame: the key or button held past the threshold starts its continuous jog.
+void App::jog_held() {
+  // A key let go while the keys went elsewhere, or the mode changed under a held key: the
+  // jog must not run on to the soft limit.
+  const int id = kp_press_.id();
+  if (!taps_step() || (id >= 0 && id < kButtonIds && !ImGui::IsKeyDown(id))) {
+    if (kp_press_.continuous() && status_.state == MachineState::Jogging)
+      report(c_.jog_release(), "release");
+    return kp_press_.reset();
+  }
+  if (kp_press_.start_continuous(JogPress::Clock::now(), can_jog()) &&
+      !jog(kp_dir_, /*step=*/false))
+    kp_press_.reset();  // refused (at the soft limit): nothing to release
 }
 
 // The keyboard's jogs, while the keypad has the keys.
@@ -47,15 +83,13 @@ void App::jog_keys() {
   for (const K& k : keys) {
     std::array<int, kAxisCount> dir{};
     dir[static_cast<std::size_t>(k.axis)] = k.sign;
-    if (kp_step_) {
+    if (!taps_step()) {
       // A held key repeats: one step per repeat, a press while a step moves is dropped.
-      if (ImGui::IsKeyPressed(k.key, true) && can_jog()) jog(dir);
-    } else if (ImGui::IsKeyPressed(k.key, false) && can_jog()) {
-      jog(dir);
-      if (kp_continuous_) kp_key_ = k.key;
-    } else if (ImGui::IsKeyReleased(k.key) && kp_key_ == k.key) {
-      report(c_.jog_release(), "release");
-      kp_key_ = -1;
+      if (ImGui::IsKeyPressed(k.key, true) && can_jog()) jog(dir, /*step=*/true);
+    } else if (ImGui::IsKeyPressed(k.key, false)) {
+      jog_pressed(dir, k.key);
+    } else if (ImGui::IsKeyReleased(k.key)) {
+      jog_released(k.key);
     }
   }
   if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) kp_step_ = !kp_step_;
@@ -98,16 +132,18 @@ void App::keypad_window() {
     dir[static_cast<std::size_t>(b.axis)] = b.sign;
     const bool press = ImGui::Button(b.label, ImVec2(52 * scale_, row - 4 * scale_));
     const bool whole = note_button(b.label);
-    if (kp_step_ ? (press || (whole && clicked(b.label))) && can_jog()
-                 : ImGui::IsItemActivated() && can_jog()) {
-      jog(dir);
-      if (!kp_step_ && kp_continuous_) kp_key_ = 1000 + b.axis * 2 + (b.sign > 0);
-    }
-    if (!kp_step_ && ImGui::IsItemDeactivated() && kp_key_ == 1000 + b.axis * 2 + (b.sign > 0)) {
-      report(c_.jog_release(), "release");
-      kp_key_ = -1;
+    const int id = kButtonIds + b.axis * 2 + (b.sign > 0);
+    const bool script_click = whole && clicked(b.label);  // a click: pressed and let go at once
+    if (!taps_step()) {
+      if ((press || script_click) && can_jog()) jog(dir, /*step=*/true);
+    } else if (ImGui::IsItemActivated() || script_click) {
+      jog_pressed(dir, id);
+      if (script_click) jog_released(id);
+    } else if (ImGui::IsItemDeactivated()) {
+      jog_released(id);
     }
   }
+  jog_held();
   ImGui::SetCursorPos(ImVec2(origin.x, origin.y + 3 * row + 4 * scale_));
   if (button(kp_step_ ? "Fixed step##mode" : "Continuous##mode")) kp_step_ = !kp_step_;
   ImGui::SameLine();

@@ -10,6 +10,7 @@
 #include "command_line.hpp"
 #include "fill_sheet.hpp"
 #include "gantry/session/operator_io.hpp"
+#include "jog_press.hpp"
 #include "test_script.hpp"
 #include "window_size.hpp"
 
@@ -299,6 +300,40 @@ TEST(GuiCamera, PresetViewsLookAlongTheirAxes) {
   const float before = ndc(c, 1, {6, 5, 0}).x();
   c.zoom(0.5f);
   EXPECT_NEAR(ndc(c, 1, {6, 5, 0}).x(), 2 * before, 1e-4);
+}
+
+// ---- the keypad's taps and holds (continuous mode) -------------------------------------------
+
+TEST(GuiJogPress, ATapIsOneStepAndAHoldJogsUntilLetGo) {
+  using namespace std::chrono_literals;
+  const JogPress::Clock::time_point t0{};
+  JogPress p;  // 500 ms
+  // A tap: the step is the press's (the window jogs it); let go at 150 ms, nothing to release,
+  // and no continuous jog starts later.
+  p.press(1, t0);
+  EXPECT_FALSE(p.start_continuous(t0 + 100ms, true));
+  EXPECT_FALSE(p.release(1));
+  EXPECT_FALSE(p.start_continuous(t0 + 2s, true));
+  // Held: the jog starts once the threshold has passed and the step has played.
+  p.press(1, t0);
+  EXPECT_FALSE(p.start_continuous(t0 + 499ms, true));
+  EXPECT_FALSE(p.start_continuous(t0 + 600ms, false));  // the step still moves
+  EXPECT_TRUE(p.start_continuous(t0 + 700ms, true));
+  EXPECT_FALSE(p.start_continuous(t0 + 800ms, true));  // once
+  EXPECT_TRUE(p.continuous());
+  EXPECT_FALSE(p.release(2));  // another key's release is not this one's
+  EXPECT_TRUE(p.release(1));   // let go: release the jog
+  EXPECT_EQ(p.id(), -1);
+  // A stop or refusal forgets the press: its key's release releases nothing.
+  p.press(3, t0);
+  EXPECT_TRUE(p.start_continuous(t0 + 1s, true));
+  p.reset();
+  EXPECT_FALSE(p.release(3));
+  // Another key is a press of its own.
+  p.press(1, t0);
+  p.press(2, t0 + 300ms);
+  EXPECT_FALSE(p.start_continuous(t0 + 700ms, true));
+  EXPECT_TRUE(p.start_continuous(t0 + 800ms, true));
 }
 
 // ---- window size -----------------------------------------------------------------------------
