@@ -313,7 +313,10 @@ void CommandContext::note_drawing(const SourceLoc& loc) {
   d.units = settings_.units;
   d.file_units = file_units_.value_or(settings_.units);
   d.spindle_rpm = state_.spindle_rpm;
-  d.line = loc.line;
+  // Told at the top-level file's line: inside a called file (C9's macro, FP), the line that
+  // called it, so a preview's report names lines of the file previewed.
+  d.line = interp_ && interp_->frames_.size() > 1 ? interp_->frames_[1].called_from.line
+                                                  : loc.line;
   if (drawn_ && drawn_->same(d)) return;
   drawn_ = d;
   sink_.drawing_changed(d);

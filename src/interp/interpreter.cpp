@@ -244,8 +244,12 @@ void Interpreter::end_file() {
   }
   if (start_ && start_->depth + 1 == frames_.size()) start_missed();
   if (f.script->gcode()) gcode_->leave_file();  // WinCNC restores the file's G92 (unless L92)
+  const SourceLoc called_from = f.called_from;
   frames_.pop_back();
   update_file_tabs();
+  // What the called file changed in the drawing (C9's macro sets VC for the tool) is told at
+  // the line that called it, not at the caller's next move.
+  if (!frames_.empty()) ctx_.note_drawing(called_from);
 }
 
 // Names the calling lines of the running files, outermost first, unless already named.

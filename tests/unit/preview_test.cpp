@@ -519,7 +519,31 @@ TEST(Toolpath, AToolChangeMacroThatSetsVcChangesTheCutter) {
   ASSERT_FALSE(path.has_errors()) << format(path.violations.front());
   ASSERT_EQ(path.cutter_changes.size(), 1u);
   EXPECT_DOUBLE_EQ(path.cutter_changes[0].diameter, 0.5);
-  EXPECT_EQ(path.cutter_changes[0].line, 7u);
+  EXPECT_EQ(path.cutter_changes[0].line, 6u);  // the C9 line (issue 25: it was the next move's)
+}
+
+// Issue 25: a tool change whose macro sets VC and then moves (to the safe Z) is told at the
+// calling file's C9 line, not at the line of the macro's own file (the preview's report and
+// legend name lines of the file previewed); a TR in a file FP calls, at the FP line.
+TEST(Toolpath, AToolChangeIsToldAtTheCallingFilesC9Line) {
+  const fs::path macros = fs::temp_directory_path() / (std::to_string(getpid()) + "_macros9");
+  fs::create_directories(macros);
+  std::ofstream(macros / "C9.sbp") << "'change\n'the cutter\nVC, 0.5\nJZ, 1\n";
+  std::ofstream(macros / "spin.sbp") << "'sub\nTR, 12000\nMX, 3\n";
+  TempPart f("toolchange9.sbp", "JZ, 0.5\nMX, 1\n'next\n&Tool = 2\nC9\nMX, 2\n"
+                                "FP, \"" + (macros / "spin.sbp").string() + "\"\n");
+  ToolpathOptions topts;
+  topts.job.interpreter.macro_dir = macros.string();
+  const Toolpath path = load_toolpath(f.path(), default_settings(), topts);
+  fs::remove_all(macros);
+  ASSERT_FALSE(path.has_errors()) << format(path.violations.front());
+  ASSERT_EQ(path.cutter_changes.size(), 1u);
+  EXPECT_DOUBLE_EQ(path.cutter_changes[0].diameter, 0.5);
+  EXPECT_EQ(path.cutter_changes[0].tool, 2);
+  EXPECT_EQ(path.cutter_changes[0].line, 5u);  // C9's, not the macro's JZ (its line 4) or VC (3)
+  ASSERT_FALSE(path.spindle_changes.empty());
+  EXPECT_EQ(path.spindle_changes.back().rpm, 12000);
+  EXPECT_EQ(path.spindle_changes.back().line, 7u);  // the FP line, not the sub's TR (its 2)
 }
 
 TEST(Render, ThePngHasAScaleBarAndTheDimensions) {
