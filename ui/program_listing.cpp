@@ -69,6 +69,7 @@ std::size_t ProgramListing::draw(std::size_t playing, const std::shared_ptr<cons
   const ListingText* shown = other ? other : text_.get();
   if (shown != shown_) followed_ = 0;  // another file: bring its line into view
   shown_ = shown;
+  const bool at_rest = pick;
   pick = pick && !other;  // the start line is a line of the loaded file
   const std::size_t lines = shown ? shown->lines() : 0;
   highlighted_ = playing <= lines ? playing : 0;
@@ -84,11 +85,14 @@ std::size_t ProgramListing::draw(std::size_t playing, const std::shared_ptr<cons
     }
   }
   const float row = ImGui::GetTextLineHeightWithSpacing();
-  if (other) {  // say which file plays
+  heading_.clear();
+  if (other) {  // say which file plays, or where at rest the run stopped
     const std::string name = std::filesystem::path(other->path).filename().string();
     const std::string top = std::filesystem::path(text_->path).filename().string();
-    ImGui::TextColored(current_palette().yellow, "playing %s (called from %s)", name.c_str(),
-                       top.c_str());
+    heading_ = fmt::format("{} {} (called from {})", at_rest ? "stopped in" : "playing", name, top);
+    ImGui::TextColored(current_palette().yellow, "%s", heading_.c_str());
+    if (at_rest && ImGui::IsItemHovered())
+      ImGui::SetTooltip("Start at line starts %s, at its line", top.c_str());
   }
   const float height = std::max(ImGui::GetContentRegionAvail().y, 4 * row + 8);
   // Each file its own child (and scroll position): the called file's, the loaded one's.
@@ -148,6 +152,7 @@ nlohmann::json ProgramListing::state() const {
   return {{"lines", shown_ ? shown_->lines() : 0},
           {"file", shown_ ? shown_->path : std::string()},
           {"called", shown_ != nullptr && shown_ != text_.get()},
+          {"heading", heading_},
           {"highlighted", highlighted_},
           {"first_shown", first_shown_},
           {"last_shown", last_shown_}};

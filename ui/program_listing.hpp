@@ -31,10 +31,10 @@ class ProgramListing {
   void set(std::shared_ptr<const ListingText> text);
   // Draws the lines in the space left in the window. `playing`: the line highlighted (0:
   // none), in file `file` (null: the loaded file; another, a file the loaded one called, is
-  // shown instead while it plays); `follow`: it is kept in view (a file runs); `pick`: a
-  // click chooses the start line (at rest, in the loaded file). A script's click "line N"
-  // (`pending_click`, cleared when taken) is a click on line N. Returns the line clicked (0:
-  // none); `start_line` is marked.
+  // shown instead while it plays, and at rest where a run stopped in it); `follow`: it is
+  // kept in view (a file runs); `pick`: at rest, a click chooses the start line (in the loaded
+  // file). A script's click "line N" (`pending_click`, cleared when taken) is a click on line
+  // N. Returns the line clicked (0: none); `start_line` is marked.
   std::size_t draw(std::size_t playing, const std::shared_ptr<const std::string>& file,
                    bool follow, bool pick, int start_line, std::string& pending_click);
   // The rows the layout gives the listing before the readout's digits (down to twice the
@@ -52,6 +52,7 @@ class ProgramListing {
   std::string checked_;                        // the file name last compared with the loaded
   bool checked_other_ = false;                 // ... and whether it is another file
   const ListingText* shown_ = nullptr;         // the text drawn at the last frame
+  std::string heading_;  // above a called file's lines: playing it, or stopped in it
   std::size_t highlighted_ = 0;
   std::size_t followed_ = 0;  // the playing line last brought into view
   std::size_t first_shown_ = 0, last_shown_ = 0;

@@ -840,6 +840,27 @@ TEST_F(GuiWindow, TheListingShowsTheCalledFileWhileItPlays) {
   EXPECT_EQ(fs::path(done["file"].get<std::string>()).filename(), "main.sbp");
 }
 
+// Issue 25: at rest after a stop inside a called file the listing keeps showing that file,
+// with the line the run stopped at, and says so: its heading said "playing" at rest.
+TEST_F(GuiWindow, AfterAStopInACalledFileTheListingShowsWhereItStopped) {
+  write("main.sbp", "SW, 0\nMX, 0.5\nFP, sub.sbp\nMX, 0\n");
+  write("sub.sbp", "' the called file\nMY, 0.5\nMY, 1\nPAUSE \"in the called file\"\nMY, 0\n");
+  ASSERT_EQ(gui("wait idle\nclick Start\nwait dialog\nwait frames 3\ndump called.json\n"
+                "key Escape\nwait idle\nwait frames 2\ndump s.json\nscreenshot s.png\n",
+                "main.sbp"),
+            0)
+      << out_;
+  EXPECT_EQ(state("called.json")["listing"]["heading"], "playing sub.sbp (called from main.sbp)");
+  const json s = state("s.json");
+  EXPECT_EQ(s["state"], "stopped");
+  const json& l = s["listing"];
+  EXPECT_TRUE(l["called"]) << l.dump();
+  EXPECT_EQ(fs::path(l["file"].get<std::string>()).filename(), "sub.sbp") << l.dump();
+  EXPECT_EQ(l["highlighted"], 4) << l.dump();  // the PAUSE the run stopped at, in sub.sbp
+  EXPECT_EQ(l["heading"], "stopped in sub.sbp (called from main.sbp)");
+  EXPECT_EQ(s["progress"]["line"], 3);  // the FP line, in main.sbp
+}
+
 // Issue 25: at 1280 x 800 the listing showed about 4 lines; it gets 8 before the readout's
 // digits grow past twice the text.
 TEST_F(GuiWindow, TheListingShowsEightLinesAt1280By800) {
