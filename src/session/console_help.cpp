@@ -5,6 +5,7 @@
 
 #include "gantry/commands/command_docs.hpp"   // command_help, command_list
 #include "gantry/commands/command_table.hpp"  // CommandTable
+#include "gantry/interp/interpreter.hpp"      // InterpreterOptions: the macro folders
 #include "gantry/lang/scan.hpp"               // upper
 #include "gantry/session/live_position.hpp"   // shown
 #include "gantry/session/readout_lines.hpp"   // speeds_text, spindle_text
@@ -59,7 +60,12 @@ HelpAnswer help_answer(FrontEnd f, const std::string& arg) {
   const CommandTable& table = CommandTable::standard();
   const std::string code = scan::upper(arg);
   if (f == FrontEnd::Terminal && code == "COMMANDS") return {command_list(table)};
-  if (const CommandSpec* spec = table.find(code)) return {command_help(*spec)};
+  // A command, a statement (PAUSE, IF ...) or a custom cut (C2 ...), as `gantry help` answers:
+  // from the tables the parser reads, and the macro folders a part file's C<n> looks in.
+  const InterpreterOptions defaults;
+  if (const std::optional<std::string> topic =
+          help_topic(code, {defaults.user_macro_dir, defaults.shipped_macro_dir}))
+    return {*topic};
   if (f == FrontEnd::Terminal)
     return {fmt::format("error: unknown command '{}'; help commands lists them all\n", arg), true};
   return {fmt::format("unknown command '{}'", arg), true};

@@ -355,6 +355,18 @@ TEST(ConsolePiped, WordsHelpQuitAndTheKeypadNeedsATerminal) {
   EXPECT_NE(r.out.find("the keypad needs a terminal"), std::string::npos) << r.out;
 }
 
+// Issue 25: help answered "unknown command" for a statement and a custom cut; it answers as
+// `gantry help` does, from the tables the parser reads.
+TEST(ConsolePiped, HelpCoversStatementsAndCustomCuts) {
+  const Result r = console_piped("help PAUSE\nhelp if\nhelp C2\nhelp C9\nhelp QQ\n");
+  EXPECT_NE(r.out.find("PAUSE - Wait for the operator"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("IF - Run one statement when a test holds"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("C2 - custom cut 2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("C9 - custom cut 9"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("error: unknown command 'QQ'"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("unknown command 'PAUSE'"), std::string::npos) << r.out;
+}
+
 // Issue 25: a bare value command shows the values in force, as SB3's sheets show them.
 TEST(ConsolePiped, ABareValueCommandShowsTheValuesInForce) {
   const Result r = console_piped("VS\nMS, 1.5\nVS\nVC\nVD, , , 1\nVC\nVA\nVS, , , , , 5\n");
