@@ -35,7 +35,13 @@ class Controller::ForwardSink : public MotionSink, public MachineLink {
  public:
   explicit ForwardSink(Controller& c) : c_(c) {}
   MotionSink* to = nullptr;
-  void move(const CanonMove& m) override { to->move(m); }
+  void move(const CanonMove& m) override {
+    const std::shared_ptr<const std::string>& top = c_.top_file_;  // set before the job began
+    if (!m.loc.file || !top || m.loc.file == top || *m.loc.file == *top) return to->move(m);
+    CanonMove called = m;  // line_ is the calling line while a called file is read
+    called.loc.caller_line = static_cast<int>(c_.line_.load(std::memory_order_relaxed));
+    to->move(called);
+  }
   void flush() override { to->flush(); }
   void settings_changed(const Settings& s) override { to->settings_changed(s); }
 
@@ -358,6 +364,7 @@ ControllerStatus Controller::status() const {
   s.lines = lines_.load(std::memory_order_relaxed);
   s.playing_line = feed_.playing_line();
   s.playing_file = feed_.playing_file();
+  s.playing_caller_line = feed_.playing_caller_line();
   const OutputLevels out = feed_.outputs();
   s.outputs = out.switches;
   s.spindle_rpm = out.spindle_rpm;

@@ -316,6 +316,7 @@ void FeederThread::publish() {
   tick_.store(steps_.tick(), std::memory_order_release);
   inputs_.store(card_.inputs(), std::memory_order_release);
   playing_line_.store(steps_.loc().line, std::memory_order_relaxed);
+  playing_caller_line_.store(steps_.loc().caller_line, std::memory_order_relaxed);
   if (const std::shared_ptr<const std::string>& f = steps_.loc().file; f.get() != published_file_) {
     published_file_ = f.get();
     playing_file_.store(f, std::memory_order_relaxed);

@@ -38,15 +38,19 @@ RunProgress run_progress(const ControllerStatus& s) {
   };
   auto by_time = [&] { return std::clamp(s.elapsed_s / (s.elapsed_s + s.remaining_s), 0.0, 1.0); };
   // A file the run called (FP, C#): its lines are not the run's, whose count the label gives;
-  // the label keeps the top-level file's line, the one that called it.
+  // the label keeps the top-level file's line that called it: the one the motion carries, not
+  // the reader's, which is ahead.
   auto called = [&](const std::shared_ptr<const std::string>& f) {
     return f && s.file && *f != *s.file;
+  };
+  auto calling_line = [&](int carried) {
+    return carried > 0 ? static_cast<std::size_t>(carried) : s.line;
   };
   if (short_end) {  // where the motion came to rest
     p.line = s.stopped_at.line > 0 ? static_cast<std::size_t>(s.stopped_at.line) : s.line;
     if (s.stopped_at.line > 0) p.file = s.stopped_at.file;
     p.file_line = p.line;
-    if (called(p.file)) p.line = s.line;
+    if (called(p.file)) p.line = calling_line(s.stopped_at.caller_line);
     p.fraction = s.remaining_s > 0 ? by_time() : by_lines();
   } else if (p.over) {
     p.line = p.file_line = s.line;
@@ -55,7 +59,7 @@ RunProgress run_progress(const ControllerStatus& s) {
     p.line = s.playing_line > 0 ? static_cast<std::size_t>(s.playing_line) : s.line;
     if (s.playing_line > 0) p.file = s.playing_file;
     p.file_line = p.line;
-    if (called(p.file)) p.line = s.line;
+    if (called(p.file)) p.line = calling_line(s.playing_caller_line);
     if (p.lines > 0) p.line = std::min(p.line, p.lines);
     if (s.remaining_s > 0) p.remaining_s = s.remaining_s;
     p.fraction = s.remaining_s > 0 ? by_time() : by_lines();

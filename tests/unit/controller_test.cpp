@@ -512,6 +512,23 @@ TEST(Controller, ATypedLineThatRunsAFileShowsTheFilesProgress) {
   std::remove(file.c_str());
 }
 
+// Issue 25: the motion of a called file carries the run's line that called it; the reader,
+// which the progress followed, is past it by the time the card plays that motion.
+TEST(Controller, TheMotionOfACalledFileCarriesTheLineThatCalledIt) {
+  Machine m;
+  const std::string sub = "gantry_called_line_sub.sbp";
+  std::ofstream(sub) << "M2, 1, 1\nM2, 2, 1\n";
+  ASSERT_TRUE(m.run("MS, 2, 1\nM2, 0.5, 0\nFP, \"" + sub + "\"\n' the reader gets here\n"));
+  m.c.wait();
+  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(s.line, 4u);
+  ASSERT_TRUE(s.playing_file);
+  EXPECT_EQ(*s.playing_file, sub);
+  EXPECT_EQ(s.playing_line, 2);
+  EXPECT_EQ(s.playing_caller_line, 3);
+  std::remove(sub.c_str());
+}
+
 }  // namespace
 }  // namespace gantry
 

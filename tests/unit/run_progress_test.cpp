@@ -77,6 +77,23 @@ TEST(RunProgress, WhileACalledFilePlaysTheLabelKeepsTheLineThatCalledIt) {
   EXPECT_EQ(run_progress(s).label(), "line 3 of 4 (50 %)");
 }
 
+// The reader is ahead of the card: at line 4 while the card still plays the file line 3
+// called. The label gives the calling line the motion carries.
+TEST(RunProgress, WhileACalledFilePlaysTheLabelGivesTheCallingLineOfTheMotionNotTheReaders) {
+  ControllerStatus s = status(MachineState::Running, 4, 4, 2, 1, 0);
+  s.file = std::make_shared<const std::string>("top.sbp");
+  s.playing_file = std::make_shared<const std::string>("called.sbp");
+  s.playing_caller_line = 3;
+  EXPECT_EQ(run_progress(s).label(), "line 3 of 4 (50 %)");
+  EXPECT_EQ(run_progress(s).file_line, 2u);
+  s.state = MachineState::Stopped;
+  s.message = "stopped by the operator";
+  s.stopped_at.file = s.playing_file;
+  s.stopped_at.line = 2;
+  s.stopped_at.caller_line = 3;
+  EXPECT_EQ(run_progress(s).line, 3u);
+}
+
 TEST(RunProgress, ACompletedRunIsWholeAndHasNothingRemaining) {
   const RunProgress p = run_progress(status(MachineState::Idle, 58, 58, 58, 118.6, 3));
   EXPECT_EQ(p.label(), "line 58 of 58 (100 %)");

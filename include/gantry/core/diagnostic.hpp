@@ -12,6 +12,9 @@ struct SourceLoc {
   std::shared_ptr<const std::string> file;  // null for locations outside any file
   int line = 0;                             // 1-based; 0 = unknown
   int column = 0;                           // 1-based; 0 = whole line
+  // Only on a move of a file the run called (FP, C#): the run's top-level line that called
+  // it, which the progress shows while the card plays the move (the reader is ahead by then).
+  int caller_line = 0;
 };
 
 enum class Severity { Error, Warning };

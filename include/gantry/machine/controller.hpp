@@ -46,6 +46,7 @@ struct ControllerStatus {
   // Progress of the file running (or the last one run).
   std::size_t line = 0, lines = 0;  // the top-level file's line the interpreter has reached
   int playing_line = 0;             // the line whose motion the card plays (in its own file)
+  int playing_caller_line = 0;      // ... in a file the run called: the run's line that called it
   std::shared_ptr<const std::string> playing_file;  // ... and that file (null: none)
   std::shared_ptr<const std::string> file;          // the top-level file (null: typed, none)
   double elapsed_s = 0;                             // machine time since it started

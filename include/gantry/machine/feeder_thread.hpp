@@ -86,7 +86,7 @@ class FeederEvents {
 // State out (feeder -> everyone), stored by publish() after every block and every item:
 //   played_, tick_ (release; read acquire): the card's played counts and clock.
 //   inputs_ (release/acquire): the card's input bits.
-//   playing_line_, warning_, outputs_, spindle_rpm_ (relaxed): display only, no data depend
+//   playing_line_, playing_caller_line_, warning_, outputs_, spindle_rpm_ (relaxed): display only, no data depend
 //     on them.
 //   flushes_done_ (release, then notify_all): flushes played or dropped. The job waits on it
 //     (acquire) against flushes_pushed_ (job-only): its acquire makes everything the feeder
@@ -168,6 +168,7 @@ class FeederThread {
   std::int64_t tick() const { return tick_.load(); }
   std::uint32_t inputs() const { return inputs_.load(std::memory_order_acquire); }
   int playing_line() const { return playing_line_.load(std::memory_order_relaxed); }
+  int playing_caller_line() const { return playing_caller_line_.load(std::memory_order_relaxed); }
   // The file of playing_line (a file FP called, say); null: none.
   std::shared_ptr<const std::string> playing_file() const {
     return playing_file_.load(std::memory_order_relaxed);
@@ -214,6 +215,7 @@ class FeederThread {
   std::atomic<std::int64_t> tick_{0};
   std::atomic<std::uint32_t> inputs_{0};  // the card's input bits, as last published
   std::atomic<int> playing_line_{0};
+  std::atomic<int> playing_caller_line_{0};
   // Stored only when the file changes (published_file_, feeder thread only, tells), so the
   // feeder rarely takes the shared pointer's lock; the pointer it holds keeps the name alive.
   std::atomic<std::shared_ptr<const std::string>> playing_file_;
