@@ -65,6 +65,11 @@ std::string gamepad_rule(std::string_view device) {
                      device);
 }
 
+std::string coordinates_rule(std::string_view frame) {
+  if (frame == "work" || frame == "machine") return "";
+  return fmt::format("must be \"work\" or \"machine\", not \"{}\"", frame);
+}
+
 std::string channels_text(const Settings& s) {
   std::string channels;
   for (int axis : s.drivers.channel_axis) channels += "XYZABC"[axis];
@@ -337,8 +342,26 @@ const SettingRow kRows[] = {
    .docs_allowed = "`ABS_*` names, `none`"},
   {.section = "pendant", .key = "gamepad_buttons", .kind = SettingKind::Text,
    .field = GANTRY_FIELD(std::string, pendant.gamepad_buttons),
-   .help = "the gamepad's buttons: `\"BTN_SOUTH = start/pause, BTN_NORTH = macro 1\"` (the pendant's buttons: reset, stop, start/pause, feed +, feed -, spindle +, spindle -, machine home, safe Z, work home, spindle on/off, probe Z, macro 1 to 10); left out: A start/pause, B stop, the shoulders feed - and +, Select reset",
+   .help = "the gamepad's buttons, and a hat's ways as buttons (`ABS_HAT0X+`): `\"BTN_SOUTH = start/pause, BTN_NORTH = macro 1, ABS_HAT0X+ = step x+ 0.01\"` (the pendant's actions: reset, stop, start/pause, feed +, feed -, spindle +, spindle -, machine home, safe Z, work home, spindle on/off, probe Z, macro 1 to 10, `jog x+` while held, `step x+` an exact step); left out: A start/pause, B stop, the shoulders feed - and +, Select reset",
    .optional = true, .optional_table = true, .docs_allowed = "`BTN_* = action, ...`"},
+  {.section = "pendant", .key = "keys", .kind = SettingKind::Texts,
+   .field = GANTRY_FIELD(std::vector<std::string>, pendant.keys),
+   .help = "keys of the console and the window bound to the pendant's actions, one a string: `[\"F5 = start/pause\", \"Ctrl+Right = jog x+\", \"F8 = step z- 0.01\"]` (the actions: the pendant's buttons, `macro 1` to `macro 10`, `jog x+` continuous, `step x+` one step); a bound key does only that; a name not known is an error at its line and that key is left unbound (docs/console.md, \"Keys as a pendant\")",
+   .optional = true, .optional_table = true, .omit_empty = true,
+   .docs_allowed = "`\"KEY = action\"` strings; left out: none"},
+#define PENDANT_MACRO(n)                                                                         \
+  {.section = "pendant", .key = "macro_" #n, .kind = SettingKind::Text,                          \
+   .field = GANTRY_FIELD(std::string, pendant.macros[n - 1]),                                  \
+   .help = "what the pendant's macro " #n " runs, at rest only: a line (`\"C3\"`, `\"MZ, 1\"`) or a part file's path (`\"~/jobs/corner.sbp\"`, from the profile's folder when relative); left out: macro " #n " is unbound and says so", \
+   .optional = true, .optional_table = true, .omit_empty = true, .docs_allowed = "a line or a part file"}
+  PENDANT_MACRO(1), PENDANT_MACRO(2), PENDANT_MACRO(3), PENDANT_MACRO(4), PENDANT_MACRO(5),
+  PENDANT_MACRO(6), PENDANT_MACRO(7), PENDANT_MACRO(8), PENDANT_MACRO(9), PENDANT_MACRO(10),
+#undef PENDANT_MACRO
+  {.section = "pendant", .key = "xhc_coordinates", .kind = SettingKind::Text,
+   .field = GANTRY_FIELD(std::string, pendant.xhc_coordinates),
+   .help = "what the XHC pendant's display shows at start: `\"work\"` coordinates (X1, Y1, Z1 on its screen) or `\"machine\"` ones; its Macro-10 key switches between them",
+   .optional = true, .optional_table = true, .check = coordinates_rule,
+   .docs_allowed = "`\"work\"`, `\"machine\"`"},
 
   INT("outputs", "charge_pump_bit", outputs.charge_pump_bit, -1, 31, "a square wave while pulses flow (-1: none)", .owner = SettingOwner::MachineTable),
   NUM("outputs", "charge_pump_hz", outputs.charge_pump_hz, kPositive, None, "its frequency", .owner = SettingOwner::MachineTable),

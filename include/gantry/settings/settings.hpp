@@ -224,12 +224,16 @@ struct FilesSettings {
   std::vector<std::string> allow;  // folders, absolute or ~/...
 };
 
-// [pendant]: a gamepad used as a pendant (the XHC USB pendant needs no setting: it is found
-// when plugged in). docs/hardware.md, "A gamepad as a pendant".
+// [pendant]: a gamepad used as a pendant, keys bound to the pendant's actions, the macros'
+// lines and the XHC display's frame (the XHC USB pendant itself needs no setting: it is found
+// when plugged in). docs/hardware.md, "A gamepad as a pendant"; docs/console.md, "Pendant".
 struct PendantSettings {
   std::string gamepad = "off";               // "off", "auto" (the first found) or a device path
   std::array<std::string, kAxisCount> gamepad_jog{};  // per axis: the sticks, "-ABS_Y, -ABS_HAT0Y"; "": usual
   std::string gamepad_buttons;               // "BTN_SOUTH = start/pause, ..."; "": the usual ones
+  std::vector<std::string> keys;             // "F5 = start/pause", "Ctrl+Right = jog x+", ...
+  std::array<std::string, 10> macros{};      // macro_1..macro_10: a line ("C3") or a part file
+  std::string xhc_coordinates = "work";      // the XHC display at start: "work" or "machine"
 };
 
 struct Settings {
