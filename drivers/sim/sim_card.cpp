@@ -42,11 +42,14 @@ const std::uint32_t* skip_run(const std::uint32_t* p, const std::uint32_t* stop,
   return p;
 }
 
+// The card decodes each driver channel (its motor); channel k's units and limits are those
+// of the axis it drives (drivers.channels).
 std::array<AxisLimits, kAxisCount> limits_of(const Settings& s) {
   std::array<AxisLimits, kAxisCount> out{};
-  for (int i = 0; i < kAxisCount; ++i)
-    out[i] = {s.axes[i].steps_per_unit, s.axes[i].max_speed, s.axes[i].max_accel,
-              s.planner.corner_jump * s.axes[i].max_speed};
+  for (int k = 0; k < kAxisCount; ++k) {
+    const AxisSettings& a = s.axes[s.drivers.channel_axis[k]];
+    out[k] = {a.steps_per_unit, a.max_speed, a.max_accel, s.planner.corner_jump * a.max_speed};
+  }
   return out;
 }
 
@@ -67,7 +70,7 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
   for (int i = 0; i < kAxisCount; ++i) {
-    steps_per_unit_[i] = settings.axes[i].steps_per_unit;
+    steps_per_unit_[i] = settings.axes[settings.drivers.channel_axis[i]].steps_per_unit;
     axis_bits_ |= pins_.axes[i].step_mask | pins_.axes[i].dir_mask;
   }
   const InputRoles roles = input_roles(settings);

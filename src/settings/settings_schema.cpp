@@ -151,6 +151,12 @@ const SettingRow kRows[] = {
            "soft limit: no move may take the axis below it; below `max`"),
   AXIS_NUM("axes.<x..c>", "max", axes[i].max, kAny, Axis,
            "soft limit: no move may take the axis above it"),
+  AXIS_NUM("axes.<x..c>", "backlash", axes[i].backlash, (SettingRange{0, 1000}), Axis,
+           "backlash compensation: the drive's slack, taken up by extra motor steps at each reversal of the axis, at its corner jump speed; the position reported does not count them (docs/hardware.md, \"Backlash\"). Left out: 0, none",
+           .optional = true, .owner = SettingOwner::MachineKey),
+  AXIS_NUM("axes.<x..c>", "wrap", axes[i].wrap, (SettingRange{0, 1e6}), Axis,
+           "a rotary axis's position is reported modulo this (360: degrees in [0, 360)) in the readouts and the run report; moves and part files keep the whole position. Left out: 0, not wrapped",
+           .optional = true, .owner = SettingOwner::MachineKey),
 
   GROUP("speeds.move", speeds.move,
         "move (cutting) speeds, as VS/MS set them; XY is the vector speed; at most the axis max_speed",
@@ -294,9 +300,9 @@ const SettingRow kRows[] = {
    .help = "VN output switch modes 1-12, SB3's", .count = 12},
 
   {.section = "drivers", .key = "channels", .kind = SettingKind::Coded,
-   .help = "VI the axis each driver channel 1-6 drives (`\"XYZABC\"`)", .encode = channels_text,
+   .help = "VI the axis each driver channel 1-6 drives (`\"XYZABC\"`); an axis on two channels is slaved: both motors step together (`\"XYZAYC\"`: Y on channels 2 and 5; docs/hardware.md, \"Slaved axes\")", .encode = channels_text,
    .decode = channels_read, .rule = "must name six axes, one per driver channel, such as \"XYZABC\"",
-   .docs_allowed = "six axis letters, each once"},
+   .docs_allowed = "six axis letters; each axis in use once or twice"},
 
   NUM("calibration", "circle_resolution", calibration.circle_resolution, (SettingRange{0, 1e3, true}), Length,
       "VU arc segment length (a length)"),
@@ -382,6 +388,12 @@ const SettingRow kRows[] = {
    .choice_set = [](Settings& s, int i, int v) { s.homing.direction[i] = v ? 1 : -1; }},
   AXIS_NUM("homing.<x..c>", "at", homing.at[i], kAny, Axis,
            "the table base location where the switch closes"),
+  AXIS_INT("homing.<x..c>", "square_input", homing.square_input[i], 0, 12,
+           "a slaved axis (two driver channels): the input switch its second motor's home switch closes; C3 then squares the gantry, each motor stopping on its own switch (docs/hardware.md, \"Slaved axes\"). Left out or 0: the motors home as one",
+           .optional = true),
+  AXIS_NUM("homing.<x..c>", "square_offset", homing.square_offset[i], kAny, Axis,
+           "a squared axis: how far the second motor then moves on its own, towards its switch, to square the gantry (WinCNC's g28altmove; a length). Left out: 0",
+           .optional = true),
 
   {.section = "simulator", .key = "home_<x..c>", .kind = SettingKind::OptionalNumber,
    .field = GANTRY_FIELD(std::optional<double>, simulator.home[i]), .range = kAny, .unit = SettingUnit::Axis,
