@@ -69,6 +69,10 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
       lead_s_(settings.card.lead_ms * 1e-3) {
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
+  last_step_.fill(kLongAgo);
+  travel_only_ = settings.limits.travel_only;
+  min_bit_ = settings.inputs.min_bit;
+  max_bit_ = settings.inputs.max_bit;
   for (int i = 0; i < kAxisCount; ++i) {
     steps_per_unit_[i] = settings.axes[settings.drivers.channel_axis[i]].steps_per_unit;
     axis_bits_ |= pins_.axes[i].step_mask | pins_.axes[i].dir_mask;
@@ -131,8 +135,26 @@ void SimCard::check_trips(std::uint32_t before) {
   if (fault_ != CardFault::None || tick_ == 0) return;
   if (estop_trip_.tripped(inputs_))
     fault_ = CardFault::EStop;
-  else if (limit_trip_.active(inputs_) & ~limit_trip_.active(before))
-    fault_ = CardFault::Limit;
+  else if (const std::uint32_t fresh = limit_trip_.active(inputs_) & ~limit_trip_.active(before))
+    if (!travel_only_ || travelling_to(fresh)) fault_ = CardFault::Limit;
+}
+
+// limits.travel_only (WinCNC's lim_mode 1): a channel's min (max) switch counts while the
+// channel has stepped towards minus (plus) within kTravelS; a limit input of no channel (VN's
+// limit inputs) always counts.
+bool SimCard::travelling_to(std::uint32_t fresh) const {
+  std::uint32_t owned = 0;
+  const auto window = static_cast<std::int64_t>(kTravelS / tick_s_);
+  const auto now = static_cast<std::int64_t>(tick_);
+  for (int k = 0; k < kAxisCount; ++k) {
+    const bool moving = now - last_step_[k] <= window;
+    for (const auto& [bit, plus] : {std::pair{min_bit_[k], false}, std::pair{max_bit_[k], true}}) {
+      if (bit < 0) continue;
+      owned |= 1u << bit;
+      if ((fresh >> bit & 1u) && moving && last_step_positive_[k] == plus) return true;
+    }
+  }
+  return (fresh & ~owned) != 0;
 }
 
 void SimCard::set_trips(const InputTrip& estop, const InputTrip& limits) {
@@ -334,6 +356,8 @@ void SimCard::decode(std::uint32_t w) {
         violation(i, TimingRule::DirSetup);
       const bool positive = pins_.positive(i, w);
       steps_[i] += positive ? 1 : -1;
+      last_step_[i] = t;
+      last_step_positive_[i] = positive;
       monitor_.on_step(i, t, positive);
       update_switches(i);
       pulse_start_[i] = t;

@@ -395,6 +395,10 @@ const SettingRow kRows[] = {
            "a squared axis: how far the second motor then moves on its own, towards its switch, to square the gantry (WinCNC's g28altmove; a length). Left out: 0",
            .optional = true),
 
+  BOOL("limits", "travel_only", limits.travel_only,
+       "a limit switch stops the machine only while its axis travels towards it (WinCNC's lim_mode 1); false: any limit switch that closes stops it. The simulated card only, for now (docs/hardware.md, \"Limit modes\"); the `[limits]` table is optional",
+       .optional = true, .optional_table = true),
+
   {.section = "simulator", .key = "home_<x..c>", .kind = SettingKind::OptionalNumber,
    .field = GANTRY_FIELD(std::optional<double>, simulator.home[i]), .range = kAny, .unit = SettingUnit::Axis,
    .help = "the simulated card's proximity switch of that axis: closed at or beyond this position on the side `homing.<axis>.direction` points to. In the card's own coordinates: the table base at power-up, before any homing",
