@@ -71,6 +71,7 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
   last_dir_change_.fill(kLongAgo);
   last_step_.fill(kLongAgo);
   travel_only_ = settings.limits.travel_only;
+  debounce_ = settings.limits.debounce;
   min_bit_ = settings.inputs.min_bit;
   max_bit_ = settings.inputs.max_bit;
   for (int i = 0; i < kAxisCount; ++i) {
@@ -133,10 +134,23 @@ void SimCard::update_switches(int axis) {
 // it; moving back off an active switch does not trip it again. An E-stop trips it while active.
 void SimCard::check_trips(std::uint32_t before) {
   if (fault_ != CardFault::None || tick_ == 0) return;
+  if (pending_ && tick_ >= pending_at_) {  // its count played before this change
+    fault_ = CardFault::Limit;
+    return;
+  }
   if (estop_trip_.tripped(inputs_))
     fault_ = CardFault::EStop;
   else if (const std::uint32_t fresh = limit_trip_.active(inputs_) & ~limit_trip_.active(before))
-    if (!travel_only_ || travelling_to(fresh)) fault_ = CardFault::Limit;
+    if (!travel_only_ || travelling_to(fresh)) {
+      if (debounce_ <= 1) {
+        fault_ = CardFault::Limit;
+      } else {  // it must stay active for debounce_ words: words tick_ .. tick_ + debounce_ - 1
+        if (!pending_) pending_at_ = tick_ + static_cast<std::uint64_t>(debounce_);
+        pending_ |= fresh;
+      }
+    }
+  pending_ &= limit_trip_.active(inputs_);  // released before its count: forgotten
+  if (!pending_) pending_at_ = UINT64_MAX;
 }
 
 // limits.travel_only (WinCNC's lim_mode 1): a channel's min (max) switch counts while the
@@ -185,6 +199,8 @@ void SimCard::calibration_changed(const Settings& s) {
 void SimCard::start(double pacer_hz) {
   stopped_ = false;
   fault_ = CardFault::None;
+  pending_ = 0;
+  pending_at_ = UINT64_MAX;
   tick_s_ = 1.0 / pacer_hz;
   monitor_ = KinematicsMonitor(limits_, tick_s_);
   // The tick count goes on from where it stopped: the wall clock's origin follows it, so a
@@ -214,7 +230,7 @@ void SimCard::start(double pacer_hz) {
 std::uint64_t SimCard::next_event_tick() const {
   const std::uint64_t input =
       next_input_ < input_ticks_.size() ? input_ticks_[next_input_] : UINT64_MAX;
-  return std::min({estop_tick_, stall_tick_, input});
+  return std::min({estop_tick_, stall_tick_, input, pending_at_});
 }
 
 void SimCard::stop(std::uint32_t idle_word) {
@@ -290,8 +306,16 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       sample_watch(tick_);
       check_trips(before);
       if (stopped_ || fault_ != CardFault::None) return;  // the word at this tick is not played
+      event_tick = next_event_tick();  // a limit input may have begun its count
     }
+    if (tick_ >= event_tick && !(pending_ && tick_ >= pending_at_) && tick_ < estop_tick_ &&
+        tick_ < stall_tick_)
+      event_tick = next_event_tick();  // a limit input's count ended in its release: go on
     if (tick_ >= event_tick) {
+      if (pending_ && tick_ >= pending_at_) {  // a limit input read active long enough
+        fault_ = CardFault::Limit;
+        break;
+      }
       if (tick_ >= estop_tick_) {
         set_input(input_bits_.estop_bit, true, input_bits_.estop_active_low);
         fault_ = CardFault::EStop;
@@ -315,6 +339,7 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       prev_ = w;
     else
       decode(w);
+    if (pending_) event_tick = std::min(event_tick, pending_at_);  // a step closed a limit
     if (watcher_.watch().mask != 0) sample_watch(tick_ + 1);
     ++tick_;
     if (fault_ != CardFault::None || stopped_) break;  // a switch tripped by this word's step

@@ -398,6 +398,9 @@ const SettingRow kRows[] = {
   BOOL("limits", "travel_only", limits.travel_only,
        "a limit switch stops the machine only while its axis travels towards it (WinCNC's lim_mode 1); false: any limit switch that closes stops it. The simulated card only, for now (docs/hardware.md, \"Limit modes\"); the `[limits]` table is optional",
        .optional = true, .optional_table = true),
+  INT("limits", "debounce", limits.debounce, 1, 30,
+      "a limit switch stops the machine once its input has read active this many words (pacer ticks) in a row, so a shorter spike does not (WinCNC's lim_cnt, at most 30). The simulated card only, for now. Left out: 1",
+      .optional = true, .optional_table = true),
 
   {.section = "simulator", .key = "home_<x..c>", .kind = SettingKind::OptionalNumber,
    .field = GANTRY_FIELD(std::optional<double>, simulator.home[i]), .range = kAny, .unit = SettingUnit::Axis,
