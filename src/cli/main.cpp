@@ -398,9 +398,12 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.steps = sim ? sim->steps() : job.played_steps;
   // In the calibration and units the run left in force (VU, VD may have changed them).
   report.units = job.settings.units;
+  // The load's position (the card's count is the motors': backlash takeup, slaved channels),
+  // a rotary axis with a wrap modulo it.
   for (int i = 0; i < kAxisCount; ++i)
-    report.position[i] =
-        start_table[i] + static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
+    report.position[i] = reported_position(
+        job.settings.axes[i],
+        start_table[i] + static_cast<double>(job.played_steps[i]) / job.settings.axes[i].steps_per_unit);
   report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
   if (sim) add_card_checks(report, *sim);
   if (sim && choice.realtime && !a.json)  // how the feeder kept up (bench/soak.sh reads it)

@@ -108,6 +108,7 @@ void LookAheadPlanner::move(const CanonMove& m) {
   b.v_machine = lim.machine_speed;
   b.accel = lim.accel;
   b.speed_class = m.speed_class;
+  b.resting_channels = m.resting_channels;
   b.loc = m.loc;
   b.count = m.count;
   b.punctuated = punctuated_;
@@ -330,6 +331,7 @@ void LookAheadPlanner::emit_front(double exit, double jerk) {
   const double cruise = steady ? steady_speed : b.v_max;
   seg.profile = Trapezoid::plan(b.length, b.entry, cruise, exit, b.accel, jerk);
   seg.speed_class = b.speed_class;
+  seg.resting_channels = b.resting_channels;
   seg.loc = b.loc;
   seg.count = b.count;
   planned_time_ += seg.profile.duration();

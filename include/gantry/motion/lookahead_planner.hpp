@@ -56,6 +56,7 @@ class LookAheadPlanner : public MotionSink {
     double back = -1;         // entry bound from the backward pass (< 0: not yet planned)
     double entry = 0;         // planned entry speed (forward pass)
     SpeedClass speed_class = SpeedClass::Move;
+    unsigned resting_channels = 0;
     SourceLoc loc;
     RunCount count;
   };

@@ -21,6 +21,7 @@ struct PlannedSegment {
   // not running); the planned path leaves that axis alone while it runs.
   std::optional<IndependentMotion> independent;
   SpeedClass speed_class = SpeedClass::Move;
+  unsigned resting_channels = 0;  // its move's (CanonMove::resting_channels)
   SourceLoc loc;
   RunCount count;  // its move's (CanonMove::count)
 };
