@@ -250,6 +250,23 @@ void FeederThread::main() {
     if (feeder_.phase() != last_phase_) on_feeder_event();
     apply_live_override();
     publish();
+    // The card needs words now and the planner holds what it would send only after more
+    // moves (its look-ahead of up to 1,024, say after SW's warning, with moves still queued
+    // unplanned): the front goes as the plan stands, before the next move is planned.
+    if (const CardLead& lead = steps_.lead();
+        lead.bounded() && !dropping_ && !drop_to_flush_ && !planner_->empty() &&
+        (feeder_.phase() == FeedPhase::Playing || feeder_.phase() == FeedPhase::Slowing) &&
+        lead.queued(steps_.sent()) > 0 && lead.slack(steps_.sent()) <= 0) {
+      try {
+        planner_->release_front();
+        starved_.fetch_add(1, std::memory_order_relaxed);
+        if (input_cut_) finish_input_cut(false);
+      } catch (const GantryError& e) {
+        card_faulted(e, false);
+      }
+      if (feeder_.phase() != last_phase_) on_feeder_event();
+      continue;
+    }
     Item item;
     if (feeder_.phase() == FeedPhase::Held || !queue_.try_pop(item)) {
       if (feeder_.phase() != FeedPhase::Held && feed_from_plan()) continue;
