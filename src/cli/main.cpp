@@ -411,7 +411,16 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       fmt::print(stderr,
                  "gantry: real time: lead {:.0f} ms; {} blocks; the card's queue held at least "
                  "{:.2f} ms; the feeder's worst lateness {:.2f} ms\n",
-                 settings.card.lead_ms, f.blocks, f.least_queue_s * 1e3, f.worst_late_s * 1e3);
+                 job.lead_s * 1e3, f.blocks, f.least_queue_s * 1e3, f.worst_late_s * 1e3);
+  if (sim && choice.realtime && !a.json)  // where the worst lateness came from (issue 26)
+    fmt::print(stderr,
+               "gantry: real time: feeder {}; worst block: woke {:.2f} ms late, waited {:.2f} ms "
+               "for moves, {:.2f} ms generating; latest wake-up {:.2f} ms; lead grew {} times; "
+               "{} blocks released early (no move in time)\n",
+               job.feeder_realtime ? "SCHED_FIFO, memory locked" : "not real-time",
+               job.lead.worst_woke_late_s * 1e3, job.lead.worst_starved_s * 1e3,
+               job.lead.worst_work_s * 1e3, job.lead.most_woke_late_s * 1e3, job.lead.grown,
+               job.starved_releases);
 
   print_errors(report.errors);
   if (!report.error_summary.empty()) fmt::print(stderr, "gantry: {}\n", report.error_summary);
