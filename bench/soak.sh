@@ -65,7 +65,7 @@ fault=$(sed -n 's/^ *fault: *//p' "$work/out.txt" | head -n 1)
 underruns=0
 if grep -qi underrun "$work/out.txt" "$work/err.txt"; then underruns=1; fi
 echo "soak: ran $((end - start)) s (wall), exit $code, fault: ${fault:-?}"
-grep "real time: lead" "$work/err.txt" | sed 's/^gantry: /soak: /' || true
+grep -e "real time:" -e "the lead grows" "$work/err.txt" | sed 's/^gantry: /soak: /' || true
 echo "soak: underruns: $underruns (target 0)"
 if [ "$code" -ne 0 ]; then
   echo "soak: the run's report:"

@@ -35,6 +35,7 @@ App::App(const GuiOptions& options, Machine& machine)
       menus_(menus(table_)),
       gl_(std::make_unique<PreviewGL>()) {
   snapshot();
+  bind_keys();
   camera_.set_view(View::Iso);
   log(LogLine::Info, fmt::format("gantry {}: profile \"{}\" on the {} card. F1 lists the keys.",
                                  GANTRY_VERSION, settings_.name, opt_.card));
@@ -221,6 +222,7 @@ void App::global_keys() {
     m_.io.cancel();
     report(c_.estop(), "E-stop");
   }
+  if (pendant_keys()) return;  // a bound key does only what it is bound to
   if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) show_keys_ = !show_keys_;
   if (io.KeyAlt)
     for (std::size_t i = 0; i < menus_.size(); ++i)

@@ -21,6 +21,7 @@
 #include "file_dialog.hpp"
 #include "fill_sheet.hpp"
 #include "gantry/session/activity_watch.hpp"  // ActivityWatch
+#include "gantry/session/key_bindings.hpp"    // KeyPendant
 #include "gantry/session/live_position.hpp"   // LivePosition
 #include "gantry/session/recent_files.hpp"    // RecentFiles
 #include "gui.hpp"
@@ -105,6 +106,8 @@ class App {
   void jog_held();
   void jog_keys();
   void global_keys();
+  bool pendant_keys();  // the [pendant] keys (pendant_keys.cpp): true when one acted this frame
+  void bind_keys();     // ... made GLFW's keys, once
   void log(LogLine::Kind kind, std::string text);
   void snapshot();  // at rest: the exact position, the frame and the units
   void poll();      // once a frame: output, questions, the end of an activity, a finished load
@@ -126,6 +129,13 @@ class App {
   ModalState modal_;
   session::LivePosition tool_;  // the frame and exact position at the last snapshot
   session::ActivityWatch activity_;  // a run, line or jog ended since the last frame
+  // The [pendant] keys: each bound key's GLFW key and modifiers, and their events.
+  struct BoundKey {
+    std::string name;
+    int key = 0, mods = 0;
+  };
+  std::vector<BoundKey> bound_keys_;
+  std::optional<session::KeyPendant> key_pendant_;
 
   // Command line.
   std::string line_;

@@ -6,7 +6,9 @@
 #include <string>
 
 #include "gantry/machine/controller.hpp"   // Controller
+#include "gantry/session/key_bindings.hpp"    // KeyBindings
 #include "gantry/session/machine_memory.hpp"  // MachineMemory
+#include "gantry/session/pendant_input.hpp"   // PendantInput
 #include "gantry/session/operator_io.hpp"  // OperatorMailbox
 #include "gantry/settings/settings.hpp"    // Settings
 
@@ -32,6 +34,9 @@ struct Machine {
   // The state kept across sessions (its unconfirmed mark and the operator's confirmation);
   // null when nothing is kept.
   session::MachineMemory* memory = nullptr;
+  // The profile's [pendant] keys and the pendant input they go to (null: none bound).
+  const session::KeyBindings* keys = nullptr;
+  session::PendantInput* pendant = nullptr;
 };
 
 // Opens the window and runs it until it is closed (or the script ends). Returns the exit

@@ -53,7 +53,8 @@ FeedKnob feed_knob(std::uint8_t code) {
     case 0x10: return {1.0, 30, false};
     case 0x1a: return {0, 60, false};
     case 0x1b: return {0, 100, false};
-    case 0x1c: return {0, 0, true};
+    case 0x1c:
+    case 0x9b: return {0, 0, true};  // some -4 and -6 units send 0x9b for Lead
     default: return {};
   }
 }

@@ -41,7 +41,7 @@ enum class XhcKey : std::uint8_t {
 struct XhcReport {
   std::uint8_t seed = 0;
   XhcKey key1 = XhcKey::None, key2 = XhcKey::None;
-  std::uint8_t feed_knob = 0;  // 0x0d-0x10 step sizes / 2-30 %, 0x1a 60 %, 0x1b 100 %, 0x1c Lead
+  std::uint8_t feed_knob = 0;  // 0x0d-0x10 step sizes / 2-30 %, 0x1a 60 %, 0x1b 100 %, 0x1c (0x9b) Lead
   std::uint8_t axis_knob = 0;  // 0x06 off, 0x11-0x16 X-C
   std::int8_t delta = 0;
   // The report a wireless pendant sends as it goes to sleep (both knobs read 0): it sends
@@ -70,7 +70,7 @@ struct XhcDisplay {
   enum class Mode : std::uint8_t { Continuous = 0, Step = 1, Mpg = 2, Percent = 3 };
   Mode mode = Mode::Continuous;
   bool reset = false;               // the RESET indicator (an E-stop waits for acknowledgement)
-  bool work_coordinates = true;     // false: machine coordinates
+  bool work_coordinates = true;     // false: machine coordinates (the -6 shows X, not X1)
   std::array<double, 3> coordinates{};  // the three lines: X Y Z, or A B C on the -6
   std::uint16_t feed = 0;           // the feed override in percent
   std::uint16_t spindle = 0;        // the spindle speed (RPM)

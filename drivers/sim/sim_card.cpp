@@ -42,11 +42,14 @@ const std::uint32_t* skip_run(const std::uint32_t* p, const std::uint32_t* stop,
   return p;
 }
 
+// The card decodes each driver channel (its motor); channel k's units and limits are those
+// of the axis it drives (drivers.channels).
 std::array<AxisLimits, kAxisCount> limits_of(const Settings& s) {
   std::array<AxisLimits, kAxisCount> out{};
-  for (int i = 0; i < kAxisCount; ++i)
-    out[i] = {s.axes[i].steps_per_unit, s.axes[i].max_speed, s.axes[i].max_accel,
-              s.planner.corner_jump * s.axes[i].max_speed};
+  for (int k = 0; k < kAxisCount; ++k) {
+    const AxisSettings& a = s.axes[s.drivers.channel_axis[k]];
+    out[k] = {a.steps_per_unit, a.max_speed, a.max_accel, s.planner.corner_jump * a.max_speed};
+  }
   return out;
 }
 
@@ -66,8 +69,13 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
       lead_s_(settings.card.lead_ms * 1e-3) {
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
+  last_step_.fill(kLongAgo);
+  travel_only_ = settings.limits.travel_only;
+  debounce_ = settings.limits.debounce;
+  min_bit_ = settings.inputs.min_bit;
+  max_bit_ = settings.inputs.max_bit;
   for (int i = 0; i < kAxisCount; ++i) {
-    steps_per_unit_[i] = settings.axes[i].steps_per_unit;
+    steps_per_unit_[i] = settings.axes[settings.drivers.channel_axis[i]].steps_per_unit;
     axis_bits_ |= pins_.axes[i].step_mask | pins_.axes[i].dir_mask;
   }
   const InputRoles roles = input_roles(settings);
@@ -126,10 +134,41 @@ void SimCard::update_switches(int axis) {
 // it; moving back off an active switch does not trip it again. An E-stop trips it while active.
 void SimCard::check_trips(std::uint32_t before) {
   if (fault_ != CardFault::None || tick_ == 0) return;
+  if (pending_ && tick_ >= pending_at_) {  // its count played before this change
+    fault_ = CardFault::Limit;
+    return;
+  }
   if (estop_trip_.tripped(inputs_))
     fault_ = CardFault::EStop;
-  else if (limit_trip_.active(inputs_) & ~limit_trip_.active(before))
-    fault_ = CardFault::Limit;
+  else if (const std::uint32_t fresh = limit_trip_.active(inputs_) & ~limit_trip_.active(before))
+    if (!travel_only_ || travelling_to(fresh)) {
+      if (debounce_ <= 1) {
+        fault_ = CardFault::Limit;
+      } else {  // it must stay active for debounce_ words: words tick_ .. tick_ + debounce_ - 1
+        if (!pending_) pending_at_ = tick_ + static_cast<std::uint64_t>(debounce_);
+        pending_ |= fresh;
+      }
+    }
+  pending_ &= limit_trip_.active(inputs_);  // released before its count: forgotten
+  if (!pending_) pending_at_ = UINT64_MAX;
+}
+
+// limits.travel_only (WinCNC's lim_mode 1): a channel's min (max) switch counts while the
+// channel has stepped towards minus (plus) within kTravelS; a limit input of no channel (VN's
+// limit inputs) always counts.
+bool SimCard::travelling_to(std::uint32_t fresh) const {
+  std::uint32_t owned = 0;
+  const auto window = static_cast<std::int64_t>(kTravelS / tick_s_);
+  const auto now = static_cast<std::int64_t>(tick_);
+  for (int k = 0; k < kAxisCount; ++k) {
+    const bool moving = now - last_step_[k] <= window;
+    for (const auto& [bit, plus] : {std::pair{min_bit_[k], false}, std::pair{max_bit_[k], true}}) {
+      if (bit < 0) continue;
+      owned |= 1u << bit;
+      if ((fresh >> bit & 1u) && moving && last_step_positive_[k] == plus) return true;
+    }
+  }
+  return (fresh & ~owned) != 0;
 }
 
 void SimCard::set_trips(const InputTrip& estop, const InputTrip& limits) {
@@ -160,6 +199,8 @@ void SimCard::calibration_changed(const Settings& s) {
 void SimCard::start(double pacer_hz) {
   stopped_ = false;
   fault_ = CardFault::None;
+  pending_ = 0;
+  pending_at_ = UINT64_MAX;
   tick_s_ = 1.0 / pacer_hz;
   monitor_ = KinematicsMonitor(limits_, tick_s_);
   // The tick count goes on from where it stopped: the wall clock's origin follows it, so a
@@ -189,7 +230,7 @@ void SimCard::start(double pacer_hz) {
 std::uint64_t SimCard::next_event_tick() const {
   const std::uint64_t input =
       next_input_ < input_ticks_.size() ? input_ticks_[next_input_] : UINT64_MAX;
-  return std::min({estop_tick_, stall_tick_, input});
+  return std::min({estop_tick_, stall_tick_, input, pending_at_});
 }
 
 void SimCard::stop(std::uint32_t idle_word) {
@@ -265,8 +306,16 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       sample_watch(tick_);
       check_trips(before);
       if (stopped_ || fault_ != CardFault::None) return;  // the word at this tick is not played
+      event_tick = next_event_tick();  // a limit input may have begun its count
     }
+    if (tick_ >= event_tick && !(pending_ && tick_ >= pending_at_) && tick_ < estop_tick_ &&
+        tick_ < stall_tick_)
+      event_tick = next_event_tick();  // a limit input's count ended in its release: go on
     if (tick_ >= event_tick) {
+      if (pending_ && tick_ >= pending_at_) {  // a limit input read active long enough
+        fault_ = CardFault::Limit;
+        break;
+      }
       if (tick_ >= estop_tick_) {
         set_input(input_bits_.estop_bit, true, input_bits_.estop_active_low);
         fault_ = CardFault::EStop;
@@ -290,6 +339,7 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       prev_ = w;
     else
       decode(w);
+    if (pending_) event_tick = std::min(event_tick, pending_at_);  // a step closed a limit
     if (watcher_.watch().mask != 0) sample_watch(tick_ + 1);
     ++tick_;
     if (fault_ != CardFault::None || stopped_) break;  // a switch tripped by this word's step
@@ -331,6 +381,8 @@ void SimCard::decode(std::uint32_t w) {
         violation(i, TimingRule::DirSetup);
       const bool positive = pins_.positive(i, w);
       steps_[i] += positive ? 1 : -1;
+      last_step_[i] = t;
+      last_step_positive_[i] = positive;
       monitor_.on_step(i, t, positive);
       update_switches(i);
       pulse_start_[i] = t;

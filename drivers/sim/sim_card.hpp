@@ -128,6 +128,19 @@ class SimCard : public Card {
   Steps6 steps_{};
   std::array<std::int64_t, kAxisCount> pulse_start_{};
   std::array<std::int64_t, kAxisCount> last_dir_change_{};
+  // limits.travel_only: a limit switch trips the card only while its channel travels
+  // towards it (stepped that way within kTravelS); the channel's last step and its direction.
+  static constexpr double kTravelS = 0.05;
+  bool travel_only_ = false;
+  std::array<std::int64_t, kAxisCount> last_step_{};
+  std::array<bool, kAxisCount> last_step_positive_{};
+  std::array<int, kAxisCount> min_bit_{}, max_bit_{};  // each channel's limit inputs
+  bool travelling_to(std::uint32_t fresh) const;  // a channel travels to one of these switches
+  // limits.debounce: a limit input trips the card once it has read active this many words
+  // in a row; pending_ are the inputs counting, which trip at pending_at_ if still active.
+  int debounce_ = 1;
+  std::uint32_t pending_ = 0;
+  std::uint64_t pending_at_ = UINT64_MAX;
   std::array<bool, kAxisCount> pulse_active_{};
   std::array<AxisLimits, kAxisCount> limits_{};
   KinematicsMonitor monitor_;

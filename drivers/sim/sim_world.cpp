@@ -7,7 +7,8 @@ SimWorld simulated_world(const Settings& s) {
   SimWorld w;
   for (int i = 0; i < kAxisCount; ++i) {
     w.home_switch[i] = s.simulator.home[i];
-    w.home_above[i] = s.homing.direction[i] > 0;
+    // Switch i is channel i's (its motor's): it homes the way its axis homes.
+    w.home_above[i] = s.homing.direction[s.drivers.channel_axis[i]] > 0;
   }
   w.probe_z = s.simulator.plate_z;
   return w;

@@ -96,8 +96,8 @@ void Console::snapshot() {
 std::string Console::readout(const ControllerStatus& st) const {
   // At rest the interpreter's position is exact (a step jog ends on its commanded point);
   // under way, the pulses played say where the tool is.
-  const bool rest =
-      (at_rest(st.state) || st.state == MachineState::Keypad) && mode_ != Mode::Job && !kp_.active;
+  const bool rest = ((at_rest(st.state) && st.settled) || st.state == MachineState::Keypad) &&
+                    mode_ != Mode::Job && !kp_.active;
   return session::readout_text(session::state_word(st), live_.at(st, rest), units_);
 }
 
@@ -226,6 +226,7 @@ void Console::estop() {
 }
 
 void Console::on_key(const Key& k) {
+  if (bound_key(k)) return;  // a [pendant] key does only what it is bound to, in every mode
   if (asking_) return answer_key(k);
   switch (mode_) {
     case Mode::Prompt:
@@ -358,7 +359,7 @@ Console::WordEnd Console::console_word(const session::TypedLine& t, bool termina
     case Word::Status:
       // A pendant's jog between two lines is an activity the console did not start: what is
       // kept of the machine is read again, so the position is where the jog left the tool.
-      if (at_rest(c_.status().state)) snapshot();
+      if (const ControllerStatus st = c_.status(); at_rest(st.state) && st.settled) snapshot();
       write_out(status_report());
       return WordEnd::Done;
     case Word::Confirm:
@@ -434,6 +435,7 @@ void Console::tick() {
     if (at_rest(st.state) && st.settled) return end_job();
     if (at_rest(st.state)) io_.cancel();  // a question would keep the job from winding down
   }
+  if (mode_ == Mode::Prompt && !asking_) follow_activity(false);  // a pendant's jog
   if (mode_ == Mode::Keypad) keypad_tick(Clock::now());
   if (mode_ != Mode::Prompt && !asking_) draw_status(false);
 }
@@ -456,12 +458,26 @@ void Console::end_job() {
 
 // ---- piped ---------------------------------------------------------------------------------
 
+// A motion the console did not start (a pendant's jog, a gamepad's) ended since the last
+// look: what is kept of the machine is read again, so the readout is where it left the tool,
+// and the console says so, as the interactive status line and the window follow it.
+void Console::follow_activity(bool say) {
+  const ControllerStatus st = c_.status();
+  if (!activity_.ended(st)) return;
+  snapshot();
+  if (!say) return;
+  write_out(readout(st) + "\n");
+  write_out(ended(st));
+}
+
 int Console::piped() {
   snapshot();
+  activity_.seen(c_.status());
   const std::string prefix = "> ";
   LineReader in(STDIN_FILENO);
   std::string typed;
   while (in.next(typed, signal_)) {
+    follow_activity(true);
     const session::TypedLine t = session::read_typed_line(typed);
     const std::string& line = t.line;
     if (line.empty()) continue;
@@ -474,6 +490,7 @@ int Console::piped() {
     if (!o) return write_out(refusal(prefix, line, o, false)), 1;
     c_.wait();
     snapshot();
+    activity_.seen(c_.status());  // the line's own end is told below
     const ControllerStatus st = c_.status();
     write_out(readout(st) + "\n");
     if (signal_ != 0) break;

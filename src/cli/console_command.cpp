@@ -77,6 +77,7 @@ int run_console(const ConsoleArgs& a) {
 
   console::Console console(controller, io, live->values, a, live->real_time, signal);
   console.keep_state(live->memory.get());
+  console.bind_keys(live->keys, live->pendant->input());
   if (!interactive) return console.piped();
   const std::string banner = fmt::format(
       "gantry console: profile \"{}\" on the {}{}\nhelp lists the keys; quit leaves.\n",

@@ -8,6 +8,22 @@
 
 namespace gantry::console {
 
+void Console::bind_keys(const session::KeyBindings& keys, session::PendantInput& input) {
+  if (keys.empty()) return;
+  // A terminal repeats a held key after its repeat delay: the same key again within it is a
+  // repeat, which only a continuous jog's binding hears.
+  keys_.emplace(keys, KeyTaps::ms(args_.repeat_delay_ms));
+  pendant_ = &input;
+}
+
+bool Console::bound_key(const Key& k) {
+  if (!keys_ || !pendant_) return false;
+  std::vector<session::PendantEvent> out;
+  if (!keys_->key(key_name(k), Clock::now(), out)) return false;
+  for (const session::PendantEvent& e : out) pendant_->handle(e);
+  return true;
+}
+
 void Console::enter_keypad(const std::string& message, bool file) {
   if (c_.state() == MachineState::EStop) {
     write_out("E-stop: type ack before the keypad\n");

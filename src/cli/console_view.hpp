@@ -14,6 +14,9 @@
 #include "console.hpp"                       // ConsoleArgs
 #include "key_taps.hpp"                      // KeyTaps
 #include "gantry/machine/controller.hpp"     // Controller
+#include "gantry/session/activity_watch.hpp" // ActivityWatch
+#include "gantry/session/key_bindings.hpp"   // KeyBindings, KeyPendant
+#include "gantry/session/pendant_input.hpp"  // PendantInput
 #include "gantry/session/console_words.hpp"  // TypedLine
 #include "gantry/session/live_machine.hpp"   // ValuesKeeper
 #include "gantry/session/live_position.hpp"  // LivePosition
@@ -43,6 +46,8 @@ class Console {
   int piped();
   // The machine state kept across sessions, for CONFIRM (none: nothing to confirm).
   void keep_state(session::MachineMemory* memory) { memory_ = memory; }
+  // The profile's [pendant] keys, sent to the live machine's pendant input (console_keypad.cpp).
+  void bind_keys(const session::KeyBindings& keys, session::PendantInput& input);
 
  private:
   enum class Mode { Prompt, Job, Keypad };
@@ -58,6 +63,7 @@ class Console {
                       bool echo_first) const;
   std::string ended(const ControllerStatus& st) const;
   WordEnd console_word(const session::TypedLine& t, bool terminal);
+  void follow_activity(bool say);  // a motion the console did not start ended: read again
 
   // Interactive.
   void on_key(const Key& k);
@@ -67,6 +73,7 @@ class Console {
   void answer(const std::string& a);
   void show_question(const std::string& text, const std::string& prompt);
   void keypad_key(const Key& k);
+  bool bound_key(const Key& k);  // a [pendant] key: its events sent, true
   void tick();
   void handle_line(const std::string& line);
   void end_job();
@@ -88,11 +95,14 @@ class Console {
   OperatorMailbox& io_;
   session::ValuesKeeper& values_;
   session::MachineMemory* memory_ = nullptr;
+  std::optional<session::KeyPendant> keys_;  // the [pendant] keys, when any are bound
+  session::PendantInput* pendant_ = nullptr;
   const ConsoleArgs& args_;
   bool realtime_;
   std::atomic<int>& signal_;
 
   session::LivePosition live_;  // the frame and exact position at the last snapshot
+  session::ActivityWatch activity_;  // the ends of motions, the pendant's included
   Units units_ = Units::Inches;
   double keypad_step_ = 0.1;
 

@@ -65,6 +65,8 @@ int run_gui_command(const GuiArgs& a) {
   o.recent_files = session::recent_files_path(profile.values_path);  // beside the machine state
   ui::Machine m{*live->controller, io, [&live] { return live->values.settings(); }};
   m.memory = live->memory.get();
+  m.keys = &live->keys;
+  m.pendant = &live->pendant->input();
   return ui::run_gui(o, m);
 }
 

@@ -35,6 +35,19 @@ std::size_t columns_of(std::string_view s) {
       std::count_if(s.begin(), s.end(), [](char c) { return !continuation(c); }));
 }
 
+// F1-F12 as CSI n ~ (xterm's and VT220's numbers; 0: none).
+int function_number(int n) {
+  if (n >= 11 && n <= 15) return n - 10;  // F1-F5
+  if (n >= 17 && n <= 21) return n - 11;  // F6-F10
+  if (n == 23 || n == 24) return n - 12;  // F11, F12
+  return 0;
+}
+
+// F1-F4 as the final letter of SS3 (ESC O P) or CSI 1;m P.
+int pf_number(char c) {
+  return c >= 'P' && c <= 'S' ? c - 'P' + 1 : 0;
+}
+
 // The keys of CSI sequences ending in '~': ESC [ n ~ (n as in xterm and the Linux console).
 KeyCode tilde_key(int n) {
   switch (n) {
@@ -50,8 +63,10 @@ KeyCode tilde_key(int n) {
       return KeyCode::PageUp;
     case 6:
       return KeyCode::PageDown;
+    case 2:
+      return KeyCode::Insert;
     default:
-      return KeyCode::Unknown;
+      return function_number(n) > 0 ? KeyCode::Function : KeyCode::Unknown;
   }
 }
 
@@ -136,14 +151,19 @@ std::size_t KeyDecoder::decode(Key& k) const {
       }
       // The modifier parameter: 1 + (1 Shift, 2 Alt, 4 Ctrl).
       const int mod = params.size() >= 2 && params[1] > 0 ? params[1] - 1 : 0;
+      k.shift = (mod & 1) != 0;
       k.alt = (mod & 2) != 0;
       k.ctrl = (mod & 4) != 0;
       k.code = b[i] == '~' ? tilde_key(params[0]) : letter_key(b[i]);
+      k.number = b[i] == '~' ? function_number(params[0]) : pf_number(b[i]);
+      if (k.number > 0) k.code = KeyCode::Function;
       return i + 1;
     }
-    if (b[1] == 'O') {  // SS3: the cursor keys in application mode, Home, End
+    if (b[1] == 'O') {  // SS3: the cursor keys in application mode, Home, End, F1-F4
       if (b.size() < 3) return 0;
       k.code = letter_key(b[2]);
+      k.number = pf_number(b[2]);
+      if (k.number > 0) k.code = KeyCode::Function;
       return 3;
     }
     k.code = KeyCode::Escape;  // ESC and then another key: both count
@@ -151,6 +171,9 @@ std::size_t KeyDecoder::decode(Key& k) const {
   }
   if (c < 0x20 || c == 0x7f) {
     k.code = control_key(c);
+    // Ctrl+letter, for the bindings (Tab, Enter and Backspace are their own keys).
+    if (c >= 0x01 && c <= 0x1a && c != '\t' && c != '\n' && c != '\r' && c != 0x08)
+      k.control = static_cast<char>('A' + c - 1);
     return 1;
   }
   const std::size_t n = utf8_length(c);
@@ -193,6 +216,37 @@ void KeyDecoder::flush(std::vector<Key>& out) {
     buf_.erase(0, n);
     out.push_back(std::move(k));
   }
+}
+
+std::string key_name(const Key& k) {
+  if (k.control != 0) return std::string("Ctrl+") + k.control;
+  std::string base;
+  switch (k.code) {
+    case KeyCode::Char:
+      if (k.text == " ") {
+        base = "Space";
+        break;
+      }
+      return (k.alt ? "Alt+" : "") + k.text;
+    case KeyCode::Enter: base = "Enter"; break;
+    case KeyCode::Tab: base = "Tab"; break;
+    case KeyCode::Backspace: base = "Backspace"; break;
+    case KeyCode::Delete: base = "Delete"; break;
+    case KeyCode::Insert: base = "Insert"; break;
+    case KeyCode::Left: base = "Left"; break;
+    case KeyCode::Right: base = "Right"; break;
+    case KeyCode::Up: base = "Up"; break;
+    case KeyCode::Down: base = "Down"; break;
+    case KeyCode::Home: base = "Home"; break;
+    case KeyCode::End: base = "End"; break;
+    case KeyCode::PageUp: base = "PageUp"; break;
+    case KeyCode::PageDown: base = "PageDown"; break;
+    case KeyCode::Escape: base = "Escape"; break;
+    case KeyCode::Function: base = "F" + std::to_string(k.number); break;
+    default: return "";
+  }
+  return std::string(k.ctrl ? "Ctrl+" : "") + (k.alt ? "Alt+" : "") + (k.shift ? "Shift+" : "") +
+         base;
 }
 
 // ---- the line ----------------------------------------------------------------------------
@@ -386,6 +440,8 @@ LineEditor::Event LineEditor::key(const Key& k) {
     case KeyCode::Redraw:
     case KeyCode::PageUp:
     case KeyCode::PageDown:
+    case KeyCode::Insert:
+    case KeyCode::Function:
     case KeyCode::Unknown:
       break;
   }

@@ -32,6 +32,8 @@ enum class KeyCode {
   KillToEnd,    // Ctrl-K
   KillToStart,  // Ctrl-U
   Redraw,       // Ctrl-L
+  Insert,
+  Function,     // F1-F12 (Key::number)
   Unknown,      // any other control key or escape sequence
 };
 
@@ -40,9 +42,16 @@ struct Key {
   std::string text;   // KeyCode::Char
   bool ctrl = false;  // Ctrl held with an arrow or page key (xterm's modifier parameter)
   bool alt = false;   // Alt held, likewise
+  bool shift = false;  // Shift held, likewise
+  int number = 0;      // Function: 1-12
+  char control = 0;    // the letter of a Ctrl+letter byte ('A' for 0x01), whatever `code` it is
 
   bool is_char(char c) const { return code == KeyCode::Char && text.size() == 1 && text[0] == c; }
 };
+
+// The key's name as the [pendant] keys bindings write it (session/key_bindings.hpp): "F5",
+// "Ctrl+Right", "Ctrl+G", "a"; "" for a key that has none (an unknown sequence).
+std::string key_name(const Key& k);
 
 // Bytes from a terminal in raw mode into keys. Escape sequences (CSI `ESC [`, SS3 `ESC O`) are
 // decoded whole, even when they arrive split across reads. A lone ESC is the Escape key, but

@@ -398,9 +398,12 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.steps = sim ? sim->steps() : job.played_steps;
   // In the calibration and units the run left in force (VU, VD may have changed them).
   report.units = job.settings.units;
+  // The load's position (the card's count is the motors': backlash takeup, slaved channels),
+  // a rotary axis with a wrap modulo it.
   for (int i = 0; i < kAxisCount; ++i)
-    report.position[i] =
-        start_table[i] + static_cast<double>(report.steps[i]) / job.settings.axes[i].steps_per_unit;
+    report.position[i] = reported_position(
+        job.settings.axes[i],
+        start_table[i] + static_cast<double>(job.played_steps[i]) / job.settings.axes[i].steps_per_unit);
   report.time_s = static_cast<double>(card->ticks_played()) / settings.card.pacer_hz();
   if (sim) add_card_checks(report, *sim);
   if (sim && choice.realtime && !a.json)  // how the feeder kept up (bench/soak.sh reads it)
@@ -408,7 +411,16 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
       fmt::print(stderr,
                  "gantry: real time: lead {:.0f} ms; {} blocks; the card's queue held at least "
                  "{:.2f} ms; the feeder's worst lateness {:.2f} ms\n",
-                 settings.card.lead_ms, f.blocks, f.least_queue_s * 1e3, f.worst_late_s * 1e3);
+                 job.lead_s * 1e3, f.blocks, f.least_queue_s * 1e3, f.worst_late_s * 1e3);
+  if (sim && choice.realtime && !a.json)  // where the worst lateness came from (issue 26)
+    fmt::print(stderr,
+               "gantry: real time: feeder {}; worst block: woke {:.2f} ms late, waited {:.2f} ms "
+               "for moves, {:.2f} ms generating; latest wake-up {:.2f} ms; lead grew {} times; "
+               "{} blocks released early (no move in time)\n",
+               job.feeder_realtime ? "SCHED_FIFO, memory locked" : "not real-time",
+               job.lead.worst_woke_late_s * 1e3, job.lead.worst_starved_s * 1e3,
+               job.lead.worst_work_s * 1e3, job.lead.most_woke_late_s * 1e3, job.lead.grown,
+               job.starved_releases);
 
   print_errors(report.errors);
   if (!report.error_summary.empty()) fmt::print(stderr, "gantry: {}\n", report.error_summary);

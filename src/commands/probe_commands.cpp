@@ -1,7 +1,9 @@
 // Probes (PX ... P6) and homing on proximity switches (C3 without a custom file).
 #include <fmt/format.h>  // messages
 
-#include <cmath>  // round
+#include <array>    // the two motors
+#include <cmath>    // round
+#include <utility>  // pair
 
 #include "gantry/commands/command_table.hpp"
 #include "gantry/interp/command_context.hpp"
@@ -44,6 +46,89 @@ std::vector<ParamSpec> probe_params(std::string_view axes) {
   return out;
 }
 
+// The moves while it lives rest the given driver channels' motors (squaring a slaved axis);
+// every channel steps again when it ends, an error's unwinding included.
+class RestingChannels {
+ public:
+  RestingChannels(CommandContext& ctx, unsigned channels) : ctx_(ctx) {
+    ctx_.input_switches();  // at rest first: a channel stops or starts only between moves
+    ctx_.rest_channels(channels);
+  }
+  ~RestingChannels() { ctx_.rest_channels(0); }
+  RestingChannels(const RestingChannels&) = delete;
+  RestingChannels& operator=(const RestingChannels&) = delete;
+
+ private:
+  CommandContext& ctx_;
+};
+
+// Squares a slaved axis (two driver channels, homing.<axis>.square_input): both motors fast
+// to the first motor's switch and back off; then each motor on its own, the other resting,
+// slowly to its own switch (homing.input for the first channel, square_input for the
+// second), which sets the table base; the second motor moves on by square_offset; both back
+// off together (docs/hardware.md, "Slaved axes").
+void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
+  const Settings& s = ctx.settings();
+  const HomingSettings& h = s.homing;
+  const double dir = h.direction[i];
+  const double reach = s.axes[i].max - s.axes[i].min + 2 * h.back_off;
+  const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');
+  const int first_input = h.input, second_input = h.square_input[i];
+  int first = -1, second = -1;  // the axis's two channels, in channel order
+  for (int k = 0; k < kAxisCount; ++k)
+    if (s.drivers.channel_axis[k] == i) (first < 0 ? first : second) = k;
+  auto toward = [&](double distance) {
+    Vec6 t = ctx.position();
+    t[i] += dir * distance;
+    return t;
+  };
+  auto closed = [&](int input) {
+    const auto in = ctx.input_switches();
+    return in && (*in)[input - 1];
+  };
+  const bool live = ctx.input_switches().has_value();
+  auto back_off = [&] { ctx.homing_line(toward(-h.back_off), h.fast_speed, loc); };
+  auto stuck = [&](int input, const char* motor) {
+    if (closed(input))
+      fail(loc, fmt::format("homing {}: the {} motor's switch (input {}) stays closed after "
+                            "backing off {}: check the switch, or the gantry is out of square "
+                            "by more than that",
+                            L, motor, input, h.back_off));
+  };
+  if (closed(first_input) || closed(second_input)) {
+    back_off();  // resting on a switch: off it first
+    stuck(first_input, "first");
+    stuck(second_input, "second");
+  }
+  // Both motors, fast, until the first one's switch closes; the second may have passed its
+  // own by the gantry's error: backing off must clear it.
+  if (!ctx.probe(toward(reach), h.fast_speed, first_input, loc, MachineLink::Watching::Home) &&
+      live)
+    fail(loc, fmt::format("homing {}: input {} never closed within {} (the table's length): "
+                          "check the switch and its wiring",
+                          L, first_input, reach));
+  back_off();
+  stuck(first_input, "first");
+  stuck(second_input, "second");
+  // Each motor on its own, slowly, to its own switch.
+  const std::array<std::pair<int, int>, 2> motors{{{first_input, second}, {second_input, first}}};
+  for (const auto& [input, resting] : motors) {
+    const RestingChannels rest(ctx, 1u << resting);
+    if (!ctx.probe(toward(reach), h.slow_speed, input, loc, MachineLink::Watching::Home) && live)
+      fail(loc, fmt::format("homing {}: input {} never closed on the slow approach of the {} "
+                            "motor",
+                            L, input, input == first_input ? "first" : "second"));
+  }
+  ctx.home_axis(i, h.at[i]);  // each motor on its own switch: the table base of both
+  if (h.square_offset[i] != 0) {
+    const RestingChannels rest(ctx, 1u << first);
+    ctx.homing_line(toward(h.square_offset[i]), h.slow_speed, loc);
+    ctx.input_switches();
+    ctx.home_axis(i, h.at[i]);  // the first motor has not moved: it still stands at `at`
+  }
+  back_off();
+}
+
 }  // namespace
 
 // Each axis of the profile's order: fast to its switch, back off, slowly to it again (the
@@ -55,6 +140,10 @@ void home_on_switches(CommandContext& ctx, const SourceLoc& loc, std::string_vie
   for (const char letter : h.order) {
     if (!only.empty() && only.find(letter) == std::string_view::npos) continue;
     const int i = static_cast<int>(std::string_view("xyzabc").find(letter));
+    if (h.square_input[i] != 0) {
+      home_squared(ctx, loc, i);
+      continue;
+    }
     const double dir = h.direction[i];
     const double reach = s.axes[i].max - s.axes[i].min + 2 * h.back_off;
     const char L = static_cast<char>(letter - 'a' + 'A');

@@ -324,6 +324,7 @@ void CommandContext::note_drawing(const SourceLoc& loc) {
 
 void CommandContext::emit(CanonMove& m) {
   note_drawing(m.loc);
+  m.resting_channels = resting_channels_;
   m.count = {interp_ ? interp_->statements_executed() : 0, moves_ + 1};
   if (!warned_ && m.kind != MoveKind::Dwell) warn_before_motion(m.loc);
   if (const std::optional<IndependentMotion>& mi = state_.independent) {

@@ -571,7 +571,8 @@ void Interpreter::loop(DiagnosticLog* collect) {
     const std::string_view text = hot ? std::string_view() : f.script->line_at(f.pc, &next);
     if (hot ||
         !(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
-                            : parse_simple_command(text, f.script->name(), f.pc.line, &simple_))) {
+                            : parse_simple_command(text, f.script->name(), f.pc.line, &simple_) ||
+                                  f.script->read_common(f.pc, text, next, &simple_))) {
       lp = f.script->parse(f.pc, &next);
       st = lp->statement ? &*lp->statement : nullptr;
     }

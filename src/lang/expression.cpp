@@ -410,7 +410,15 @@ class Parser {
 
   void lex_number(size_t i) {
     const size_t j = literal::scan(text_, i);
-    const std::optional<double> d = literal::value(text_.substr(i, j - i));
+    const std::string_view lit = text_.substr(i, j - i);
+    // Without an exponent, the fast exact reading (plain_value: the same double as value(),
+    // infinite only where value() finds the literal too large).
+    std::optional<double> d;
+    if (lit.find_first_of("eE") == std::string_view::npos) {
+      if (const double v = literal::plain_value(lit); v != HUGE_VAL) d = v;
+    } else {
+      d = literal::value(lit);
+    }
     if (!d) fail(loc(i), fmt::format("the number {} is too large", echoed(text_.substr(i, j - i))));
     tok_.kind = Tok::Number;
     tok_.len = j - i;
@@ -735,13 +743,19 @@ class Parser {
   }
 
   int parse_call(const Token& name) {
-    const std::string up = upper(source(name));
-    const FuncInfo* f = find_function(up);
+    // The name upper-cased on the stack (no function's name is longer), not in a string.
+    const std::string_view src = source(name);
+    char up[8];
+    const FuncInfo* f = nullptr;
+    if (src.size() <= sizeof up) {
+      for (size_t i = 0; i < src.size(); ++i) up[i] = upper(src[i]);
+      f = find_function(std::string_view(up, src.size()));
+    }
     if (!f)
       fail(loc(name.pos),
            fmt::format("unknown function {}; the functions are ABS, INT, FIX, SGN, SIN, COS, TAN, "
                        "ATN, ATAN2, EXP, LOG, SQR, ROUND, MIN, MAX, CEIL and FLOOR",
-                       up));
+                       upper(src)));
     const Token open = tok_;
     Nest nest(*this, open.pos);
     advance();
@@ -930,8 +944,10 @@ class Parser {
 }  // namespace
 
 const FuncInfo* find_function(std::string_view upper_name) {
-  for (const FuncInfo& f : kFunctions)
-    if (f.name == upper_name) return &f;
+  for (const FuncInfo& f : kFunctions)  // lengths first: few names share one
+    if (f.name.size() == upper_name.size() &&
+        std::equal(f.name.begin(), f.name.end(), upper_name.begin()))
+      return &f;
   return nullptr;
 }
 

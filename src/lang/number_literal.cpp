@@ -21,7 +21,14 @@ std::optional<double> parse_number_literal(std::string_view text) {
     text.remove_prefix(1);
   }
   if (text.empty() || literal::scan(text, 0) != text.size()) return std::nullopt;
-  std::optional<double> d = literal::value(text);
+  // Without an exponent, the fast exact reading (plain_value: the same double as value());
+  // it gives infinity only for a literal value() finds too large.
+  std::optional<double> d;
+  if (text.find_first_of("eE") == std::string_view::npos) {
+    if (const double v = literal::plain_value(text); v != HUGE_VAL) d = v;
+  } else {
+    d = literal::value(text);
+  }
   if (d && negative) *d = -*d;
   return d;
 }

@@ -256,11 +256,17 @@ void Script::forget_called(const std::string& path) const {
   called_.erase(key);
 }
 
-std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
+// Inline here, its only user: a loop's line looks its slot up twice (read_common, parse).
+[[gnu::always_inline]] inline Script::CachedParse& Script::cache_slot(size_t offset) const {
   constexpr size_t kCacheSlots = 1024;
-  if (cache_.empty()) cache_.resize(kCacheSlots);
+  if (cache_.empty()) [[unlikely]]
+    cache_.resize(kCacheSlots);
   // Fibonacci hashing spreads nearby offsets (consecutive lines) over the slots.
-  CachedParse& slot = cache_[(c.offset * 0x9E3779B97F4A7C15ull) >> 54];
+  return cache_[(offset * 0x9E3779B97F4A7C15ull) >> 54];
+}
+
+std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
+  CachedParse& slot = cache_slot(c.offset);
   if (slot.parse && slot.offset == c.offset) {
     *next = slot.next;
     return slot.parse;
@@ -268,9 +274,30 @@ std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
   const std::string_view text = line_at(c, next);
   slot.offset = c.offset;
   slot.next = *next;
+  slot.seen = false;
   slot.parse = std::make_shared<const LineParse>(gcode_ ? parse_gcode_line(text, name_, c.line)
                                                         : parse_line(text, name_, c.line));
   return slot.parse;
+}
+
+bool Script::read_common(Cursor c, std::string_view text, Cursor next, Statement* out) const {
+  if (gcode_) return false;
+  CachedParse& slot = cache_slot(c.offset);
+  const bool here = slot.offset == c.offset;
+  if (here && slot.parse) return false;
+  if (!parse_common_statement(text, name_, c.line, out)) return false;
+  if (here && slot.seen) {  // read again: a loop's line, kept as parse() keeps one
+    auto lp = std::make_shared<LineParse>();
+    lp->statement = *out;
+    slot.parse = std::move(lp);
+    slot.next = next;
+    slot.seen = false;
+  } else {
+    slot.offset = c.offset;
+    slot.parse.reset();
+    slot.seen = true;
+  }
+  return true;
 }
 
 void Script::index(const IsCommand& is_command) {
@@ -302,11 +329,32 @@ void Script::index(const IsCommand& is_command) {
     return;
   }
   std::vector<std::pair<std::string, SourceLoc>> targets;
-  Statement simple;  // its storage reused line after line
+  Statement simple, common;  // their storage reused line after line
+  const ExprCheckOnly check;  // this pass keeps no statement: expressions checked, not built
   auto check_command = [&](const Statement& st) {
     const std::string& code = std::get<CommandStmt>(st.body).code;
     if (!is_command(code))
       errors_.push_back({st.loc, Severity::Error, unknown_command_message(code)});
+  };
+  std::vector<const Statement*> commands;  // reused: no allocation a line
+  std::vector<const JumpStmt*> jumps;
+  // A statement without error: its commands, label and jumps.
+  auto record = [&](const Statement& st, Cursor next) {
+    if (is_command) {
+      commands.clear();
+      collect_commands(st, commands);
+      for (const Statement* cmd : commands) check_command(*cmd);
+    }
+    if (const auto* l = std::get_if<LabelStmt>(&st.body)) {
+      if (!labels_.emplace(l->name, next).second)
+        errors_.push_back({st.loc, Severity::Warning,
+                           fmt::format("label {} is defined again; jumps go to the first one, "
+                                       "line {}",
+                                       l->name, labels_.at(l->name).line - 1)});
+    }
+    jumps.clear();
+    collect_jumps(st, jumps);
+    for (const JumpStmt* j : jumps) targets.emplace_back(j->label, j->label_loc);
   };
   Cursor c = start();
   while (!at_end(c)) {
@@ -319,25 +367,14 @@ void Script::index(const IsCommand& is_command) {
       c = next;
       continue;
     }
+    if (parse_common_statement(text, name_, c.line, &common)) {
+      record(common, next);
+      c = next;
+      continue;
+    }
     LineParse lp = check_line(text, name_, c.line);
     if (lp.error) errors_.push_back(*lp.error);
-    if (lp.statement) {
-      if (is_command) {
-        std::vector<const Statement*> commands;
-        collect_commands(*lp.statement, commands);
-        for (const Statement* st : commands) check_command(*st);
-      }
-      if (const auto* l = std::get_if<LabelStmt>(&lp.statement->body)) {
-        if (!labels_.emplace(l->name, next).second)
-          errors_.push_back({lp.statement->loc, Severity::Warning,
-                             fmt::format("label {} is defined again; jumps go to the first one, "
-                                         "line {}",
-                                         l->name, labels_.at(l->name).line - 1)});
-      }
-      std::vector<const JumpStmt*> jumps;
-      collect_jumps(*lp.statement, jumps);
-      for (const JumpStmt* j : jumps) targets.emplace_back(j->label, j->label_loc);
-    }
+    if (lp.statement) record(*lp.statement, next);
     c = next;
   }
   for (const auto& [label, loc] : targets)

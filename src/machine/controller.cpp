@@ -3,7 +3,8 @@
 
 #include <fmt/format.h>  // messages
 
-#include <bit>  // countr_zero
+#include <algorithm>  // clamp
+#include <bit>        // countr_zero
 
 #include "gantry/core/bounded.hpp"          // checked_llround
 #include "gantry/interp/program_check.hpp"  // check_program
@@ -86,8 +87,7 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
       feed_(settings_, card, input_roles(settings).stops, *this),
       qsink_(&feed_.sink()),
       forward_(std::make_unique<ForwardSink>(*this)) {
-  planner_ = std::make_unique<LookAheadPlanner>(settings, *qsink_);
-  forward_->to = planner_.get();
+  forward_->to = qsink_;  // the planner runs on the feeder thread (feeder_thread.hpp)
   options.stop_check = &feed_.abort_flag();  // a stop ends even a file that loops without moving
   interp_ = std::make_unique<Interpreter>(settings, *forward_, forward_.get(), io, store,
                                           std::move(options));
@@ -275,10 +275,9 @@ Outcome Controller::jog(const JogRequest& j) {
     }
     running_file_ = false;
     start_activity([this, m] {
-      LookAheadPlanner& p = *planner_;
       try {
-        p.move(m);
-        p.flush();
+        qsink_->move(m);
+        qsink_->flush();
       } catch (const GantryError&) {  // stopped
       }
       std::lock_guard lock(m_);
@@ -327,14 +326,24 @@ Controller::Summary Controller::summary() const {
   s.lines = s.cut ? feed_.steps().ran().statements : interp_->statements_executed();
   s.moves = s.cut ? feed_.steps().ran().moves : interp_->moves_emitted();
   s.commanded = fault_ == CardFault::None ? feed_.steps().position() : fault_commanded_;
-  s.planned_time_s = planner_->planned_time();
+  s.planned_time_s = feed_.planned_time();
+  s.lead = feed_.steps().lead().stats();
+  s.lead_s = feed_.steps().lead().lead_s();
+  s.starved_releases = feed_.starved_releases();
+  s.feeder_realtime = feed_.realtime();
   return s;
 }
 
 void Controller::set_feed_override(double factor) {
   std::lock_guard lock(m_);
   feed_override_ = factor;
-  override_changed_ = true;
+  // On a card that queues words it acts at once (the feeder re-plans and re-ramps what is not
+  // yet generated); in virtual time after the statement running, in order with the moves, so
+  // that a run is the same every time.
+  if (card_.queues_words())
+    feed_.live_override(std::clamp(factor, 0.1, 2.0));
+  else
+    override_changed_ = true;
 }
 
 void Controller::set_single_step(bool on) {
@@ -449,8 +458,12 @@ CanonMove Controller::keypad_move(const JogRequest& j) const {
 void Controller::after_statement() {
   feed_.pause_outputs(outputs_off_on_pause(interp_->settings()));  // VN may change them
   if (override_changed_.exchange(false)) {
-    std::lock_guard lock(m_);
-    planner_->feed_override(feed_override_);
+    double factor = 1;
+    {
+      std::lock_guard lock(m_);
+      factor = feed_override_;
+    }
+    qsink_->feed_override(factor);
   }
   if (!single_step_ || !running_file_) return;
   forward_->sync();
@@ -479,8 +492,8 @@ MotionReport Controller::keypad_session() {
     lock.unlock();
     bool stopped = false;
     try {
-      planner_->move(m);
-      planner_->flush();
+      qsink_->move(m);
+      qsink_->flush();
     } catch (const GantryError&) {  // a stop or E-stop: the file ends
       stopped = true;
     }
@@ -552,10 +565,16 @@ void Controller::job_main() {
       if (quit_) return;
       work.swap(work_);
     }
-    planner_ = std::make_unique<LookAheadPlanner>(interp_->settings(), *qsink_);
     feed_.pause_outputs(outputs_off_on_pause(interp_->settings()));
-    planner_->feed_override(feed_override_);
-    forward_->to = planner_.get();
+    {
+      double factor = 1;
+      {
+        std::lock_guard lock(m_);
+        factor = feed_override_;
+      }
+      qsink_->new_plan(interp_->settings(), factor);  // the planner, on the feeder thread
+    }
+    forward_->to = qsink_;
     if (activity_) activity_(activity(false));  // before any motion
     work();
     qsink_->fence();

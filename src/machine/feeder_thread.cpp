@@ -1,6 +1,16 @@
 // The controller's feeder thread: plays the job's queue on the card and owns the flag protocol.
 #include "gantry/machine/feeder_thread.hpp"
 
+#include <fmt/format.h>  // the note
+#include <pthread.h>
+#include <sched.h>
+#include <sys/mman.h>
+
+#include <cerrno>
+#include <cstdio>   // stderr
+#include <cstring>  // strerror
+#include <mutex>    // once_flag
+
 namespace gantry {
 
 Vec6 steps_to_machine(const Settings& settings, const Steps6& steps) {
@@ -12,38 +22,63 @@ Vec6 steps_to_machine(const Settings& settings, const Steps6& steps) {
 
 // ---- job thread -> feeder ----------------------------------------------------------------
 
-void FeederThread::Sink::segment(const PlannedSegment& s) {
-  push({Item::kSegment, s, nullptr, nullptr});
+namespace {
+
+FeederThread::Item item_of(FeederThread::Item::Kind kind) {
+  FeederThread::Item item;
+  item.kind = kind;
+  return item;
+}
+
+}  // namespace
+
+void FeederThread::Sink::move(const CanonMove& m) {
+  Item item = item_of(Item::kMove);
+  item.move = m;
+  push(std::move(item));
 }
 
 void FeederThread::Sink::flush() {
-  push({Item::kFlush, {}, nullptr, nullptr});
+  push(item_of(Item::kFlush));
 }
 
 void FeederThread::Sink::settings_changed(const Settings& s) {
-  push({Item::kSettings, {}, std::make_shared<const Settings>(s), nullptr});
+  Item item = item_of(Item::kSettings);
+  item.settings = std::make_shared<const Settings>(s);
+  push(std::move(item));
+}
+
+void FeederThread::Sink::new_plan(const Settings& s, double feed_override) {
+  Item item = item_of(Item::kPlanner);
+  item.settings = std::make_shared<const Settings>(s);
+  item.factor = feed_override;
+  push(std::move(item), /*abortable=*/false);
+}
+
+void FeederThread::Sink::feed_override(double factor) {
+  Item item = item_of(Item::kOverride);
+  item.factor = factor;
+  push(std::move(item));
 }
 
 void FeederThread::Sink::watch(std::span<const InputTrigger> t) {
-  push({Item::kWatch,
-        {},
-        nullptr,
-        std::make_shared<const std::vector<InputTrigger>>(t.begin(), t.end())},
-       /*abortable=*/false);  // disarming is pushed as a run winds down
+  Item item = item_of(Item::kWatch);
+  item.triggers = std::make_shared<const std::vector<InputTrigger>>(t.begin(), t.end());
+  push(std::move(item), /*abortable=*/false);  // disarming is pushed as a run winds down
 }
 
 void FeederThread::Sink::fence() {
   dead_ = false;
-  push({Item::kFlush, {}, nullptr, nullptr}, /*abortable=*/false);
+  push(item_of(Item::kFlush), /*abortable=*/false);
 }
 
 void FeederThread::Sink::outputs(std::uint32_t mask) {
   dead_ = false;
   for (int n = 1; n <= 12; ++n) {
-    PlannedSegment seg;
-    seg.output = n;  // one the profile does not wire switches nothing
-    seg.output_on = (mask >> (n - 1) & 1u) != 0;
-    push({Item::kSegment, seg, nullptr, nullptr}, /*abortable=*/false);
+    Item item = item_of(Item::kSegment);
+    item.seg.output = n;  // one the profile does not wire switches nothing
+    item.seg.output_on = (mask >> (n - 1) & 1u) != 0;
+    push(std::move(item), /*abortable=*/false);
   }
   fence();
 }
@@ -82,7 +117,11 @@ FeederThread::FeederThread(const Settings& settings, Card& card, const InputTrip
       steps_((card.start(settings.card.pacer_hz()), settings), card),
       feeder_(steps_),
       queue_(256),
+      planner_(std::make_unique<LookAheadPlanner>(settings, plan_out_)),
       stop_trip_(stops) {
+  steps_.lead().on_grow([](const std::string& note) {  // once per run: the operator's log
+    std::fprintf(stderr, "gantry: %s\n", note.c_str());
+  });
   steps_.on_block([this] {
     publish();  // the readout moves during long segments
     watch_stop_switches();
@@ -90,7 +129,43 @@ FeederThread::FeederThread(const Settings& settings, Card& card, const InputTrip
 }
 
 void FeederThread::start() {
-  thread_ = std::thread([this] { main(); });
+  thread_ = std::thread([this] {
+    if (card_.queues_words()) make_realtime();
+    main();
+  });
+}
+
+// On a card that queues words the feeder must come back within the lead every time: it asks
+// for SCHED_FIFO above the job thread (and below a card's own player thread, 80) and locks
+// the process's memory (pages locked as they are touched: no page fault in the loop). Best
+// effort: without the privilege it runs as it is, and says so once per process.
+void FeederThread::make_realtime() {
+  std::string refused;
+  sched_param param{};
+  param.sched_priority = kFeederPriority;
+  int policy = SCHED_OTHER;
+  sched_param now{};
+  pthread_getschedparam(pthread_self(), &policy, &now);
+  if (policy != SCHED_FIFO || now.sched_priority < kFeederPriority) {
+    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param))
+      refused = fmt::format("SCHED_FIFO refused ({}: grant CAP_SYS_NICE or `ulimit -r {}`)",
+                            std::strerror(err), kFeederPriority);
+  }
+  static std::once_flag locked;
+  std::call_once(locked, [&] {
+    if (mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT) != 0)
+      refused += fmt::format("{}memory not locked ({}: raise `ulimit -l` or grant CAP_IPC_LOCK)",
+                             refused.empty() ? "" : "; ", std::strerror(errno));
+  });
+  realtime_ = refused.empty();
+  static std::once_flag said;
+  if (!refused.empty())
+    std::call_once(said, [&] {
+      std::fprintf(stderr,
+                   "gantry: the feeder thread runs without real-time guarantees: %s; it may "
+                   "underrun under load (docs/hardware.md)\n",
+                   refused.c_str());
+    });
 }
 
 void FeederThread::quit() {
@@ -173,20 +248,46 @@ void FeederThread::main() {
       feeder_.discard();  // the card starts again
     }
     if (feeder_.phase() != last_phase_) on_feeder_event();
+    apply_live_override();
     publish();
+    // The card needs words now and the planner holds what it would send only after more
+    // moves (its look-ahead of up to 1,024, say after SW's warning, with moves still queued
+    // unplanned): the front goes as the plan stands, before the next move is planned.
+    if (const CardLead& lead = steps_.lead();
+        lead.bounded() && !dropping_ && !drop_to_flush_ && !planner_->empty() &&
+        (feeder_.phase() == FeedPhase::Playing || feeder_.phase() == FeedPhase::Slowing) &&
+        lead.queued(steps_.sent()) > 0 && lead.slack(steps_.sent()) <= 0) {
+      try {
+        planner_->release_front();
+        starved_.fetch_add(1, std::memory_order_relaxed);
+        if (input_cut_) finish_input_cut(false);
+      } catch (const GantryError& e) {
+        card_faulted(e, false);
+      }
+      if (feeder_.phase() != last_phase_) on_feeder_event();
+      continue;
+    }
     Item item;
     if (feeder_.phase() == FeedPhase::Held || !queue_.try_pop(item)) {
+      if (feeder_.phase() != FeedPhase::Held && feed_from_plan()) continue;
       wake_.wait(seen, std::memory_order_acquire);
       continue;
     }
+    plan_out_.muted = dropping_ || drop_to_flush_;
     if (dropping_) {
+      // The planner still takes the moves (muted): its state is what the stream made it.
+      if (item.kind == Item::kMove) planner_->move(item.move);
+      if (item.kind == Item::kOverride) planner_->feed_override(item.factor);
+      if (item.kind == Item::kFlush) planner_->flush();
       flushes_dropped_ += item.kind == Item::kFlush;
     } else if (drop_to_flush_ && item.kind != Item::kSettings) {
       // The rest of the statement an input edge cut; what follows its flush plays.
       if (item.kind == Item::kFlush) {
+        planner_->flush();
         ++flushes_dropped_;
         drop_to_flush_ = false;
-      } else if (item.kind == Item::kWatch) {
+      } else if (item.kind == Item::kWatch || item.kind == Item::kMove ||
+                 item.kind == Item::kOverride) {
         feed(item);
       }
     } else {
@@ -197,6 +298,7 @@ void FeederThread::main() {
         card_faulted(e, item.kind == Item::kFlush);
       }
     }
+    plan_out_.muted = false;
     if (feeder_.phase() != last_phase_) on_feeder_event();
     publish();
   }
@@ -224,18 +326,21 @@ void FeederThread::card_faulted(const GantryError& e, bool flush_lost) {
 
 void FeederThread::feed(Item& item) {
   switch (item.kind) {
+    case Item::kMove:
+      planner_->move(item.move);
+      break;
     case Item::kSegment:
       feeder_.segment(item.seg);
       break;
     case Item::kSettings: {
-      feeder_.settings_changed(*item.settings);
+      planner_->settings_changed(*item.settings);  // at rest first, then to the feeder
       const InputRoles roles = input_roles(*item.settings);  // VN: at rest, not real-time
       stop_trip_ = roles.stops;
       events_.roles_changed(roles);
       break;
     }
     case Item::kFlush:
-      feeder_.flush();
+      planner_->flush();  // the plan to rest, then the feeder's flush
       if (feeder_.phase() == FeedPhase::Playing) {  // a real card still plays its queue
         card_.drain();
         steps_.check_card();  // a fault in the last words
@@ -244,7 +349,86 @@ void FeederThread::feed(Item& item) {
     case Item::kWatch:
       arm_watch(item.triggers);
       break;
+    case Item::kPlanner:  // an activity's start: nothing is held (the last one flushed)
+      planner_ = std::make_unique<LookAheadPlanner>(*item.settings, plan_out_);
+      planner_->feed_override(item.factor);
+      break;
+    case Item::kOverride:
+      planner_->feed_override(item.factor);
+      break;
   }
+}
+
+// The queue is empty. Mid-motion on a card that queues words, the feeder waits for the job
+// thread only until the card's queue is down to where the next block is due (the lead less
+// one block); then it plays the planner's front as the plan stands, which brings the path
+// held to rest: a late job thread slows the machine, the card never runs dry mid-motion.
+// With nothing held and the path at rest, it ends the stream there, so that the card may
+// run dry at rest. Returns false when there is nothing to do but wait for a request or an item.
+bool FeederThread::feed_from_plan() {
+  CardLead& lead = steps_.lead();
+  if (!lead.bounded() || dropping_ || drop_to_flush_ || feeder_.phase() == FeedPhase::Halted)
+    return false;
+  const std::int64_t queued = lead.queued(steps_.sent());
+  if (queued <= 0) return false;  // nothing plays
+  if (planner_->empty()) {
+    // At rest with nothing held: the stream ends here (the card may run dry at rest), and
+    // the feeder looks again as the card plays out what it holds.
+    if (!feeder_.at_rest()) return false;
+    try {
+      if (!feeder_.rest_stream()) return false;  // an axis moving on its own (MI): wait
+    } catch (const GantryError& e) {
+      card_faulted(e, false);
+      return true;
+    }
+    lead.sleep_at_most(queued, std::chrono::milliseconds(1));
+    return true;
+  }
+  const std::int64_t slack = lead.slack(steps_.sent());
+  if (slack > 0) {  // the job thread may still come in time
+    const auto t0 = std::chrono::steady_clock::now();
+    lead.sleep_at_most(slack, std::chrono::milliseconds(1));
+    lead.starved_for(std::chrono::steady_clock::now() - t0);
+    return true;
+  }
+  try {
+    planner_->release_front();
+    starved_.fetch_add(1, std::memory_order_relaxed);
+    if (input_cut_) finish_input_cut(false);
+  } catch (const GantryError& e) {
+    card_faulted(e, false);
+  }
+  if (feeder_.phase() != last_phase_) on_feeder_event();
+  publish();
+  return true;
+}
+
+// The operator's override on a card that queues words: the planner re-plans what it holds
+// (and what is queued is planned with it as it comes); the motion feeder re-ramps the segment
+// playing from its next word.
+void FeederThread::live_override(double factor) {
+  live_factor_.store(factor, std::memory_order_release);
+  feeder_.live_override(factor);
+  wake();
+}
+
+void FeederThread::apply_live_override() {
+  const double f = live_factor_.exchange(0, std::memory_order_acq_rel);
+  if (f > 0) planner_->feed_override(f);
+}
+
+// ---- the planner's output ------------------------------------------------------------------
+
+void FeederThread::PlanOut::segment(const PlannedSegment& s) {
+  if (!muted) f_.feeder_.segment(s);
+}
+
+void FeederThread::PlanOut::flush() {
+  if (!muted) f_.feeder_.flush();  // a dropped flush is counted by the loop
+}
+
+void FeederThread::PlanOut::settings_changed(const Settings& s) {
+  if (!f_.dropping_) f_.feeder_.settings_changed(s);  // an input edge's cut keeps them
 }
 
 // ---- input edges (ON INPUT, probes, homing) ------------------------------------------------
@@ -326,6 +510,7 @@ void FeederThread::publish() {
   spindle_rpm_.store(out.spindle_rpm, std::memory_order_relaxed);
   warning_.store(steps_.warning() && feeder_.phase() == FeedPhase::Playing,
                  std::memory_order_relaxed);
+  planned_time_.store(planner_->planned_time(), std::memory_order_relaxed);
   flushes_done_.store(feeder_.flushes_completed() + flushes_dropped_, std::memory_order_release);
   flushes_done_.notify_all();
 }

@@ -103,6 +103,10 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   result.played_steps = machine.status().steps;
   result.fault = s.fault;
   result.planned_time_s = s.planned_time_s;
+  result.lead = s.lead;
+  result.lead_s = s.lead_s;
+  result.starved_releases = s.starved_releases;
+  result.feeder_realtime = s.feeder_realtime;
   return result;
 }
 

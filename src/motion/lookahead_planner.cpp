@@ -108,6 +108,7 @@ void LookAheadPlanner::move(const CanonMove& m) {
   b.v_machine = lim.machine_speed;
   b.accel = lim.accel;
   b.speed_class = m.speed_class;
+  b.resting_channels = m.resting_channels;
   b.loc = m.loc;
   b.count = m.count;
   b.punctuated = punctuated_;
@@ -268,6 +269,16 @@ void LookAheadPlanner::release() {
     emit_front(entry(1));
 }
 
+bool LookAheadPlanner::release_front() {
+  if (held_ || q_.empty()) return false;
+  emit_front(q_.size() > 1 ? entry(1) : 0.0);  // the tail ends at rest
+  if (q_.empty()) {                              // at rest: as after a stop
+    held_length_ = 0;
+    trail_.clear();
+  }
+  return true;
+}
+
 void LookAheadPlanner::backward(double tail_exit) {
   const size_t n = q_.size();
   const size_t first = front_locked_ ? 1 : 0;
@@ -330,6 +341,10 @@ void LookAheadPlanner::emit_front(double exit, double jerk) {
   const double cruise = steady ? steady_speed : b.v_max;
   seg.profile = Trapezoid::plan(b.length, b.entry, cruise, exit, b.accel, jerk);
   seg.speed_class = b.speed_class;
+  seg.resting_channels = b.resting_channels;
+  seg.v_commanded = steady || jerk != settings_.planner.jerk ? 0 : b.v_commanded;
+  seg.v_machine = b.v_machine;
+  seg.planned_override = override_;
   seg.loc = b.loc;
   seg.count = b.count;
   planned_time_ += seg.profile.duration();

@@ -4,36 +4,15 @@
 #include <linux/input-event-codes.h>
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
 
-#include "gantry/core/text.hpp"  // ascii::trim, upper, lower
+#include "gantry/core/text.hpp"              // ascii::trim, upper, lower
+#include "gantry/session/pendant_action.hpp"  // pendant_action_named
 
 namespace gantry::session {
-
-std::optional<PendantEvent> pendant_button_named(std::string_view name) {
-  PendantEvent e;
-  e.kind = PendantEvent::Kind::Button;
-  for (int b = 0; b <= static_cast<int>(PendantButton::Macro); ++b) {
-    const auto button = static_cast<PendantButton>(b);
-    if (button == PendantButton::Macro) continue;
-    if (name == ascii::lower(button_name(button))) {
-      e.button = button;
-      return e;
-    }
-  }
-  // "macro 1" .. "macro 10"
-  if (name.starts_with("macro ")) {
-    const std::string n(name.substr(6));
-    if (n.find_first_not_of("0123456789") == std::string::npos && !n.empty() && n.size() <= 2) {
-      e.button = PendantButton::Macro;
-      e.macro = std::stoi(n);
-      if (e.macro >= 1 && e.macro <= 10) return e;
-    }
-  }
-  return std::nullopt;
-}
 
 namespace {
 
@@ -50,13 +29,6 @@ std::vector<std::string> items(const std::string& text) {
   for (std::string item; std::getline(in, item, ',');)
     if (auto t = std::string(ascii::trim(item)); !t.empty()) out.push_back(t);
   return out;
-}
-
-std::string actions() {
-  std::string s;
-  for (int b = 0; b < static_cast<int>(PendantButton::Macro); ++b)
-    s += fmt::format("\"{}\", ", button_name(static_cast<PendantButton>(b)));
-  return s + "\"macro 1\" to \"macro 10\"";
 }
 
 }  // namespace
@@ -98,26 +70,45 @@ std::optional<GamepadBindings> GamepadBindings::parse(const std::array<std::stri
   }
   if (!buttons.empty()) {
     b.buttons.clear();
+    std::set<int> hats_bound;
     for (const auto& item : items(buttons)) {
       const auto eq = item.find('=');
       const auto name = eq == std::string::npos ? item : std::string(ascii::trim(item.substr(0, eq)));
-      const auto code = button_code(ascii::upper(name));
+      // A button, or a hat's way ("ABS_HAT0X+", a D-pad that reports as a hat) pressed as one.
+      const std::string up = ascii::upper(name);
+      std::optional<int> code = button_code(up);
+      int hat_way = 0;
+      if (!code && up.size() > 1 && (up.back() == '+' || up.back() == '-')) {
+        const auto axis = axis_code(std::string_view(up).substr(0, up.size() - 1));
+        if (axis && *axis >= ABS_HAT0X && *axis <= ABS_HAT3Y) {
+          code = *axis;
+          hat_way = up.back() == '+' ? 1 : -1;
+        }
+      }
       if (!code) {
         *error = fmt::format(
             "pendant.gamepad_buttons: \"{}\" is not a button; write the kernel's name (BTN_SOUTH, "
-            "BTN_EAST, BTN_TL, BTN_START ...) = an action",
+            "BTN_EAST, BTN_TL, BTN_DPAD_UP ..., or a hat's way: ABS_HAT0X+, ABS_HAT0Y-) = an action",
             name);
         return std::nullopt;
       }
       const auto action = eq == std::string::npos ? std::nullopt
-                                                  : pendant_button_named(ascii::lower(ascii::trim(item.substr(eq + 1))));
+                                                  : pendant_action_named(ascii::trim(item.substr(eq + 1)));
       if (!action) {
         *error = fmt::format("pendant.gamepad_buttons: \"{}\" needs an action: one of {}", item,
-                             actions());
+                             pendant_action_names());
         return std::nullopt;
       }
-      b.buttons[*code] = *action;
+      if (hat_way != 0) {
+        b.hats[{*code, hat_way}] = *action;
+        hats_bound.insert(*code);
+      } else {
+        b.buttons[*code] = *action;
+      }
     }
+    // A hat bound as buttons steps (or presses); it no longer jogs as a stick too.
+    for (auto& sticks : b.jog)
+      std::erase_if(sticks, [&](const Stick& s) { return hats_bound.count(s.code) > 0; });
   }
   return b;
 }
@@ -142,14 +133,28 @@ void GamepadPendant::event(const GamepadEvent& e, std::vector<PendantEvent>& out
   switch (e.kind) {
     case GamepadEvent::Kind::Lost:
       sticks_.clear();
+      hat_way_.clear();
+      held_ = -1;
       jog_ = {};
       out.push_back({.kind = PendantEvent::Kind::Lost});
       return;
     case GamepadEvent::Kind::Button:
-      if (const auto it = b_.buttons.find(e.code); it != b_.buttons.end() && e.value > 0)
-        out.push_back(it->second);
+      if (const auto it = b_.buttons.find(e.code); it != b_.buttons.end())
+        press(e.code, e.value > 0, it->second, out);
       return;
     case GamepadEvent::Kind::Axis: {
+      if (const auto h = hat_way_.find(e.code); h != hat_way_.end() ||
+                                                 b_.hats.count({e.code, 1}) + b_.hats.count({e.code, -1}) > 0) {
+        const int way = e.value > 0.5 ? 1 : e.value < -0.5 ? -1 : 0;
+        int& was = hat_way_[e.code];
+        if (way == was) return;
+        if (const auto it = b_.hats.find({e.code, was}); was != 0 && it != b_.hats.end())
+          press(e.code, false, it->second, out);
+        was = way;
+        if (const auto it = b_.hats.find({e.code, way}); way != 0 && it != b_.hats.end())
+          press(e.code, true, it->second, out);
+        return;
+      }
       sticks_[e.code] = e.value;
       const Jog now = chosen();
       if (now.axis == jog_.axis && now.dir == jog_.dir) {
@@ -164,7 +169,25 @@ void GamepadPendant::event(const GamepadEvent& e, std::vector<PendantEvent>& out
   }
 }
 
+void GamepadPendant::press(int code, bool down, const PendantEvent& action,
+                           std::vector<PendantEvent>& out) {
+  const bool continuous = action.kind == PendantEvent::Kind::Wheel && action.step == 0;
+  if (!down) {
+    if (continuous && held_ == code) {
+      held_ = -1;
+      out.push_back({.kind = PendantEvent::Kind::Release});
+    }
+    return;
+  }
+  out.push_back(action);  // a button, a step, or a continuous jog's first report
+  if (continuous) {
+    held_ = code;
+    held_jog_ = action;
+  }
+}
+
 void GamepadPendant::tick(std::vector<PendantEvent>& out) {
+  if (held_ >= 0 && jog_.axis < 0) out.push_back(held_jog_);
   if (jog_.axis < 0) return;
   PendantEvent e;
   e.kind = PendantEvent::Kind::Wheel;

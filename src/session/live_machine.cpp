@@ -6,6 +6,7 @@
 
 #include "gantry/core/text_file.hpp"        // read_text_file, write_file_atomically
 #include "gantry/session/open_card.hpp"     // open_card, plays_in_real_time
+#include "gantry/session/pendant_profile.hpp"  // pendant_profile
 #include "gantry/settings/values_file.hpp"  // values_text
 
 namespace gantry::session {
@@ -71,7 +72,8 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, cons
       {},
       nullptr,
       nullptr,
-      nullptr});
+      nullptr,
+      {}});
   m->card = open_live_card(a, p.settings, &m->card_type);
   if (!m->card) return nullptr;
   m->real_time = plays_in_real_time(m->card_type, a.realtime);
@@ -87,8 +89,12 @@ std::unique_ptr<LiveMachine> LiveMachine::open(const LiveMachineOptions& a, cons
   m->memory->attach(*m->controller, [&live](const Controller::Activity& act) {
     if (live.values.settings().display.part_file_log) live.part_log->activity(act);
   });
+  std::vector<Diagnostic> problems;  // bad key bindings, at their line: told, then left out
+  PendantProfile pp = pendant_profile(p.settings, p.path, &problems);
+  for (const Diagnostic& d : problems) io.warn(d);
+  m->keys = std::move(pp.keys);
   m->pendant = std::make_unique<PendantService>(
-      *m->controller, [&live] { return live.values.settings(); }, PendantBindings{},
+      *m->controller, [&live] { return live.values.settings(); }, std::move(pp.buttons),
       [&io](const std::string& text) { io.warn({SourceLoc{}, Severity::Warning, "pendant: " + text}); },
       pendant::open_libusb_port(nullptr));
   if (const PendantSettings& ps = p.settings.pendant; ps.gamepad != "off") {

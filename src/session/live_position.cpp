@@ -8,6 +8,12 @@ void LivePosition::snapshot(const ModalState& m, const Settings& s) {
   offset_ = m.machine_origin + table_zero_;
   position_ = m.position;
   for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = s.axes[i].steps_per_unit;
+  axes_ = s.axes;
+}
+
+Vec6 LivePosition::wrapped(Vec6 p) const {
+  for (int i = 0; i < kAxisCount; ++i) p[i] = reported_position(axes_[i], p[i]);
+  return p;
 }
 
 Vec6 LivePosition::from_steps(const ControllerStatus& st) const {

@@ -73,7 +73,35 @@ void PendantInput::handle(const PendantEvent& e) {
     }
     case PendantEvent::Kind::Wheel: return wheel(e);
     case PendantEvent::Kind::Button: return button(e);
+    case PendantEvent::Kind::Lead: return lead(e);
   }
+}
+
+// The controller has no live spindle override (TR sets the speed a file's next cuts use, and
+// the spindle's output follows at once only at rest): Lead changes TR by 10 % a detent, at
+// rest only, as Spindle+ and Spindle- do.
+void PendantInput::lead(const PendantEvent& e) {
+  if (e.delta == 0) return;
+  const ControllerStatus st = c_.status();
+  if (!at_rest(st)) {
+    std::lock_guard lock(m_);
+    const Clock::time_point now = now_();
+    if (refused_ == "lead" && now - refused_at_ < std::chrono::seconds(1)) return;
+    refused_ = "lead";
+    refused_at_ = now;
+    return say("Lead: this controller has no live spindle override; the spindle speed changes "
+               "at rest (TR), 10 % a detent");
+  }
+  const double rpm = spindle_speed(st);
+  if (rpm <= 0) return say("Lead: no spindle speed is set (TR)");
+  const double f = std::max(0.1, 1 + 0.1 * e.delta);
+  run_line(fmt::format("TR, {}", std::lround(rpm * f)), "Lead");
+}
+
+// The spindle's speed: as played (the spindle runs), else TR's in force (a profile with no
+// speed output plays none).
+double PendantInput::spindle_speed(const ControllerStatus& st) const {
+  return st.spindle_rpm > 0 ? st.spindle_rpm : c_.modal().spindle_rpm;
 }
 
 void PendantInput::release(const char* why) {
@@ -93,12 +121,14 @@ void PendantInput::wheel(const PendantEvent& e) {
     if (const Verdict v = decide(st.state, Request::Jog); !v.next) refuse(v.refusal);
     return;
   }
-  if (e.step > 0) {  // step mode: the detents queue, each jog waits for the last at rest
+  // A step bound without its size: VD's keypad step.
+  const double step = e.step < 0 ? settings_.display.keypad_step : e.step;
+  if (step > 0) {  // step mode: the detents queue, each jog waits for the last at rest
     if (continuous_) release("step mode");
-    if (!steps_.empty() && steps_.back().axis == e.axis && steps_.back().step == e.step)
+    if (!steps_.empty() && steps_.back().axis == e.axis && steps_.back().step == step)
       steps_.back().detents += e.delta;
     else
-      steps_.push_back({e.axis, e.step, e.delta});
+      steps_.push_back({e.axis, step, e.delta});
     next_step();
     return;
   }
@@ -197,9 +227,10 @@ void PendantInput::button(const PendantEvent& e) {
     }
     case PendantButton::SpindlePlus:
     case PendantButton::SpindleMinus: {
-      if (st.spindle_rpm <= 0) return say(fmt::format("{}: no spindle speed is set (TR)", name));
+      const double rpm = spindle_speed(st);
+      if (rpm <= 0) return say(fmt::format("{}: no spindle speed is set (TR)", name));
       const double f = e.button == PendantButton::SpindlePlus ? 1.1 : 0.9;
-      return run_line(fmt::format("TR, {}", std::lround(st.spindle_rpm * f)), name);
+      return run_line(fmt::format("TR, {}", std::lround(rpm * f)), name);
     }
     case PendantButton::MachineHome: return run_line(bindings_.machine_home, name);
     case PendantButton::SafeZ: return run_line(fmt::format("JZ, {}", settings_.cutter.safe_z), name);

@@ -13,7 +13,8 @@ PendantService::PendantService(Controller& c, std::function<Settings()> settings
       settings_(std::move(settings)),
       tell_(std::move(tell)),
       input_(c, settings_(), std::move(bindings), PendantInput::Clock::now, tell_),
-      usb_(std::move(usb)) {
+      usb_(std::move(usb)),
+      translator_(settings_().pendant.xhc_coordinates == "machine") {
   tick_thread_ = std::thread([this] {
     while (!quit_) {
       input_.tick();
@@ -53,8 +54,10 @@ void PendantService::link(bool connected, const std::string& why) {
 
 pendant::XhcDisplay PendantService::display() {
   const ControllerStatus s = c_.status();
-  if (s.settled) position_.snapshot(c_.modal(), settings_());
-  return xhc_display(s, position_.at(s, s.settled), translator_.step_mode(), translator_.axis());
+  const bool machine = translator_.machine_coordinates();
+  if (s.settled && !machine) position_.snapshot(c_.modal(), settings_());
+  return xhc_display(s, machine ? s.machine : position_.at(s, s.settled), translator_.step_mode(),
+                     translator_.axis(), machine);
 }
 
 }  // namespace gantry::session

@@ -55,6 +55,10 @@ std::vector<PendantEvent> XhcTranslator::events(const pendant::XhcReport& r) {
       step_mode_ = k == XhcKey::Step;
       continue;
     }
+    if (k == XhcKey::Macro10 && !fn) {  // the display's frame: work or machine coordinates
+      machine_ = !machine_;
+      continue;
+    }
     const KeyMeaning m = meaning(k);
     if (!m.button) continue;
     PendantEvent e{.kind = PendantEvent::Kind::Button, .button = *m.button};
@@ -67,8 +71,12 @@ std::vector<PendantEvent> XhcTranslator::events(const pendant::XhcReport& r) {
   }
   held1_ = r.key1;
   held2_ = r.key2;
+  const pendant::FeedKnob knob = pendant::feed_knob(r.feed_knob);
+  if (r.delta != 0 && knob.lead) {  // Lead: the wheel is the spindle's, whatever the axis knob
+    out.push_back({.kind = PendantEvent::Kind::Lead, .delta = r.delta});
+    return out;
+  }
   if (r.delta != 0 && axis_ >= 0) {
-    const pendant::FeedKnob knob = pendant::feed_knob(r.feed_knob);
     PendantEvent e{.kind = PendantEvent::Kind::Wheel, .axis = axis_, .delta = r.delta};
     if (step_mode_) {
       e.step = knob.step;  // 60 %, 100 %, Lead: no step size, no step
@@ -81,13 +89,14 @@ std::vector<PendantEvent> XhcTranslator::events(const pendant::XhcReport& r) {
   return out;
 }
 
-pendant::XhcDisplay xhc_display(const ControllerStatus& s, const Vec6& work, bool step_mode,
-                                int axis) {
+pendant::XhcDisplay xhc_display(const ControllerStatus& s, const Vec6& at, bool step_mode,
+                                int axis, bool machine) {
   pendant::XhcDisplay d;
+  d.work_coordinates = !machine;
   d.mode = step_mode ? pendant::XhcDisplay::Mode::Step : pendant::XhcDisplay::Mode::Continuous;
   d.reset = s.state == MachineState::EStop;
   const int first = axis >= 3 ? 3 : 0;
-  for (int i = 0; i < 3; ++i) d.coordinates[static_cast<std::size_t>(i)] = work[first + i];
+  for (int i = 0; i < 3; ++i) d.coordinates[static_cast<std::size_t>(i)] = at[first + i];
   d.feed = static_cast<std::uint16_t>(std::lround(std::clamp(s.feed_override, 0.0, 6.0) * 100));
   d.spindle = static_cast<std::uint16_t>(std::lround(std::clamp(s.spindle_rpm, 0.0, 65535.0)));
   return d;

@@ -179,6 +179,12 @@ class TableReader {
     return fallback;
   }
 
+  // Whether a key that may be left out is there (asked for either way).
+  bool has(std::string_view key) {
+    seen_.insert(std::string(key));
+    return table_.get(key) != nullptr;
+  }
+
   // A number key that may be left out (nullopt then); within `range` when given.
   std::optional<double> optional_number(std::string_view key, Range range) {
     seen_.insert(std::string(key));
@@ -313,11 +319,13 @@ void read_row(TableReader& t, const SettingRow& row, int i, Settings& s) {
       return;
     case SettingKind::Integer: {
       int& v = *static_cast<int*>(field);
+      if (row.optional && !t.has(key)) return;  // a key added after profiles were written
       v = t.integer(key, static_cast<int>(row.range.lo), static_cast<int>(row.range.hi), v);
       return;
     }
     case SettingKind::Bool: {
       bool& v = *static_cast<bool*>(field);
+      if (row.optional && !t.has(key)) return;
       v = t.boolean(key, v);
       return;
     }
@@ -486,10 +494,24 @@ static void check_consistency(const Settings& s, const std::string& origin,
       for (int i = 0; i < row.size(); ++i)
         if (const double v = row.get(s, i), limit = row.most(s, i); v > limit)
           err(fmt::format("{} = {} exceeds the axis max_speed {}", row.path(i), v, limit));
-  std::array<int, kAxisCount> channels = s.drivers.channel_axis;
-  std::sort(channels.begin(), channels.end());
-  if (channels != std::array<int, kAxisCount>{0, 1, 2, 3, 4, 5})
-    err("drivers.channels must name each axis once (one driver channel per axis)");
+  // A slaved axis (docs/hardware.md) takes a second channel from an axis not in use.
+  std::array<int, kAxisCount> channels_of{};
+  for (int axis : s.drivers.channel_axis) ++channels_of[axis];
+  for (int i = 0; i < kAxisCount; ++i) {
+    const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');
+    if (channels_of[i] > 2)
+      err(fmt::format("drivers.channels names {} {} times: an axis has one driver channel, or two "
+                      "(a slaved axis)",
+                      L, channels_of[i]));
+    else if (channels_of[i] == 0 && i < s.display.axes)
+      err(fmt::format("drivers.channels names no driver channel for {}, an axis in use "
+                      "(display.axes = {})",
+                      L, s.display.axes));
+    if (s.homing.square_input[i] != 0 && channels_of[i] != 2)
+      err(fmt::format("homing.{}.square_input needs {} on two driver channels (drivers.channels), "
+                      "a slaved axis",
+                      kAxisLetters[i], L));
+  }
 }
 
 std::vector<std::string> settings_problems(const Settings& s) {

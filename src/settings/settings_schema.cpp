@@ -65,6 +65,11 @@ std::string gamepad_rule(std::string_view device) {
                      device);
 }
 
+std::string coordinates_rule(std::string_view frame) {
+  if (frame == "work" || frame == "machine") return "";
+  return fmt::format("must be \"work\" or \"machine\", not \"{}\"", frame);
+}
+
 std::string channels_text(const Settings& s) {
   std::string channels;
   for (int axis : s.drivers.channel_axis) channels += "XYZABC"[axis];
@@ -151,6 +156,12 @@ const SettingRow kRows[] = {
            "soft limit: no move may take the axis below it; below `max`"),
   AXIS_NUM("axes.<x..c>", "max", axes[i].max, kAny, Axis,
            "soft limit: no move may take the axis above it"),
+  AXIS_NUM("axes.<x..c>", "backlash", axes[i].backlash, (SettingRange{0, 1000}), Axis,
+           "backlash compensation: the drive's slack, taken up by extra motor steps at each reversal of the axis, at its corner jump speed; the position reported does not count them (docs/hardware.md, \"Backlash\"). Left out: 0, none",
+           .optional = true, .owner = SettingOwner::MachineKey),
+  AXIS_NUM("axes.<x..c>", "wrap", axes[i].wrap, (SettingRange{0, 1e6}), Axis,
+           "a rotary axis's position is reported modulo this (360: degrees in [0, 360)) in the readouts and the run report; moves and part files keep the whole position. Left out: 0, not wrapped",
+           .optional = true, .owner = SettingOwner::MachineKey),
 
   GROUP("speeds.move", speeds.move,
         "move (cutting) speeds, as VS/MS set them; XY is the vector speed; at most the axis max_speed",
@@ -294,9 +305,9 @@ const SettingRow kRows[] = {
    .help = "VN output switch modes 1-12, SB3's", .count = 12},
 
   {.section = "drivers", .key = "channels", .kind = SettingKind::Coded,
-   .help = "VI the axis each driver channel 1-6 drives (`\"XYZABC\"`)", .encode = channels_text,
+   .help = "VI the axis each driver channel 1-6 drives (`\"XYZABC\"`); an axis on two channels is slaved: both motors step together (`\"XYZAYC\"`: Y on channels 2 and 5; docs/hardware.md, \"Slaved axes\")", .encode = channels_text,
    .decode = channels_read, .rule = "must name six axes, one per driver channel, such as \"XYZABC\"",
-   .docs_allowed = "six axis letters, each once"},
+   .docs_allowed = "six axis letters; each axis in use once or twice"},
 
   NUM("calibration", "circle_resolution", calibration.circle_resolution, (SettingRange{0, 1e3, true}), Length,
       "VU arc segment length (a length)"),
@@ -337,8 +348,26 @@ const SettingRow kRows[] = {
    .docs_allowed = "`ABS_*` names, `none`"},
   {.section = "pendant", .key = "gamepad_buttons", .kind = SettingKind::Text,
    .field = GANTRY_FIELD(std::string, pendant.gamepad_buttons),
-   .help = "the gamepad's buttons: `\"BTN_SOUTH = start/pause, BTN_NORTH = macro 1\"` (the pendant's buttons: reset, stop, start/pause, feed +, feed -, spindle +, spindle -, machine home, safe Z, work home, spindle on/off, probe Z, macro 1 to 10); left out: A start/pause, B stop, the shoulders feed - and +, Select reset",
+   .help = "the gamepad's buttons, and a hat's ways as buttons (`ABS_HAT0X+`): `\"BTN_SOUTH = start/pause, BTN_NORTH = macro 1, ABS_HAT0X+ = step x+ 0.01\"` (the pendant's actions: reset, stop, start/pause, feed +, feed -, spindle +, spindle -, machine home, safe Z, work home, spindle on/off, probe Z, macro 1 to 10, `jog x+` while held, `step x+` an exact step); left out: A start/pause, B stop, the shoulders feed - and +, Select reset",
    .optional = true, .optional_table = true, .docs_allowed = "`BTN_* = action, ...`"},
+  {.section = "pendant", .key = "keys", .kind = SettingKind::Texts,
+   .field = GANTRY_FIELD(std::vector<std::string>, pendant.keys),
+   .help = "keys of the console and the window bound to the pendant's actions, one a string: `[\"F5 = start/pause\", \"Ctrl+Right = jog x+\", \"F8 = step z- 0.01\"]` (the actions: the pendant's buttons, `macro 1` to `macro 10`, `jog x+` continuous, `step x+` one step); a bound key does only that; a name not known is an error at its line and that key is left unbound (docs/console.md, \"Keys as a pendant\")",
+   .optional = true, .optional_table = true, .omit_empty = true,
+   .docs_allowed = "`\"KEY = action\"` strings; left out: none"},
+#define PENDANT_MACRO(n)                                                                         \
+  {.section = "pendant", .key = "macro_" #n, .kind = SettingKind::Text,                          \
+   .field = GANTRY_FIELD(std::string, pendant.macros[n - 1]),                                  \
+   .help = "what the pendant's macro " #n " runs, at rest only: a line (`\"C3\"`, `\"MZ, 1\"`) or a part file's path (`\"~/jobs/corner.sbp\"`, from the profile's folder when relative); left out: macro " #n " is unbound and says so", \
+   .optional = true, .optional_table = true, .omit_empty = true, .docs_allowed = "a line or a part file"}
+  PENDANT_MACRO(1), PENDANT_MACRO(2), PENDANT_MACRO(3), PENDANT_MACRO(4), PENDANT_MACRO(5),
+  PENDANT_MACRO(6), PENDANT_MACRO(7), PENDANT_MACRO(8), PENDANT_MACRO(9), PENDANT_MACRO(10),
+#undef PENDANT_MACRO
+  {.section = "pendant", .key = "xhc_coordinates", .kind = SettingKind::Text,
+   .field = GANTRY_FIELD(std::string, pendant.xhc_coordinates),
+   .help = "what the XHC pendant's display shows at start: `\"work\"` coordinates (X1, Y1, Z1 on its screen) or `\"machine\"` ones; its Macro-10 key switches between them",
+   .optional = true, .optional_table = true, .check = coordinates_rule,
+   .docs_allowed = "`\"work\"`, `\"machine\"`"},
 
   INT("outputs", "charge_pump_bit", outputs.charge_pump_bit, -1, 31, "a square wave while pulses flow (-1: none)", .owner = SettingOwner::MachineTable),
   NUM("outputs", "charge_pump_hz", outputs.charge_pump_hz, kPositive, None, "its frequency", .owner = SettingOwner::MachineTable),
@@ -382,6 +411,19 @@ const SettingRow kRows[] = {
    .choice_set = [](Settings& s, int i, int v) { s.homing.direction[i] = v ? 1 : -1; }},
   AXIS_NUM("homing.<x..c>", "at", homing.at[i], kAny, Axis,
            "the table base location where the switch closes"),
+  AXIS_INT("homing.<x..c>", "square_input", homing.square_input[i], 0, 12,
+           "a slaved axis (two driver channels): the input switch its second motor's home switch closes; C3 then squares the gantry, each motor stopping on its own switch (docs/hardware.md, \"Slaved axes\"). Left out or 0: the motors home as one",
+           .optional = true),
+  AXIS_NUM("homing.<x..c>", "square_offset", homing.square_offset[i], kAny, Axis,
+           "a squared axis: how far the second motor then moves on its own, towards its switch, to square the gantry (WinCNC's g28altmove; a length). Left out: 0",
+           .optional = true),
+
+  BOOL("limits", "travel_only", limits.travel_only,
+       "a limit switch stops the machine only while its axis travels towards it (WinCNC's lim_mode 1); false: any limit switch that closes stops it. The simulated card only, for now (docs/hardware.md, \"Limit modes\"); the `[limits]` table is optional",
+       .optional = true, .optional_table = true),
+  INT("limits", "debounce", limits.debounce, 1, 30,
+      "a limit switch stops the machine once its input has read active this many words (pacer ticks) in a row, so a shorter spike does not (WinCNC's lim_cnt, at most 30). The simulated card only, for now. Left out: 1",
+      .optional = true, .optional_table = true),
 
   {.section = "simulator", .key = "home_<x..c>", .kind = SettingKind::OptionalNumber,
    .field = GANTRY_FIELD(std::optional<double>, simulator.home[i]), .range = kAny, .unit = SettingUnit::Axis,

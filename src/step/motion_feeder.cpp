@@ -72,7 +72,53 @@ void MotionFeeder::segment(const PlannedSegment& s) {
     return play(c);
   }
   catching_up_ &= s.profile.length == 0;  // a dwell or an output changes nothing
+  const double live = live_factor_.load(std::memory_order_acquire);
+  if (live > 0 && s.planned_override != live && s.v_commanded > 0) {
+    PlannedSegment r = s;  // planned before the operator's change: re-ramped to it
+    r.planned_override = live;
+    if (reramp(r, s.profile.v_entry)) return;
+  }
   play(s);
+}
+
+void MotionFeeder::live_override(double factor) {
+  live_factor_.store(factor, std::memory_order_release);
+  override_at_.store(0, std::memory_order_release);
+}
+
+bool MotionFeeder::rest_stream() {
+  if (phase() != FeedPhase::Playing || carry_ > 0 || steps_.independent_moving()) return false;
+  steps_.flush();
+  return true;
+}
+
+// From speed v at the start of `s` (whose planned profile leaves at its exit, the next
+// segment's entry) towards the live override's cruise: up at once when it is above v; down
+// at the segment's acceleration first when below, then on at that speed. Linear ramps only
+// (an S-curve cut mid-ramp would restart its jerk): with a jerk limit it plays as planned.
+bool MotionFeeder::reramp(const PlannedSegment& s, double v) {
+  const Trapezoid& p = s.profile;
+  const double live = live_factor_.load(std::memory_order_acquire);
+  if (live <= 0 || s.v_commanded <= 0 || p.length <= 0 || p.jerk > 0) return false;
+  const double cruise = std::min(s.v_commanded * live, s.v_machine);
+  const double exit = p.v_exit;
+  PlannedSegment r = s;
+  r.planned_override = live;
+  const double target = std::max(cruise, exit);  // never below the next segment's entry
+  if (v <= target + 1e-12) {
+    r.profile = Trapezoid::plan(p.length, v, std::max(target, v), exit, p.accel, 0);
+    play(r);
+    return true;
+  }
+  const double d = ramp_distance(v, target, p.accel, 0);
+  if (d > p.length || ramp_distance(target, exit, p.accel, 0) > p.length - d + 1e-12) return false;
+  PlannedSegment down = piece(r, 0, d);
+  down.profile = Trapezoid::plan(d, v, v, target, p.accel, 0);
+  PlannedSegment on = piece(r, d, p.length);
+  on.profile = Trapezoid::plan(p.length - d, target, target, exit, p.accel, 0);
+  play(down);
+  segment(on);  // the first may have been cut by a hold or a halt
+  return true;
 }
 
 void MotionFeeder::play(const PlannedSegment& s) {
@@ -80,16 +126,37 @@ void MotionFeeder::play(const PlannedSegment& s) {
     if (!s.independent) steps_.start_independent(*parked_);  // a new one replaces it
     parked_.reset();
   }
-  // While slowing, only a halt can cut.
+  // While slowing, only a halt can cut; while playing a hold, or the live override.
   const bool playing = phase() == FeedPhase::Playing;
-  const std::optional<double> cut =
-      steps_.segment_until(s, {&halt_at_, playing ? &hold_at_ : nullptr});
+  const bool rerampable = playing && s.v_commanded > 0 && s.profile.length > 0 &&
+                          s.profile.jerk <= 0;  // override_at_ is kNever until one comes
+  const std::optional<double> cut = steps_.segment_until(
+      s, {&halt_at_, playing ? &hold_at_ : nullptr, rerampable ? &override_at_ : nullptr});
   if (!cut) {
     carry_ = s.profile.v_exit;
     return;
   }
+  if (halt_at_.load(std::memory_order_acquire) <= steps_.tick()) {
+    rest_loc_ = s.loc;
+    return halt_now();
+  }
+  if (hold_at_.load(std::memory_order_acquire) > steps_.tick()) {  // the live override
+    override_at_ = steps_.kNever;
+    const Trapezoid& p = s.profile;
+    const double at = p.distance_at(*cut);
+    carry_ = p.speed_at(*cut);
+    if (at >= p.length) {
+      carry_ = p.v_exit;
+      return;
+    }
+    PlannedSegment rest = piece(s, at, p.length);
+    rest.planned_override = live_factor_.load(std::memory_order_acquire);
+    rest.profile = Trapezoid::plan(rest.profile.length, carry_, std::max(p.v_cruise, carry_),
+                                   p.v_exit, p.accel, 0);  // as planned, if not re-ramped
+    if (!reramp(rest, carry_)) play(rest);
+    return;
+  }
   rest_loc_ = s.loc;
-  if (halt_at_.load(std::memory_order_acquire) <= steps_.tick()) return halt_now();
   hold_at_ = steps_.kNever;
   hold_tick_.store(steps_.tick(), std::memory_order_release);
   const Trapezoid& p = s.profile;

@@ -101,6 +101,7 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
     emit_levels();
     return std::nullopt;
   }
+  writer_.rest_channels(seg.resting_channels);  // squaring a slaved axis (docs/hardware.md)
   const std::int64_t end = placement_.place(seg, t0, writer_.cursor(), writer_.pulse_end());
   // The events in tick order; a stop tick cuts them: each axis is left as its last played
   // event left it.
@@ -199,7 +200,7 @@ void StepGenerator::restart() {
 
 void StepGenerator::play(const StepEvent& e) {
   writer_.apply(e);
-  if (!e.is_dir) log_.record(e.tick, e.axis, e.positive ? 1 : -1);
+  if (!e.is_dir && !e.takeup) log_.record(e.tick, e.axis, e.positive ? 1 : -1);
   placement_.applied(e);
 }
 

@@ -13,7 +13,7 @@
 namespace gantry {
 
 StepPlacement::StepPlacement(const Settings& settings, const StepTiming& timing)
-    : timing_(timing) {
+    : timing_(timing), backlash_(settings) {
   for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = settings.axes[i].steps_per_unit;
   positive_.fill(true);
   last_step_.fill(std::numeric_limits<std::int64_t>::min() / 2);
@@ -21,6 +21,7 @@ StepPlacement::StepPlacement(const Settings& settings, const StepTiming& timing)
 
 void StepPlacement::settings_changed(const Settings& s) {
   for (int i = 0; i < kAxisCount; ++i) steps_per_unit_[i] = s.axes[i].steps_per_unit;
+  backlash_.configure(s);
 }
 
 std::int64_t StepPlacement::place(const PlannedSegment& seg, std::int64_t t0,
@@ -46,10 +47,16 @@ std::int64_t StepPlacement::place(const PlannedSegment& seg, std::int64_t t0,
     const double x0 = seg.from[i] * steps_per_unit_[i], x1 = seg.to[i] * steps_per_unit_[i];
     const double sign = positive ? 1.0 : -1.0;
     std::int64_t last = last_step_[i];
-    for (std::int64_t k = 1; k <= n; ++k) {
+    // At a reversal the motor first turns through the slack (backlash.hpp): `takeup` more
+    // steps, before the load's, that count for nothing.
+    const std::int64_t takeup = backlash_.takeup(i, positive);
+    for (std::int64_t k = 1; k <= n + takeup; ++k) {
       const double crossing = static_cast<double>(position_[i]) + sign * (k - 0.5);
       const double f = x1 == x0 ? 0.0 : std::clamp((crossing - x0) / (x1 - x0), 0.0, 1.0);
-      std::int64_t tick = t0 + std::llround(p.time_at(f * p.length) / timing_.tick_s);
+      const double at = takeup == 0 ? p.time_at(f * p.length)
+                                    : Backlash::motor_step_time(p, x0, x1, position_[i], positive,
+                                                                takeup, backlash_.speed(i), k);
+      std::int64_t tick = t0 + std::llround(at / timing_.tick_s);
       tick = std::max(tick, last + timing_.min_period_ticks);
       if (k == 1 && positive != positive_[i]) {
         // The new direction level goes out once the last pulse is over and no earlier than
@@ -59,7 +66,7 @@ std::int64_t StepPlacement::place(const PlannedSegment& seg, std::int64_t t0,
         events_.push_back({dir_tick, i, true, positive});
         tick = std::max(tick, dir_tick + timing_.dir_setup_ticks);
       }
-      events_.push_back({tick, i, false, positive});
+      events_.push_back({tick, i, false, positive, k <= takeup});
       last = tick;
     }
     last_step_[i] = last;
@@ -114,16 +121,19 @@ std::optional<StepEvent> StepPlacement::independent_event(
 
 void StepPlacement::independent_applied(const StepEvent& e) {
   applied(e);
-  if (e.is_dir)
+  if (e.is_dir) {
     independent_dir_tick_ = e.tick;
-  else
+  } else {
     independent_->taken();
+    backlash_.turned(e.axis, e.positive);  // MI takes no slack; its direction is the slack's side
+  }
 }
 
 void StepPlacement::restart(const Steps6& played) {
   position_ = played;
   last_step_.fill(std::numeric_limits<std::int64_t>::min() / 2);
   positive_.fill(true);  // the levels card.stop() left (as at construction)
+  backlash_.forget();    // takeup steps may have been lost with the words not played
 }
 
 }  // namespace gantry

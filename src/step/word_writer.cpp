@@ -31,20 +31,28 @@ WordWriter::WordWriter(const Settings& settings, const StepTiming& timing, Card&
     max_rpm_ = settings.spindle.max_rpm;
   }
   aux_bits_ = settings.outputs.aux_bits;
+  for (int k = 0; k < kAxisCount; ++k) channel_steps_[k] = 1u << settings.pins[k].step_bit;
+}
+
+void WordWriter::rest_channels(unsigned channels) {
+  resting_steps_ = 0;
+  for (int k = 0; k < kAxisCount; ++k)
+    if (channels >> k & 1u) resting_steps_ |= channel_steps_[k];
 }
 
 // At rest: the channel pins change, the levels of the lines that stay are kept.
 void WordWriter::settings_changed(const Settings& s,
                                   const std::array<bool, kAxisCount>& positive) {
   std::uint32_t old_lines = 0;
-  for (const AxisPins& a : pins_.axes) old_lines |= a.step_mask | a.dir_mask;
+  for (const AxisPins& a : pins_.axes) old_lines |= a.steps | a.dirs;
   pins_ = PinMap::from(s.pins, s.drivers.channel_axis);
+  for (int k = 0; k < kAxisCount; ++k) channel_steps_[k] = 1u << s.pins[k].step_bit;
   card_.calibration_changed(s);
   roles_ = input_roles(s);
   set_card_trips();
   level_word_ &= ~old_lines;
   for (int i = 0; i < kAxisCount; ++i) {
-    if (pins_.axes[i].step_active_low) level_word_ |= pins_.axes[i].step_mask;
+    level_word_ |= pins_.axes[i].steps_idle_high;
     level_word_ |= pins_.dir_bits(i, positive[i]);
   }
 }

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -91,6 +92,23 @@ TEST(ConsoleKeys, ControlKeysTextAndUtf8) {
   EXPECT_TRUE(keys[1].is_char(' '));
   EXPECT_EQ(keys[8].text, "\xc3\xa9");  // é, whole although split across reads
   EXPECT_TRUE(keys[9].is_char('!'));
+}
+
+// The function keys as xterm, the Linux console and tmux send them, and every key's name as the
+// profile's [pendant] keys write it.
+TEST(ConsoleKeys, FunctionKeysAndKeyNamesForThePendantBindings) {
+  const std::vector<Key> keys =
+      decode({"\x1bOP\x1b[15~\x1b[24~\x1b[1;2Q\x1b[17;5~\x1b[2~\x07" "a+\x1b[1;5C \x03"});
+  ASSERT_EQ(keys.size(), 12u);
+  std::vector<std::string> names;
+  for (const Key& k : keys) names.push_back(key_name(k));
+  EXPECT_EQ(names, (std::vector<std::string>{"F1", "F5", "F12", "Shift+F2", "Ctrl+F6", "Insert",
+                                             "Ctrl+G", "a", "+", "Ctrl+Right", "Space", "Ctrl+C"}))
+      << names.size();
+  EXPECT_EQ(keys[11].code, KeyCode::Interrupt);  // still the E-stop key, which no binding takes
+  EXPECT_EQ(key_name(decode({"\t"})[0]), "Tab");
+  EXPECT_EQ(key_name(decode({"\x01"})[0]), "Ctrl+A");  // Home to the line editor
+  EXPECT_EQ(decode({"\x01"})[0].code, KeyCode::Home);
 }
 
 // ---- editing, history, completion ------------------------------------------------------------
@@ -599,6 +617,33 @@ TEST(ConsoleTerminal, KeypadStepModeMovesExactlyOneStepPerPress) {
   const std::vector<std::string> s = t.screen();
   ASSERT_GE(s.size(), 2u);
   EXPECT_EQ(s[s.size() - 2], readout("idle", {2, 2.9, -0.1, 0, 0, 0})) << t.text();
+}
+
+// The profile's [pendant] keys at the terminal: F5 a step of 0.25 in X, Ctrl+G the feed + button;
+// a bad binding is told at its line and the others work; keys left unbound keep their meaning.
+TEST(ConsoleTerminal, KeysBoundInThePendantSectionActAsThePendantsButtons) {
+  REQUIRE_TMUX();
+  std::ifstream in(std::string(GANTRY_SOURCE_DIR) + "/settings/default.toml");
+  std::stringstream profile;
+  profile << in.rdbuf();
+  std::string text = profile.str();
+  if (text.back() != '\n') text += '\n';
+  const auto line = std::count(text.begin(), text.end(), '\n') + 3;  // the bad item's line
+  text += "[pendant]\nkeys = [\"F5 = step x+ 0.25\",\n  \"F99 = stop\", \"Ctrl+G = feed +\"]\n";
+  TmuxConsole t("--card sim --profile profile.toml", "console", {{"profile.toml", text}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  EXPECT_NE(t.text().find(fmt::format("profile.toml:{}", line)), std::string::npos) << t.text();
+  EXPECT_NE(t.text().find("\"F99\" is not a key"), std::string::npos) << t.text();
+  t.keys("F5");
+  t.keys("C-g");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the step plays, then:
+  t.line("status");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {0.25, 0, 0, 0, 0, 0}))) << t.text();
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("feed 110 %") != std::string::npos; }))
+      << t.text();
+  t.line("MY, 1");  // typing works as before
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {0.25, 1, 0, 0, 0, 0}))) << t.text();
 }
 
 TEST(ConsoleTerminal, SkInAFileOpensTheKeypadAndEscGoesOnFromWhereTheToolIs) {

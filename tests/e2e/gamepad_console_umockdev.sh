@@ -4,9 +4,12 @@
 # GamepadUmockdev.Console): a profile that turns the gamepad on finds it, the left stick
 # pushed right for 0.4 s jogs X+ in real time, and let go the jog ends (the tool comes to
 # rest): X between 0.5 and 6 in (the jog speed is 6 in/s, with its ramps).
-# Usage: gamepad_console_umockdev.sh GANTRY PROFILE
+# With a third argument "quiet" it sends no status, only quit: the piped console follows the
+# activity between its lines and prints the readout where the gamepad's jog left the tool
+# (ctest GamepadUmockdev.PipedConsoleFollowsTheJog).
+# Usage: gamepad_console_umockdev.sh GANTRY PROFILE [quiet]
 set -euo pipefail
-gantry="$1" profile="$2"
+gantry="$1" profile="$2" quiet="${3:-}"
 [[ -n "${UMOCKDEV_DIR:-}" ]] || { echo "run under umockdev-run" >&2; exit 1; }
 work="$(mktemp -d)"
 trap 'exec 3>&- 2>/dev/null || true; kill "$pid" 2>/dev/null || true; rm -rf "$work"' EXIT
@@ -24,7 +27,7 @@ for _ in $(seq 200); do
 done
 grep -qF "ready to jog" "$work/out" || fail "the gamepad was not found within 10 s"
 sleep 2  # the stick is pushed at 0.3 s and let go at 0.7 s; the jog then slows to rest
-echo status >&3
+if [[ "$quiet" != quiet ]]; then echo status >&3; fi
 echo quit >&3
 exec 3>&-
 wait "$pid" || fail "the console ended with an error"

@@ -1095,12 +1095,14 @@ TEST(BadInput, HugeWaitsAreRefusedBeforeAnythingMoves) {
   }
 }
 
-// --realtime: a producer that falls behind while the tool moves underruns the card, and the
-// report says how late it was (issue 22: the simulated card moved its clock forward instead;
-// 2,749 late blocks, the worst 56 ms, ran as "done"). The file starves the card on purpose:
-// a loop with no motion while the moves the planner released play out under a moving tool
-// (a profile with a short look-ahead, so some are released). An ordinary file under load
-// runs "done" or reports its underrun the same way, never a silent clock shift.
+// --realtime: an underrun is reported with how late the producer was, never hidden by a
+// clock shift (issue 22: the simulated card moved its clock forward instead; 2,749 late
+// blocks, the worst 56 ms, ran as "done"). The first file starves the card on purpose: a loop
+// with no motion while the moves the planner released play out under a moving tool (a
+// profile with a short look-ahead, so some are released). Since issue 26 the feeder holds the
+// planner and releases the tail of the path to rest when the job thread is late, so that file
+// runs "done" (the tool slows to rest and goes on after the loop). An ordinary file under load
+// runs "done" or reports its underrun with its lateness, never a silent clock shift.
 TEST(Realtime, ALateProducerIsAReportedUnderrunNeverASilentClockShift) {
   std::stringstream profile;
   profile << std::ifstream(fs::path(GANTRY_SOURCE_DIR) / "settings/default.toml").rdbuf();
@@ -1124,7 +1126,7 @@ TEST(Realtime, ALateProducerIsAReportedUnderrunNeverASilentClockShift) {
         "run '{}' --realtime --budget 0 --settings '{}' --values '{}.values.toml' --json", file,
         settings.string(), settings.string()));
     const json j = json::parse(r.out);
-    if (file == starve || j["fault"] == "underrun") {
+    if (j["fault"] == "underrun") {  // under load: reported, with its lateness
       EXPECT_EQ(r.exit_code, 1) << file;
       EXPECT_EQ(j["status"], "error") << r.out;
       EXPECT_EQ(j["fault"], "underrun") << r.out;

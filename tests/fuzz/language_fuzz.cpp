@@ -1,6 +1,7 @@
 // libFuzzer target: any bytes as a part file, through the parser, the expression evaluator
 // and a dry-run interpreter. Must never crash, hang or trip a sanitizer. Every line the fast
-// simple-command reader accepts must read exactly as the general parser reads it.
+// readers (simple commands, common statements) accept must read exactly as the general
+// parser reads it.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>   // the mismatch, before aborting
@@ -17,7 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const gantry::Settings settings = gantry::default_settings();
   std::string text(reinterpret_cast<const char*>(data), size);
   auto script = gantry::Script::from_text(std::move(text), "/nonexistent/fuzz.sbp");
-  gantry::Statement fast;  // reused line after line, as the interpreter does
+  gantry::Statement fast, common;  // reused line after line, as the interpreter does
   for (gantry::Cursor c = script->start(); !script->at_end(c);) {
     gantry::Cursor next;
     const std::string line(script->line_at(c, &next));
@@ -26,6 +27,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           fast, gantry::parse_line(line, script->name(), c.line));
       if (!why.empty()) {
         std::fprintf(stderr, "simple command read differently: %s\n  line: %s\n", why.c_str(),
+                     line.c_str());
+        std::abort();
+      }
+    }
+    if (gantry::parse_common_statement(line, script->name(), c.line, &common)) {
+      const std::string why = gantry::testing::common_statement_mismatch(
+          common, gantry::parse_line(line, script->name(), c.line));
+      if (!why.empty()) {
+        std::fprintf(stderr, "common statement read differently: %s\n  line: %s\n", why.c_str(),
                      line.c_str());
         std::abort();
       }

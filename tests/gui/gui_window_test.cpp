@@ -487,6 +487,25 @@ TEST_F(GuiWindow, InContinuousModeATapIsOneStepAndAHoldJogsUntilLetGo) {
     EXPECT_EQ(l.get<std::string>().find("refused"), std::string::npos) << l;
 }
 
+// The profile's [pendant] keys in the window: F5 a step of 0.25 in X, Ctrl+G the feed + button
+// (the same binding table as the terminal console's).
+TEST_F(GuiWindow, KeysBoundInThePendantSectionActAsThePendantsButtons) {
+  std::ifstream in(std::string(GANTRY_SOURCE_DIR) + "/settings/default.toml");
+  std::stringstream profile;
+  profile << in.rdbuf();
+  write("profile.toml", profile.str() +
+                            "\n[pendant]\nkeys = [\"F5 = step x+ 0.25\", \"Ctrl+G = feed +\"]\n");
+  ASSERT_EQ(gui("wait idle\nkey F5\nwait frames 2\nwait idle\nkey ctrl+G\nwait frames 3\n"
+                "dump s.json\n",
+                "--profile profile.toml"),
+            0)
+      << out_;
+  const json s = state("s.json");
+  EXPECT_NEAR(s["position"][0].get<double>(), 0.25, 1e-12) << s.dump();
+  EXPECT_EQ(s["position"][1], 0);
+  EXPECT_DOUBLE_EQ(s["feed_override"].get<double>(), 1.1) << s.dump();
+}
+
 TEST_F(GuiWindow, PauseInputAndMsgboxAreDialogs) {
   write("ask.sbp",
         "INPUT \"How far\" &D\nMX, &D\nPAUSE\nMSGBOX(Go on?, YesNo, Check)\n"

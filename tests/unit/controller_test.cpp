@@ -190,7 +190,13 @@ TEST(Controller, AfterAStopOrEStopTheSummaryCountsWhatReachedTheCard) {
 // with no motion; the card's queue runs dry while words are due. A real card underruns
 // there, and so does the simulated one, saying how late the producer was (issue 22: it moved
 // its clock forward, and the run was "done").
-TEST(Controller, InRealTimeALateProducerIsAnUnderrunFaultWithItsLateness) {
+// Issue 26: a late job thread (here a loop with no motion right after moves, as a file that
+// computes, or one about to ask a question) left the card dry mid-motion: the planner held
+// the tail of the path (its stopping distance) until the job thread came back, and the card
+// underran. Now the feeder holds the planner (grbl's invariant: what it holds ends at rest),
+// and when the card needs words and no move has come it releases the held tail as planned:
+// the tool slows to rest along the path, the stream ends there, and the file goes on.
+TEST(Controller, InRealTimeALateJobThreadSlowsTheToolToRestInsteadOfAnUnderrun) {
   Settings settings = default_settings();
   settings.planner.lookahead = 4;  // some of the moves are released before the loop
   SimCard card{settings, true};
@@ -199,22 +205,19 @@ TEST(Controller, InRealTimeALateProducerIsAnUnderrunFaultWithItsLateness) {
   Controller c{settings, card, io, store};
   std::string text = "MS, 2\n";
   // The planner holds the last 11 (its stopping distance) and releases 4, which play in
-  // 0.1 s; the loop's 10 M statements take far longer (1.4 s on the 2-core CI machine).
+  // 0.1 s; the loop's 5 M statements take far longer (1.4 s on the 2-core CI machine).
   for (int k = 1; k <= 15; ++k) text += "MX, " + std::to_string(0.05 * k) + "\n";
   text += "&i = 0\nL:\n&i = &i + 1\nIF &i < 5000000 THEN GOTO L\nMX, 3\n";
   ASSERT_TRUE(c.run(Script::from_text(text, "part.sbp")));
   c.wait();
   const Controller::Summary s = c.summary();
-  EXPECT_EQ(s.fault, CardFault::Underrun);
-  EXPECT_TRUE(s.cut);
-  ASSERT_TRUE(s.error.has_value());
-  EXPECT_NE(s.error->message.find("underrun (the producer was "), std::string::npos)
-      << s.error->message;
-  const std::size_t late = s.error->message.find("was ");
-  ASSERT_NE(late, std::string::npos);
-  EXPECT_GT(std::stod(s.error->message.substr(late + 4)), 0) << s.error->message;  // ms
-  EXPECT_LT(card.steps()[0], std::llround(0.75 * settings.axes[0].steps_per_unit));
-  EXPECT_EQ(s.moves, s.lines - 1);  // MS, then the moves that reached the card: not the loop
+  EXPECT_EQ(s.fault, CardFault::None) << (s.error ? s.error->message : "");
+  EXPECT_FALSE(s.cut);
+  EXPECT_FALSE(s.error.has_value()) << s.error->message;
+  EXPECT_GT(s.starved_releases, 0u) << "the held tail went to the card while the loop ran";
+  EXPECT_EQ(card.steps()[0], std::llround(3 * settings.axes[0].steps_per_unit));
+  EXPECT_EQ(card.timing_violations(), 0u);
+  EXPECT_EQ(card.kinematics().violations(), 0u) << "the slow-down is within the axes' limits";
 }
 
 // A card fault's message said where the tool was by the card's own count: after a zero (or

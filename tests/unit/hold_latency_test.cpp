@@ -118,10 +118,10 @@ std::vector<std::uint32_t> reference_words(const Settings& s, double length) {
 }
 
 // Generates on its own thread while `step_clock(card, written)` moves the card's virtual
-// clock on (over words already written only); requests the pause at `pause_at` played ticks.
-template <class StepClock>
-HoldRun run_with_pause(const Settings& s, Card& inner, double length, std::uint64_t pause_at,
-                   StepClock step_clock) {
+// clock on (over words already written only); calls `request(feeder)` at `at` played ticks.
+template <class StepClock, class Request>
+HoldRun run_with_request(const Settings& s, Card& inner, double length, std::uint64_t at,
+                         StepClock step_clock, Request request) {
   RecordingCard card(&inner);
   card.start(s.card.pacer_hz());
   HoldRun r;
@@ -138,9 +138,9 @@ HoldRun run_with_pause(const Settings& s, Card& inner, double length, std::uint6
   });
   const auto give_up = std::chrono::steady_clock::now() + 60s;
   while (!done && std::chrono::steady_clock::now() < give_up) {
-    if (r.request_tick < 0 && card.ticks_played() >= pause_at) {
+    if (r.request_tick < 0 && card.ticks_played() >= at) {
       r.request_tick = static_cast<std::int64_t>(card.ticks_played());
-      feeder.request_hold(0, /*pause=*/true);
+      request(feeder);
     }
     if (!step_clock(card.written())) std::this_thread::sleep_for(100us);
   }
@@ -148,6 +148,30 @@ HoldRun run_with_pause(const Settings& s, Card& inner, double length, std::uint6
   r.hold_tick = feeder.hold_tick();
   r.words = card.words();
   return r;
+}
+
+template <class StepClock>
+HoldRun run_with_pause(const Settings& s, Card& inner, double length, std::uint64_t pause_at,
+                       StepClock step_clock) {
+  return run_with_request(s, inner, length, pause_at, step_clock, [](MotionFeeder& f) {
+    f.request_hold(0, /*pause=*/true);
+  });
+}
+
+// The ticks of X's steps (bit 0 rising) in `words`.
+std::vector<std::int64_t> x_steps(const std::vector<std::uint32_t>& words) {
+  std::vector<std::int64_t> at;
+  for (std::size_t k = 1; k < words.size(); ++k)
+    if ((words[k] & 1u) && !(words[k - 1] & 1u)) at.push_back(static_cast<std::int64_t>(k));
+  return at;
+}
+
+// The mean step period (ticks) over the steps from tick `from` on, `n` steps.
+double mean_period(const std::vector<std::int64_t>& steps, std::int64_t from, std::size_t n) {
+  const auto first = std::lower_bound(steps.begin(), steps.end(), from);
+  if (static_cast<std::size_t>(steps.end() - first) <= n) return 0;
+  return static_cast<double>(*(first + static_cast<std::ptrdiff_t>(n)) - *first) /
+         static_cast<double>(n);
 }
 
 // The words before the hold are the plan's; the hold changes them from its tick on, within
@@ -233,6 +257,54 @@ TEST(HoldLatency, APauseOnTheFakeGpioCardSlowsWithinTheLeadPlusOneBlock) {
   EXPECT_EQ(r.block, 100);
   const std::vector<std::uint32_t> ref = reference_words(s, length);
   expect_hold_in_words(r, ref);
+}
+
+// Issue 25 item 5 / 26: the operator's feed override acted on the planner only, so the
+// segment playing (and the feeder's queue) kept its speed and a change reached a real card
+// late. Now the feeder re-ramps what it has not generated: the words change within the lead
+// plus one block of the tick the card had played at the change, and the step rate becomes the
+// new one (asserted in the card's ticks and words).
+TEST(OverrideReach, AFeedOverrideOnTheEmulatedPci7200ChangesTheStepRateWithinTheLead) {
+  const Settings s = default_settings();  // 200 kHz
+  std::string error;
+  std::optional<pci7200::Pci7200Options> options =
+      pci7200_options_for(s, Pci7200OpenOptions{}, &error);
+  ASSERT_TRUE(options) << error;
+  options->estop = options->limits = InputTrip{};
+  pci7200::EmulatedPci7200Config config;
+  config.stepped = true;
+  auto emu = std::make_shared<pci7200::EmulatedPci7200>(config);
+  pci7200::Pci7200Card card(emu, *options);
+  const double length = 2.0;  // 1 s at 2 in/s
+  const HoldRun r = run_with_request(
+      s, card, length, 60'000,
+      [&](std::uint64_t written) {
+        const std::uint64_t played = emu->played_count();
+        if (written < played + 64) return false;
+        emu->advance(std::min<std::uint64_t>(written - played - 32, 400));
+        return true;
+      },
+      [](MotionFeeder& f) { f.live_override(0.5); });
+  emu->advance(64);
+  EXPECT_EQ(card.fault(), CardFault::None);
+  const std::vector<std::uint32_t> ref = reference_words(s, length);
+  ASSERT_GE(r.request_tick, 0);
+  const auto first_diff = static_cast<std::int64_t>(
+      std::mismatch(r.words.begin(), r.words.end(), ref.begin(), ref.end()).first -
+      r.words.begin());
+  std::printf("override reach: %lld ticks (lead %lld, block %lld)\n",
+              static_cast<long long>(first_diff - r.request_tick),
+              static_cast<long long>(r.lead_ticks), static_cast<long long>(r.block));
+  EXPECT_GE(first_diff, r.request_tick) << "the words before the change are the plan's";
+  EXPECT_LE(first_diff - r.request_tick, r.lead_ticks + r.block);
+  // Half the speed: the step period doubles once the ramp down (2 to 1 in/s) is over.
+  const std::vector<std::int64_t> now = x_steps(r.words), before = x_steps(ref);
+  const double cruise_before = mean_period(before, first_diff, 200);
+  const double cruise_after = mean_period(now, first_diff + 40'000, 200);
+  ASSERT_GT(cruise_before, 0);
+  EXPECT_NEAR(cruise_after / cruise_before, 2.0, 0.05);
+  EXPECT_GT(r.words.size(), ref.size());
+  EXPECT_EQ(now.size(), before.size()) << "every step is still played";
 }
 
 }  // namespace

@@ -61,6 +61,9 @@ struct CanonMove {
   bool output_on = false;
   double spindle_rpm = 0;         // SpindleSpeed: the RPM TR asked for
   IndependentMotion independent;  // Independent: what the axis does from here on
+  // Driver channels (bit k: channel k + 1) whose motors rest through this move while their
+  // axis moves on its other channel: squaring a slaved axis at homing (docs/hardware.md).
+  unsigned resting_channels = 0;
   SourceLoc loc;                  // the statement that asked for it
   RunCount count;                 // set by the interpreter as it issues the move
 };

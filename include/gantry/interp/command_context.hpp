@@ -128,6 +128,10 @@ class CommandContext {
   // Homing: the tool's table base location on `axis` becomes `table_base`; working 0 keeps
   // its place on the table.
   void home_axis(int axis, double table_base);
+  // Squaring a slaved axis at homing: the driver channels (bit k: channel k + 1) whose
+  // motors rest through the moves that follow while their axis moves on its other channel;
+  // 0: every channel steps again. Set and cleared at rest (HomingChannels does both).
+  void rest_channels(unsigned channels) { resting_channels_ = channels; }
   // Homing's moves: straight, at `speed`, without the soft-limit check (the table base is
   // not known yet).
   void homing_line(const Vec6& target, double speed, const SourceLoc& loc);
@@ -272,6 +276,7 @@ class CommandContext {
   bool file_tabs_ = false;
   bool own_tabs_ = false;
   bool independent_resting_ = false;   // the machine came to rest under MI: restart it
+  unsigned resting_channels_ = 0;      // rest_channels()
   bool warned_ = false;                // this run's first motion was warned of
   bool checking_ = false;              // a check: a refused move still changes the location
   bool switch4_auto_ = false;          // ... and switch 4 came on with the warning

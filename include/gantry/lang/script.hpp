@@ -102,6 +102,12 @@ class Script {
   // cache, so the body of a loop or subroutine is parsed once rather than on every pass,
   // while memory stays bounded.
   std::shared_ptr<const LineParse> parse(Cursor c, Cursor* next) const;
+  // The line at `c` (its `text` and `next` as line_at gave them) read by
+  // parse_common_statement into `out`, without a LineParse: true when it is one of those
+  // shapes and not in the parse cache (false: take it from parse()). A line read so twice
+  // while its cache slot holds nothing else (a loop's) is put in the cache as parse() would,
+  // so a loop's lines are still parsed once.
+  bool read_common(Cursor c, std::string_view text, Cursor next, Statement* out) const;
 
   // The file `path` that this script's job calls (FP, C#, a custom cut), loaded by `load`
   // the first time and kept: a check and the run after it read one loaded file, so the
@@ -135,8 +141,10 @@ class Script {
     size_t offset = 0;
     Cursor next;  // the line after it: a hit reads no text
     std::shared_ptr<const LineParse> parse;
+    bool seen = false;  // `offset` was read by read_common once, and not kept
   };
   mutable std::vector<CachedParse> cache_;  // kCacheSlots entries once the first line is parsed
+  CachedParse& cache_slot(size_t offset) const;
   std::unordered_map<std::string, Cursor> labels_;
   std::unordered_map<size_t, OwordLink> oword_links_;
   std::unordered_map<std::string, Cursor> gcode_subs_, gcode_programs_;

@@ -139,10 +139,19 @@ class Controller : private FeederEvents {
     bool cut = false;
     Steps6 commanded{};         // steps the generator emitted
     double planned_time_s = 0;  // the planner's sum of segment durations
+    // How the feeder kept up with a card that queues words (bench/soak.sh): the lead's
+    // figures (it may have grown), the blocks released because no move came in time, and
+    // whether the feeder thread had SCHED_FIFO and locked memory.
+    LeadStats lead;
+    double lead_s = 0;
+    std::uint64_t starved_releases = 0;
+    bool feeder_realtime = false;
   };
   Summary summary() const;
-  // The speeds' factor (0.1-2). While a file runs it reaches the moves not planned yet (the
-  // planner re-plans what it holds; what is queued for the card keeps its speed).
+  // The speeds' factor (0.1-2). On a card that queues words (a real one, the simulator with
+  // --realtime) it acts at once: the moves queued and the planner's held blocks re-plan, and
+  // the segment playing re-ramps from the next word not yet generated, so the step rate
+  // changes within the lead. In virtual time it reaches the moves after the statement running.
   void set_feed_override(double factor);
   // Single step: after each statement of a file (its motion played out) the file holds
   // (Paused) until resume runs the next one; stop ends it there. For the runs that follow
@@ -197,9 +206,8 @@ class Controller : private FeederEvents {
   FeederThread feed_;
 
   // Job side.
-  FeederThread::Sink* qsink_;  // the feeder's queue
+  FeederThread::Sink* qsink_;  // the feeder's queue (its planner's moves)
   std::unique_ptr<ForwardSink> forward_;
-  std::unique_ptr<LookAheadPlanner> planner_;
   std::unique_ptr<Interpreter> interp_;
   std::optional<Vec6> jog_target_;  // the jog's commanded end (machine frame)
   // SK: the file waits on the job thread, which plays the operator's jogs (pending_jog_)

@@ -16,6 +16,7 @@
 #include "gantry/core/spsc_queue.hpp"      // SpscQueue
 #include "gantry/hal/card.hpp"             // Card
 #include "gantry/hal/input_roles.hpp"      // InputRoles, InputTrip
+#include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
 #include "gantry/step/motion_feeder.hpp"   // MotionFeeder
 #include "gantry/step/step_generator.hpp"  // StepGenerator
 
@@ -93,24 +94,40 @@ class FeederEvents {
 //     wrote before (interrupted_, fired_, latched_, the phase) visible to the job.
 //   fired_, latched_ (plain): the trigger an input edge fired and where the tool was; written
 //     on the feeder thread, read by the job only after wait_for_motion() (the feeder idle).
+//
+// The look-ahead planner runs on the feeder thread (as grbl plans next to its stepper): the
+// queue carries the interpreter's canonical moves, not planned segments, so the feeder holds
+// the tail of the path that the plan brings to rest. When the card needs words and no move
+// has come (the job thread is late: descheduled, computing, about to ask a question), the
+// feeder releases the planner's front block as the plan stands (LookAheadPlanner::
+// release_front), and the machine slows towards rest along the path instead of the card
+// running dry mid-motion. A card that plays words as written (the simulator in virtual time)
+// never needs that: there the plan is the same, segment for segment, as the planner's on the
+// job thread was.
 class FeederThread {
  public:
   struct Item {
-    enum Kind { kSegment, kSettings, kFlush, kWatch } kind = kSegment;
-    PlannedSegment seg;
-    std::shared_ptr<const Settings> settings;
+    enum Kind { kMove, kSegment, kSettings, kFlush, kWatch, kPlanner, kOverride } kind = kMove;
+    CanonMove move;      // kMove: to the planner
+    PlannedSegment seg;  // kSegment: past the planner (outputs after a stop)
+    std::shared_ptr<const Settings> settings;                    // kSettings, kPlanner
     std::shared_ptr<const std::vector<InputTrigger>> triggers;  // kWatch
+    double factor = 1;                                           // kOverride, kPlanner
   };
 
-  // Job thread -> feeder: pushes planned segments, waiting while the queue is full. Once the
-  // activity is aborted (stop, E-stop, fault) the next push throws, which unwinds the
-  // interpreter; later pushes are dropped (the run's own clean-up flushes).
-  class Sink : public SegmentSink {
+  // Job thread -> feeder: pushes canonical moves for the feeder's planner, waiting while the
+  // queue is full. Once the activity is aborted (stop, E-stop, fault) the next push throws,
+  // which unwinds the interpreter; later pushes are dropped (the run's own clean-up flushes).
+  class Sink : public MotionSink {
    public:
     explicit Sink(FeederThread& f) : f_(f) {}
-    void segment(const PlannedSegment& s) override;
+    void move(const CanonMove& m) override;
     void flush() override;
     void settings_changed(const Settings& s) override;
+    // An activity's start: a new plan with these values and feed override (nothing held).
+    void new_plan(const Settings& s, double feed_override);
+    // The feed override for the moves that follow in the stream (virtual time: in order).
+    void feed_override(double factor);
     void watch(std::span<const InputTrigger> t);
     // The activity's last item, pushed whatever happened: once it is done the queue is empty.
     void fence();
@@ -143,6 +160,10 @@ class FeederThread {
   void request_acknowledge() { cmd_acknowledge_ = true; }
   void wake();  // after any request: the feeder looks again
   void pause_outputs(std::uint32_t mask) { feeder_.pause_outputs(mask); }
+  // The operator's feed override on a card that queues words: at once, out of the queue's
+  // order (the moves queued and the planner's held blocks re-plan, and the segment playing
+  // re-ramps from the next word not generated: MotionFeeder::live_override).
+  void live_override(double factor);
 
   // ---- the activity (job thread, and callers under the mutex) ----
   void abort() { abort_ = true; }
@@ -180,10 +201,20 @@ class FeederThread {
   }
   StepGenerator& steps() { return steps_; }
   const StepGenerator& steps() const { return steps_; }
+  // The planner's sum of segment durations for the activity (read once it has ended).
+  double planned_time() const { return planned_time_.load(std::memory_order_relaxed); }
+  // Whether the feeder thread got SCHED_FIFO and locked memory (a card that queues words).
+  bool realtime() const { return realtime_.load(); }
+  static constexpr int kFeederPriority = 70;  // above the job thread, below a card's player
+  // Blocks the feeder released from the planner because no move had come in time.
+  std::uint64_t starved_releases() const { return starved_.load(std::memory_order_relaxed); }
 
  private:
   void main();
+  void make_realtime();  // SCHED_FIFO and locked memory, where allowed
   void feed(Item& item);
+  bool feed_from_plan();  // the queue is empty: see the .cpp
+  void apply_live_override();
   void card_faulted(const GantryError& e, bool flush_lost);
   void publish();          // position and phase for status()
   void on_feeder_event();  // a hold or halt took effect
@@ -201,6 +232,26 @@ class FeederThread {
   MotionFeeder feeder_;
   SpscQueue<Item> queue_;
   Sink sink_{*this};
+  // The planner's output: to the motion feeder, or nowhere while a stop or an input edge's
+  // cut drops the rest of what was queued (the planner still takes every move, so that its
+  // state is what the stream made it, as before).
+  class PlanOut : public SegmentSink {
+   public:
+    explicit PlanOut(FeederThread& f) : f_(f) {}
+    void segment(const PlannedSegment& s) override;
+    void flush() override;
+    void settings_changed(const Settings& s) override;
+    bool muted = false;
+
+   private:
+    FeederThread& f_;
+  };
+  PlanOut plan_out_{*this};
+  std::unique_ptr<LookAheadPlanner> planner_;  // feeder thread only
+  std::atomic<double> planned_time_{0};
+  std::atomic<std::uint64_t> starved_{0};
+  std::atomic<double> live_factor_{0};  // 0: none pending
+  std::atomic<bool> realtime_{false};
 
   // Requests in.
   std::atomic<unsigned> wake_{0};

@@ -18,6 +18,7 @@
 #include "gantry/interp/program_check.hpp"     // JobOptions, check_program
 #include "gantry/lang/script.hpp"              // Script
 #include "gantry/settings/settings.hpp"        // Settings
+#include "gantry/step/card_lead.hpp"             // LeadStats
 
 namespace gantry {
 
@@ -64,6 +65,11 @@ struct JobResult {
   Steps6 played_steps{};              // steps the card played: where the tool is
   CardFault fault = CardFault::None;  // why the card stopped by itself, if it did
   double planned_time_s = 0;          // the planner's sum of segment durations
+  // A card that queues words: how the feeder kept up (Controller::Summary's).
+  LeadStats lead;
+  double lead_s = 0;
+  std::uint64_t starved_releases = 0;
+  bool feeder_realtime = false;
   double estimated_time_s = 0;        // the cycle time the check predicted before the run
   Settings settings;                  // as the run left them (the values it changed)
   bool ok() const { return errors.empty(); }

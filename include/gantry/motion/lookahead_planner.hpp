@@ -32,6 +32,14 @@ class LookAheadPlanner : public MotionSink {
   void feedhold();
   void resume();
   bool holding() const { return held_; }
+  // The card needs words and no move has come (the job thread is late): sends the front
+  // block as the plan stands, the blocks held after it ending at rest. Every block released
+  // is planned so that what follows it can stop, so what the feeder holds always ends at
+  // rest (grbl's invariant): a late job thread slows the machine down, and never leaves the
+  // card dry mid-motion. False when nothing is held (or in a feed hold).
+  bool release_front();
+  bool empty() const { return q_.empty(); }
+  double override_factor() const { return override_; }
 
   double planned_time() const { return planned_time_; }  // sum of segment durations, s
   size_t most_held() const { return most_held_; }        // the largest look-ahead used
@@ -56,6 +64,7 @@ class LookAheadPlanner : public MotionSink {
     double back = -1;         // entry bound from the backward pass (< 0: not yet planned)
     double entry = 0;         // planned entry speed (forward pass)
     SpeedClass speed_class = SpeedClass::Move;
+    unsigned resting_channels = 0;
     SourceLoc loc;
     RunCount count;
   };

@@ -21,6 +21,12 @@ struct PlannedSegment {
   // not running); the planned path leaves that axis alone while it runs.
   std::optional<IndependentMotion> independent;
   SpeedClass speed_class = SpeedClass::Move;
+  unsigned resting_channels = 0;  // its move's (CanonMove::resting_channels)
+  // The planner's speeds along the path: the file's (before the feed override) and the axes'
+  // limit, and the override it was planned with. A live override change re-ramps what is not
+  // yet generated from them (MotionFeeder); 0: not to be re-ramped (a dwell, SB3's steady
+  // short move).
+  double v_commanded = 0, v_machine = 0, planned_override = 1;
   SourceLoc loc;
   RunCount count;  // its move's (CanonMove::count)
 };

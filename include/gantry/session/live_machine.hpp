@@ -16,6 +16,7 @@
 #include "gantry/session/machine_memory.hpp"      // MachineMemory
 #include "gantry/session/machine_profile.hpp"     // MachineProfile
 #include "gantry/session/gamepad_service.hpp"     // GamepadService
+#include "gantry/session/key_bindings.hpp"        // KeyBindings
 #include "gantry/session/pendant_service.hpp"     // PendantService
 #include "gantry/session/run_log.hpp"             // RunLogger
 
@@ -83,6 +84,7 @@ struct LiveMachine {
   // The pendants (the XHC USB pendant, whenever plugged in): both front ends get them.
   std::unique_ptr<PendantService> pendant;
   std::unique_ptr<GamepadService> gamepad;  // the profile's [pendant] gamepad, into `pendant`
+  KeyBindings keys;  // the profile's [pendant] keys: the front ends' keys into `pendant`
 
   ~LiveMachine();  // the pendants, the controller, then the state saved at exit
 

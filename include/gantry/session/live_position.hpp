@@ -18,7 +18,11 @@ class LivePosition {
   // While moving: the played steps in the units and frame of the last snapshot.
   Vec6 from_steps(const ControllerStatus& st) const;
   // `rest`: the front end knows the machine is at rest, so the snapshot's position is exact.
-  Vec6 at(const ControllerStatus& st, bool rest) const { return rest ? position_ : from_steps(st); }
+  // As reported: a rotary axis with axes.<axis>.wrap modulo it.
+  Vec6 at(const ControllerStatus& st, bool rest) const {
+    return wrapped(rest ? position_ : from_steps(st));
+  }
+  Vec6 wrapped(Vec6 p) const;
 
   const Vec6& exact() const { return position_; }              // at the last snapshot
   Vec6 table_base() const { return position_ + table_zero_; }  // ... in table base coordinates
@@ -28,6 +32,7 @@ class LivePosition {
   Vec6 position_ = Vec6::Zero();    // the interpreter's exact position
   Vec6 table_zero_ = Vec6::Zero();  // where working 0 is in table base coordinates
   std::array<double, kAxisCount> steps_per_unit_{};
+  std::array<AxisSettings, kAxisCount> axes_{};  // their wrap
 };
 
 // A coordinate as shown: no "-0.0000".

@@ -31,10 +31,12 @@ struct PendantEvent {
     Button,  // pressed
     Lost,    // unplugged, or its stream stopped: a jog it started stops at once
     Release,  // a continuous jog's key or stick let go: the jog ends at once
+    Lead,     // the XHC wheel with the feed knob at Lead: `delta` detents of the spindle speed
   };
   Kind kind = Kind::Wheel;
   // Wheel: the axis (0-5), the detents (signed), and the mode: step > 0 moves that length a
-  // detent; step 0 jogs continuously at `percent` of the jog speed while reports come.
+  // detent (a negative step: VD's keypad step); step 0 jogs continuously at `percent` of the
+  // jog speed while reports come.
   int axis = 0;
   int delta = 0;
   double step = 0;

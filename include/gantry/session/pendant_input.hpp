@@ -51,9 +51,11 @@ class PendantInput {
   };
   void wheel(const PendantEvent& e);
   void button(const PendantEvent& e);
+  void lead(const PendantEvent& e);
   void release(const char* why);  // under m_
   void next_step();               // under m_
   bool at_rest(const ControllerStatus& s) const;
+  double spindle_speed(const ControllerStatus& s) const;
   void run_line(const std::string& line, std::string_view what);
   void say(const std::string& text);
   void refuse(std::string_view why);  // under m_

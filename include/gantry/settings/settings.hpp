@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>  // fmod
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,7 +31,17 @@ struct AxisSettings {
   double max_speed = 1;       // hardware speed limit, units/s
   double max_accel = 1;       // hardware acceleration limit, units/s^2
   double min = 0, max = 0;    // soft limits (table envelope), units
+  double backlash = 0;        // slack taken up at each reversal, units (docs/hardware.md)
+  double wrap = 0;            // the position is reported modulo this (a rotary axis: 360); 0: not
 };
+
+// The position of an axis as reported (readouts, run reports): modulo its `wrap` when set,
+// in [0, wrap).
+inline double reported_position(const AxisSettings& a, double v) {
+  if (a.wrap <= 0) return v;
+  const double r = std::fmod(v, a.wrap);
+  return r < 0 ? r + a.wrap : r;
+}
 
 struct SpeedSettings {  // VS: the operator's move and jog speeds
   GroupSpeeds move, jog;
@@ -110,6 +121,19 @@ struct HomingSettings {
   double back_off = 0.25;
   std::array<int, kAxisCount> direction{-1, -1, 1, -1, -1, -1};  // towards the switch
   std::array<double, kAxisCount> at{};                           // table base at the switch
+  // A slaved axis (two driver channels, docs/hardware.md): the input switch (1-12) its second
+  // motor's home switch closes; C3 then squares the gantry. 0: none, both motors home as one.
+  std::array<int, kAxisCount> square_input{};
+  // How far the second motor then moves on its own past where its switch closed (WinCNC's
+  // g28altmove): the squaring correction. Units.
+  std::array<double, kAxisCount> square_offset{};
+};
+
+// [limits]: how a limit switch stops the machine (WinCNC's lim_mode, lim_cnt, lim_step).
+struct LimitSettings {
+  bool travel_only = false;  // only a switch on the side the axis travels to stops it
+  int debounce = 1;          // words in a row a limit input must read active to count
+  int cushion_steps = 0;     // steps of deceleration after a hit, instead of a dead stop
 };
 
 // The simulated card's machine (card.type "sim"; docs/hardware.md): where its proximity
@@ -224,12 +248,16 @@ struct FilesSettings {
   std::vector<std::string> allow;  // folders, absolute or ~/...
 };
 
-// [pendant]: a gamepad used as a pendant (the XHC USB pendant needs no setting: it is found
-// when plugged in). docs/hardware.md, "A gamepad as a pendant".
+// [pendant]: a gamepad used as a pendant, keys bound to the pendant's actions, the macros'
+// lines and the XHC display's frame (the XHC USB pendant itself needs no setting: it is found
+// when plugged in). docs/hardware.md, "A gamepad as a pendant"; docs/console.md, "Pendant".
 struct PendantSettings {
   std::string gamepad = "off";               // "off", "auto" (the first found) or a device path
   std::array<std::string, kAxisCount> gamepad_jog{};  // per axis: the sticks, "-ABS_Y, -ABS_HAT0Y"; "": usual
   std::string gamepad_buttons;               // "BTN_SOUTH = start/pause, ..."; "": the usual ones
+  std::vector<std::string> keys;             // "F5 = start/pause", "Ctrl+Right = jog x+", ...
+  std::array<std::string, 10> macros{};      // macro_1..macro_10: a line ("C3") or a part file
+  std::string xhc_coordinates = "work";      // the XHC display at start: "work" or "machine"
 };
 
 struct Settings {
@@ -258,6 +286,7 @@ struct Settings {
   SpindleSettings spindle;
   InputSettings inputs;
   HomingSettings homing;
+  LimitSettings limits;
   SimulatorSettings simulator;
   CutterSettings cutter;
   TabSettings tabs;

@@ -2,10 +2,12 @@
 // generated ahead of the card's clock, so that a hold begins within it (issue 26).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <string>
 
 #include "gantry/hal/card.hpp"  // Card
 
@@ -25,6 +27,12 @@ struct LeadStats {
   std::int64_t worst_late_ticks = 0;
   // The least the card still held when a block reached it (0 or less: it ran dry).
   std::int64_t least_queue_ticks = std::numeric_limits<std::int64_t>::max();
+  // Where the worst lateness came from (wall clock, s): the feeder's last sleep ending later
+  // than asked (the kernel woke it late: descheduled), waiting for the job thread's moves
+  // (the queue empty), and the rest (generating the block, writing it, preempted meanwhile).
+  double worst_woke_late_s = 0, worst_starved_s = 0, worst_work_s = 0;
+  double most_woke_late_s = 0;  // the latest wake-up of any of the lead's sleeps
+  std::uint64_t grown = 0;      // times the lead grew (the feeder's lateness ate into it)
 };
 
 // A card that plays words as they are written (Card::queues_words() false: the simulator in
@@ -33,6 +41,12 @@ struct LeadStats {
 // after each block the generator sleeps until the card's clock is within lead - block of the
 // words sent. The lead is never below the card's start threshold plus one block, or the
 // card would wait for words the generator holds back.
+//
+// The lead adapts: when a block reaches the card later than half the margin the lead leaves
+// (lead less one block), the lead grows to twice that lateness plus the block (at least by
+// half), up to 200 ms (or the lead as set, if longer), and `on_grow` is told (once: the controller logs it). A
+// longer lead rides out the stalls this computer has; a hold then begins within the longer
+// lead. It never shrinks within a run.
 class CardLead {
  public:
   CardLead(const Settings& settings, const Card& card, std::size_t block_words);
@@ -50,6 +64,20 @@ class CardLead {
   void after_block(std::int64_t sent, const std::function<void()>& poll);
   // A stream came to rest (a flush): the next block starts a new one.
   void rest() { steady_ = false; }
+  // Told the first time the lead grows, with what happened (for the log).
+  void on_grow(std::function<void(const std::string&)> f) { on_grow_ = std::move(f); }
+  // Time the feeder waited for the job thread's moves since the last block (the breakdown).
+  void starved_for(std::chrono::steady_clock::duration d) { starved_ += d; }
+  // Ticks the card holds of the words sent up to `sent` (0 or less: none, or not playing).
+  std::int64_t queued(std::int64_t sent) const;
+  // Ticks until the card's queue is down to where the next block is due (lead less one
+  // block): 0 or less, due now.
+  std::int64_t slack(std::int64_t sent) const { return queued(sent) - refill_ticks(); }
+  std::int64_t refill_ticks() const {
+    return lead_ticks_ - static_cast<std::int64_t>(block_words_);
+  }
+  // Sleeps for `ticks` of the card's clock, at most `most` (and at least the shortest sleep).
+  void sleep_at_most(std::int64_t ticks, std::chrono::microseconds most) const;
 
   const LeadStats& stats() const { return stats_; }
   double tick_s() const { return tick_s_; }
@@ -59,8 +87,13 @@ class CardLead {
   double tick_s_;
   std::size_t block_words_;
   std::int64_t lead_ticks_ = 0;
+  std::int64_t cap_ticks_ = 0;  // the most it grows to
   bool steady_ = false;  // the last block waited: the queue was full
   LeadStats stats_;
+  std::function<void(const std::string&)> on_grow_;
+  // The breakdown of the next block's lateness: since the lead last let the generator go.
+  std::chrono::steady_clock::time_point resumed_{};
+  std::chrono::steady_clock::duration starved_{}, woke_late_{};
 };
 
 }  // namespace gantry

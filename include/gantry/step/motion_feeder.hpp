@@ -65,6 +65,17 @@ class MotionFeeder : public SegmentSink {
   std::uint64_t flushes_completed() const { return flushes_; }
   // The source line of the segment where the hold or halt came to rest.
   const SourceLoc& rest_loc() const { return rest_loc_; }
+  // The path is at rest (the last segment played ended at rest). Feeder thread.
+  bool at_rest() const { return carry_ <= 0; }
+  // Playing at rest with no axis moving on its own: the words so far go to the card and the
+  // stream ends there (the card may run dry at rest). False when that cannot be done now.
+  bool rest_stream();
+  // The operator's feed override changed to `factor` (any thread): the segment playing
+  // re-ramps to it from the next word not generated, and so does every segment planned with
+  // another factor, until the planner's own come (they carry the factor they were planned
+  // with). The change is within the axes' limits: from the speed at the cut, towards the new
+  // cruise at the segment's acceleration, leaving at the planned exit speed.
+  void live_override(double factor);
   // The tick of the first word of the last hold's ramp down (the first word that differs
   // from the plan), or -1 before any: what the hold-latency bench and tests measure. Any thread.
   std::int64_t hold_tick() const { return hold_tick_.load(std::memory_order_acquire); }
@@ -76,6 +87,9 @@ class MotionFeeder : public SegmentSink {
     std::shared_ptr<const gantry::Settings> settings;
   };
   void play(const PlannedSegment& s);  // as given, until a hold or halt cuts it
+  // `s` from speed `v` at its start towards the live override's cruise; false when it cannot
+  // (then it plays as planned).
+  bool reramp(const PlannedSegment& s, double v);
   void slow(const PlannedSegment& s);  // slowing from carry_
   void hold_here(const PlannedSegment& rest);
   void settle();                                     // at rest: held
@@ -85,6 +99,9 @@ class MotionFeeder : public SegmentSink {
   StepGenerator& steps_;
   std::atomic<FeedPhase> phase_{FeedPhase::Playing};
   std::atomic<std::int64_t> hold_at_{StepGenerator::kNever}, halt_at_{StepGenerator::kNever};
+  // The live override: its factor (0: none set) and the tick from which it re-ramps.
+  std::atomic<double> live_factor_{0};
+  std::atomic<std::int64_t> override_at_{StepGenerator::kNever};
   double carry_ = 0;          // the speed the last segment played ended at
   bool catching_up_ = false;  // after a rest: below the plan's speeds until it reaches them
   std::deque<Kept> kept_;

@@ -52,9 +52,11 @@ class StepGenerator : public SegmentSink {
   struct StopTicks {
     const std::atomic<std::int64_t>* a = nullptr;
     const std::atomic<std::int64_t>* b = nullptr;
+    const std::atomic<std::int64_t>* c = nullptr;
     std::int64_t now() const {
-      const std::int64_t x = a ? a->load(std::memory_order_acquire) : kNever;
-      return b ? std::min(x, b->load(std::memory_order_acquire)) : x;
+      std::int64_t x = a ? a->load(std::memory_order_acquire) : kNever;
+      if (b) x = std::min(x, b->load(std::memory_order_acquire));
+      return c ? std::min(x, c->load(std::memory_order_acquire)) : x;
     }
   };
   // Plays `s` unless the clock reaches a stop tick first (never earlier than the words
@@ -110,6 +112,8 @@ class StepGenerator : public SegmentSink {
   // the card drains.
   void check_card();
   std::int64_t tick() const { return writer_.cursor(); }  // words emitted so far
+  std::int64_t sent() const { return writer_.sent(); }    // ... and handed to the card
+  bool independent_moving() const { return placement_.independent(); }  // MI's axis runs
   const SourceLoc& loc() const { return current_loc_; }  // the segment being generated
   // The count of the last move whose words (some at least) went to the card.
   const RunCount& ran() const { return ran_; }
@@ -119,6 +123,7 @@ class StepGenerator : public SegmentSink {
   // The bounded lead into a card that queues words (card_lead.hpp): its size and how the
   // generator kept up.
   const CardLead& lead() const { return lead_; }
+  CardLead& lead() { return lead_; }
 
  private:
   void emit_until(std::int64_t tick);  // words for [tick(), tick), independent steps merged

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gantry/core/axes.hpp"               // kAxisCount, Steps6
+#include "gantry/step/backlash.hpp"           // Backlash
 #include "gantry/motion/planned_segment.hpp"  // PlannedSegment
 #include "gantry/step/independent_axis.hpp"   // IndependentAxis
 #include "gantry/step/step_timing.hpp"        // StepTiming, StepEvent
@@ -57,7 +58,12 @@ class StepPlacement {
     if (e.is_dir) {
       positive_[e.axis] = e.positive;
     } else {
-      position_[e.axis] += e.positive ? 1 : -1;
+      if (e.takeup) {
+        backlash_.took_up(e.axis, e.positive);
+      } else {
+        position_[e.axis] += e.positive ? 1 : -1;
+        backlash_.moved(e.axis, e.positive);
+      }
       last_step_[e.axis] = e.tick;
     }
   }
@@ -80,6 +86,7 @@ class StepPlacement {
   const Steps6& position() const { return position_; }  // steps after all applied events
   const std::array<bool, kAxisCount>& positive() const { return positive_; }
   const std::array<double, kAxisCount>& steps_per_unit() const { return steps_per_unit_; }
+  const Backlash& backlash() const { return backlash_; }
   // After an E-stop: the counts are `played`, the levels as at construction.
   void restart(const Steps6& played);
 
@@ -90,6 +97,7 @@ class StepPlacement {
 
   std::array<double, kAxisCount> steps_per_unit_{};
   StepTiming timing_;
+  Backlash backlash_;  // the takeup steps at each reversal (backlash.hpp)
   Steps6 position_{};  // steps after all applied events
   std::array<bool, kAxisCount> positive_{};
   std::array<std::int64_t, kAxisCount> last_step_{};

@@ -24,6 +24,7 @@ struct StepEvent {
   int axis;
   bool is_dir;
   bool positive;
+  bool takeup = false;  // a step of backlash compensation: the motor turns, the load does not
 };
 
 }  // namespace gantry

@@ -59,10 +59,15 @@ class WordWriter {
   void apply(const StepEvent& e) {
     const AxisPins& ap = pins_.axes[e.axis];
     if (e.is_dir)
-      level_word_ = (level_word_ & ~ap.dir_mask) | pins_.dir_bits(e.axis, e.positive);
-    else
+      level_word_ = (level_word_ & ~ap.dirs) | pins_.dir_bits(e.axis, e.positive);
+    else {
       pulse_end_[e.axis] = e.tick + timing_.pulse_ticks;
+      pulse_lines_[e.axis] = ap.steps & ~resting_steps_;
+    }
   }
+  // The channels (bit k: channel k + 1) whose step lines stay idle from the next step on,
+  // their axis stepping on its other channels (squaring a slaved axis); 0: none.
+  void rest_channels(unsigned channels);
   // Words for [cursor(), tick). The word only changes where a pulse ends: they go out up to
   // the next such tick in one run.
   void emit(std::int64_t tick) {
@@ -111,7 +116,7 @@ class WordWriter {
   std::uint32_t word_at(std::int64_t tick) const {
     std::uint32_t w = level_word_;
     for (int i = 0; i < kAxisCount; ++i)
-      if (tick < pulse_end_[i]) w ^= pins_.axes[i].step_mask;  // active = not idle
+      if (tick < pulse_end_[i]) w ^= pulse_lines_[i];  // active = not idle
     return w;
   }
   void write_run(std::uint32_t word, std::int64_t count);
@@ -122,6 +127,9 @@ class WordWriter {
   Card& card_;
   std::size_t block_words_;
   std::array<std::int64_t, kAxisCount> pulse_end_{};
+  std::array<std::uint32_t, kAxisCount> pulse_lines_{};  // the step lines of each axis's last pulse
+  std::array<std::uint32_t, kAxisCount> channel_steps_{};  // each channel's step bit
+  std::uint32_t resting_steps_ = 0;  // the step bits of the resting channels
   std::uint32_t level_word_ = 0;  // direction levels and idle step levels
   std::int64_t cursor_ = 0;       // next tick to emit
   std::int64_t sent_ = 0;         // next tick not yet handed to the card
