@@ -521,7 +521,7 @@ TEST(Controller, TheMotionOfACalledFileCarriesTheLineThatCalledIt) {
   Machine m;
   const std::string sub = "gantry_called_line_sub.sbp";
   std::ofstream(sub) << "M2, 1, 1\nM2, 2, 1\n";
-  ASSERT_TRUE(m.run("MS, 2, 1\nM2, 0.5, 0\nFP, \"" + sub + "\"\n' the reader gets here\n"));
+  ASSERT_TRUE(m.run("MS, 2, 1\nM2, 0.5, 0\nFP, \"" + sub + "\"\n&past = 1\n"));
   m.c.wait();
   const ControllerStatus s = m.c.status();
   EXPECT_EQ(s.line, 4u);

@@ -70,10 +70,12 @@ struct Outcome {
   explicit operator bool() const { return accepted; }
 };
 
-// Threads: the caller's (requests, status), the job thread (interpreter and planner), and the
-// feeder (motion feeder, step generator, card: FeederThread). Planned segments pass from job
-// to feeder through a bounded lock-free queue; the feeder neither locks nor allocates while
-// it plays. FeederThread owns the flags between the three and documents them.
+// Threads: the caller's (requests, status), the job thread (interpreter), and the feeder
+// (planner, motion feeder, step generator, card: FeederThread). Canonical moves pass from job
+// to feeder through a bounded lock-free queue; the feeder never locks while it plays, and the
+// planner on it keeps the tail of the path that comes to rest, so a late job thread slows the
+// tool instead of starving the card. FeederThread owns the flags between the three and
+// documents them.
 // docs/controller.md has the states, the transition table and the behaviours.
 class Controller : private FeederEvents {
  public:
