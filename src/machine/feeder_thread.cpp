@@ -257,14 +257,7 @@ void FeederThread::main() {
         lead.bounded() && !dropping_ && !drop_to_flush_ && !planner_->empty() &&
         (feeder_.phase() == FeedPhase::Playing || feeder_.phase() == FeedPhase::Slowing) &&
         lead.queued(steps_.sent()) > 0 && lead.slack(steps_.sent()) <= 0) {
-      try {
-        planner_->release_front();
-        starved_.fetch_add(1, std::memory_order_relaxed);
-        if (input_cut_) finish_input_cut(false);
-      } catch (const GantryError& e) {
-        card_faulted(e, false);
-      }
-      if (feeder_.phase() != last_phase_) on_feeder_event();
+      release_front();
       continue;
     }
     Item item;
@@ -333,14 +326,14 @@ void FeederThread::feed(Item& item) {
       feeder_.segment(item.seg);
       break;
     case Item::kSettings: {
-      planner_->settings_changed(*item.settings);  // at rest first, then to the feeder
+      planner_->settings_changed(*item.settings);            // at rest first, then to the feeder
       const InputRoles roles = input_roles(*item.settings);  // VN: at rest, not real-time
       stop_trip_ = roles.stops;
       events_.roles_changed(roles);
       break;
     }
     case Item::kFlush:
-      planner_->flush();  // the plan to rest, then the feeder's flush
+      planner_->flush();                            // the plan to rest, then the feeder's flush
       if (feeder_.phase() == FeedPhase::Playing) {  // a real card still plays its queue
         card_.drain();
         steps_.check_card();  // a fault in the last words
@@ -391,6 +384,13 @@ bool FeederThread::feed_from_plan() {
     lead.starved_for(std::chrono::steady_clock::now() - t0);
     return true;
   }
+  release_front();
+  publish();
+  return true;
+}
+
+// The card is due and no move came in time: the planner's front block goes as the plan stands.
+void FeederThread::release_front() {
   try {
     planner_->release_front();
     starved_.fetch_add(1, std::memory_order_relaxed);
@@ -399,8 +399,6 @@ bool FeederThread::feed_from_plan() {
     card_faulted(e, false);
   }
   if (feeder_.phase() != last_phase_) on_feeder_event();
-  publish();
-  return true;
 }
 
 // The operator's override on a card that queues words: the planner re-plans what it holds

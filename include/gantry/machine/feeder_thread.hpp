@@ -12,13 +12,13 @@
 #include <utility>
 #include <vector>
 
-#include "gantry/canon/canon_move.hpp"     // InputTrigger
-#include "gantry/core/spsc_queue.hpp"      // SpscQueue
-#include "gantry/hal/card.hpp"             // Card
-#include "gantry/hal/input_roles.hpp"      // InputRoles, InputTrip
+#include "gantry/canon/canon_move.hpp"          // InputTrigger
+#include "gantry/core/spsc_queue.hpp"           // SpscQueue
+#include "gantry/hal/card.hpp"                  // Card
+#include "gantry/hal/input_roles.hpp"           // InputRoles, InputTrip
 #include "gantry/motion/lookahead_planner.hpp"  // LookAheadPlanner
-#include "gantry/step/motion_feeder.hpp"   // MotionFeeder
-#include "gantry/step/step_generator.hpp"  // StepGenerator
+#include "gantry/step/motion_feeder.hpp"        // MotionFeeder
+#include "gantry/step/step_generator.hpp"       // StepGenerator
 
 namespace gantry {
 
@@ -87,7 +87,8 @@ class FeederEvents {
 // State out (feeder -> everyone), stored by publish() after every block and every item:
 //   played_, tick_ (release; read acquire): the card's played counts and clock.
 //   inputs_ (release/acquire): the card's input bits.
-//   playing_line_, playing_caller_line_, warning_, outputs_, spindle_rpm_ (relaxed): display only, no data depend
+//   playing_line_, playing_caller_line_, warning_, outputs_, spindle_rpm_ (relaxed): display only,
+//   no data depend
 //     on them.
 //   flushes_done_ (release, then notify_all): flushes played or dropped. The job waits on it
 //     (acquire) against flushes_pushed_ (job-only): its acquire makes everything the feeder
@@ -108,11 +109,11 @@ class FeederThread {
  public:
   struct Item {
     enum Kind { kMove, kSegment, kSettings, kFlush, kWatch, kPlanner, kOverride } kind = kMove;
-    CanonMove move;      // kMove: to the planner
-    PlannedSegment seg;  // kSegment: past the planner (outputs after a stop)
-    std::shared_ptr<const Settings> settings;                    // kSettings, kPlanner
+    CanonMove move;                            // kMove: to the planner
+    PlannedSegment seg;                        // kSegment: past the planner (outputs after a stop)
+    std::shared_ptr<const Settings> settings;  // kSettings, kPlanner
     std::shared_ptr<const std::vector<InputTrigger>> triggers;  // kWatch
-    double factor = 1;                                           // kOverride, kPlanner
+    double factor = 1;                                          // kOverride, kPlanner
   };
 
   // Job thread -> feeder: pushes canonical moves for the feeder's planner, waiting while the
@@ -214,6 +215,7 @@ class FeederThread {
   void make_realtime();  // SCHED_FIFO and locked memory, where allowed
   void feed(Item& item);
   bool feed_from_plan();  // the queue is empty: see the .cpp
+  void release_front();   // the card is due and no move came: the planner's front block goes
   void apply_live_override();
   void card_faulted(const GantryError& e, bool flush_lost);
   void publish();          // position and phase for status()
