@@ -18,13 +18,8 @@ namespace {
 using test::segment;
 using test::vec;
 
-// X runs 1 in at 1 in/s; Y's min switch (input bit 4) closes 0.3 s in, Y at rest (a switch
-// knocked, a wire picking up noise). Returns the card's fault.
-CardFault y_switch_closes_while_x_runs(bool travel_only, SimWorld w = {}) {
-  Settings s = default_settings();
-  s.limits.travel_only = travel_only;
-  w.input_events.push_back({0.3, s.inputs.min_bit[1], true});
-  SimCard card(s, false, w);
+// X runs 1 in at 1 in/s on a card in that world, until it ends or the card faults.
+void run_x_one_inch(const Settings& s, SimCard& card) {
   card.start(s.card.pacer_hz());
   StepGenerator gen(s, card);
   try {
@@ -32,6 +27,16 @@ CardFault y_switch_closes_while_x_runs(bool travel_only, SimWorld w = {}) {
     gen.flush();
   } catch (const GantryError&) {
   }
+}
+
+// X runs 1 in at 1 in/s; Y's min switch (input bit 4) closes 0.3 s in, Y at rest (a switch
+// knocked, a wire picking up noise). Returns the card's fault.
+CardFault y_switch_closes_while_x_runs(bool travel_only, SimWorld w = {}) {
+  Settings s = default_settings();
+  s.limits.travel_only = travel_only;
+  w.input_events.push_back({0.3, s.inputs.min_bit[1], true});
+  SimCard card(s, false, w);
+  run_x_one_inch(s, card);
   return card.fault();
 }
 
@@ -74,13 +79,7 @@ Spike y_spike(int debounce, std::uint64_t words) {
   if (words > 0)
     w.input_events.push_back({0.3 + static_cast<double>(words) * tick, s.inputs.min_bit[1], false});
   SimCard card(s, false, w);
-  card.start(s.card.pacer_hz());
-  StepGenerator gen(s, card);
-  try {
-    gen.segment(segment(vec(0), vec(1.0), 0, 1, 0, 10));
-    gen.flush();
-  } catch (const GantryError&) {
-  }
+  run_x_one_inch(s, card);
   return {card.fault(), card.ticks_played(), static_cast<std::uint64_t>(std::llround(0.3 / tick))};
 }
 
@@ -104,7 +103,8 @@ TEST(LimitMode, DebounceIsAnOptionalProfileKeyOfAtMost30) {
       parse_settings(default_profile_text() + "\n[limits]\ndebounce = 30\n", "p.toml");
   ASSERT_TRUE(with.ok()) << with.errors[0].message;
   EXPECT_EQ(with.settings.limits.debounce, 30);
-  EXPECT_FALSE(parse_settings(default_profile_text() + "\n[limits]\ndebounce = 31\n", "p.toml").ok());
+  EXPECT_FALSE(
+      parse_settings(default_profile_text() + "\n[limits]\ndebounce = 31\n", "p.toml").ok());
 }
 
 }  // namespace

@@ -11,66 +11,13 @@
 
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/script.hpp"
+#include "pendant_bench.hpp"  // Bench, FakeClock
 #include "sim/sim_card.hpp"
 
 namespace gantry::session {
 namespace {
 
 using namespace std::chrono_literals;
-
-struct FakeClock {
-  std::atomic<std::int64_t> ms{0};
-  PendantInput::Clock::time_point now() const {
-    return PendantInput::Clock::time_point{} + std::chrono::milliseconds(ms.load());
-  }
-};
-
-struct Bench {
-  explicit Bench(bool realtime = false, Settings s = default_settings())
-      : settings(std::move(s)), card(settings, realtime) {}
-  Settings settings;
-  SimCard card;
-  ScriptedIO io{true, {}};
-  PersistentStore store;
-  Controller c{settings, card, io, store};
-  FakeClock clock;
-  std::vector<std::string> told;
-  std::mutex told_m;
-  PendantBindings bindings;
-  std::unique_ptr<PendantInput> input;
-
-  PendantInput& in() {
-    if (!input)
-      input = std::make_unique<PendantInput>(
-          c, settings, bindings, [this] { return clock.now(); },
-          [this](const std::string& t) {
-            std::lock_guard lock(told_m);
-            told.push_back(t);
-          });
-    return *input;
-  }
-  std::int64_t steps(double units, int axis = 0) const {
-    return std::llround(units * settings.axes[axis].steps_per_unit);
-  }
-  // Ticks until every queued step jog has played and the machine is at rest.
-  void settle() {
-    for (int k = 0; k < 2000; ++k) {
-      in().tick();
-      const bool rest = c.wait_for(1ms);
-      if (rest && !in().jogging()) {
-        in().tick();
-        if (!in().jogging()) return;
-      }
-    }
-    const ControllerStatus st = c.status();
-    FAIL() << "the pendant's jogs never came to rest: " << state_name(st.state) << " settled "
-           << st.settled << " jogging " << in().jogging() << " " << st.message << " / " << last_told();
-  }
-  std::string last_told() {
-    std::lock_guard lock(told_m);
-    return told.empty() ? "" : told.back();
-  }
-};
 
 PendantEvent wheel(int axis, int delta, double step, double percent = 100) {
   PendantEvent e;

@@ -27,6 +27,7 @@
 #include "gantry/session/pendant_profile.hpp"
 #include "gantry/session/pendant_xhc.hpp"
 #include "pendant/xhc_protocol.hpp"
+#include "pendant_bench.hpp"  // Bench, FakeClock, report
 #include "sim/sim_card.hpp"
 
 namespace gantry::session {
@@ -169,59 +170,6 @@ TEST(KeyPendant, InAWindowAHeldJogKeyReportsEvery40MsAndItsReleaseEndsTheJog) {
 
 // ---- on the controller ---------------------------------------------------------------------
 
-struct FakeClock {
-  std::atomic<std::int64_t> ms{0};
-  PendantInput::Clock::time_point now() const {
-    return PendantInput::Clock::time_point{} + std::chrono::milliseconds(ms.load());
-  }
-};
-
-struct Bench {
-  explicit Bench(bool realtime = false, Settings s = default_settings())
-      : settings(std::move(s)), card(settings, realtime) {}
-  Settings settings;
-  SimCard card;
-  ScriptedIO io{true, {}};
-  PersistentStore store;
-  Controller c{settings, card, io, store};
-  FakeClock clock;
-  std::vector<std::string> told;
-  std::mutex told_m;
-  PendantBindings buttons;
-  std::unique_ptr<PendantInput> input;
-
-  PendantInput& in() {
-    if (!input)
-      input = std::make_unique<PendantInput>(
-          c, settings, buttons, [this] { return clock.now(); },
-          [this](const std::string& t) {
-            std::lock_guard lock(told_m);
-            told.push_back(t);
-          });
-    return *input;
-  }
-  void send(const std::vector<PendantEvent>& out) {
-    for (const PendantEvent& e : out) in().handle(e);
-  }
-  std::int64_t steps(double units, int axis = 0) const {
-    return std::llround(units * settings.axes[static_cast<std::size_t>(axis)].steps_per_unit);
-  }
-  void settle() {
-    for (int k = 0; k < 2000; ++k) {
-      in().tick();
-      if (c.wait_for(1ms) && !in().jogging()) {
-        in().tick();
-        if (!in().jogging()) return;
-      }
-    }
-    FAIL() << "the pendant's jogs never came to rest: " << last_told();
-  }
-  std::string last_told() {
-    std::lock_guard lock(told_m);
-    return told.empty() ? "" : told.back();
-  }
-};
-
 TEST(KeyPendant, AStepKeyMovesExactlyItsStepOrVdsKeypadStep) {
   Bench b;
   b.settings.display.keypad_step = 0.125;
@@ -278,7 +226,7 @@ TEST(PendantMacros, AMacroIsALineOrAPartFilesFpLine) {
 
 TEST(PendantMacros, ABoundMacroRunsAtRestAnUnboundOneSaysSoAndARunningFileRefusesIt) {
   Bench b;
-  b.buttons.macros[0] = "MX, 0.5";
+  b.bindings.macros[0] = "MX, 0.5";
   b.in().handle({.kind = PendantEvent::Kind::Button, .button = PendantButton::Macro, .macro = 1});
   ASSERT_TRUE(b.c.wait_for(5s));
   EXPECT_EQ(b.c.status().steps[0], b.steps(0.5)) << b.last_told();
@@ -286,7 +234,7 @@ TEST(PendantMacros, ABoundMacroRunsAtRestAnUnboundOneSaysSoAndARunningFileRefuse
   EXPECT_EQ(b.last_told(), "macro 2 is not bound (the profile's [pendant] section)");
   // A long move runs (in real time): the macro is refused with the reason.
   Bench r(/*realtime=*/true);
-  r.buttons.macros[0] = "MX, 0.5";
+  r.bindings.macros[0] = "MX, 0.5";
   ASSERT_TRUE(r.c.run_typed(Script::from_text("MX, 20", "console")));
   r.in().handle({.kind = PendantEvent::Kind::Button, .button = PendantButton::Macro, .macro = 1});
   EXPECT_NE(r.last_told().find("macro 1 (MX, 0.5): "), std::string::npos) << r.last_told();
@@ -316,13 +264,13 @@ TEST(PendantProfile, ABadKeyIsAnErrorAtItsLineAndMacrosComeFromTheProfile) {
   if (text.back() != '\n') text += '\n';
   const int first = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
   text +=
-      "[pendant]\n"                       // first
-      "macro_1 = \"corner.sbp\"\n"        // first + 1
-      "macro_2 = \"MZ, 1\"\n"             // first + 2
-      "keys = [\n"                        // first + 3
-      "  \"F5 = start/pause\",\n"         // first + 4
-      "  \"Hyper+F5 = stop\",\n"          // first + 5
-      "  \"F6 = step x+ 0.25\",\n"        // first + 6
+      "[pendant]\n"                 // first
+      "macro_1 = \"corner.sbp\"\n"  // first + 1
+      "macro_2 = \"MZ, 1\"\n"       // first + 2
+      "keys = [\n"                  // first + 3
+      "  \"F5 = start/pause\",\n"   // first + 4
+      "  \"Hyper+F5 = stop\",\n"    // first + 5
+      "  \"F6 = step x+ 0.25\",\n"  // first + 6
       "]\n";
   dir.write("profile.toml", text);
   const SettingsLoad load = load_settings_file((dir / "profile.toml").string());
@@ -353,8 +301,7 @@ TEST(PendantProfile, TheXhcDisplaysFrameIsWorkOrMachine) {
   text = default_profile_text() + "\n[pendant]\nxhc_coordinates = \"table\"\n";
   load = parse_settings(text, "p.toml");
   ASSERT_FALSE(load.ok());
-  EXPECT_NE(load.errors.front().message.find("must be \"work\" or \"machine\""),
-            std::string::npos)
+  EXPECT_NE(load.errors.front().message.find("must be \"work\" or \"machine\""), std::string::npos)
       << load.errors.front().message;
 }
 
@@ -362,16 +309,6 @@ TEST(PendantProfile, TheXhcDisplaysFrameIsWorkOrMachine) {
 
 using pendant::XhcKey;
 using pendant::XhcReport;
-
-XhcReport report(XhcKey k1, XhcKey k2, std::uint8_t feed, std::uint8_t axis, std::int8_t delta) {
-  XhcReport r;
-  r.key1 = k1;
-  r.key2 = k2;
-  r.feed_knob = feed;
-  r.axis_knob = axis;
-  r.delta = delta;
-  return r;
-}
 
 TEST(PendantXhcLead, TheWheelAtLeadIsTheSpindlesInBothModesAndOnEitherLeadCode) {
   XhcTranslator t;
@@ -459,8 +396,9 @@ GamepadEvent pad(GamepadEvent::Kind kind, int code, double value) {
 TEST(GamepadSteps, TheDpadAndShouldersBoundAsStepsMoveExactlyTheirSteps) {
   std::string error;
   const auto b = GamepadBindings::parse(
-      {}, "ABS_HAT0X+ = step x+ 0.01, ABS_HAT0X- = step x- 0.01, ABS_HAT0Y- = step y+ 0.1, "
-          "BTN_TL = step z- 0.1, BTN_TR = step z+ 0.1, BTN_DPAD_RIGHT = step x+ 1",
+      {},
+      "ABS_HAT0X+ = step x+ 0.01, ABS_HAT0X- = step x- 0.01, ABS_HAT0Y- = step y+ 0.1, "
+      "BTN_TL = step z- 0.1, BTN_TR = step z+ 0.1, BTN_DPAD_RIGHT = step x+ 1",
       &error);
   ASSERT_TRUE(b) << error;
   for (const auto& s : b->jog[0]) EXPECT_NE(s.code, ABS_HAT0X);  // the hat steps, no longer jogs
@@ -476,7 +414,7 @@ TEST(GamepadSteps, TheDpadAndShouldersBoundAsStepsMoveExactlyTheirSteps) {
   g.event(pad(K::Axis, ABS_HAT0X, -1), out);  // held: nothing more
   g.event(pad(K::Axis, ABS_HAT0X, 0), out);
   g.event(pad(K::Axis, ABS_HAT0Y, -1), out);  // the hat up (evdev: negative): Y+ 0.1
-  g.event(pad(K::Button, BTN_TL, 1), out);     // L1: Z- 0.1
+  g.event(pad(K::Button, BTN_TL, 1), out);    // L1: Z- 0.1
   g.event(pad(K::Button, BTN_TL, 0), out);
   g.event(pad(K::Button, BTN_DPAD_RIGHT, 1), out);  // a D-pad with buttons: X+ 1
   g.event(pad(K::Button, BTN_DPAD_RIGHT, 0), out);

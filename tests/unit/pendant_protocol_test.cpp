@@ -9,6 +9,7 @@
 #include "gantry/session/pendant_xhc.hpp"
 #include "pendant/xhc_pendant.hpp"
 #include "pendant/xhc_protocol.hpp"
+#include "pendant_bench.hpp"  // report
 
 namespace gantry::pendant {
 namespace {
@@ -205,16 +206,6 @@ namespace {
 
 using pendant::XhcKey;
 using pendant::XhcReport;
-
-XhcReport report(XhcKey k1, XhcKey k2, std::uint8_t feed, std::uint8_t axis, std::int8_t delta) {
-  XhcReport r;
-  r.key1 = k1;
-  r.key2 = k2;
-  r.feed_knob = feed;
-  r.axis_knob = axis;
-  r.delta = delta;
-  return r;
-}
 
 TEST(PendantXhc, AKeyActsOnceWhenPressedAndFnMakesItAMacro) {
   XhcTranslator t;
