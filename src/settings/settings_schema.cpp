@@ -441,8 +441,8 @@ const SettingRow kRows[] = {
       "the longest wait for `at_speed_input`, s. Left out: 10", .optional = true, .optional_table = true),
 
   {.section = "toolchanger", .key = "slots", .kind = SettingKind::Coded,
-   .help = "the tool rack: the table base X and Y of each slot, slot k holding tool k, as `\"2 40; 6 40; 10 40\"` for tools 1 to 3 (a length). Left out or empty: no rack, a tool change asks the operator (docs/hardware.md, \"Tool changer\"); the `[toolchanger]` table is optional",
-   .unit = SettingUnit::Length, .optional = true, .optional_table = true, .encode = slots_text,
+   .unit = SettingUnit::Length, .help = "the tool rack: the table base X and Y of each slot, slot k holding tool k, as `\"2 40; 6 40; 10 40\"` for tools 1 to 3 (a length). Left out or empty: no rack, a tool change asks the operator (docs/hardware.md, \"Tool changer\"); the `[toolchanger]` table is optional",
+   .optional = true, .optional_table = true, .encode = slots_text,
    .decode = slots_read, .rule = "must list each slot's X and Y, slots apart with `;` (\"2 40; 6 40\")",
    .docs_allowed = "`\"x y; x y; ...\"`; optional"},
   NUM("toolchanger", "slot_z", toolchanger.slot_z, kAny, Length,

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -41,27 +43,44 @@ std::string trace_path(const std::string& name) {
       .string();
 }
 
+// A machine for one run: run() plays a file, keeps what the tests read, then closes the
+// card so that its pin trace is all on disk.
 struct Machine {
   Machine(Settings s, SimWorld world, const std::string& name)
-      : settings(std::move(s)), path(trace_path(name)), card(settings, false, world, path) {}
+      : settings(std::move(s)),
+        path(trace_path(name)),
+        card(std::make_unique<SimCard>(settings, false, std::move(world), path)),
+        c(std::make_unique<Controller>(settings, *card, io, store)) {}
   ~Machine() { fs::remove(path); }
   Settings settings;
   std::string path;
-  SimCard card;
   ScriptedIO io{true, {}};
   PersistentStore store;
-  Controller c{settings, card, io, store};
+  std::unique_ptr<SimCard> card;
+  std::unique_ptr<Controller> c;
+  ControllerStatus status;
+  ModalState modal;
+  std::optional<Diagnostic> stopped;  // why the run stopped short
+  double time_s = 0;                  // the card's clock at the end
 
-  // Runs `text` as part.sbp (G-code lines in it run as G-code) to its end, however it ends.
-  void run(const std::string& text) {
-    const Outcome o = c.run(Script::from_text(text, "part.sbp"));
+  // Runs `text` as `name` (part.nc: G-code) to its end, however it ends; the outcome of its
+  // check.
+  Outcome play(const std::string& text, const std::string& name = "part.nc") {
+    const Outcome o = c->run(Script::from_text(text, name));
+    c->wait();
+    status = c->status();
+    modal = c->modal();
+    stopped = c->summary().error;
+    time_s = card->time_s();
+    c.reset();
+    card.reset();  // the trace file closes
+    return o;
+  }
+  void run(const std::string& text, const std::string& name = "part.nc") {
+    const Outcome o = play(text, name);
     ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : " " + o.errors[0].message);
-    c.wait();
   }
-  std::string error() const {
-    const Controller::Summary s = c.summary();
-    return s.error ? format(*s.error) : "";
-  }
+  std::string error() const { return stopped ? format(*stopped) : ""; }
   Trace trace() const { return read_trace(path); }
   double pacer() const { return settings.card.pacer_hz(); }
   // Whole steps of `units` on `axis`.
@@ -137,7 +156,7 @@ TEST(Spindle, DirectionWiringReversesThroughAStopWithTheWaitsOnThePinTrace) {
   EXPECT_EQ(steps_at(t, m.settings, kX, run_on[1]), m.steps(0.5, kX));  // the first cut ended
   // M5: X waits for the spin-down.
   EXPECT_GE(first_step_after(t, m.settings, kX, run_off[1]), run_off[1] + down);
-  EXPECT_EQ(m.c.status().steps[kX], 0);
+  EXPECT_EQ(m.status.steps[kX], 0);
 }
 
 // Run wiring (a VFD's FWD and REV terminals): M4 drives the reverse output alone.
@@ -160,15 +179,14 @@ TEST(Spindle, M4WithoutAReverseOutputIsRefusedBeforeAnythingMoves) {
   Settings s = spindle_profile();
   s.spindle.reverse_output = 0;
   Machine m(s, {}, "no_reverse");
-  const Outcome o = m.c.run(Script::from_text("G20\nG1 X1 F60\nM4\n", "part.sbp"));
-  m.c.wait();
+  const Outcome o = m.play("G20\nG1 X1 F60\nM4\n");
   ASSERT_FALSE(o);
   ASSERT_FALSE(o.errors.empty());
   EXPECT_EQ(format(o.errors[0]),
-            "part.sbp:3:1: error: M4 (spindle counter-clockwise) is not available: this "
+            "part.nc:3:1: error: M4 (spindle counter-clockwise) is not available: this "
             "machine's profile names no output for it (spindle.reverse_output), so output switch "
             "1 runs the spindle one way only; use M3");
-  EXPECT_EQ(m.c.status().steps[kX], 0);
+  EXPECT_EQ(m.status.steps[kX], 0);
 }
 
 // The at-speed input: the machine waits for it after the start; SO 1 (C6's way) too.
@@ -180,13 +198,13 @@ TEST(Spindle, AtSpeedInputHoldsTheMotionUntilItCloses) {
   SimWorld w;
   w.input_events.push_back({3.0, kAtSpeedBit, true});  // the drive is at speed at 3 s
   Machine m(s, w, "at_speed");
-  m.run("SO, 1, 1\nMX, 0.5\n");
+  m.run("SO, 1, 1\nMX, 0.5\n", "part.sbp");
   ASSERT_EQ(m.error(), "");
   const Trace t = m.trace();
   const std::int64_t first = first_step_after(t, m.settings, kX, 0);
   EXPECT_GE(first, static_cast<std::int64_t>(3.0 * m.pacer()));
   EXPECT_LE(first, static_cast<std::int64_t>(3.05 * m.pacer()));  // within a 10 ms wait step
-  EXPECT_EQ(m.c.status().steps[kX], m.steps(0.5, kX));
+  EXPECT_EQ(m.status.steps[kX], m.steps(0.5, kX));
 }
 
 TEST(Spindle, AtSpeedTimeoutStopsTheJobWithAMessageBeforeTheCut) {
@@ -198,12 +216,12 @@ TEST(Spindle, AtSpeedTimeoutStopsTheJobWithAMessageBeforeTheCut) {
   Machine m(s, {}, "timeout");  // the input never closes
   m.run("G20\nM3 S12000\nG1 X1 F60\n");
   EXPECT_EQ(m.error(),
-            "part.sbp:2:1: error: the spindle did not reach its speed: input switch 5 "
+            "part.nc:2:1: error: the spindle did not reach its speed: input switch 5 "
             "(spindle.at_speed_input) did not close within 2 s (spindle.at_speed_timeout_s); "
             "the job stops here. Check the drive (a fault, a speed it cannot reach) and its "
             "wiring");
-  EXPECT_EQ(m.c.status().steps[kX], 0);
-  EXPECT_GE(m.card.time_s(), 2.0);
+  EXPECT_EQ(m.status.steps[kX], 0);
+  EXPECT_GE(m.time_s, 2.0);
   const Trace t = m.trace();
   EXPECT_EQ(edges(t, kRunBit, false).size(), 1u);  // the spindle is off again
 }
@@ -298,7 +316,7 @@ TEST(ToolChanger, M6SwapsToolsOnTheRackMeasuresTheNewOneAndG43UsesIt) {
   EXPECT_GE(edges(t, kDrawbarBit, true)[0],
             edges(t, kRunBit, false)[0] + static_cast<std::int64_t>(m.pacer()));
   // Measured: the first step at or below the sensor's top, less sensor_zero_z.
-  const ModalState st = m.c.modal();
+  const ModalState st = m.modal;
   EXPECT_EQ(st.gcode.tool, 3);
   const ToolEntry* e = st.gcode.tools.find(3);
   ASSERT_NE(e, nullptr);
@@ -306,7 +324,7 @@ TEST(ToolChanger, M6SwapsToolsOnTheRackMeasuresTheNewOneAndG43UsesIt) {
   const double trip = std::floor(kSensorTop * spu) / spu;
   EXPECT_NEAR(e->length(), trip - kSensorZero, 1e-9);
   // Back over X1 Y1, then G43's Z0 puts the tip (the length below the spindle) at working 0.
-  const ControllerStatus s = m.c.status();
+  const ControllerStatus s = m.status;
   EXPECT_EQ(s.steps[kX], m.steps(1, kX));
   EXPECT_EQ(s.steps[kY], m.steps(1, kY));
   EXPECT_EQ(s.steps[kZ], std::llround((trip - kSensorZero) * spu));
@@ -339,44 +357,43 @@ TEST(ToolChanger, TheMeasuredLengthIsWrittenToTheToolTableFile) {
 // measures every tool alike), so that working Z stays the tip's height.
 TEST(ToolChanger, C9ChangesOnTheRackAndWorkingZFollowsTheNewLength) {
   Machine m(rack_profile(), rack_world(), "c9");
-  m.run("&Tool = 1\nC9\nG10 L1 P1 Z0.25\n&Tool = 2\nC9\nJZ, 0\n");
+  m.run("&Tool = 1\nC9\nG10 L1 P1 Z0.25\n&Tool = 2\nC9\nJZ, 0\n", "part.sbp");
   ASSERT_EQ(m.error(), "");
-  const ModalState st = m.c.modal();
+  const ModalState st = m.modal;
   EXPECT_EQ(st.gcode.tool, 2);
   EXPECT_EQ(drawbar_places(m, true).size(), 3u);  // pick 1, put 1 back, pick 2
   const double spu = m.settings.axes[kZ].steps_per_unit;
   const double length = std::floor(kSensorTop * spu) / spu - kSensorZero;
   EXPECT_NEAR(st.zero[kZ], length - 0.25, 1e-9);
-  EXPECT_EQ(m.c.status().steps[kZ], std::llround((length - 0.25) * spu));  // working Z 0
-  const ControllerStatus s = m.c.status();
+  EXPECT_EQ(m.status.steps[kZ], std::llround((length - 0.25) * spu));  // working Z 0
+  const ControllerStatus s = m.status;
   EXPECT_EQ(s.steps[kX], 0);  // back where the changes began
   EXPECT_EQ(s.steps[kY], 0);
 }
 
 TEST(ToolChanger, AToolWithNoSlotIsRefusedAndNothingMoves) {
   Machine m(rack_profile(), rack_world(), "no_slot");
-  const Outcome o = m.c.run(Script::from_text("G20\nG0 X1\nT4 M6\n", "part.sbp"));
-  m.c.wait();
+  const Outcome o = m.play("G20\nG0 X1\nT4 M6\n");
   ASSERT_FALSE(o);
   ASSERT_FALSE(o.errors.empty());
   EXPECT_EQ(format(o.errors[0]),
-            "part.sbp:3:4: error: tool 4 has no slot in the tool rack (toolchanger.slots lists 3 "
+            "part.nc:3:4: error: tool 4 has no slot in the tool rack (toolchanger.slots lists 3 "
             "slots: tools 1 to 3); nothing moved");
-  EXPECT_EQ(m.c.status().steps[kX], 0);
+  EXPECT_EQ(m.status.steps[kX], 0);
 }
 
 TEST(ToolChanger, ASensorThatNeverClosesStopsTheJobAndTheLengthIsKept) {
   Machine m(rack_profile(), rack_world(-10), "no_trip");  // below the probe's travel
   m.run("G20\nT2 M6\nG0 X5\n");
   EXPECT_EQ(m.error(),
-            "part.sbp:2:4: error: tool 2 did not close the tool-length sensor (input switch 1) "
+            "part.nc:2:4: error: tool 2 did not close the tool-length sensor (input switch 1) "
             "between Z 0.5 and Z -3 (toolchanger.sensor_start_z, sensor_min_z): is the tool in "
             "the spindle, and the sensor wired? The job stops with the tool at the sensor's "
             "lowest point; its length was not changed");
-  const ControllerStatus s = m.c.status();
+  const ControllerStatus s = m.status;
   EXPECT_EQ(s.steps[kX], m.steps(kSensorX, kX));  // G0 X5 never ran
   EXPECT_EQ(s.steps[kZ], m.steps(-3, kZ));
-  EXPECT_EQ(m.c.modal().gcode.tools.find(2)->length(), 0);
+  EXPECT_EQ(m.modal.gcode.tools.find(2)->length(), 0);
 }
 
 // Without a rack the change stays manual (the operator is asked), and a sensor still measures.
@@ -388,7 +405,7 @@ TEST(ToolChanger, WithoutARackTheOperatorChangesAndTheSensorMeasures) {
   ASSERT_EQ(m.error(), "");
   EXPECT_TRUE(edges(m.trace(), kDrawbarBit, true).empty());
   const double spu = s.axes[kZ].steps_per_unit;
-  EXPECT_NEAR(m.c.modal().gcode.tools.find(2)->length(),
+  EXPECT_NEAR(m.modal.gcode.tools.find(2)->length(),
               std::floor(kSensorTop * spu) / spu - kSensorZero, 1e-9);
 }
 
