@@ -82,16 +82,19 @@ void add_output_commands(std::vector<CommandSpec>& out) {
        CommandGroup::Tools,
        "Sets the spindle's speed in RPM; output switch 1 (C6, C7) switches the spindle on and "
        "off. Where the profile has a speed output ([spindle] pwm_bit), its PWM duty becomes "
-       "rpm / max_rpm between the moves around TR; otherwise the speed is recorded and the "
-       "run warns once that the spindle keeps the speed set on it. %(161) reads the speed "
-       "while output 1 is on.",
+       "rpm / max_rpm (or, with speed_mode \"frequency\", its pulse rate rpm / max_rpm x "
+       "max_hz) between the moves around TR; otherwise the speed is recorded and the run "
+       "warns once that the spindle keeps the speed set on it. A change while the spindle "
+       "runs waits for the profile's at-speed input, where it has one. %(161) reads the speed "
+       "while the spindle runs.",
        {ParamSpec{"speed", "RPM", true, std::nullopt,
                   "Spindle speed, at most spindle.max_rpm where a speed output is wired."}
             .at_least(0),
         ParamSpec{"spindle", "", false, 1.0, "FabMo's spindle number; Gantry drives one (1)."}
             .integer(1, 1)},
        spindle_speed,
-       "one spindle; its speed as a PWM duty on an output bit, not over a VFD's serial link",
+       "one spindle; its speed as a PWM duty or a pulse rate on an output bit, not over a VFD's "
+       "serial link",
        {},
        false,
        "%(161)"});

@@ -411,20 +411,31 @@ void CommandContext::zero_axes(unsigned axes) {
 
 void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
   if (state_.preview) return;  // a preview switches nothing
+  const int was = spindle_direction();
+  const SpindleSettings& sp = settings_.spindle;
+  if (on && sp.reverse_wiring == SpindleSettings::ReverseWiring::Run && sp.reverse_output != 0 &&
+      spindle_output(n) && was != 0 && spindle_direction() == (n == 1 ? -1 : 1))
+    fail(loc, fmt::format("output switch {} would run the spindle {} while it runs {} (the "
+                          "profile's spindle.reverse_wiring is \"run\"): stop it first (M5, or "
+                          "switch output {} off)",
+                          n, n == 1 ? "forward" : "in reverse", n == 1 ? "in reverse" : "forward",
+                          n == 1 ? sp.reverse_output : 1));
   CanonMove m = here(MoveKind::Output, loc);
   m.output = n;
   m.output_on = on;
   sink_.move(m);
   const std::uint32_t bit = 1u << (n - 1);
   state_.outputs = on ? state_.outputs | bit : state_.outputs & ~bit;
+  if (spindle_output(n)) spindle_settle(was, loc);
 }
 
-void CommandContext::set_spindle_speed(double rpm, const SourceLoc& loc) {
+void CommandContext::set_spindle_speed(double rpm, const SourceLoc& loc, bool quiet) {
+  const double was = state_.spindle_rpm;
   state_.spindle_rpm = rpm;
   if (state_.preview) return;  // a preview switches nothing
   note_drawing(loc);
   if (settings_.spindle.pwm_bit < 0) {
-    if (!std::exchange(spindle_speed_warned_, true))
+    if (!quiet && !std::exchange(spindle_speed_warned_, true))
       warn(loc,
            "TR: this machine's profile has no spindle speed output ([spindle] pwm_bit), so "
            "the spindle runs at the speed set on it; the RPM is only recorded (%(161)). "
@@ -434,6 +445,7 @@ void CommandContext::set_spindle_speed(double rpm, const SourceLoc& loc) {
   CanonMove m = here(MoveKind::SpindleSpeed, loc);
   m.spindle_rpm = rpm;
   sink_.move(m);
+  if (rpm != was && spindle_direction() != 0) wait_at_speed(loc);
 }
 
 void CommandContext::come_to_rest(const SourceLoc& loc) {

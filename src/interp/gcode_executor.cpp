@@ -544,10 +544,8 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   if (w.has('S') && w.get('S') < 0)
     fail(w.at('S', loc), "S, the spindle speed, cannot be negative");
   tool_change(w, loc);  // T, M6, M61
-  if (w.m[7] == 40)
-    fail(loc,
-         "M4 (spindle counter-clockwise) is not available: output switch 1 runs the "
-         "spindle one way only; use M3");
+  if (w.m[7] == 40 && ctx_.settings().spindle.reverse_output == 0)
+    ctx_.spindle(-1, loc);  // refused, before anything of the block runs
   // Outputs, dwells and pauses wait for the moves cutter compensation holds back.
   auto output = [&](int n, bool on) {
     deferred([this, n, on, loc] {
@@ -555,7 +553,21 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
         ctx_.set_output(n, on, loc);
     });
   };
-  if (w.m[7] >= 0) output(kSpindleOutput, w.m[7] == 30);
+  if (w.has('S')) {  // the speed first, then the spindle starts at it (LinuxCNC's order)
+    const double rpm = w.get('S');
+    const SpindleSettings& sp = ctx_.settings().spindle;
+    if (sp.pwm_bit >= 0 && rpm > sp.max_rpm)
+      fail(w.at('S', loc), fmt::format("S{} is faster than this spindle runs ({} RPM, "
+                                       "spindle.max_rpm); nothing was changed",
+                                       format_number(rpm), format_number(sp.max_rpm)));
+    deferred([this, rpm, loc] {
+      if (rpm != ctx_.state().spindle_rpm) ctx_.set_spindle_speed(rpm, loc, true);
+    });
+  }
+  if (w.m[7] >= 0) {  // M3 +1, M4 -1, M5 0
+    const int direction = w.m[7] == 30 ? 1 : w.m[7] == 40 ? -1 : 0;
+    deferred([this, direction, loc] { ctx_.spindle(direction, loc); });
+  }
   if (w.m[8] == 70) output(kMistOutput, true);
   if (w.m[8] == 80) output(kFloodOutput, true);
   if (w.m[8] == 90) {
@@ -666,7 +678,8 @@ void GcodeExecutor::leave_file() {
 void GcodeExecutor::end_program(const SourceLoc& loc) {
   end_file(loc);  // compensation ends: its held-back moves go out
   ModalState& st = ctx_.state();
-  for (int n : {kSpindleOutput, kFloodOutput, kMistOutput})
+  ctx_.spindle(0, loc);
+  for (int n : {kFloodOutput, kMistOutput})
     if ((st.outputs >> (n - 1)) & 1u) ctx_.set_output(n, false, loc);
   select_system(0);
   const ProgramUnits units = modes_.units;

@@ -7,6 +7,7 @@
 
 #include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
 #include "gantry/interp/gcode_executor.hpp"
+#include "gantry/interp/tool_changer.hpp"  // the rack and the sensor
 #include "gcode_words.hpp"
 
 namespace gantry {
@@ -77,11 +78,24 @@ void GcodeExecutor::tool_change(const Words& w, const SourceLoc& loc) {
     if (!w.has('Q')) fail(at, "M61 needs Q, the number of the tool in the spindle: M61 Q1");
     number = tool_number("M61", 'Q', w.get('Q'), w.at('Q', loc));
   }
-  const ToolEntry& e = tool_entry(number, code == 610 ? w.at('Q', loc) : at);
+  // A copy: the sensor's measure may write the table, which moves its entries.
+  const ToolEntry e = tool_entry(number, code == 610 ? w.at('Q', loc) : at);
   if (code == 60 && number != o.tool) {
+    // The profile's tool changer (docs/hardware.md, "Tool changer"): the rack's sequence or
+    // the operator, then the sensor's measure, and back over where the change began.
+    const ToolChangerSettings& tc = ctx_.settings().toolchanger;
+    check_tool_change(ctx_, o.tool, number, at);  // a change refused moves nothing
     ctx_.come_to_rest(loc);
-    if (!io_.confirm(fmt::format("Change to tool {} (M6), then continue", number), loc))
+    const Vec6 start = ctx_.state().position + ctx_.state().zero;
+    if (tc.rack()) {
+      rack_tool_change(ctx_, o.tool, number, at);
+    } else if (!io_.confirm(fmt::format("Change to tool {} (M6), then continue", number), loc)) {
       throw OperatorStop({loc, Severity::Error, "stopped by the operator at M6"});
+    }
+    o.tool = number;
+    measure_tool(ctx_, number, at);
+    if (tc.rack() || (tc.sensor_input != 0 && number != 0))
+      return_from_change(ctx_, start[0], start[1], at);
   }
   o.tool = number;
   const ToolTable& table = o.tools;

@@ -13,6 +13,7 @@
 #include "gantry/core/file_problem.hpp"      // shown_path
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
 #include "gantry/interp/tool_table.hpp"      // tool_into_spindle
+#include "gantry/interp/tool_changer.hpp"    // C9 on a rack
 #include "gantry/lang/scan.hpp"              // looks_like_expression
 #include "interp_private.hpp"                // Frame, UserFile
 #include "persistent_path.hpp"               // describe_path
@@ -437,12 +438,14 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
     // Output switches go off when the job ends, however it ends, unless their VN mode keeps
     // them on; VO lasts until the part file is exited. Typed lines are no part file.
     if (!typed) {
+      ctx_.spindle_settles_ = false;   // no spin-down wait after the end: nothing follows
       for (int n = 1; n <= 12; ++n) {  // VN output modes 1 and 4 stay on (docs/values.md)
         const int mode = settings_.switches.output_modes[n - 1];
         if (n == 4 && ctx_.switch4_auto_) continue;  // off once the motion has ended, below
         if ((state_.outputs >> (n - 1) & 1u) && mode != 1 && mode != 4)
           ctx_.set_output(n, false, SourceLoc{});
       }
+      ctx_.spindle_settles_ = true;
       state_.tool_offset = Vec6::Zero();
       // The speed output goes to 0 with the spindle; TR's RPM stays, as a VFD keeps it.
       if (state_.spindle_rpm > 0 && settings_.spindle.pwm_bit >= 0 && !state_.preview) {
@@ -807,7 +810,7 @@ MachineSnapshot Interpreter::snapshot() const {
   m.jog_speed = groups(state_.speeds.jog);
   m.move_ramp = groups(settings_.ramps.move_ramp_speed);
   m.jog_ramp = groups(settings_.ramps.jog_ramp_speed);
-  m.spindle_rpm = (state_.outputs & 1u) ? state_.spindle_rpm : 0;  // the spindle is output 1
+  m.spindle_rpm = ctx_.spindle_direction() != 0 ? state_.spindle_rpm : 0;
   if (!frames_.empty()) {
     const Frame& f = frames_.back();
     m.file_path = std::filesystem::absolute(*f.script->name()).string();
@@ -1045,6 +1048,17 @@ void Interpreter::tool_change(const SourceLoc& loc) {
 }
 
 void Interpreter::call_macro(int number, const SourceLoc& loc) {
+  if (number == 9 && settings_.toolchanger.rack()) {  // the rack's change, not a C9.sbp
+    const Value* t = user_variable("TOOL");
+    const double n = t && t->is_number() ? t->num() : -1;
+    if (n < 1 || n > 1e9 || n != std::floor(n))
+      fail(loc, "C9 changes the tool on this machine's rack ([toolchanger] in the profile): set "
+                "&Tool to the number of the tool to put in first (&Tool = 2, then C9)");
+    opensbp_rack_change(ctx_, static_cast<int>(n), loc);
+    tool_into_spindle(ctx_, static_cast<int>(n), loc);  // VC's diameter, as after C9.sbp
+    ctx_.note_drawing(loc);
+    return;
+  }
   const std::vector<std::string> folders = macro_folders();
   for (const std::string& dir : folders)
     for (const std::string& name :

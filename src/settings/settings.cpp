@@ -378,6 +378,7 @@ void read_row(TableReader& t, const SettingRow& row, int i, Settings& s) {
       *static_cast<std::vector<GpioLineBit>*>(field) = t.line_bits(key, row.names[0]);
       return;
     case SettingKind::Coded:
+      if (row.optional && !t.has(key)) return;  // a key added after profiles were written
       if (!row.decode(s, t.choice(key, {}, row.encode(s)))) t.fail(key, row.rule);
       return;
   }
@@ -410,6 +411,78 @@ void read_profile(TableReader& root, Settings& s) {
 }
 
 }  // namespace
+
+// [spindle]'s outputs and inputs and [toolchanger]'s places (docs/hardware.md, "Spindle",
+// "Tool changer"): switches that are wired, heights in order, places within the soft limits.
+static void spindle_and_tool_changer_rules(const Settings& s, double pacer,
+                                           const std::function<void(std::string)>& err) {
+  auto output_wired = [&](int n) {
+    return n >= 1 && n <= static_cast<int>(s.outputs.aux_bits.size()) && s.outputs.aux_bits[n - 1] >= 0;
+  };
+  auto input_wired = [&](int n) { return n >= 1 && n <= 12 && s.inputs.switch_bits[n - 1] >= 0; };
+  const SpindleSettings& sp = s.spindle;
+  if (sp.pwm_bit >= 0 && sp.speed_mode == SpindleSettings::SpeedMode::Frequency &&
+      sp.max_hz > pacer / 2)
+    err(fmt::format("spindle.max_hz {} is faster than the card's {:.0f} Hz pacer can carry (at "
+                    "most {:.0f} Hz, two ticks a period)",
+                    sp.max_hz, pacer, pacer / 2));
+  if (sp.reverse_output == 1)
+    err("spindle.reverse_output cannot be output switch 1, which runs the spindle");
+  else if (sp.reverse_output != 0 && !output_wired(sp.reverse_output))
+    err(fmt::format("spindle.reverse_output: output switch {} is not wired (outputs.aux_bits)",
+                    sp.reverse_output));
+  if (sp.at_speed_input != 0 && !input_wired(sp.at_speed_input))
+    err(fmt::format("spindle.at_speed_input: input switch {} is not wired (inputs.switch_bits)",
+                    sp.at_speed_input));
+  const ToolChangerSettings& tc = s.toolchanger;
+  const AxisSettings &x = s.axes[0], &y = s.axes[1], &z = s.axes[2];
+  auto outside = [](const AxisSettings& a, double v) { return v < a.min || v > a.max; };
+  if (tc.rack() || tc.sensor_input != 0) {
+    if (outside(z, tc.clear_z))
+      err(fmt::format("toolchanger.clear_z {} is outside Z's soft limits {} to {}", tc.clear_z,
+                      z.min, z.max));
+  }
+  if (tc.rack()) {
+    if (tc.release_output == 0)
+      err("toolchanger.release_output is needed with a rack: the output switch that opens the "
+          "drawbar");
+    else if (tc.release_output == 1 || tc.release_output == sp.reverse_output)
+      err(fmt::format("toolchanger.release_output: output switch {} drives the spindle",
+                      tc.release_output));
+    else if (!output_wired(tc.release_output))
+      err(fmt::format("toolchanger.release_output: output switch {} is not wired "
+                      "(outputs.aux_bits)",
+                      tc.release_output));
+    if (tc.slot_z >= tc.clear_z)
+      err(fmt::format("toolchanger.slot_z ({}) must be below toolchanger.clear_z ({})", tc.slot_z,
+                      tc.clear_z));
+    if (outside(z, tc.slot_z))
+      err(fmt::format("toolchanger.slot_z {} is outside Z's soft limits {} to {}", tc.slot_z,
+                      z.min, z.max));
+    for (size_t k = 0; k < tc.slots.size(); ++k)
+      if (outside(x, tc.slots[k][0]) || outside(y, tc.slots[k][1]))
+        err(fmt::format("toolchanger.slots: slot {} (X {}, Y {}) is outside the soft limits", k + 1,
+                        tc.slots[k][0], tc.slots[k][1]));
+  }
+  if (tc.sensor_input != 0) {
+    if (!input_wired(tc.sensor_input))
+      err(fmt::format("toolchanger.sensor_input: input switch {} is not wired "
+                      "(inputs.switch_bits)",
+                      tc.sensor_input));
+    if (tc.sensor_min_z >= tc.sensor_start_z)
+      err(fmt::format("toolchanger.sensor_min_z ({}) must be below toolchanger.sensor_start_z ({})",
+                      tc.sensor_min_z, tc.sensor_start_z));
+    if (tc.sensor_start_z > tc.clear_z)
+      err(fmt::format("toolchanger.sensor_start_z ({}) must be at most toolchanger.clear_z ({})",
+                      tc.sensor_start_z, tc.clear_z));
+    if (outside(z, tc.sensor_min_z))
+      err(fmt::format("toolchanger.sensor_min_z {} is outside Z's soft limits {} to {}",
+                      tc.sensor_min_z, z.min, z.max));
+    if (outside(x, tc.sensor_x) || outside(y, tc.sensor_y))
+      err(fmt::format("toolchanger.sensor_x: the sensor (X {}, Y {}) is outside the soft limits",
+                      tc.sensor_x, tc.sensor_y));
+  }
+}
 
 // Rules that tie keys together; each is reported at the first key it names, in the file that
 // key came from (a values file's key is in the values file), or at `origin`'s top when the
@@ -469,6 +542,7 @@ static void check_consistency(const Settings& s, const std::string& origin,
         fmt::format("spindle.pwm_hz {} leaves {:.0f} ticks a period at the card's {:.0f} Hz "
                     "pacer; at most {:.0f} Hz keeps TR's duty within 1 %",
                     s.spindle.pwm_hz, pacer / s.spindle.pwm_hz, pacer, pacer / 100));
+  spindle_and_tool_changer_rules(s, pacer, err);
   // Each bit has one role, but the proximity switches of several axes may share one (wired
   // in parallel), and switch_bits only names bits for part files.
   std::uint32_t inputs_used = 0, home_bits = 0;

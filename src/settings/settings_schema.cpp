@@ -4,6 +4,8 @@
 #include <fmt/format.h>  // describe, docs
 
 #include <algorithm>  // find_if
+#include <cmath>      // isfinite, fabs
+#include <cstdio>     // sscanf
 #include <cctype>     // toupper
 #include <stdexcept>  // out_of_range
 
@@ -32,6 +34,8 @@ constexpr std::string_view kLineBit[] = {"LINE:BIT"};
 constexpr std::string_view kSigns[] = {"-", "+"};
 constexpr std::string_view kTriggerAxes[] = {"z", "a"};
 constexpr std::string_view kAxisUnits[] = {"in", "mm", "deg"};  // AxisUnit's order
+constexpr std::string_view kSpeedModes[] = {"pwm", "frequency"};     // SpindleSettings::SpeedMode
+constexpr std::string_view kReverseWirings[] = {"direction", "run"};  // ...::ReverseWiring
 
 // The speed limit of a speed group (xy z a b c): the axis max_speed, XY's the lower of X's and Y's.
 double group_limit(const Settings& s, int i) {
@@ -86,6 +90,32 @@ bool channels_read(Settings& s, std::string_view channels) {
     if (ok) s.drivers.channel_axis[k] = static_cast<int>(axis);
   }
   return ok;
+}
+
+// The tool rack's slots: "x y; x y" (slot k holds tool k).
+std::string slots_text(const Settings& s) {
+  std::string out;
+  for (const auto& [x, y] : s.toolchanger.slots)
+    out += fmt::format("{}{} {}", out.empty() ? "" : "; ", x, y);
+  return out;
+}
+
+bool slots_read(Settings& s, std::string_view text) {
+  std::vector<std::array<double, 2>> slots;
+  while (!text.empty() && text.find_first_not_of(" \t") != std::string_view::npos) {
+    const size_t end = text.find(';');
+    std::string one(text.substr(0, end));
+    text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
+    std::array<double, 2> xy{};
+    char extra = 0;
+    if (std::sscanf(one.c_str(), " %lf %lf %c", &xy[0], &xy[1], &extra) != 2) return false;
+    if (!std::isfinite(xy[0]) || !std::isfinite(xy[1]) || std::fabs(xy[0]) > 1e9 ||
+        std::fabs(xy[1]) > 1e9)
+      return false;
+    slots.push_back(xy);
+  }
+  s.toolchanger.slots = std::move(slots);
+  return true;
 }
 
 // The member a row sets, typed: a row of the wrong kind's type does not compile.
@@ -384,6 +414,66 @@ const SettingRow kRows[] = {
       .optional_table = true),
   NUM("spindle", "max_rpm", spindle.max_rpm, kPositive, None,
       "the RPM at 100 % duty; with `pwm_bit` wired, TR above it is refused", .optional_table = true),
+  {.section = "spindle", .key = "speed_mode", .kind = SettingKind::Choice,
+   .help = "how `pwm_bit` carries the speed: `\"pwm\"`, a duty of rpm / `max_rpm` at `pwm_hz`; `\"frequency\"`, a square wave of rpm / `max_rpm` x `max_hz` (a VFD's pulse-train input, WinCNC's spindle=T3). Left out: pwm",
+   .names = kSpeedModes, .optional = true, .optional_table = true,
+   GANTRY_ENUM(spindle.speed_mode, SpindleSettings::SpeedMode)},
+  NUM("spindle", "max_hz", spindle.max_hz, kPositive, None,
+      "frequency mode: the frequency at `max_rpm`; at most the pacer / 2. Left out: 1000",
+      .optional = true, .optional_table = true),
+  INT("spindle", "reverse_output", spindle.reverse_output, 0, 12,
+      "the output switch that runs the spindle counter-clockwise (M4); 0: none, M4 is refused. Left out: 0",
+      .optional = true, .optional_table = true),
+  {.section = "spindle", .key = "reverse_wiring", .kind = SettingKind::Choice,
+   .help = "`\"direction\"`: `reverse_output` selects the direction while output switch 1 runs the spindle; `\"run\"`: output 1 runs it forward and `reverse_output` in reverse, never both (a VFD's FWD and REV terminals). Left out: direction",
+   .names = kReverseWirings, .optional = true, .optional_table = true,
+   GANTRY_ENUM(spindle.reverse_wiring, SpindleSettings::ReverseWiring)},
+  NUM("spindle", "spin_up_s", spindle.spin_up_s, (SettingRange{0, 3600}), None,
+      "the machine waits this long after the spindle starts (M3, M4, SO 1, C6), s, before anything moves. Left out: 0",
+      .optional = true, .optional_table = true),
+  NUM("spindle", "spin_down_s", spindle.spin_down_s, (SettingRange{0, 3600}), None,
+      "the machine waits this long after the spindle stops (M5, SO 1 off, C7, a tool change), s. Left out: 0",
+      .optional = true, .optional_table = true),
+  INT("spindle", "at_speed_input", spindle.at_speed_input, 0, 12,
+      "the input switch the drive closes when the spindle is at speed; after a start or a speed change the machine waits for it, and a job whose spindle is not at speed within `at_speed_timeout_s` stops with an error. 0: none. Left out: 0",
+      .optional = true, .optional_table = true),
+  NUM("spindle", "at_speed_timeout_s", spindle.at_speed_timeout_s, (SettingRange{0, 3600, true}), None,
+      "the longest wait for `at_speed_input`, s. Left out: 10", .optional = true, .optional_table = true),
+
+  {.section = "toolchanger", .key = "slots", .kind = SettingKind::Coded,
+   .unit = SettingUnit::Length, .help = "the tool rack: the table base X and Y of each slot, slot k holding tool k, as `\"2 40; 6 40; 10 40\"` for tools 1 to 3 (a length). Left out or empty: no rack, a tool change asks the operator (docs/hardware.md, \"Tool changer\"); the `[toolchanger]` table is optional",
+   .optional = true, .optional_table = true, .encode = slots_text,
+   .decode = slots_read, .rule = "must list each slot's X and Y, slots apart with `;` (\"2 40; 6 40\")",
+   .docs_allowed = "`\"x y; x y; ...\"`; optional"},
+  NUM("toolchanger", "slot_z", toolchanger.slot_z, kAny, Length,
+      "the table base Z at which the spindle holds a tool in its slot: where a tool is left and picked, WinCNC's atc H (a length)",
+      .optional = true, .optional_table = true),
+  NUM("toolchanger", "clear_z", toolchanger.clear_z, kAny, Length,
+      "the table base Z the spindle travels at to and over the rack and to the sensor; above `slot_z` (a length)",
+      .optional = true, .optional_table = true),
+  INT("toolchanger", "release_output", toolchanger.release_output, 0, 12,
+      "the output switch that opens the drawbar (the collet's air); needed with a rack. Left out: 0",
+      .optional = true, .optional_table = true),
+  NUM("toolchanger", "release_s", toolchanger.release_s, (SettingRange{0, 60}), None,
+      "the wait after the drawbar opens or closes, s. Left out: 0.5", .optional = true, .optional_table = true),
+  INT("toolchanger", "sensor_input", toolchanger.sensor_input, 0, 12,
+      "the tool-length sensor's input switch: after each change (M6, C9) the new tool is measured on it and its length written to the tool table (G43's). 0: none. Left out: 0",
+      .optional = true, .optional_table = true),
+  NUM("toolchanger", "sensor_x", toolchanger.sensor_x, kAny, Length,
+      "the sensor's table base X, WinCNC's g37 X (a length)", .optional = true, .optional_table = true),
+  NUM("toolchanger", "sensor_y", toolchanger.sensor_y, kAny, Length,
+      "the sensor's table base Y (a length)", .optional = true, .optional_table = true),
+  NUM("toolchanger", "sensor_start_z", toolchanger.sensor_start_z, kAny, Length,
+      "the table base Z the measuring probe starts from, reached at jog speed: above where the longest tool closes the sensor, at most `clear_z` (a length)",
+      .optional = true, .optional_table = true),
+  NUM("toolchanger", "sensor_min_z", toolchanger.sensor_min_z, kAny, Length,
+      "the lowest table base Z the probe goes to: a sensor that has not closed by then stops the job with an error (a length)",
+      .optional = true, .optional_table = true),
+  NUM("toolchanger", "sensor_speed", toolchanger.sensor_speed, kPositive, Rate,
+      "the probe's speed, units/s (WinCNC's g37 F). Left out: 0.5", .optional = true, .optional_table = true),
+  NUM("toolchanger", "sensor_zero_z", toolchanger.sensor_zero_z, kAny, Length,
+      "the table base Z at which a tool of length 0 would close the sensor: a tool's length is the Z where it closes less this (a length)",
+      .optional = true, .optional_table = true),
 
   INT("inputs", "estop_bit", inputs.estop_bit, -1, 31, "the E-stop's input-word bit (-1: not wired)", .owner = SettingOwner::MachineTable),
   BOOL("inputs", "estop_active_low", inputs.estop_active_low, "the E-stop input reads 0 when active", .owner = SettingOwner::MachineTable),

@@ -47,6 +47,7 @@ void convert_units(Settings& s, Units to) {
   if (f == 1) return;
   for (const SettingRow& row : settings_schema()) {
     if (row.unit == SettingUnit::None) continue;
+    if (row.kind == SettingKind::Coded) continue;  // the rack's slots, below
     for (int i = 0; i < row.size(); ++i) {
       double factor = f;
       switch (row.unit) {
@@ -65,6 +66,8 @@ void convert_units(Settings& s, Units to) {
       }
     }
   }
+  for (auto& slot : s.toolchanger.slots)
+    for (double& v : slot) v = round12(v * f);
 }
 
 }  // namespace gantry

@@ -29,6 +29,10 @@ WordWriter::WordWriter(const Settings& settings, const StepTiming& timing, Card&
     pwm_period_ticks_ =
         std::max<std::int64_t>(1, std::llround(settings.card.pacer_hz() / settings.spindle.pwm_hz));
     max_rpm_ = settings.spindle.max_rpm;
+    if (settings.spindle.speed_mode == SpindleSettings::SpeedMode::Frequency) {
+      frequency_ticks_hz_ = settings.card.pacer_hz() / settings.spindle.max_hz;
+      pwm_period_ticks_ = 2;
+    }
   }
   aux_bits_ = settings.outputs.aux_bits;
   for (int k = 0; k < kAxisCount; ++k) channel_steps_[k] = 1u << settings.pins[k].step_bit;
@@ -73,6 +77,17 @@ void WordWriter::set_spindle(bool on) {
 
 void WordWriter::set_spindle_speed(double rpm) {
   const double duty = std::clamp(rpm / max_rpm_, 0.0, 1.0);
+  if (frequency_ticks_hz_ > 0) {
+    // Frequency mode: a square wave of duty x max_hz, half high, in whole ticks (the period
+    // at least two); 0 RPM holds the line low.
+    if (!pwm_mask_ || duty <= 0) {
+      pwm_high_ticks_ = 0;
+      return;
+    }
+    pwm_period_ticks_ = std::max<std::int64_t>(2, std::llround(frequency_ticks_hz_ / duty));
+    pwm_high_ticks_ = pwm_period_ticks_ / 2;
+    return;
+  }
   pwm_high_ticks_ = pwm_mask_ ? std::llround(duty * static_cast<double>(pwm_period_ticks_)) : 0;
 }
 

@@ -156,8 +156,20 @@ class CommandContext {
   // Output switch n (1-based) on or off, at rest between the moves around it (SO).
   void set_output(int n, bool on, const SourceLoc& loc);
   // TR: the spindle speed, at rest between the moves around it, to the profile's speed
-  // output ([spindle]); without one it is only recorded, with one warning a run.
-  void set_spindle_speed(double rpm, const SourceLoc& loc);
+  // output ([spindle]); without one it is only recorded, with one warning a run (`quiet`:
+  // G-code's S, recorded without a warning). A change while the spindle runs waits for the
+  // at-speed input where the profile has one.
+  void set_spindle_speed(double rpm, const SourceLoc& loc, bool quiet = false);
+  // The spindle (docs/hardware.md, "Spindle"): M3 (+1, clockwise), M4 (-1), M5 (0), on output
+  // switch 1 and spindle.reverse_output as spindle.reverse_wiring says; a reversal stops the
+  // spindle first. M4 without a reverse output is an error at `loc`. A start waits the
+  // profile's spin_up_s and for its at-speed input, a stop its spin_down_s (set_output does
+  // the same when SO or C6/C7 switch the spindle's outputs).
+  void spindle(int direction, const SourceLoc& loc);
+  // 0 stopped, +1 clockwise, -1 counter-clockwise, from the output switches' levels.
+  int spindle_direction() const;
+  // Whether output switch n starts or stops the spindle (1, or spindle.reverse_output).
+  bool spindle_output(int n) const;
   // Makes the current location of `axes` (bits 0 X .. 5 C) working 0; the table base
   // location stays where it is.
   void zero_axes(unsigned axes);
@@ -266,6 +278,10 @@ class CommandContext {
   // waits the warning time. end_motion_warning, at the run's end, switches it off again.
   void warn_before_motion(const SourceLoc& loc);
   void end_motion_warning();
+  // After the spindle's outputs changed from direction `was`: the spin-up wait and the
+  // at-speed input, or the spin-down wait (spindle_control.cpp).
+  void spindle_settle(int was, const SourceLoc& loc);
+  void wait_at_speed(const SourceLoc& loc);
   friend class Interpreter;
   ModalState& state_;
   Settings& settings_;
@@ -281,6 +297,7 @@ class CommandContext {
   bool checking_ = false;              // a check: a refused move still changes the location
   bool switch4_auto_ = false;          // ... and switch 4 came on with the warning
   bool spindle_speed_warned_ = false;  // TR with no speed output: this run was told once
+  bool spindle_settles_ = true;        // false while a run's end switches everything off
   std::optional<DrawingState> drawn_;  // the drawing state the sink was last told
   std::optional<Units> file_units_;    // a G-code file's G20/G21 (none: VD's units)
 };

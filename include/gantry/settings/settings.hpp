@@ -91,8 +91,42 @@ struct OutputSettings {
 // feeds it to the VFD's speed input); its on/off is output switch 1, as on every ShopBot.
 struct SpindleSettings {
   int pwm_bit = -1;        // -1: no speed output; TR only records the RPM
-  double pwm_hz = 1000;    // the square wave's frequency
+  double pwm_hz = 1000;    // the square wave's frequency (speed_mode pwm)
   double max_rpm = 24000;  // the RPM at 100 % duty, and the most TR may ask for
+  // How `pwm_bit` carries the speed: a duty at pwm_hz (a PWM-to-0-10 V board), or a square
+  // wave whose frequency is rpm / max_rpm x max_hz (a VFD's pulse-train input; WinCNC's
+  // spindle=T3 on CN2 pin 11).
+  enum class SpeedMode { Pwm, Frequency } speed_mode = SpeedMode::Pwm;
+  double max_hz = 1000;  // frequency mode: the frequency at max_rpm
+  // M4: the output switch that makes the spindle run counter-clockwise (0: none, M4 refused).
+  // Direction wiring: it selects the direction while output 1 runs the spindle; run wiring
+  // (a VFD's FWD and REV terminals): output 1 runs it forward and this one in reverse.
+  int reverse_output = 0;
+  enum class ReverseWiring { Direction, Run } reverse_wiring = ReverseWiring::Direction;
+  double spin_up_s = 0;    // the machine waits this long after the spindle starts
+  double spin_down_s = 0;  // ... and after it stops, before anything else moves
+  // An input switch (1-12) the drive closes when the spindle is at speed (0: none): after a
+  // start or a change of speed the machine waits for it, at most at_speed_timeout_s.
+  int at_speed_input = 0;
+  double at_speed_timeout_s = 10;
+};
+
+// An automatic tool changer (docs/hardware.md, "Tool changer"): a rack of slots, one per tool
+// (slot k holds tool k), a drawbar output, and a tool-length sensor. All positions are table
+// base coordinates. No slots: tool changes are manual (the operator is asked).
+struct ToolChangerSettings {
+  std::vector<std::array<double, 2>> slots;  // X, Y of each slot
+  double slot_z = 0;       // Z where a tool sits in its slot (WinCNC's atc H: unload height)
+  double clear_z = 0;      // Z the spindle travels at over the rack and to the sensor
+  int release_output = 0;  // the output switch that opens the drawbar (1-12)
+  double release_s = 0.5;  // wait after the drawbar opens or closes
+  int sensor_input = 0;    // the tool-length sensor's input switch (1-12; 0: none)
+  double sensor_x = 0, sensor_y = 0;  // where it is (WinCNC's g37 X Y)
+  double sensor_start_z = 0;  // Z the probe starts from, at jog speed (above every tool's trip)
+  double sensor_min_z = 0;  // the lowest Z the probe goes to: the sensor never closing is an error
+  double sensor_speed = 0.5;  // the probe's speed, units/s (g37 F)
+  double sensor_zero_z = 0;   // Z at which a tool of length 0 would close it: length = trip - this
+  bool rack() const { return !slots.empty(); }
 };
 
 // Bits of the card's 32-bit input word. -1: not wired. A switch is "active" when its bit
@@ -284,6 +318,7 @@ struct Settings {
   std::array<PinSettings, kAxisCount> pins{};
   OutputSettings outputs;
   SpindleSettings spindle;
+  ToolChangerSettings toolchanger;
   InputSettings inputs;
   HomingSettings homing;
   LimitSettings limits;

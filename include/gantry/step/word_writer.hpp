@@ -98,8 +98,8 @@ class WordWriter {
   bool set_output(int n, bool on);
   bool output_on(int n) const;  // output switch n's level in the words
   // The spindle's speed output (spindle.pwm_bit) to `rpm`, from the next word on: a square
-  // wave of duty rpm / max_rpm, by the tick's own number like the charge pump. No-op
-  // when the profile wires none.
+  // wave of duty rpm / max_rpm (or, in frequency mode, of rpm / max_rpm x max_hz, half high),
+  // by the tick's own number like the charge pump. No-op when the profile wires none.
   void set_spindle_speed(double rpm);
 
   // Arms the card's input watch. While it is armed its bits do not trip the card as limit
@@ -140,6 +140,7 @@ class WordWriter {
   std::uint32_t pwm_mask_ = 0;
   std::int64_t pwm_period_ticks_ = 1, pwm_high_ticks_ = 0;  // high for the first ticks of a period
   double max_rpm_ = 0;
+  double frequency_ticks_hz_ = 0;  // frequency mode: ticks a period at max_rpm (0: PWM mode)
   InputRoles roles_;              // the profile's and VN's, for the card's trips
   std::uint32_t watch_mask_ = 0;  // the bits watched now
   std::function<void()> on_block_;
