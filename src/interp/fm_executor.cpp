@@ -11,12 +11,12 @@
 #include <cstdio>     // snprintf
 #include <cstdlib>    // strtod
 #include <string>
-#include <utility>    // exchange
+#include <utility>  // exchange
 #include <vector>
 
 #include "gantry/commands/command_table.hpp"  // home_on_switches: M99
-#include "gantry/commands/stroke_font.hpp"   // G16's characters
-#include "gantry/core/text.hpp"             // ascii::upper, ascii::lower
+#include "gantry/commands/stroke_font.hpp"    // G16's characters
+#include "gantry/core/text.hpp"               // ascii::upper, ascii::lower
 
 namespace gantry {
 namespace {

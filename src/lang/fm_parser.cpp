@@ -276,6 +276,7 @@ void g_tail(TokenReader& r, std::string_view raw_token, FmCommand& c) {
       }
       return expect_end(r, "the delay");
     case 7:
+      r.pos = 0;  // at the command
       r.fail(
           "G7 sends characters straight to U.S. Laser's motion controller, in that "
           "controller's own language; Gantry drives its own card and has no such "
@@ -436,6 +437,7 @@ FmCommand read_command(std::string_view up, std::string_view raw, int col, bool 
       read_move(r, c);
       return c;
     case 'I':
+      --r.pos;  // at the command
       r.fail("I and J give an arc's centre after its end point: X#Y#I#J#");
     case 'F':
       c.op = FmOp::Feed;
@@ -550,6 +552,7 @@ FmCommand read_command(std::string_view up, std::string_view raw, int col, bool 
       return c;
     }
     case 'P':
+      --r.pos;  // at the command
       r.fail(
           "P switches the resistor trimmer's relay matrix (test probes to bus A or B); "
           "Gantry's machine profiles wire no relay matrix, so it cannot be run");
@@ -565,17 +568,21 @@ FmCommand read_command(std::string_view up, std::string_view raw, int col, bool 
       expect_end(r, "the value");
       return c;
     case 'T':
+      --r.pos;  // at the command
       r.fail(
           "T (resistor trim) cannot run: the manual gives the Trim window's fields but "
           "not the text of a T line, and the trim measures with a DMM board Gantry does "
           "not have");
     case 'L':
+      --r.pos;  // at the command
       r.fail(
           "L is listed as a code letter in the manual but never described; Gantry does "
           "not guess what it does");
     case 'R':
+      --r.pos;  // at the command
       r.fail("R repeats the command it is appended to, with no space: KN100R6, X#Y#I#J#R#");
     case '"':
+      --r.pos;  // at the command
       r.fail("quoted text belongs to a command (G10, G16, G58, G25); none is written here");
     default:
       --r.pos;
