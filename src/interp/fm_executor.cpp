@@ -30,10 +30,16 @@ std::string four_decimals(double v) {
 }  // namespace
 
 FmExecutor::FmExecutor(CommandContext& ctx, OperatorIO& io) : ctx_(ctx), io_(io) {
-  begin_file();
+  reset();
 }
 
 void FmExecutor::begin_file() {
+  reset();
+  // What a preview draws the file's numbers in (only a Friendly Motion file says).
+  ctx_.set_file_units(metric_ ? Units::Millimetres : Units::Inches);
+}
+
+void FmExecutor::reset() {
   incremental_ = true;  // "G91 is the default mode on power up"
   clockwise_ = true;
   metric_ = ctx_.settings().units == Units::Millimetres;
@@ -56,7 +62,6 @@ void FmExecutor::begin_file() {
   in_text_.reset();
   in_pos_ = 0;
   laser_warned_ = analog_warned_ = false;
-  ctx_.set_file_units(metric_ ? Units::Millimetres : Units::Inches);
 }
 
 void FmExecutor::end_file(const SourceLoc& loc) {

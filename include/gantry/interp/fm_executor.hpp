@@ -39,6 +39,7 @@ class FmExecutor {
   bool dry_run() const { return dry_run_; }
 
  private:
+  void reset();  // the power-up state (begin_file without telling the preview)
   // Program values (inches or mm as G70/G71 say) to machine units.
   double unit() const;
   // Where the table is in user coordinates (machine units): the inverse of to_machine.
