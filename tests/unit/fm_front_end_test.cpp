@@ -582,6 +582,26 @@ TEST_F(FmTest, ZeroingAndTheRotaryAxis) {  // facts 74-76
   EXPECT_NEAR(state.position[5], 0, 1e-12);
 }
 
+TEST_F(FmTest, InputWaitsAnalogValuesAndTheFreeRunningC) {
+  // M200 alone waits for input 1 (no machine here: the operator is asked to go on).
+  io.asked.clear();
+  EXPECT_EQ(moves_of("M200 X1"), "L 1.0000,0.0000");
+  ASSERT_EQ(io.asked.size(), 1u);
+  EXPECT_NE(io.asked[0].find("waiting for input 1 to close"), std::string::npos) << io.asked[0];
+  EXPECT_NE(error("M212\n").message.find("1 to 12"), std::string::npos);
+  // Sf and SC: checked, recorded, said once.
+  io.warnings.clear();
+  run("Sf10.5 SC20 Sf11\n");
+  ASSERT_EQ(io.warnings.size(), 1u);
+  EXPECT_NE(io.warnings[0].message.find("no analog output"), std::string::npos);
+  // M94 turns C on its own at the C feed; M96 stops it and C is ZERO there.
+  run("FC90 M94 G4X1 M96\n");
+  bool turned = false;
+  for (const CanonMove& m : sink.moves) turned = turned || m.kind == MoveKind::Independent;
+  EXPECT_TRUE(turned);
+  EXPECT_NEAR(state.position[5], 0, 1e-12);
+}
+
 TEST_F(FmTest, HomingEndsTheUserCoordinatesAndMakesHomeZero) {  // fact 61, 77
   EXPECT_EQ(shown("V81=1 V85=30 G60A M99X G90 X0", "V91"), "0.0000");
   EXPECT_TRUE(errors_of(check_script(script("V81=1 V85=30 G60A M99 M98\n"))).empty());
