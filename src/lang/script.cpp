@@ -352,9 +352,20 @@ void Script::index_fm() {
                            fmt::format("{} is numbered again; J and K go to the first, line {}",
                                        key, labels_.at(key).line)});
     }
-    for (const FmCommand& cmd : line.commands)
-      if (cmd.op == FmOp::Jump || cmd.op == FmOp::Call)
-        targets.emplace_back(cmd.target, SourceLoc{name_, c.line, cmd.column});
+    for (size_t k = 0; k < line.commands.size(); ++k) {
+      const FmCommand& cmd = line.commands[k];
+      if (cmd.op != FmOp::Jump && cmd.op != FmOp::Call) continue;
+      targets.emplace_back(cmd.target, SourceLoc{name_, c.line, cmd.column});
+      // The manual writes J and K alone: what follows one on its line is Gantry's reading.
+      if (k + 1 < line.commands.size())
+        errors_.push_back({{name_, c.line, line.commands[k + 1].column},
+                           Severity::Warning,
+                           fmt::format("{} is followed on its line: the commands after it run "
+                                       "when it does not jump{}",
+                                       cmd.op == FmOp::Jump ? "J" : "K",
+                                       cmd.op == FmOp::Call ? ", and after the subroutine returns"
+                                                            : "")});
+    }
   }
   for (const auto& [n, loc] : targets)
     if (!labels_.count(fmt::format("N{}", n)))

@@ -472,6 +472,12 @@ TEST_F(FmTest, SubroutinesReturnToTheCommandAfterTheCall) {  // facts 66, 67, 68
   EXPECT_EQ(moves_of("G91 V2=1 KV2N10 KV3N20\nM0\nN10 X1 KN20\nM6\nN20 Y1\nM6\n"),
             "L 1.0000,0.0000; L 1.0000,1.0000");
   EXPECT_NE(run_error("N1 KN1\n").message.find("10 deep"), std::string::npos);
+  // A command after J or K on its line is read so, with a warning (the manual writes them
+  // alone).
+  const auto s = script("KN10 X1\nM0\nN10 Y1\nM6\n");
+  ASSERT_FALSE(s->errors().empty());
+  EXPECT_EQ(s->errors().front().severity, Severity::Warning);
+  EXPECT_EQ(s->errors().front().loc.column, 6);
   EXPECT_NE(run_error("X1\nM6\n").message.find("none was called"), std::string::npos);
 }
 
