@@ -19,6 +19,7 @@
 #include "gantry/core/any_bytes.hpp"         // json_text
 #include "gantry/core/text.hpp"              // upper, lower
 #include "gantry/core/text_file.hpp"         // read_text_file
+#include "gantry/lang/fm.hpp"                // fm_command_list: `gantry help fm`
 #include "gantry/lang/script.hpp"            // Script
 #include "gantry/interp/interpreter_options.hpp"  // the macro folders help looks in
 #include "gantry/machine/job.hpp"            // run_job, check_program, interpret
@@ -181,8 +182,12 @@ struct LanguageArgs {
   std::size_t max_errors = 100;
   double feed_override = 100;  // percent
   int from_line = 0;           // run and moves: the first line to run (0: all)
+  std::string language;        // --language: sbp, gcode or fm ("": by the file's name)
 
   void add_to(CLI::App* cmd) {
+    cmd->add_option("--language", language,
+                    "Read the file as sbp (OpenSBP), gcode or fm (Friendly Motion) whatever its "
+                    "name (default: by its extension and first line)");
     cmd->add_flag("--yes", yes, "Continue every PAUSE and press each MSGBOX's default button");
     cmd->add_option("--input", inputs, "Answer INPUT for a variable: --input '&DEPTH=0.5'");
     cmd->add_flag("--allow-shell", allow_shell, "Let SHELL start programs");
@@ -217,6 +222,13 @@ struct LanguageArgs {
     out.feed_override = feed_override / 100;
     out.yes = yes;
     out.interpreter.start_line = from_line;
+    if (!language.empty()) {
+      out.interpreter.language = language_named(language);
+      if (!out.interpreter.language) {
+        fmt::print(stderr, "error: --language {} is not sbp, gcode or fm\n", language);
+        return false;
+      }
+    }
     for (const std::string& kv : inputs) {
       const size_t eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) {
@@ -246,8 +258,9 @@ struct CheckedFile {
 };
 
 // A part file as every command loads it: the load pass reports unknown commands too.
-std::shared_ptr<const Script> load_part_file(const std::string& file) {
-  return Script::load(file, CommandTable::standard().is_command());
+std::shared_ptr<const Script> load_part_file(const std::string& file,
+                                             std::optional<Language> language) {
+  return Script::load(file, CommandTable::standard().is_command(), language);
 }
 
 // False (after saying why) when the profile or an --input is malformed. `estimate`: the
@@ -267,7 +280,7 @@ bool load_and_check(const std::string& file, const std::string& settings_path,
         unattended_inputs(simulated_world(settings), settings.inputs);
   if (estimate) out.opt.input_defaults = true;  // --input still answers first
   if (control) out.opt.stop = &control->stopped();
-  out.script = load_part_file(file);
+  out.script = load_part_file(file, out.opt.interpreter.language);
   std::optional<CycleTimer> timer;
   JobOptions check = out.opt;
   if (estimate) check.check_moves = &timer.emplace(settings, check.feed_override, check.check_moves);
@@ -286,7 +299,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   describe(profile, lang.allow_paths, opt.interpreter);
   PersistentStore store = lang.store();
   report.units = settings.units;
-  std::shared_ptr<const Script> script = load_part_file(a.file);
+  std::shared_ptr<const Script> script = load_part_file(a.file, opt.interpreter.language);
   // A person at a terminal answers the file's questions, unless --yes/--input do. With
   // --json, stdout holds only the report: PRINT goes to stderr.
   std::FILE* const print_to = a.json ? stderr : stdout;
@@ -603,6 +616,11 @@ int cmd_commands(const std::string& group, bool json) {
 
 int cmd_help(const std::string& code, bool markdown) {
   const CommandTable& table = CommandTable::standard();
+  if (ascii::lower(code) == "fm" || ascii::lower(code) == "friendlymotion") {
+    // the third language's own table (docs/friendlymotion.md's, with --markdown)
+    fmt::print("{}", markdown ? fm_commands_markdown() : fm_command_list());
+    return 0;
+  }
   if (markdown) {
     fmt::print("{}", commands_markdown(table));
     return 0;
@@ -756,7 +774,9 @@ int main(int argc, char** argv) {
   std::string help_code;
   bool help_markdown = false;
   CLI::App* help_cmd = app.add_subcommand("help", "List the commands, or describe one");
-  help_cmd->add_option("code", help_code, "A two-letter command (MX), a statement (PAUSE) or a custom cut (C2)");
+  help_cmd->add_option("code", help_code,
+                       "A two-letter command (MX), a statement (PAUSE), a custom cut (C2), or fm "
+                       "for the Friendly Motion commands");
   help_cmd->add_flag("--markdown", help_markdown, "Print the command reference (docs/commands.md)");
   bool help_man = false;
   help_cmd->add_flag("--man", help_man, "Print the manual page gantry(1), in roff");

@@ -123,6 +123,7 @@ std::string command_list(const CommandTable& table) {
   return out +
          "Custom cuts: C<n> runs C<n>.sbp from the macro folders (C2 zero Z, C3 home, C6 and C7 "
          "spindle, C9 tool change).\n"
+         "Friendly Motion files (.fm): `gantry help fm` lists their commands.\n"
          "Type `gantry help WORD` for a command's parameters, a statement's forms or a custom "
          "cut's description.\n";
 }

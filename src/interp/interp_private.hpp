@@ -177,6 +177,21 @@ struct Interpreter::GcodeFlow {
   bool hot = false;
 };
 
+// Friendly Motion's open K calls (10 deep), the line and command a return or a STEP resumes
+// at, and the run mode (AUTO, or STEP after M0).
+struct Interpreter::FmFlow {
+  struct Call {
+    Cursor line;      // the calling line
+    size_t next = 0;  // the command after the K on it
+    Cursor target;    // the subroutine's first line (for R)
+    long left = 0;    // calls still to come (R)
+  };
+  std::vector<Call> calls;
+  size_t resume_offset = SIZE_MAX;  // the line to resume at (its offset), and its command
+  size_t resume_index = 0;
+  bool step = false;  // STEP mode: the operator starts each line
+};
+
 // A file opened with OPEN ... AS #n.
 struct Interpreter::UserFile {
   int number = 0;

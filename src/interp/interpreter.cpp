@@ -11,6 +11,7 @@
 
 #include "gantry/core/diagnostic_log.hpp"    // DiagnosticLog
 #include "gantry/core/file_problem.hpp"      // shown_path
+#include "gantry/interp/fm_executor.hpp"     // Friendly Motion commands
 #include "gantry/interp/gcode_executor.hpp"  // G-code blocks
 #include "gantry/interp/tool_table.hpp"      // tool_into_spindle
 #include "gantry/interp/tool_changer.hpp"    // C9 on a rack
@@ -76,7 +77,8 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, MachineLink
       store_(store),
       options_(std::move(options)),
       ctx_(state_, settings_, sink_),
-      gcode_flow_(std::make_unique<GcodeFlow>()) {
+      gcode_flow_(std::make_unique<GcodeFlow>()),
+      fm_flow_(std::make_unique<FmFlow>()) {
   ctx_.interp_ = this;
   gated_io_->before_asking = [this] { ctx_.sync(); };
   // The profile's subroutine folders after --subroutines', for every front end alike.
@@ -92,6 +94,7 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, MachineLink
     for (size_t i = from; i < frames_.size(); ++i)
       frames_[i].pc = Cursor{std::string::npos, frames_[i].pc.line};
   });
+  fm_ = std::make_unique<FmExecutor>(ctx_, io_);
   if (options_.files) {
     files_system_ = options_.files;
   } else {
@@ -195,6 +198,10 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
     gcode_->reset_calls();
   }
   if (script->gcode()) gcode_->begin_file(call.lines != nullptr);
+  if (script->fm()) {
+    fm_->begin_file();
+    *fm_flow_ = FmFlow{};
+  }
   Frame f;
   f.script = std::move(script);
   f.pc = f.script->start();
@@ -235,6 +242,7 @@ void Interpreter::plunge_for_pass(Frame& f) {
 void Interpreter::end_file() {
   Frame& f = frames_.back();
   if (f.script->gcode()) gcode_->end_file({f.script->name(), current_.line, 0});
+  if (f.script->fm()) fm_->end_file({f.script->name(), current_.line, 0});
   restore_file_values(f);
   if (++f.repetition < f.call.repetitions) {
     f.pc = f.script->start();
@@ -572,7 +580,7 @@ void Interpreter::loop(DiagnosticLog* collect) {
     // An O-word loop's lines are parsed once, then taken from the script's cache.
     const bool hot = f.script->gcode() && gcode_flow_->hot;
     const std::string_view text = hot ? std::string_view() : f.script->line_at(f.pc, &next);
-    if (hot ||
+    if (hot || f.script->fm() ||
         !(f.script->gcode() ? parse_gcode_statement(text, f.script->name(), f.pc.line, &simple_)
                             : parse_simple_command(text, f.script->name(), f.pc.line, &simple_) ||
                                   f.script->read_common(f.pc, text, next, &simple_))) {

@@ -9,9 +9,9 @@
 #include <filesystem>  // GetUsrPath, GetAppPath
 #include <functional>  // option values
 
-#include "gantry/lang/number_literal.hpp"  // parse_number_literal
-#include "gantry/lang/scan.hpp"  // upper, trim
 #include "gantry/interp/interpreter.hpp"
+#include "gantry/lang/number_literal.hpp"  // parse_number_literal
+#include "gantry/lang/scan.hpp"            // upper, trim
 #include "interp_private.hpp"
 
 namespace gantry {
@@ -83,51 +83,58 @@ std::string Interpreter::pause_message(const SourceLoc&) const {
   return "Continue?";
 }
 
+// Waits until input switch `in` (1-12) is `state` (closed: true): PAUSE UNTIL, and Friendly
+// Motion's M200-M231 (`what` names the statement in messages).
+void Interpreter::wait_for_input(int in, bool state, const SourceLoc& loc, std::string_view what) {
+  // Level-triggered: an input already in the state does not wait.
+  const int n = in - 1;
+  ctx_.sync();
+  if (snapshot().inputs[n] == state) return;
+  const bool live = gated_sink_->input_switches().has_value();
+  if (options_.unattended_inputs) {
+    // Nobody is at the machine: only the simulated machine can answer, or the wait never ends.
+    const int on = state;
+    const std::optional<Vec6> check_at =
+        live ? std::nullopt : std::optional<Vec6>(snapshot().table_base + state_.machine_origin);
+    if (!options_.unattended_inputs(n + 1, on, check_at))
+      fail(
+          loc,
+          fmt::format(
+              "{6} waits for input {0} to {1}, and nothing will {1} it: nobody "
+              "is at the machine, and the simulated machine has no event{2} for input "
+              "{0}{3}; give it one with --sim-input {0}={4}@SECONDS (at a machine "
+              "time){5}, or run from a terminal",
+              n + 1, on ? "close" : "open", live ? " still to come" : "",
+              live ? ""
+                   : fmt::format(", nor a switch that {}s it where the tool rests",
+                                 on ? "close" : "open"),
+              on,
+              live ? "" : fmt::format(" or --sim-input {}={}@x>=POS (while X is there)", n + 1, on),
+              what));
+    if (!live) return;  // a check: the simulated machine answers, not a person
+  }
+  if (live) {
+    // The live machine: it waits for the switch, in short dwells, so time passes on the
+    // card (virtual time too) and a stop ends the wait.
+    while ((*gated_sink_->input_switches())[n] != state) {
+      ctx_.dwell(0.01, loc);
+      ctx_.sync();
+    }
+    return;
+  }
+  if (!io_.confirm(fmt::format("{} (waiting for input {} to {})", pause_message(loc), in,
+                               state ? "close" : "open"),
+                   loc))
+    throw OperatorStop({loc, Severity::Error, fmt::format("stopped by the operator at {}", what)});
+}
+
 void Interpreter::exec(const PauseStmt& s, const SourceLoc& loc) {
   if (s.kind == PauseStmt::Kind::Until) {
     const double in = evaluate(*s.input, *this).to_number(loc, "the input number");
     const double state = evaluate(*s.state, *this).to_number(loc, "the state");
     if (in != std::round(in) || in < 1 || in > 12)
       fail(loc, fmt::format("input switch {} does not exist; inputs are 1 to 12", in));
-    // Level-triggered: an input already in the state does not wait.
-    const int n = static_cast<int>(in) - 1;
-    ctx_.sync();
-    if (snapshot().inputs[n] == (state != 0)) return;
-    const bool live = gated_sink_->input_switches().has_value();
-    if (options_.unattended_inputs) {
-      // Nobody is at the machine: only the simulated machine can answer, or the wait never ends.
-      const int on = state != 0;
-      const std::optional<Vec6> check_at =
-          live ? std::nullopt : std::optional<Vec6>(snapshot().table_base + state_.machine_origin);
-      if (!options_.unattended_inputs(n + 1, on, check_at))
-        fail(loc,
-             fmt::format(
-                 "PAUSE UNTIL waits for input {0} to {1}, and nothing will {1} it: nobody "
-                 "is at the machine, and the simulated machine has no event{2} for input "
-                 "{0}{3}; give it one with --sim-input {0}={4}@SECONDS (at a machine "
-                 "time){5}, or run from a terminal",
-                 n + 1, on ? "close" : "open", live ? " still to come" : "",
-                 live ? ""
-                      : fmt::format(", nor a switch that {}s it where the tool rests",
-                                    on ? "close" : "open"),
-                 on,
-                 live ? ""
-                      : fmt::format(" or --sim-input {}={}@x>=POS (while X is there)", n + 1, on)));
-      if (!live) return;  // a check: the simulated machine answers, not a person
-    }
-    if (live) {
-      // The live machine: it waits for the switch, in short dwells, so time passes on the
-      // card (virtual time too) and a stop ends the wait.
-      while ((*gated_sink_->input_switches())[n] != (state != 0)) {
-        ctx_.dwell(0.01, loc);
-        ctx_.sync();
-      }
-      return;
-    }
-    if (!io_.confirm(fmt::format("{} (waiting for input {} to {})", pause_message(loc), in,
-                                 state != 0 ? "close" : "open"),
-                     loc))
-      throw OperatorStop({loc, Severity::Error, "stopped by the operator at PAUSE UNTIL"});
+    wait_for_input(static_cast<int>(in), state != 0, loc, "PAUSE UNTIL");
     return;
   }
   if (s.kind == PauseStmt::Kind::Operator) {

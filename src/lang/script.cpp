@@ -11,7 +11,9 @@
 #include <unistd.h>    // close
 
 #include "gantry/core/file_problem.hpp"  // read_problem: why a part file cannot be opened
+#include "gantry/core/text.hpp"          // ascii::lower
 #include "gantry/lang/check_only.hpp"    // check_line: the load pass builds no tree
+#include "gantry/lang/fm.hpp"            // parse_fm_line: Friendly Motion's load pass
 #include "gcode_oword.hpp"               // OwordIndexer
 #include "script_file.hpp"               // ScriptFile: the file's blocks
 
@@ -63,6 +65,32 @@ std::string unknown_command_message(std::string_view code) {
                      code);
 }
 
+std::optional<Language> language_named(std::string_view name) {
+  const std::string n = ascii::lower(name);
+  if (n == "sbp" || n == "opensbp") return Language::OpenSbp;
+  if (n == "gcode" || n == "g-code" || n == "nc") return Language::Gcode;
+  if (n == "fm" || n == "friendlymotion") return Language::FriendlyMotion;
+  return std::nullopt;
+}
+
+Language file_language(std::string_view path, std::string_view first_text) {
+  const size_t dot = path.rfind('.');
+  const std::string ext = dot == std::string_view::npos ? "" : ascii::lower(path.substr(dot));
+  if (ext == ".fm") return Language::FriendlyMotion;
+  if (ext != ".sbp") {
+    const size_t b = first_text.find_first_not_of(" \t\r\n");
+    if (b != std::string_view::npos && first_text[b] == '!') return Language::FriendlyMotion;
+  }
+  return is_gcode_file(path, first_text) ? Language::Gcode : Language::OpenSbp;
+}
+
+void Script::set_language(std::optional<Language> forced, std::string_view path,
+                          std::string_view first) {
+  const Language l = forced ? *forced : file_language(path, first);
+  gcode_ = l == Language::Gcode;
+  fm_ = l == Language::FriendlyMotion;
+}
+
 Script::Script(std::string text, const std::string& name)
     : size_(text.size()), text_(std::move(text)), name_(std::make_shared<const std::string>(name)) {
   if (text_.rfind("\xEF\xBB\xBF", 0) == 0) text_start_ = 3;
@@ -70,7 +98,8 @@ Script::Script(std::string text, const std::string& name)
 
 Script::~Script() = default;
 
-std::shared_ptr<const Script> Script::load(const std::string& path, const IsCommand& is_command) {
+std::shared_ptr<const Script> Script::load(const std::string& path, const IsCommand& is_command,
+                                           std::optional<Language> language) {
   std::shared_ptr<Script> s(new Script(std::string(), path));
   // O_NONBLOCK: a FIFO opens at once (and is refused below) instead of waiting for a writer.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
@@ -88,7 +117,7 @@ std::shared_ptr<const Script> Script::load(const std::string& path, const IsComm
   try {
     const std::string_view first = s->bytes(0, std::min(s->size_, kFirstText), Cursor{});
     if (first.rfind("\xEF\xBB\xBF", 0) == 0) s->text_start_ = 3;
-    s->gcode_ = is_gcode_file(path, first.substr(s->text_start_));
+    s->set_language(language, path, first.substr(s->text_start_));
     std::string().swap(s->joined_);  // a mebibyte for a line across blocks is seldom needed
     s->index(is_command);
   } catch (const GantryError& e) {  // written while being loaded
@@ -98,9 +127,10 @@ std::shared_ptr<const Script> Script::load(const std::string& path, const IsComm
 }
 
 std::shared_ptr<const Script> Script::from_text(std::string text, const std::string& name,
-                                                const IsCommand& is_command) {
+                                                const IsCommand& is_command,
+                                                std::optional<Language> language) {
   std::shared_ptr<Script> s(new Script(std::move(text), name));
-  s->gcode_ = is_gcode_file(name, std::string_view(s->text_).substr(s->text_start_));
+  s->set_language(language, name, std::string_view(s->text_).substr(s->text_start_));
   s->index(is_command);
   return s;
 }
@@ -276,12 +306,13 @@ std::shared_ptr<const LineParse> Script::parse(Cursor c, Cursor* next) const {
   slot.next = *next;
   slot.seen = false;
   slot.parse = std::make_shared<const LineParse>(gcode_ ? parse_gcode_line(text, name_, c.line)
+                                                 : fm_  ? parse_fm(text, name_, c.line)
                                                         : parse_line(text, name_, c.line));
   return slot.parse;
 }
 
 bool Script::read_common(Cursor c, std::string_view text, Cursor next, Statement* out) const {
-  if (gcode_) return false;
+  if (gcode_ || fm_) return false;
   CachedParse& slot = cache_slot(c.offset);
   const bool here = slot.offset == c.offset;
   if (here && slot.parse) return false;
@@ -300,7 +331,52 @@ bool Script::read_common(Cursor c, std::string_view text, Cursor next, Statement
   return true;
 }
 
+// Friendly Motion: every line's syntax, the sequence numbers (a duplicate is a warning: J and
+// K go to the first), and every J and K target.
+void Script::index_fm() {
+  FmLine line;
+  Diagnostic error;
+  std::vector<std::pair<int, SourceLoc>> targets;
+  for (Cursor c = start(), next; !at_end(c); c = next) {
+    const std::string_view text = line_at(c, &next);
+    ++lines_;
+    if (!parse_fm_line(text, name_, c.line, &line, &error)) {
+      errors_.push_back(error);
+      continue;
+    }
+    if (line.sequence) {
+      const std::string key = fmt::format("N{}", *line.sequence);
+      if (!labels_.emplace(key, c).second)
+        errors_.push_back({{name_, c.line, 1},
+                           Severity::Warning,
+                           fmt::format("{} is numbered again; J and K go to the first, line {}",
+                                       key, labels_.at(key).line)});
+    }
+    for (size_t k = 0; k < line.commands.size(); ++k) {
+      const FmCommand& cmd = line.commands[k];
+      if (cmd.op != FmOp::Jump && cmd.op != FmOp::Call) continue;
+      targets.emplace_back(cmd.target, SourceLoc{name_, c.line, cmd.column});
+      // The manual writes J and K alone: what follows one on its line is Gantry's reading.
+      if (k + 1 < line.commands.size())
+        errors_.push_back({{name_, c.line, line.commands[k + 1].column},
+                           Severity::Warning,
+                           fmt::format("{} is followed on its line: the commands after it run "
+                                       "when it does not jump{}",
+                                       cmd.op == FmOp::Jump ? "J" : "K",
+                                       cmd.op == FmOp::Call ? ", and after the subroutine returns"
+                                                            : "")});
+    }
+  }
+  for (const auto& [n, loc] : targets)
+    if (!labels_.count(fmt::format("N{}", n)))
+      errors_.push_back({loc, Severity::Error,
+                         fmt::format("no line in this file starts with N{}; J and K go to a "
+                                     "sequence number written first on its line",
+                                     n)});
+}
+
 void Script::index(const IsCommand& is_command) {
+  if (fm_) return index_fm();
   if (gcode_) {  // G-code: each block's syntax, and the O-words' pairs (gcode_oword.hpp)
     GcodeBlock block;
     Diagnostic error;
@@ -329,7 +405,7 @@ void Script::index(const IsCommand& is_command) {
     return;
   }
   std::vector<std::pair<std::string, SourceLoc>> targets;
-  Statement simple, common;  // their storage reused line after line
+  Statement simple, common;   // their storage reused line after line
   const ExprCheckOnly check;  // this pass keeps no statement: expressions checked, not built
   auto check_command = [&](const Statement& st) {
     const std::string& code = std::get<CommandStmt>(st.body).code;

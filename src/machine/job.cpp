@@ -54,6 +54,7 @@ JobResult run_job(std::shared_ptr<const Script> script, const Settings& settings
   // The live machine runs it: the same controller as the console's, so probes, ON INPUT,
   // limit switches and faults behave alike everywhere.
   InterpreterOptions interp_options = options.interpreter;
+  interp_options.operator_present = options.operator_present;  // FM M2 repeats only for one
   interp_options.save_values = [&](const Settings& s) {
     result.settings = s;
     if (options.values_path.empty() || !options.profile) return;

@@ -230,10 +230,9 @@ Toolpath load_toolpath(const std::string& path, const Settings& settings,
   const PersistentStore none;
   try {
     std::shared_ptr<const Script> script =
-        Script::load(path, CommandTable::standard().is_command());
-    out.violations =
-        std::move(check_program(std::move(script), settings, opts.store ? *opts.store : none, job)
-                      .kept());
+        Script::load(path, CommandTable::standard().is_command(), job.interpreter.language);
+    out.violations = std::move(
+        check_program(std::move(script), settings, opts.store ? *opts.store : none, job).kept());
     if (timer) {
       out.estimated_time_s = timer->seconds();
       // A move the planner made nothing of (too short) ends when the one before it did.

@@ -40,6 +40,9 @@ using Result = e2e::GantryResult;
 struct Expected {
   std::array<double, 6> last_point;  // the file's last commanded point, units
   int lines, moves;
+  // The arcs' chords beyond one per move: the card plays each chord as a segment, and each
+  // may round by a tick as a move does.
+  int chords = 0;
 };
 
 // Every file in parts/ with its last commanded point, worked out by hand from the file.
@@ -48,11 +51,24 @@ const std::map<std::string, Expected> kParts = {
     {"relative_steps.sbp", {{5.125, 3.333333, 0.25, 0, 0, 0}, 16, 12}},
     {"rotary.sbp", {{3, 3, 1, 45, 0, 0}, 12, 8}},
     {"speeds.sbp", {{7.75, 3.5, 0.25, 0, 0, 0}, 12, 7}},
+    // Friendly Motion (docs/friendlymotion.md). Lines count statements run: a K's line runs
+    // again (from the command after the K) at each return. trepan: 6 holes of 11 lines and
+    // 6 moves (to the hole, out, 3 circles, back), 3 + 2 x 3 a row around them, 3 after, 6
+    // returns; the last point is G90 X0.5Y0.5. scribe: the moves are the stroke font's (each
+    // stroke's points, and where each G16 leaves the pen). taught_frame: user (0.5, 0.5) in
+    // the frame from (2,1) towards (5,5) is table (2 + 0.6*0.5 - 0.8*0.5, 1 + 0.8*0.5 +
+    // 0.6*0.5). subroutine: 3 passes of 2 calls (X0.5, Y0.5) and C30. trepan's 18 circles of
+    // radius 0.05 are 23 chords each (22 beyond the move) at the default 0.0005 tolerance
+    // (2 pi / (2 acos(1 - 0.0005 / 0.05)) = 22.2).
+    {"trepan.fm", {{0.5, 0.5, 0, 0, 0, 0}, 86, 37, 18 * 22}},
+    {"scribe.fm", {{0, 0, 0, 0, 0, 0}, 15, 92}},
+    {"taught_frame.fm", {{1.9, 1.7, 0, 0, 0, 0}, 16, 8}},
+    {"subroutine.fm", {{4, 3, 0, 0, 0, 0}, 38, 18}},
 };
 
 TEST(Parts, EveryPartFileHasExpectations) {
   for (const auto& entry : fs::directory_iterator(kSource / "parts")) {
-    if (entry.path().extension() != ".sbp") continue;
+    if (entry.path().extension() != ".sbp" && entry.path().extension() != ".fm") continue;
     EXPECT_TRUE(kParts.count(entry.path().filename().string()))
         << entry.path() << " has no expected result in run_parts_test.cpp";
   }
@@ -86,7 +102,7 @@ TEST_P(PartRun, EndsOnTheLastCommandedPointToTheStep) {
   // The card's clock and the planner agree to within one tick per move, and the estimate
   // made before the run to within 1 %.
   const double card_s = j["time_s"].get<double>();
-  EXPECT_NEAR(card_s, j["planned_time_s"].get<double>(), 5e-6 * want.moves);
+  EXPECT_NEAR(card_s, j["planned_time_s"].get<double>(), 5e-6 * (want.moves + want.chords));
   EXPECT_NEAR(j["estimated_time_s"].get<double>(), card_s, 0.01 * card_s);
   // `gantry estimate` says the same without running.
   const Result e = gantry("estimate parts/" + name + " --json");
@@ -443,7 +459,8 @@ TEST(Estimate, TextGivesHoursMinutesSecondsAndThePlannerMode) {
 
 INSTANTIATE_TEST_SUITE_P(AllParts, PartRun,
                          ::testing::Values("demo.sbp", "relative_steps.sbp", "rotary.sbp",
-                                           "speeds.sbp"),
+                                           "speeds.sbp", "trepan.fm", "scribe.fm",
+                                           "taught_frame.fm", "subroutine.fm"),
                          [](const auto& info) {
                            std::string n = info.param;
                            for (char& c : n)
@@ -657,7 +674,7 @@ TEST(Corpus, EveryFileRunsCleanOrNamesWhyNot) {
   std::set<std::string> listed;
   for (const CorpusFile& f : kCorpus) listed.insert(f.name);
   for (const auto& entry : fs::directory_iterator(corpus)) {
-    if (entry.path().extension() != ".sbp") continue;
+    if (entry.path().extension() != ".sbp" && entry.path().extension() != ".fm") continue;
     EXPECT_TRUE(listed.count(entry.path().filename().string())) << entry.path();
   }
   EXPECT_EQ(listed.size(), 28u);

@@ -76,7 +76,8 @@ TEST(GcodeRoundTrip, ExportedPartsReadBackAsTheSameMoves) {
   for (const char* dir : {GANTRY_SOURCE_DIR "/parts", GANTRY_SOURCE_DIR "/../shared/corpus"}) {
     std::error_code ec;
     for (const auto& e : std::filesystem::directory_iterator(dir, ec))
-      if (e.path().extension() == ".sbp") files.push_back(e.path());
+      if (e.path().extension() == ".sbp" || e.path().extension() == ".fm")
+        files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
   const Settings settings = default_settings();

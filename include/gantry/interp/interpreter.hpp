@@ -29,6 +29,7 @@ namespace gantry {
 
 class DiagnosticLog;
 class GcodeExecutor;
+class FmExecutor;
 
 class Interpreter : private EvalEnv {
  public:
@@ -136,6 +137,7 @@ class Interpreter : private EvalEnv {
   void exec(const IfStmt& s, const SourceLoc& loc);
   void exec(const OnInputStmt& s, const SourceLoc& loc);
   void exec(const PauseStmt& s, const SourceLoc& loc);
+  void wait_for_input(int in, bool state, const SourceLoc& loc, std::string_view what);
   void exec(const PrintStmt& s, const SourceLoc& loc);
   void exec(const InputStmt& s, const SourceLoc& loc);
   void exec(const MsgBoxStmt& s, const SourceLoc& loc);
@@ -148,6 +150,13 @@ class Interpreter : private EvalEnv {
   void exec(const PlayStmt& s, const SourceLoc& loc);
   void exec(const RegistryStmt& s, const SourceLoc& loc);
   void exec(const GcodeStmt& s, const SourceLoc& loc);
+  // A Friendly Motion line (fm_flow.cpp): its commands left to right, the flow (N, J, K, M0,
+  // M2, M6, input waits) here, the rest through FmExecutor.
+  struct FmFlow;
+  void exec(const FmStmt& s, const SourceLoc& loc);
+  bool fm_input_active(int code, const SourceLoc& loc);
+  void fm_wait_input(int code, const SourceLoc& loc);
+  void fm_go_to(int sequence, const SourceLoc& loc);
   // O-words, M98/M99 and WinCNC's M98 file (gcode_control_flow.cpp).
   struct GcodeFlow;
   void gcode_flow(const GcodeBlock& b, const SourceLoc& loc);
@@ -233,6 +242,8 @@ class Interpreter : private EvalEnv {
   std::unique_ptr<StartLine> start_;       // a start line not reached yet
   std::unique_ptr<GcodeExecutor> gcode_;   // G-code's modes and parameters
   std::unique_ptr<GcodeFlow> gcode_flow_;  // G-code's open calls and repeat counts
+  std::unique_ptr<FmExecutor> fm_;         // Friendly Motion's state and commands
+  std::unique_ptr<FmFlow> fm_flow_;        // its open subroutine calls, its run mode
 };
 
 }  // namespace gantry

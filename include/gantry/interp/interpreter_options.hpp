@@ -11,11 +11,15 @@
 #include "gantry/core/vec6.hpp"          // Vec6
 #include "gantry/core/text_file.hpp"     // user_config_dir
 #include "gantry/interp/file_system.hpp"  // FileSystem, user_macro_folder
-#include "gantry/settings/settings.hpp"  // Settings
+#include "gantry/lang/script.hpp"         // Language
+#include "gantry/settings/settings.hpp"   // Settings
 
 namespace gantry {
 
 struct InterpreterOptions {
+  // --language: the top-level file is read as this language whatever its name (nullopt: by
+  // its extension and first line, file_language). Files it calls go by their own names.
+  std::optional<Language> language;
   bool trig_in_degrees = false;  // dialect "fabmo"
   bool plus_joins_text = false;  // dialect "fabmo": "Offset: " + &z is text
   bool allow_shell = false;      // SHELL runs programs only when allowed

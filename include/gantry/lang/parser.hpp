@@ -48,4 +48,9 @@ LineParse parse_gcode_line(std::string_view line, const std::shared_ptr<const st
 bool parse_gcode_statement(std::string_view line, const std::shared_ptr<const std::string>& file,
                            int line_no, Statement* out);
 
+// A line of a Friendly Motion file (docs/friendlymotion.md): its commands (FmStmt), nothing
+// (blank, comment), or the reason it is not Friendly Motion.
+LineParse parse_fm(std::string_view line, const std::shared_ptr<const std::string>& file,
+                   int line_no);
+
 }  // namespace gantry

@@ -39,6 +39,18 @@ struct OwordLink {
   bool complete = false;   // its block is closed (else the load pass reported it)
 };
 
+// The language a part file is written in: OpenSBP, G-code (docs/gcode.md) or Friendly
+// Motion (docs/friendlymotion.md).
+enum class Language { OpenSbp, Gcode, FriendlyMotion };
+// `--language`'s names: "sbp" (or "opensbp"), "gcode", "fm" (or "friendlymotion"); nullopt
+// for any other.
+std::optional<Language> language_named(std::string_view name);
+// A file's language by its name and first text: .fm is Friendly Motion, as is a file (not
+// .sbp) whose first line that is not blank starts with `!` (a Friendly Motion comment, which
+// neither OpenSBP nor G-code has: U.S. Laser's own files are .nc); then is_gcode_file; else
+// OpenSBP.
+Language file_language(std::string_view path, std::string_view first_text);
+
 // Whether a two-letter code (upper case) names a command. The command table, in a layer above
 // this one, answers (CommandTable::is_command); a script loaded with one reports an unknown
 // command on every line, whether a run would reach it or not.
@@ -65,10 +77,13 @@ std::string unknown_command_message(std::string_view code);
 class Script {
  public:
   // Reads `path`; an unreadable file gives a script with one error and no text.
+  // `language`: the file is read as that language whatever its name (--language).
   static std::shared_ptr<const Script> load(const std::string& path,
-                                            const IsCommand& is_command = {});
+                                            const IsCommand& is_command = {},
+                                            std::optional<Language> language = std::nullopt);
   static std::shared_ptr<const Script> from_text(std::string text, const std::string& name,
-                                                 const IsCommand& is_command = {});
+                                                 const IsCommand& is_command = {},
+                                                 std::optional<Language> language = std::nullopt);
 
   const std::shared_ptr<const std::string>& name() const { return name_; }
   const std::vector<Diagnostic>& errors() const { return errors_; }  // all severities
@@ -76,6 +91,12 @@ class Script {
   int line_count() const { return lines_; }
   // A G-code file (by its extension or first line: is_gcode_file): every line is a block.
   bool gcode() const { return gcode_; }
+  // A Friendly Motion file: every line is a FmStmt; labels are its sequence numbers ("N50",
+  // at the line itself: the rest of that line runs).
+  bool fm() const { return fm_; }
+  Language language() const {
+    return fm_ ? Language::FriendlyMotion : gcode_ ? Language::Gcode : Language::OpenSbp;
+  }
 
   Cursor start() const { return {text_start_, 1}; }
   bool at_end(Cursor c) const { return c.offset >= size_ || c.offset >= program_end_; }
@@ -125,6 +146,8 @@ class Script {
  private:
   Script(std::string text, const std::string& name);
   void index(const IsCommand& is_command);
+  void index_fm();
+  void set_language(std::optional<Language> forced, std::string_view path, std::string_view first);
   // The file's block `n` (ScriptFile::block), or throws, located at `at`: the file changed.
   std::string_view block_or_throw(size_t n, Cursor at) const;
   // The file's bytes [begin, end) in one piece: a view into a block, or a copy in joined_.
@@ -154,6 +177,7 @@ class Script {
   std::vector<Diagnostic> errors_;
   int lines_ = 0;
   bool gcode_ = false;
+  bool fm_ = false;
   // A G-code file opened with `%` ends at the next `%` line: what follows it is not the program.
   size_t program_end_ = SIZE_MAX;
 };

@@ -9,6 +9,7 @@
 
 #include "gantry/core/diagnostic.hpp"  // SourceLoc, Diagnostic
 #include "gantry/lang/expression.hpp"  // Expr, LValue
+#include "gantry/lang/fm.hpp"          // FmLine
 #include "gantry/lang/gcode.hpp"       // GcodeBlock
 
 namespace gantry {
@@ -116,16 +117,20 @@ struct PlayStmt {
 struct GcodeStmt {  // a G-code block: a line of a G-code file, or a G-code line in OpenSBP
   GcodeBlock block;
 };
+struct FmStmt {  // a line of a Friendly Motion file: its commands, run left to right
+  FmLine line;
+};
 struct RegistryStmt {  // SetUsrVal, GetUsrVal, ... (name upper case)
   std::string name;
   Arg arg;
   std::optional<LValue> target;  // Get* statements
 };
 
-using StatementBody = std::variant<CommandStmt, CustomCutStmt, LabelStmt, AssignStmt, JumpStmt,
-                                   ReturnStmt, EndStmt, IfStmt, OnInputStmt, PauseStmt, PrintStmt,
-                                   InputStmt, MsgBoxStmt, DialogStmt, FailStmt, OpenStmt, CloseStmt,
-                                   ShellStmt, WarningOffStmt, PlayStmt, RegistryStmt, GcodeStmt>;
+using StatementBody =
+    std::variant<CommandStmt, CustomCutStmt, LabelStmt, AssignStmt, JumpStmt, ReturnStmt, EndStmt,
+                 IfStmt, OnInputStmt, PauseStmt, PrintStmt, InputStmt, MsgBoxStmt, DialogStmt,
+                 FailStmt, OpenStmt, CloseStmt, ShellStmt, WarningOffStmt, PlayStmt, RegistryStmt,
+                 GcodeStmt, FmStmt>;
 
 struct Statement {
   SourceLoc loc;  // where the statement starts
