@@ -943,6 +943,11 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
   for (size_t i = 0; i < params.size(); ++i) {
     const ParamSpec& ps = params[i];
     const Arg* a = i < cmd.args.size() && !cmd.args[i].blank() ? &cmd.args[i] : nullptr;
+    if (a && a->number && ps.kind == ParamKind::Number) {  // a plain number: what follows gives
+      check_param(*spec, ps, i, *a->number, a->loc);       // only this (most lines of a file)
+      values[i].emplace(Value::number(*a->number));
+      continue;
+    }
     std::optional<Value> v;
     if (a) v = value_of(*a);
     if (v && v->is_string() && v->str().empty()) v.reset();  // "" counts as blank
