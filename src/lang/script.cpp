@@ -15,6 +15,7 @@
 #include "gantry/lang/check_only.hpp"    // check_line: the load pass builds no tree
 #include "gcode_oword.hpp"               // OwordIndexer
 #include "script_file.hpp"               // ScriptFile: the file's blocks
+#include "simple_command.hpp"            // simple_command_code
 
 namespace gantry {
 namespace {
@@ -364,7 +365,7 @@ void Script::index(const IsCommand& is_command) {
     ++lines_;
     // A simple command has no error, label or jump in it; only its code may be unknown, so
     // its numbers are not read here (the run reads them).
-    if (char code[2]; is_simple_command(text, code)) {
+    if (char code[2]; simple_command_code(text, code)) {
       if (is_command && !is_command(std::string_view(code, 2))) {
         const size_t b = text.find_first_not_of(ascii::kBlanks);  // the statement's column
         errors_.push_back({SourceLoc{name_, c.line, static_cast<int>(b) + 1}, Severity::Error,

@@ -4,6 +4,8 @@
 // Anything else — a comment, a quote, a variable, an exponent, a keyword, a custom cut —
 // is left to parse_line. The result equals parse_line's for every line accepted here; a
 // differential fuzz target checks that.
+#include "simple_command.hpp"
+
 #include "gantry/lang/parser.hpp"
 
 #include <cstdint>  // uint64_t
@@ -124,7 +126,11 @@ bool scan_line(std::string_view line, const std::shared_ptr<const std::string>* 
 
 }  // namespace
 
-bool is_simple_command(std::string_view line, char* code) {
+bool is_simple_command(std::string_view line) {
+  return scan_line<false>(line, nullptr, 0, nullptr, nullptr);
+}
+
+bool simple_command_code(std::string_view line, char code[2]) {
   return scan_line<false>(line, nullptr, 0, nullptr, code);
 }
 

@@ -35,9 +35,8 @@ bool parse_simple_command(std::string_view line, const std::shared_ptr<const std
 // left in any state, and parse_line reads the line. Reuse `out` line after line.
 bool parse_common_statement(std::string_view line, const std::shared_ptr<const std::string>& file,
                             int line_no, Statement* out);
-// Whether parse_simple_command would accept `line`: such a line has no syntax error. `code`,
-// when given, receives its command's two letters, upper case (what the load pass checks).
-bool is_simple_command(std::string_view line, char* code = nullptr);
+// Whether parse_simple_command would accept `line`: such a line has no syntax error.
+bool is_simple_command(std::string_view line);
 
 // A line of a G-code file (docs/gcode.md): a G-code block (GcodeStmt), nothing (blank,
 // comments, `%`), or the reason it is not G-code.
