@@ -11,7 +11,7 @@
 #include <unistd.h>    // close
 
 #include "gantry/core/file_problem.hpp"  // read_problem: why a part file cannot be opened
-#include "gantry/core/text.hpp"          // kBlanks
+#include "gantry/core/text.hpp"          // ascii::lower
 #include "gantry/lang/check_only.hpp"    // check_line: the load pass builds no tree
 #include "gcode_oword.hpp"               // OwordIndexer
 #include "script_file.hpp"               // ScriptFile: the file's blocks
