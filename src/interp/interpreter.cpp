@@ -951,9 +951,16 @@ void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
   std::vector<std::optional<Value>> values = std::move(values_storage_);
   values.assign(params.size(), std::nullopt);
   CommandCall call{*spec, loc, cmd.args, values};
-  for (size_t i = 0; i < params.size(); ++i) {
+  const size_t param_count = params.size(), arg_count = cmd.args.size();
+  for (size_t i = 0; i < param_count; ++i) {
     const ParamSpec& ps = params[i];
-    const Arg* a = i < cmd.args.size() && !cmd.args[i].blank() ? &cmd.args[i] : nullptr;
+    const Arg* a = i < arg_count && !cmd.args[i].blank() ? &cmd.args[i] : nullptr;
+    if (a && a->number && ps.kind == ParamKind::Number) {  // a plain number: what follows gives
+      if (ps.min || ps.max || ps.whole)                    // only this (most lines of a file)
+        check_param(*spec, ps, i, *a->number, a->loc);
+      values[i].emplace(Value::number(*a->number));
+      continue;
+    }
     std::optional<Value> v;
     if (a) v = value_of(*a);
     if (v && v->is_string() && v->str().empty()) v.reset();  // "" counts as blank

@@ -409,6 +409,33 @@ class Parser {
   }
 
   void lex_number(size_t i) {
+    // The common literal (no exponent, at most 15 digits) is valued as its digits are read:
+    // literal::plain_value's exact m / 10^decimals, without walking the literal again.
+    {
+      const size_t n = text_.size();
+      const char* s = text_.data();
+      size_t j = i, digits = 0, decimals = 0;
+      std::uint64_t m = 0;  // wraps past 19 digits: then unused
+      while (j < n && is_digit(s[j])) m = m * 10 + static_cast<unsigned>(s[j++] - '0'), ++digits;
+      if (j < n && s[j] == '.') {
+        ++j;
+        while (j < n && is_digit(s[j]))
+          m = m * 10 + static_cast<unsigned>(s[j++] - '0'), ++digits, ++decimals;
+      }
+      // An `e` that starts an exponent (literal::scan takes it only with digits after it).
+      bool exponent = false;
+      if (j < n && (s[j] == 'e' || s[j] == 'E')) {
+        size_t k = j + 1;
+        if (k < n && (s[k] == '+' || s[k] == '-')) ++k;
+        exponent = k < n && is_digit(s[k]);
+      }
+      if (!exponent && digits <= 15) {
+        tok_.kind = Tok::Number;
+        tok_.len = j - i;
+        tok_.number = static_cast<double>(m) / literal::kPow10[decimals];
+        return;
+      }
+    }
     const size_t j = literal::scan(text_, i);
     const std::string_view lit = text_.substr(i, j - i);
     // Without an exponent, the fast exact reading (plain_value: the same double as value(),
@@ -944,10 +971,14 @@ class Parser {
 }  // namespace
 
 const FuncInfo* find_function(std::string_view upper_name) {
-  for (const FuncInfo& f : kFunctions)  // lengths first: few names share one
-    if (f.name.size() == upper_name.size() &&
-        std::equal(f.name.begin(), f.name.end(), upper_name.begin()))
-      return &f;
+  const size_t n = upper_name.size();
+  if (n == 0) return nullptr;
+  for (const FuncInfo& f : kFunctions) {  // lengths first: few names share one
+    if (f.name.size() != n || f.name[0] != upper_name[0]) continue;
+    size_t k = 1;  // names are short: a loop, not a memcmp call
+    while (k < n && f.name[k] == upper_name[k]) ++k;
+    if (k == n) return &f;
+  }
   return nullptr;
 }
 

@@ -16,6 +16,7 @@
 #include "gantry/lang/fm.hpp"            // parse_fm_line: Friendly Motion's load pass
 #include "gcode_oword.hpp"               // OwordIndexer
 #include "script_file.hpp"               // ScriptFile: the file's blocks
+#include "simple_command.hpp"            // simple_command_code
 
 namespace gantry {
 namespace {
@@ -405,7 +406,7 @@ void Script::index(const IsCommand& is_command) {
     return;
   }
   std::vector<std::pair<std::string, SourceLoc>> targets;
-  Statement simple, common;   // their storage reused line after line
+  Statement common;           // its storage reused line after line
   const ExprCheckOnly check;  // this pass keeps no statement: expressions checked, not built
   auto check_command = [&](const Statement& st) {
     const std::string& code = std::get<CommandStmt>(st.body).code;
@@ -437,9 +438,14 @@ void Script::index(const IsCommand& is_command) {
     Cursor next;
     const std::string_view text = line_at(c, &next);
     ++lines_;
-    // A simple command has no error, label or jump in it; only its code may be unknown.
-    if (is_command ? parse_simple_command(text, name_, c.line, &simple) : is_simple_command(text)) {
-      if (is_command) check_command(simple);
+    // A simple command has no error, label or jump in it; only its code may be unknown, so
+    // its numbers are not read here (the run reads them).
+    if (char code[2]; simple_command_code(text, code)) {
+      if (is_command && !is_command(std::string_view(code, 2))) {
+        const size_t b = text.find_first_not_of(ascii::kBlanks);  // the statement's column
+        errors_.push_back({SourceLoc{name_, c.line, static_cast<int>(b) + 1}, Severity::Error,
+                           unknown_command_message(std::string_view(code, 2))});
+      }
       c = next;
       continue;
     }

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "../support/same_statement.hpp"  // common_statement_mismatch
+#include "../support/same_statement.hpp"   // common_statement_mismatch
 #include "gantry/lang/check_only.hpp"      // ExprCheckOnly
 #include "gantry/lang/expr_node.hpp"       // a number node's value
 #include "gantry/lang/number_literal.hpp"  // literal::value, parse_number_literal
@@ -190,20 +190,20 @@ TEST(CommonStatement, EveryCorpusLineItAcceptsReadsAsTheParserReadsIt) {
 // edits: whatever is accepted must read as the general parser reads it.
 TEST(CommonStatement, RandomLinesItAcceptsReadAsTheParserReadsThem) {
   const std::vector<std::string> pieces = {
-      "&",  "&a",   "&x1", "&_b", "$v",   "%(",   "=",      "==",  ":=",  ":",     " ",
-      "  ", "\t",   "1",   "2.5", ".5",   "1e3",  "-",      "+",   "*",   "/",     "\\",
-      "^",  "(",    ")",   "[",   "]",    ",",    "\"",     "'",   "<",   ">",     "<>",
-      "<=", ">=",   "IF ", "if",  "THEN", " THEN ", "then", "GOTO ", "GOSUB ", "RETURN", "MOD",
-      "AND", " OR ", "NOT ", "SIN(", "ABS(", "MIN(", "L1",  "sub_2", "X",   "N10", "G1",
-      "MX", "REM", "END",  "é",   "0",    "_",    "\r",     ";",   "!",   "#",     ".",
+      "&",   "&a",   "&x1",  "&_b",  "$v",   "%(",     "=",    "==",    ":=",     ":",      " ",
+      "  ",  "\t",   "1",    "2.5",  ".5",   "1e3",    "-",    "+",     "*",      "/",      "\\",
+      "^",   "(",    ")",    "[",    "]",    ",",      "\"",   "'",     "<",      ">",      "<>",
+      "<=",  ">=",   "IF ",  "if",   "THEN", " THEN ", "then", "GOTO ", "GOSUB ", "RETURN", "MOD",
+      "AND", " OR ", "NOT ", "SIN(", "ABS(", "MIN(",   "L1",   "sub_2", "X",      "N10",    "G1",
+      "MX",  "REM",  "END",  "é",    "0",    "_",      "\r",   ";",     "!",      "#",      ".",
   };
   std::mt19937 rng(27);
   Statement fast;
   size_t accepted = 0;
   auto pick = [&](size_t n) { return std::uniform_int_distribution<size_t>(0, n - 1)(rng); };
   // Whole lines from the pieces, seeded with the shapes so that many are accepted.
-  const std::vector<std::string> starts = {"&a = ", "IF ", "GOTO ", "GOSUB ", "", "L",
-                                           "IF &a > 1 THEN "};
+  const std::vector<std::string> starts = {"&a = ", "IF ", "GOTO ",          "GOSUB ",
+                                           "",      "L",   "IF &a > 1 THEN "};
   for (int n = 0; n < 200000; ++n) {
     std::string line = starts[pick(starts.size())];
     const size_t len = pick(8);
@@ -261,6 +261,28 @@ TEST(CommonStatement, NumberLiteralsReadTheSameDoublesAsFromChars) {
     if (want) {
       ASSERT_EQ(std::memcmp(&*want, &p.expr->root()->number, sizeof(double)), 0);
     }
+  }
+  // With an exponent the lexer takes the general reading; an `e` without digits after it is
+  // no exponent (`5e` is 5 and a word), whatever the digits before it.
+  for (int n = 0; n < 50000; ++n) {
+    std::string lit;
+    const int whole = 1 + pick(20), decimals = pick(3) == 0 ? -1 : pick(20);
+    for (int k = 0; k < whole; ++k) lit += static_cast<char>('0' + pick(10));
+    if (decimals >= 0) lit += '.';
+    for (int k = 0; k < decimals; ++k) lit += static_cast<char>('0' + pick(10));
+    std::string exp = pick(2) ? "e" : "E";
+    if (pick(2)) exp += pick(2) ? "+" : "-";
+    const std::string digits = std::to_string(pick(400));
+    SCOPED_TRACE(lit + exp + digits);
+    const std::optional<double> want = literal::value(lit + exp + digits);
+    const ExprParse p = parse_expression(lit + exp + digits, at);
+    ASSERT_EQ(want.has_value(), p.expr.has_value());
+    if (want) {
+      ASSERT_EQ(std::memcmp(&*want, &p.expr->root()->number, sizeof(double)), 0);
+    }
+    const ExprParse no_exponent = parse_expression(lit + exp + " + 1", at);
+    ASSERT_FALSE(no_exponent.expr);  // the literal, then a word: two values without an operator
+    ASSERT_EQ(no_exponent.error->loc.column, static_cast<int>(lit.size()) + 1);
   }
   for (const std::string& big : {std::string(400, '9'), std::string(400, '9') + ".5"}) {
     EXPECT_FALSE(parse_number_literal(big));

@@ -2,13 +2,18 @@
 // exactly as the general parser reads it.
 #include <gtest/gtest.h>
 
+#include <cmath>    // HUGE_VAL
+#include <cstring>  // memcmp: -0 and 0 differ
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
-#include "../support/same_statement.hpp"  // simple_command_mismatch
+#include "../support/same_statement.hpp"   // simple_command_mismatch
+#include "gantry/lang/number_literal.hpp"  // literal::value
 #include "gantry/lang/parser.hpp"
 #include "gantry/lang/script.hpp"
+#include "lang/simple_command.hpp"  // simple_command_code
 
 namespace gantry {
 namespace {
@@ -106,6 +111,50 @@ TEST(SimpleCommand, DecimalsRoundLikeTheLibraryConversion) {
     SCOPED_TRACE(lit);
     ASSERT_TRUE(parse_simple_command("MX, " + lit, kFile, 1, &st));
     EXPECT_EQ(*std::get<CommandStmt>(st.body).args[0].number, std::stod(lit));
+  }
+}
+
+// The numbers are valued while their digits are scanned: the same doubles as from_chars
+// (literal::value) for random literals and signs, short and long; is_simple_command gives the
+// code parse_simple_command reads (simple_command_code, the load pass's check).
+TEST(SimpleCommand, RandomNumbersReadTheSameDoublesAsFromCharsAndTheCodeIsTheCommands) {
+  std::mt19937 rng(27);
+  auto pick = [&](int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); };
+  Statement st;
+  for (int n = 0; n < 100000; ++n) {
+    std::string line = std::string(pick(2) ? "m" : "J") + static_cast<char>('2' + pick(4));
+    std::vector<std::string> lits;
+    const int params = 1 + pick(5);
+    for (int p = 0; p < params; ++p) {
+      std::string lit;
+      const int whole = pick(20), decimals = pick(3) == 0 ? -1 : pick(19);  // <= 40 characters
+      for (int k = 0; k < whole; ++k) lit += static_cast<char>('0' + pick(10));
+      if (decimals >= 0) lit += '.';
+      for (int k = 0; k < decimals; ++k) lit += static_cast<char>('0' + pick(10));
+      if (lit.empty() || lit == ".") lit = "0";
+      const int sign = pick(3);
+      lits.push_back(lit);
+      line += (pick(2) ? ", " : ",") + std::string(sign == 0 ? "-" : sign == 1 ? "+" : "") + lit;
+      if (sign == 0) lits.back() = "-" + lit;
+    }
+    SCOPED_TRACE(line);
+    char code[2] = {};
+    ASSERT_TRUE(is_simple_command(line));
+    ASSERT_TRUE(simple_command_code(line, code));
+    ASSERT_TRUE(parse_simple_command(line, kFile, 1, &st));
+    const auto& cmd = std::get<CommandStmt>(st.body);
+    EXPECT_EQ(std::string(code, 2), cmd.code);
+    ASSERT_EQ(cmd.args.size(), lits.size());
+    for (size_t i = 0; i < lits.size(); ++i) {
+      const bool neg = lits[i][0] == '-';
+      const std::optional<double> v = literal::value(neg ? lits[i].substr(1) : lits[i]);
+      const double want = v ? (neg ? -*v : *v) : (neg ? -HUGE_VAL : HUGE_VAL);
+      ASSERT_TRUE(cmd.args[i].number);
+      ASSERT_EQ(std::memcmp(&want, &*cmd.args[i].number, sizeof(double)), 0) << lits[i];
+    }
+    if (n % 100 == 0) {  // and the whole statement as the general parser reads it
+      ASSERT_EQ(testing::simple_command_mismatch(st, parse_line(line, kFile, 1)), "");
+    }
   }
 }
 
