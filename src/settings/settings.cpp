@@ -378,6 +378,7 @@ void read_row(TableReader& t, const SettingRow& row, int i, Settings& s) {
       *static_cast<std::vector<GpioLineBit>*>(field) = t.line_bits(key, row.names[0]);
       return;
     case SettingKind::Coded:
+      if (row.optional && !t.has(key)) return;  // a key added after profiles were written
       if (!row.decode(s, t.choice(key, {}, row.encode(s)))) t.fail(key, row.rule);
       return;
   }

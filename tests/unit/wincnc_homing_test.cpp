@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,7 +39,6 @@ struct HomingMachine {
               ("gantry_wincnc_homing_" + std::to_string(getpid()) + ".trace"))
                  .string()),
         card(settings, false, world(), path) {}
-  ~HomingMachine() { fs::remove(path); }
   static SimWorld world() {
     SimWorld w;
     w.home_switch[0] = kSwitch;
@@ -69,21 +69,26 @@ Settings profile() {
 // G28 X: fast to the switch, back 0.1, slowly to it again, 0.5 off it; the table base is 0
 // where the switch closed (homing.x.at), so X reads 0.5 there.
 TEST(WinCncHoming, EachAxisUsesItsOwnSpeedsBackOffAndFinalOffset) {
-  HomingMachine m(profile());
-  const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+  auto m = std::make_unique<HomingMachine>(profile());
+  const Outcome o = m->c.run(Script::from_text("G28 X\n", "part.nc"));
   ASSERT_TRUE(o) << o.reason << (o.errors.empty() ? "" : " " + o.errors[0].message);
-  m.c.wait();
-  const ControllerStatus st = m.c.status();
+  m->c.wait();
+  const ControllerStatus st = m->c.status();
   ASSERT_EQ(st.state, MachineState::Idle) << st.message;
   // The first step at or below the switch, then 0.5 in off it.
-  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * m.spu()));
-  EXPECT_EQ(m.card.steps()[0], at_switch + m.steps(0.5));
-  const ModalState ms = m.c.modal();
+  const double spu = m->spu();
+  auto steps = [&](double in) { return std::llround(in * spu); };
+  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * spu));
+  EXPECT_EQ(m->card.steps()[0], at_switch + steps(0.5));
+  const ModalState ms = m->c.modal();
   EXPECT_NEAR(ms.position[0] + ms.zero[0], 0.5, 1e-12);
-  EXPECT_EQ(m.card.timing_violations(), 0u);
-
+  EXPECT_EQ(m->card.timing_violations(), 0u);
+  const Settings settings = m->settings;
+  const std::string path = m->path;
+  m.reset();  // the trace is whole once the card is gone
   const auto pulses =
-      channel_pulses(read_trace(m.path), m.settings.pins[0].step_bit, m.settings.pins[0].dir_bit);
+      channel_pulses(read_trace(path), settings.pins[0].step_bit, settings.pins[0].dir_bit);
+  fs::remove(path);
   const auto runs = direction_runs(pulses);
   ASSERT_EQ(runs.size(), 4u);
   // The search and the measured approach each ramp down past the switch and come back to
@@ -93,8 +98,8 @@ TEST(WinCncHoming, EachAxisUsesItsOwnSpeedsBackOffAndFinalOffset) {
   EXPECT_TRUE(runs[1].first);
   EXPECT_FALSE(runs[2].first);
   EXPECT_TRUE(runs[3].first);
-  EXPECT_EQ(runs[1].second - runs[0].second, at_switch + m.steps(0.1));  // R = 0.1 off it
-  EXPECT_EQ(runs[3].second - runs[2].second, m.steps(0.5) - m.steps(0.1));
+  EXPECT_EQ(runs[1].second - runs[0].second, at_switch + steps(0.1));  // R = 0.1 off it
+  EXPECT_EQ(runs[3].second - runs[2].second, steps(0.5) - steps(0.1));
   // The measured approach at T = 0.05 in/s: its steady steps 1 / (0.05 x spu) s apart.
   const auto from = static_cast<std::size_t>(runs[0].second + runs[1].second);
   std::vector<std::int64_t> intervals;
@@ -103,12 +108,12 @@ TEST(WinCncHoming, EachAxisUsesItsOwnSpeedsBackOffAndFinalOffset) {
   ASSERT_GT(intervals.size(), 10u);
   std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
   EXPECT_NEAR(static_cast<double>(intervals[intervals.size() / 2]),
-              m.settings.card.pacer_hz() / (0.05 * m.spu()), 1.0);
+              settings.card.pacer_hz() / (0.05 * spu), 1.0);
   // The search at F = 2 in/s: its fastest steps 1 / (2 x spu) s apart.
   std::int64_t fastest = INT64_MAX;
   for (std::size_t k = 1; k < static_cast<std::size_t>(runs[0].second); ++k)
     fastest = std::min(fastest, pulses[k].tick - pulses[k - 1].tick);
-  EXPECT_NEAR(static_cast<double>(fastest), m.settings.card.pacer_hz() / (2.0 * m.spu()), 1.0);
+  EXPECT_NEAR(static_cast<double>(fastest), settings.card.pacer_hz() / (2.0 * spu), 1.0);
 }
 
 // L: the search gives up after its length, with an error naming the key; X stopped there.
@@ -124,6 +129,7 @@ TEST(WinCncHoming, TheSearchStopsAtItsLongestTravelWithAnError) {
   EXPECT_NE(st.message.find("never closed within 1"), std::string::npos) << st.message;
   EXPECT_NE(st.message.find("homing.x.search"), std::string::npos) << st.message;
   EXPECT_EQ(m.card.steps()[0], -m.steps(1.0));
+  fs::remove(m.path);
 }
 
 // Left out, each axis takes the [homing] values: the back-off is also the final offset.
