@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,9 @@ TEST(CushionedStop, ALimitHitDeceleratesForTheCushionsStepsAndTheyAreCounted) {
     before = interval;
   }
   EXPECT_GT(before, 5 * cruise);  // the last steps come slowly: it came to rest
+  std::cout << "cushion: 100 steps in " << r.x.back().tick - r.x[at].tick
+            << " ticks after the hit; step interval " << cruise << " ticks at the hit, " << before
+            << " at the end\n";
   // The run still ends on the limit, and says the cushion moved it.
   EXPECT_NE(r.message.find("limit switch"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("cushioned: 100 more steps"), std::string::npos) << r.message;
