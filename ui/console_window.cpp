@@ -46,6 +46,7 @@ void App::run_line(const std::string& typed) {
       return;
     }
     case Word::Confirm:
+      m_.controller.clear_home_flags();  // homing.require's flags too (WinCNC's L29)
       return log(LogLine::Info, session::confirm_position(m_.memory));
     case Word::Keypad:
       kp_focus_ = true;

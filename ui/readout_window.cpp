@@ -41,6 +41,7 @@ void App::readout_window() {
                           why->c_str());
       ImGui::SameLine();
       if (button("Confirm", at_rest())) {
+        m_.controller.clear_home_flags();  // homing.require's flags too (WinCNC's L29)
         log(LogLine::Info, m_.memory->confirm());
       }
     } else {

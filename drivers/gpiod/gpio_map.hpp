@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "gantry/hal/limit_filter.hpp"  // LimitFilter
+
 namespace gantry {
 
 // The fastest pacer the GPIO card accepts. Every tick is timed in software by a thread that
@@ -46,6 +48,9 @@ struct GpioMap {
   std::uint32_t estop_bits = 0;
   std::uint32_t limit_bits = 0;
   std::uint32_t active_low_bits = 0;
+  // When a limit bit trips the card: the profile's [limits] (travel_only, debounce in input
+  // samples), the rule every card applies; default: any limit bit as it becomes active.
+  LimitFilter limit_rule;
 
   double input_sample_hz = 1'000;     // inputs are read every pacer_hz / input_sample_hz ticks
   double late_tolerance_ticks = 0.5;  // a tick played later than this counts as late

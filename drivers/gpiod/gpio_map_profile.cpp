@@ -21,6 +21,7 @@ void apply_profile(GpioMap& map, const Settings& settings) {
   map.limit_bits = roles.limits.mask;
   map.active_low_bits = (roles.estop.mask & ~roles.estop.active_high) |
                         (roles.limits.mask & ~roles.limits.active_high);
+  map.limit_rule = LimitFilter(settings, map.pacer_hz);
 }
 
 }  // namespace gantry

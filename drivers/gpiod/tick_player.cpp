@@ -66,7 +66,11 @@ void TickPlayer::sample_watch(std::uint64_t tick, std::uint32_t bits) {
 }
 
 TickPlayer::TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring)
-    : lines_(lines), ring_(ring), map_(map), current_word_(map.initial_word) {
+    : lines_(lines),
+      ring_(ring),
+      map_(map),
+      current_word_(map.initial_word),
+      limit_rule_(map.limit_rule) {
   for (std::size_t i = 0; i < map.outputs.size() && i < 64; ++i) {
     lines_of_bit_[map.outputs[i].bit] |= std::uint64_t{1} << i;
     mapped_bits_ |= 1u << map.outputs[i].bit;
@@ -82,6 +86,7 @@ void TickPlayer::reset(double pacer_hz) {
   sample_every_ = std::max<std::uint64_t>(1, std::llround(pacer_hz / map_.input_sample_hz));
   late_tolerance_ns_ = std::llround(map_.late_tolerance_ticks * 1e9 / pacer_hz);
   next_sample_tick_ = 0;
+  limit_rule_.reset();
   ticks_played_.store(0, std::memory_order_release);
   fault_.store(CardFault::None, std::memory_order_release);
   late_ticks_.store(0, std::memory_order_relaxed);
@@ -121,9 +126,10 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
       fail(CardFault::EStop);
       return Outcome::Faulted;
     }
-    // A limit switch trips as it becomes active: the tool that stopped on one can move off.
+    // A limit switch trips as it becomes active (the tool that stopped on one can move off),
+    // by the profile's rule: travel_only, debounce (LimitFilter, every card's).
     const InputTrip limits = unpack(limit_trip_.load(std::memory_order_acquire));
-    const bool closed = (limits.active(bits) & ~limits.active(last_sample_)) != 0;
+    const bool closed = limit_rule_.sample(limits, tick, last_sample_, bits);
     last_sample_ = bits;
     if (closed) {
       fail(CardFault::Limit);
@@ -136,7 +142,9 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
     fail(CardFault::Underrun);  // a word was due and the producer had not written it
     return Outcome::Faulted;
   }
-  if (!write_word(ring_.peek(0))) return Outcome::Faulted;
+  const std::uint32_t word = ring_.peek(0);
+  limit_rule_.note_word(tick, current_word_, word);  // the steps, for travel_only
+  if (!write_word(word)) return Outcome::Faulted;
   ring_.drop(1);
 
   worst_late_ns_.store(std::max(worst_late_ns_.load(std::memory_order_relaxed), late_ns),

@@ -79,6 +79,7 @@ class TickPlayer {
   std::uint32_t current_word_ = 0;  // the word the lines show
   std::uint64_t next_sample_tick_ = 0;
   std::uint32_t last_sample_ = 0;  // the inputs at the sample before
+  LimitFilter limit_rule_;         // the map's: the player's own copy
 
   std::atomic<std::uint64_t> ticks_played_{0};
   std::atomic<std::uint32_t> inputs_{0};

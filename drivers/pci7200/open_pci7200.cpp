@@ -57,6 +57,7 @@ std::optional<pci7200::Pci7200Options> pci7200_options_for(const Settings& setti
   const InputRoles roles = input_roles(settings);
   out.estop = roles.estop;
   out.limits = roles.limits;
+  out.limit_rule = LimitFilter(settings, card.pacer_hz());
   return out;
 }
 

@@ -85,6 +85,7 @@ void Pci7200Card::start(double pacer_hz) {
     pump_ = ChargePump(options_.charge_pump_bit, static_cast<std::uint32_t>(std::max(1.0, half)));
   }
   stream_position_ = 0;
+  options_.limit_rule.reset();
   const std::size_t prime = options_.prime_words > 0 ? options_.prime_words
                             : output_.uses_dma()     ? output_.half_words()
                                                      : kPioPrimeWords;
@@ -126,6 +127,11 @@ void Pci7200Card::stop(std::uint32_t idle_word) {
 std::size_t Pci7200Card::take(std::span<std::uint32_t> out) {
   const std::size_t n = ring_.pop(out);
   pump_.stamp(out.first(n), stream_position_);
+  for (std::size_t i = 0; i < n; ++i) {  // the steps, for limits.travel_only: at their ticks
+    if (out[i] != last_taken_)
+      options_.limit_rule.note_word(stream_position_ + i, last_taken_, out[i]);
+    last_taken_ = out[i];
+  }
   stream_position_ += n;
   return n;
 }
@@ -170,8 +176,8 @@ void Pci7200Card::pass() {
   inputs_.store(inputs, std::memory_order_release);
   // A limit switch trips as it becomes active (the E-stop while it is): the tool that stopped
   // on one must be able to move off it.
-  const bool limit_closed =
-      (options_.limits.active(inputs) & ~options_.limits.active(last_inputs_)) != 0;
+  const bool limit_closed = options_.limit_rule.sample(
+      options_.limits, ticks_.load(std::memory_order_acquire), last_inputs_, inputs);
   last_inputs_ = inputs;
   if (!fired_)
     if (const std::optional<int> bit = watcher_.sample(inputs)) {

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "gantry/hal/card.hpp"            // Card, CardFault
+#include "gantry/hal/limit_filter.hpp"    // LimitFilter
 #include "gantry/hal/word_ring.hpp"       // WordRing
 #include "pci7200/charge_pump.hpp"        // ChargePump
 #include "pci7200/output_feeder.hpp"      // OutputFeeder, WordSource
@@ -30,7 +31,10 @@ struct Pci7200Options {
   double charge_pump_hz = 12'500;
   std::uint32_t idle_word = 0;  // the output word when the card is opened and closed
   InputTrip estop;              // trips CardFault::EStop while any masked bit is active
-  InputTrip limits;             // trips CardFault::Limit as any becomes active
+  InputTrip limits;             // trips CardFault::Limit as any becomes active, by limit_rule
+  // The profile's [limits] (travel_only, debounce in input samples: one a feeder pass), the
+  // rule every card applies; default: any limit bit as it becomes active.
+  LimitFilter limit_rule;
   RealtimeRequest realtime;     // for the feeder thread
 };
 
@@ -103,6 +107,7 @@ class Pci7200Card : public Card, private WordSource {
   ChargePump pump_;
   std::uint64_t stream_position_ = 0;  // words taken from the ring since start()
   std::uint32_t last_inputs_ = 0;      // the sample before: limit switches trip on closing
+  std::uint32_t last_taken_ = 0;       // the last word taken from the ring (steps, travel_only)
   EdgeDetector watcher_;
   std::optional<InputEdge> fired_;
   std::atomic<std::size_t> prime_words_{0};

@@ -70,10 +70,11 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
   last_step_.fill(kLongAgo);
-  travel_only_ = settings.limits.travel_only;
-  debounce_ = settings.limits.debounce;
-  min_bit_ = settings.inputs.min_bit;
-  max_bit_ = settings.inputs.max_bit;
+  prev_step_.fill(kLongAgo);
+  filter_ = LimitFilter(settings, settings.card.pacer_hz());
+  cushion_steps_ = settings.limits.cushion_steps;
+  pulse_ticks_ =
+      std::max(1, static_cast<int>(std::ceil(settings.card.step_pulse_us * 1e-6 / tick_s_ - 1e-9)));
   for (int i = 0; i < kAxisCount; ++i) {
     steps_per_unit_[i] = settings.axes[settings.drivers.channel_axis[i]].steps_per_unit;
     axis_bits_ |= pins_.axes[i].step_mask | pins_.axes[i].dir_mask;
@@ -131,44 +132,58 @@ void SimCard::update_switches(int axis) {
 }
 
 // A limit switch trips the card as it becomes active, as the driver of a real card latches
-// it; moving back off an active switch does not trip it again. An E-stop trips it while active.
+// it; moving back off an active switch does not trip it again. An E-stop trips it while
+// active. The limit rule is the real cards' (LimitFilter); each word is a sample of the
+// inputs, and a count under way trips the card at pending_at_ unless released before.
 void SimCard::check_trips(std::uint32_t before) {
   if (fault_ != CardFault::None || tick_ == 0) return;
-  if (pending_ && tick_ >= pending_at_) {  // its count played before this change
+  if (pending_at_ != UINT64_MAX && tick_ >= pending_at_) {  // its count played before this change
     fault_ = CardFault::Limit;
     return;
   }
-  if (estop_trip_.tripped(inputs_))
+  if (estop_trip_.tripped(inputs_)) {
     fault_ = CardFault::EStop;
-  else if (const std::uint32_t fresh = limit_trip_.active(inputs_) & ~limit_trip_.active(before))
-    if (!travel_only_ || travelling_to(fresh)) {
-      if (debounce_ <= 1) {
-        fault_ = CardFault::Limit;
-      } else {  // it must stay active for debounce_ words: words tick_ .. tick_ + debounce_ - 1
-        if (!pending_) pending_at_ = tick_ + static_cast<std::uint64_t>(debounce_);
-        pending_ |= fresh;
-      }
-    }
-  pending_ &= limit_trip_.active(inputs_);  // released before its count: forgotten
-  if (!pending_) pending_at_ = UINT64_MAX;
+    return;
+  }
+  if (inputs_ == before) return;  // a step that changed no input: nothing new to sample
+  if (filter_.sample(limit_trip_, tick_, before, inputs_)) {
+    fault_ = CardFault::Limit;
+    return;
+  }
+  const std::uint64_t left = filter_.samples_to_trip();
+  if (left == LimitFilter::kNone)
+    pending_at_ = UINT64_MAX;  // released before its count: forgotten
+  else if (pending_at_ == UINT64_MAX)
+    pending_at_ = tick_ + 1 + left;  // the words from this one on read it active
 }
 
-// limits.travel_only (WinCNC's lim_mode 1): a channel's min (max) switch counts while the
-// channel has stepped towards minus (plus) within kTravelS; a limit input of no channel (VN's
-// limit inputs) always counts.
-bool SimCard::travelling_to(std::uint32_t fresh) const {
-  std::uint32_t owned = 0;
-  const auto window = static_cast<std::int64_t>(kTravelS / tick_s_);
+// The cushion (limits.cushion_steps, esc_steps): each channel's speed from its last two
+// steps, decelerating from the word after prev_ (cushion_words); decoded as any words are.
+void SimCard::play_cushion(int steps) {
+  if (steps <= 0) return;
   const auto now = static_cast<std::int64_t>(tick_);
+  std::array<ChannelMotion, kAxisCount> motion{};
+  std::array<std::int64_t, kAxisCount> since{};
   for (int k = 0; k < kAxisCount; ++k) {
-    const bool moving = now - last_step_[k] <= window;
-    for (const auto& [bit, plus] : {std::pair{min_bit_[k], false}, std::pair{max_bit_[k], true}}) {
-      if (bit < 0) continue;
-      owned |= 1u << bit;
-      if ((fresh >> bit & 1u) && moving && last_step_positive_[k] == plus) return true;
-    }
+    motion[k] =
+        motion_from_steps(prev_step_[k], last_step_[k], last_step_positive_[k], now - 1, tick_s_);
+    since[k] = std::min<std::int64_t>(now - last_step_[k], 1 << 30);
   }
-  return (fresh & ~owned) != 0;
+  const std::vector<std::uint32_t> words =
+      cushion_words(pins_, prev_, motion, since, steps, pulse_ticks_);
+  const Steps6 before = steps_;
+  CushionPlayed c{tick_, {}};
+  for (const std::uint32_t w : words) {
+    decode(w);
+    ++tick_;
+  }
+  for (int k = 0; k < kAxisCount; ++k) c.steps[k] = steps_[k] - before[k];
+  cushion_ = c;
+}
+
+void SimCard::stop_cushioned(std::uint32_t idle_word, int steps) {
+  if (!stopped_ && fault_ == CardFault::None) play_cushion(steps);
+  stop(idle_word);
 }
 
 void SimCard::set_trips(const InputTrip& estop, const InputTrip& limits) {
@@ -199,8 +214,9 @@ void SimCard::calibration_changed(const Settings& s) {
 void SimCard::start(double pacer_hz) {
   stopped_ = false;
   fault_ = CardFault::None;
-  pending_ = 0;
+  filter_.reset();
   pending_at_ = UINT64_MAX;
+  cushion_.reset();
   tick_s_ = 1.0 / pacer_hz;
   monitor_ = KinematicsMonitor(limits_, tick_s_);
   // The tick count goes on from where it stopped: the wall clock's origin follows it, so a
@@ -305,14 +321,16 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       event_tick = next_event_tick();
       sample_watch(tick_);
       check_trips(before);
-      if (stopped_ || fault_ != CardFault::None) return;  // the word at this tick is not played
+      if (stopped_ || fault_ != CardFault::None) {  // the word at this tick is not played
+        if (fault_ == CardFault::Limit) play_cushion(cushion_steps_);
+        return;
+      }
       event_tick = next_event_tick();  // a limit input may have begun its count
     }
-    if (tick_ >= event_tick && !(pending_ && tick_ >= pending_at_) && tick_ < estop_tick_ &&
-        tick_ < stall_tick_)
+    if (tick_ >= event_tick && tick_ < pending_at_ && tick_ < estop_tick_ && tick_ < stall_tick_)
       event_tick = next_event_tick();  // a limit input's count ended in its release: go on
     if (tick_ >= event_tick) {
-      if (pending_ && tick_ >= pending_at_) {  // a limit input read active long enough
+      if (tick_ >= pending_at_) {  // a limit input read active long enough
         fault_ = CardFault::Limit;
         break;
       }
@@ -339,11 +357,12 @@ void SimCard::write(std::span<const std::uint32_t> words) {
       prev_ = w;
     else
       decode(w);
-    if (pending_) event_tick = std::min(event_tick, pending_at_);  // a step closed a limit
+    event_tick = std::min(event_tick, pending_at_);  // a step may have closed a limit
     if (watcher_.watch().mask != 0) sample_watch(tick_ + 1);
     ++tick_;
     if (fault_ != CardFault::None || stopped_) break;  // a switch tripped by this word's step
   }
+  if (fault_ == CardFault::Limit && !cushion_) play_cushion(cushion_steps_);
   if (realtime_)  // the queue holds up to queue_s_ of words not yet played
     std::this_thread::sleep_until(wall_at(tick_) -
                                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -381,7 +400,9 @@ void SimCard::decode(std::uint32_t w) {
         violation(i, TimingRule::DirSetup);
       const bool positive = pins_.positive(i, w);
       steps_[i] += positive ? 1 : -1;
+      prev_step_[i] = last_step_[i];
       last_step_[i] = t;
+      filter_.note_step(i, tick_, positive);
       last_step_positive_[i] = positive;
       monitor_.on_step(i, t, positive);
       update_switches(i);

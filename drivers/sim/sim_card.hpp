@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gantry/hal/card.hpp"           // Card
+#include "gantry/hal/limit_filter.hpp"   // LimitFilter
 #include "gantry/hal/pin_map.hpp"        // PinMap
 #include "gantry/settings/settings.hpp"  // Settings
 #include "sim/kinematics_monitor.hpp"    // KinematicsMonitor
@@ -77,6 +78,8 @@ class SimCard : public Card {
   FeedFigures feed_figures() const { return feed_; }
   void calibration_changed(const Settings& s) override;
   void set_trips(const InputTrip& estop, const InputTrip& limits) override;
+  void stop_cushioned(std::uint32_t idle_word, int steps) override;
+  std::optional<CushionPlayed> cushion_played() const override { return cushion_; }
   // Exact: every word's inputs are compared, and a `stop` bit stops the card at its word.
   void watch(const InputWatch& w) override;
   std::optional<InputEdge> watch_fired() override { return fired_; }
@@ -128,19 +131,17 @@ class SimCard : public Card {
   Steps6 steps_{};
   std::array<std::int64_t, kAxisCount> pulse_start_{};
   std::array<std::int64_t, kAxisCount> last_dir_change_{};
-  // limits.travel_only: a limit switch trips the card only while its channel travels
-  // towards it (stepped that way within kTravelS); the channel's last step and its direction.
-  static constexpr double kTravelS = 0.05;
-  bool travel_only_ = false;
-  std::array<std::int64_t, kAxisCount> last_step_{};
-  std::array<bool, kAxisCount> last_step_positive_{};
-  std::array<int, kAxisCount> min_bit_{}, max_bit_{};  // each channel's limit inputs
-  bool travelling_to(std::uint32_t fresh) const;  // a channel travels to one of these switches
-  // limits.debounce: a limit input trips the card once it has read active this many words
-  // in a row; pending_ are the inputs counting, which trip at pending_at_ if still active.
-  int debounce_ = 1;
-  std::uint32_t pending_ = 0;
+  // The card's limit rule (limits.travel_only, limits.debounce: LimitFilter, shared with
+  // the real cards); a limit input still counting trips the card at pending_at_.
+  LimitFilter filter_;
   std::uint64_t pending_at_ = UINT64_MAX;
+  // Each channel's last two steps and the last one's direction: its speed at a cushioned stop.
+  std::array<std::int64_t, kAxisCount> last_step_{}, prev_step_{};
+  std::array<bool, kAxisCount> last_step_positive_{};
+  int cushion_steps_ = 0;  // limits.cushion_steps: after a limit trip
+  int pulse_ticks_ = 1;
+  std::optional<CushionPlayed> cushion_;
+  void play_cushion(int steps);  // from tick_ on, after prev_
   std::array<bool, kAxisCount> pulse_active_{};
   std::array<AxisLimits, kAxisCount> limits_{};
   KinematicsMonitor monitor_;

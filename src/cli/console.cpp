@@ -363,6 +363,7 @@ Console::WordEnd Console::console_word(const session::TypedLine& t, bool termina
       write_out(status_report());
       return WordEnd::Done;
     case Word::Confirm:
+      c_.clear_home_flags();  // homing.require's flags too (WinCNC's L29)
       write_out(confirm());
       return WordEnd::Done;
     case Word::Ack: {

@@ -46,6 +46,23 @@ std::vector<ParamSpec> probe_params(std::string_view axes) {
   return out;
 }
 
+// One axis's homing values: its own (homing.<axis>.*, WinCNC's g28move per axis) or the
+// [homing] ones.
+struct AxisHoming {
+  double fast, slow;  // the approaches' speeds
+  double retract;     // off the switch between the approaches
+  double offset;      // off the switch at the end
+  double search;      // the longest run towards the switch
+};
+
+AxisHoming axis_homing(const Settings& s, int i) {
+  const HomingSettings& h = s.homing;
+  const double retract = h.retract[i].value_or(h.back_off);
+  return {h.fast[i].value_or(h.fast_speed), h.slow[i].value_or(h.slow_speed), retract,
+          h.offset[i].value_or(h.back_off),
+          h.search[i].value_or(s.axes[i].max - s.axes[i].min + 2 * h.back_off)};
+}
+
 // The moves while it lives rest the given driver channels' motors (squaring a slaved axis);
 // every channel steps again when it ends, an error's unwinding included.
 class RestingChannels {
@@ -71,7 +88,8 @@ void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
   const Settings& s = ctx.settings();
   const HomingSettings& h = s.homing;
   const double dir = h.direction[i];
-  const double reach = s.axes[i].max - s.axes[i].min + 2 * h.back_off;
+  const AxisHoming a = axis_homing(s, i);
+  const double reach = a.search;
   const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');
   const int first_input = h.input, second_input = h.square_input[i];
   int first = -1, second = -1;  // the axis's two channels, in channel order
@@ -87,34 +105,33 @@ void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
     return in && (*in)[input - 1];
   };
   const bool live = ctx.input_switches().has_value();
-  auto back_off = [&] { ctx.homing_line(toward(-h.back_off), h.fast_speed, loc); };
+  auto back_off = [&](double by) { ctx.homing_line(toward(-by), a.fast, loc); };
   auto stuck = [&](int input, const char* motor) {
     if (closed(input))
       fail(loc, fmt::format("homing {}: the {} motor's switch (input {}) stays closed after "
                             "backing off {}: check the switch, or the gantry is out of square "
                             "by more than that",
-                            L, motor, input, h.back_off));
+                            L, motor, input, a.retract));
   };
   if (closed(first_input) || closed(second_input)) {
-    back_off();  // resting on a switch: off it first
+    back_off(a.retract);  // resting on a switch: off it first
     stuck(first_input, "first");
     stuck(second_input, "second");
   }
   // Both motors, fast, until the first one's switch closes; the second may have passed its
   // own by the gantry's error: backing off must clear it.
-  if (!ctx.probe(toward(reach), h.fast_speed, first_input, loc, MachineLink::Watching::Home) &&
-      live)
-    fail(loc, fmt::format("homing {}: input {} never closed within {} (the table's length): "
+  if (!ctx.probe(toward(reach), a.fast, first_input, loc, MachineLink::Watching::Home) && live)
+    fail(loc, fmt::format("homing {}: input {} never closed within {} (the search length): "
                           "check the switch and its wiring",
                           L, first_input, reach));
-  back_off();
+  back_off(a.retract);
   stuck(first_input, "first");
   stuck(second_input, "second");
   // Each motor on its own, slowly, to its own switch.
   const std::array<std::pair<int, int>, 2> motors{{{first_input, second}, {second_input, first}}};
   for (const auto& [input, resting] : motors) {
     const RestingChannels rest(ctx, 1u << resting);
-    if (!ctx.probe(toward(reach), h.slow_speed, input, loc, MachineLink::Watching::Home) && live)
+    if (!ctx.probe(toward(reach), a.slow, input, loc, MachineLink::Watching::Home) && live)
       fail(loc, fmt::format("homing {}: input {} never closed on the slow approach of the {} "
                             "motor",
                             L, input, input == first_input ? "first" : "second"));
@@ -122,11 +139,11 @@ void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
   ctx.home_axis(i, h.at[i]);  // each motor on its own switch: the table base of both
   if (h.square_offset[i] != 0) {
     const RestingChannels rest(ctx, 1u << first);
-    ctx.homing_line(toward(h.square_offset[i]), h.slow_speed, loc);
+    ctx.homing_line(toward(h.square_offset[i]), a.slow, loc);
     ctx.input_switches();
     ctx.home_axis(i, h.at[i]);  // the first motor has not moved: it still stands at `at`
   }
-  back_off();
+  back_off(a.offset);
 }
 
 }  // namespace
@@ -145,35 +162,35 @@ void home_on_switches(CommandContext& ctx, const SourceLoc& loc, std::string_vie
       continue;
     }
     const double dir = h.direction[i];
-    const double reach = s.axes[i].max - s.axes[i].min + 2 * h.back_off;
+    const AxisHoming a = axis_homing(s, i);
     const char L = static_cast<char>(letter - 'a' + 'A');
     auto toward = [&](double distance) {
       Vec6 t = ctx.position();
       t[i] += dir * distance;
       return t;
     };
-    auto back_off = [&] { ctx.homing_line(toward(-h.back_off), h.fast_speed, loc); };
+    auto back_off = [&](double by) { ctx.homing_line(toward(-by), a.fast, loc); };
     if (const auto in = ctx.input_switches(); in && (*in)[h.input - 1]) {
-      back_off();  // resting on the switch: off it first
+      back_off(a.retract);  // resting on the switch: off it first
       if (const auto again = ctx.input_switches(); again && (*again)[h.input - 1])
         fail(loc, fmt::format("homing {}: input {} stays closed after backing off {}: check the "
                               "switch and its wiring",
-                              L, h.input, h.back_off));
+                              L, h.input, a.retract));
     }
     const bool live =
-        ctx.probe(toward(reach), h.fast_speed, h.input, loc, MachineLink::Watching::Home);
+        ctx.probe(toward(a.search), a.fast, h.input, loc, MachineLink::Watching::Home);
     if (!live && ctx.input_switches())
-      fail(loc, fmt::format("homing {}: input {} never closed within {} (the table's length): "
-                            "check the switch and its wiring",
-                            L, h.input, reach));
-    back_off();
-    if (!ctx.probe(toward(2 * h.back_off), h.slow_speed, h.input, loc,
-                   MachineLink::Watching::Home) &&
+      fail(loc, fmt::format("homing {}: input {} never closed within {} (the search length, "
+                            "homing.{}.search or the table's length): check the switch and its "
+                            "wiring",
+                            L, h.input, a.search, letter));
+    back_off(a.retract);
+    if (!ctx.probe(toward(2 * a.retract), a.slow, h.input, loc, MachineLink::Watching::Home) &&
         ctx.input_switches())
       fail(loc,
            fmt::format("homing {}: input {} did not close again on the slow approach", L, h.input));
     ctx.home_axis(i, h.at[i]);
-    back_off();
+    back_off(a.offset);
   }
 }
 

@@ -62,6 +62,19 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
   // it is where the tool really goes).
   const Vec6 table = target + state_.zero + state_.tool_offset;
   const Vec6 now = state_.position + state_.zero + state_.applied_offset;
+  // homing.require's flags; C3's macro (the shipped C3.sbp homes with probes and moves) is
+  // how they are cleared, so its moves are not refused.
+  const bool homing = interp_ && std::any_of(interp_->frames_.begin(), interp_->frames_.end(),
+                                             [](const auto& f) { return f.call.homing; });
+  const std::uint32_t to_home = interp_ && !homing ? interp_->gated_sink_->axes_to_home() : 0;
+  for (int i = 0; i < kAxisCount; ++i)
+    if ((to_home >> i & 1u) && table[i] != now[i])
+      fail(loc, fmt::format("{} must be homed before it moves again: an E-stop or a card fault "
+                            "stopped the machine mid-motion (homing.require in the profile); "
+                            "home it (C3, or G28 {}), or type `confirm` if the tool is where the "
+                            "readout says; nothing was moved",
+                            static_cast<char>(std::toupper(kAxisLetters[i])),
+                            static_cast<char>(std::toupper(kAxisLetters[i]))));
   for (int i = 0; settings_.machine.limit_checking && i < kAxisCount; ++i) {
     if (table[i] == now[i]) continue;  // only axes that move are checked
     const AxisSettings& ax = settings_.axes[i];
@@ -88,10 +101,39 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
                        format_number(kMaxCoordinate), units_name(settings_.units)));
 }
 
+// WinCNC's softlim B1 (every axis: "adjust the target position to the boundary") and V1
+// (vertical axes: adjusted "and no error message is generated"). Only straight moves are
+// clamped (an arc cut short is no longer an arc: it is refused as before); the file's
+// location is then the clamped point, so the moves after it go on from where the tool is.
+void CommandContext::clamp_to_soft_limits(Vec6& target, const SourceLoc& loc) {
+  const SoftClamp mode = settings_.limits.soft_clamp;
+  if (mode == SoftClamp::Off || !settings_.machine.limit_checking) return;
+  const Vec6 shift = state_.zero + state_.tool_offset;  // machine target -> table base
+  const Vec6 now = state_.position + state_.zero + state_.applied_offset;
+  std::string clamped;
+  for (int i = 0; i < kAxisCount; ++i) {
+    if (mode == SoftClamp::Vertical && i != 2) continue;
+    const double table = target[i] + shift[i];
+    if (!std::isfinite(table) || table == now[i]) continue;
+    const AxisSettings& ax = settings_.axes[i];
+    const double at = std::clamp(table, ax.min, ax.max);
+    if (at == table) continue;
+    clamped +=
+        fmt::format("{}{}={:.4f} to {:.4f}", clamped.empty() ? "" : ", ",
+                    static_cast<char>(std::toupper(kAxisLetters[i])), target[i], at - shift[i]);
+    target[i] = at - shift[i];
+  }
+  if (!clamped.empty() && mode == SoftClamp::All && !std::exchange(soft_clamp_warned_, true))
+    warn(loc, fmt::format("move clamped to the soft limits ({}; limits.soft_clamp = \"all\"); "
+                          "later clamps in this run are not told",
+                          clamped));
+}
+
 void CommandContext::line_to(const Vec6& file_target, SpeedClass cls, const SourceLoc& loc) {
   try {
-    check_reach(file_target, loc);
-    const Vec6 target = transform_.to_machine(file_target);
+    Vec6 target = transform_.to_machine(file_target);
+    clamp_to_soft_limits(target, loc);
+    check_working(target, loc);
     if (tab_move(target, nullptr, cls, loc)) return;
     send_line(target, cls, loc);
   } catch (const GantryError&) {
@@ -545,6 +587,7 @@ void CommandContext::set_table_base(unsigned axes, const Vec6& location) {
       const double machine = state_.machine_origin[i] + state_.zero[i] + state_.position[i];
       state_.zero[i] = location[i] - state_.position[i];
       state_.machine_origin[i] = machine - location[i];
+      if (interp_) interp_->gated_sink_->homed(i);  // C3.sbp sets it with VA: homed
     }
 }
 
@@ -552,6 +595,7 @@ void CommandContext::home_axis(int axis, double table_base) {
   const double machine = state_.machine_origin[axis] + state_.zero[axis] + state_.position[axis];
   state_.machine_origin[axis] = machine - table_base;
   state_.position[axis] = table_base - state_.zero[axis];
+  if (interp_) interp_->gated_sink_->homed(axis);
 }
 
 void CommandContext::homing_line(const Vec6& file_target, double speed, const SourceLoc& loc) {

@@ -76,6 +76,10 @@ class Interpreter::GatedSink : public MotionSink {
     if (!machine_) return std::nullopt;
     return machine_->input_switches();
   }
+  std::uint32_t axes_to_home() const { return machine_ ? machine_->axes_to_home() : 0; }
+  void homed(int axis) {
+    if (machine_) machine_->homed(axis);
+  }
   std::optional<MotionReport> keypad(const SourceLoc& loc) {
     if (closed) return std::nullopt;
     if (!machine_) return sync();

@@ -461,6 +461,7 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
         sink_.move(m);
       }
       ctx_.spindle_speed_warned_ = false;
+      ctx_.soft_clamp_warned_ = false;
     }
     end_quiet();  // a start line never reached: the machine was never told otherwise
     start_.reset();
@@ -1087,6 +1088,7 @@ void Interpreter::call_macro(int number, const SourceLoc& loc) {
         FileCall call;
         call.path = found.path;
         call.resolved = true;
+        call.homing = number == 3;
         pending_call_ = call;
         pending_call_loc_ = loc;
         return;

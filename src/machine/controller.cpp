@@ -73,6 +73,12 @@ class Controller::ForwardSink : public MotionSink, public MachineLink {
     sync();
     return c_.keypad_session();
   }
+  std::uint32_t axes_to_home() const override {
+    return c_.must_home_.load(std::memory_order_acquire);
+  }
+  void homed(int axis) override {
+    c_.must_home_.fetch_and(~(1u << axis), std::memory_order_acq_rel);
+  }
 
  private:
   Controller& c_;
@@ -230,6 +236,11 @@ Outcome Controller::stop() {
 
 Outcome Controller::estop() {
   return refuse_or(Request::EStop, [&] {
+    // Stopped mid-motion: the axes the profile names must be homed again (homing.require).
+    if (state_ == MachineState::Running || state_ == MachineState::Jogging ||
+        state_ == MachineState::Homing || state_ == MachineState::Probing ||
+        state_ == MachineState::Stopping)
+      must_home_.fetch_or(settings_.homing.require, std::memory_order_acq_rel);
     feed_.request_estop();
     message_ = "E-stop";
   });
@@ -677,6 +688,7 @@ void Controller::card_faulted(const GantryError& e, CardFault fault, const Steps
   stopped_at_ = e.diagnostic().loc;
   fault_ = fault;
   fault_commanded_ = commanded;
+  must_home_.fetch_or(settings_.homing.require, std::memory_order_acq_rel);  // mid-motion
   error_ = Diagnostic{stopped_at_, Severity::Error, message_};
   if (fault == CardFault::EStop) state_ = MachineState::EStop;
 }
@@ -774,6 +786,10 @@ void Controller::feeder_phase_changed(FeedPhase phase, const SourceLoc& rest) {
       effect_state_.reset();
     }
     if (phase == FeedPhase::Halted) {
+      if (state_ == MachineState::Running || state_ == MachineState::Jogging ||
+          state_ == MachineState::Homing || state_ == MachineState::Probing ||
+          state_ == MachineState::Stopping)  // a scheduled E-stop mid-motion (homing.require)
+        must_home_.fetch_or(settings_.homing.require, std::memory_order_acq_rel);
       state_ = MachineState::EStop;
       feed_.halted();
       feed_.abort();

@@ -191,7 +191,7 @@ void FeederThread::request_stop() {
 }
 
 void FeederThread::request_estop() {
-  feeder_.request_halt(0);
+  feeder_.request_halt(0, settings_.limits.esc_steps);  // WinCNC's esc_step: a cushion
   cmd_halt_ = true;
   abort_ = true;
 }

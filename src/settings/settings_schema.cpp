@@ -36,6 +36,7 @@ constexpr std::string_view kTriggerAxes[] = {"z", "a"};
 constexpr std::string_view kAxisUnits[] = {"in", "mm", "deg"};  // AxisUnit's order
 constexpr std::string_view kSpeedModes[] = {"pwm", "frequency"};     // SpindleSettings::SpeedMode
 constexpr std::string_view kReverseWirings[] = {"direction", "run"};  // ...::ReverseWiring
+constexpr std::string_view kSoftClamps[] = {"off", "vertical", "all"};  // SoftClamp's order
 
 // The speed limit of a speed group (xy z a b c): the axis max_speed, XY's the lower of X's and Y's.
 double group_limit(const Settings& s, int i) {
@@ -78,6 +79,23 @@ std::string channels_text(const Settings& s) {
   std::string channels;
   for (int axis : s.drivers.channel_axis) channels += "XYZABC"[axis];
   return channels;
+}
+
+std::string require_text(const Settings& s) {
+  std::string out;
+  for (int i = 0; i < kAxisCount; ++i)
+    if (s.homing.require >> i & 1u) out += kAxisLetters[i];
+  return out;
+}
+
+bool require_read(Settings& s, std::string_view axes) {
+  s.homing.require = 0;
+  for (const char c : axes) {
+    const size_t i = std::string_view("xyzabc").find(static_cast<char>(std::tolower(c)));
+    if (i == std::string_view::npos) return false;
+    s.homing.require |= 1u << i;
+  }
+  return true;
 }
 
 bool channels_read(Settings& s, std::string_view channels) {
@@ -508,12 +526,47 @@ const SettingRow kRows[] = {
            "a squared axis: how far the second motor then moves on its own, towards its switch, to square the gantry (WinCNC's g28altmove; a length). Left out: 0",
            .optional = true),
 
+  {.section = "homing.<x..c>", .key = "fast_speed", .kind = SettingKind::OptionalNumber,
+   .field = GANTRY_FIELD(std::optional<double>, homing.fast[i]), .range = kPositive, .unit = SettingUnit::Axis,
+   .help = "this axis's first approach speed, units/s (WinCNC's g28move F). Left out: `homing.fast_speed`",
+   .family = SettingFamily::Axes, .optional = true},
+  {.section = "homing.<x..c>", .key = "slow_speed", .kind = SettingKind::OptionalNumber,
+   .field = GANTRY_FIELD(std::optional<double>, homing.slow[i]), .range = kPositive, .unit = SettingUnit::Axis,
+   .help = "this axis's measured approach speed, units/s (g28move T). Left out: `homing.slow_speed`",
+   .family = SettingFamily::Axes, .optional = true},
+  {.section = "homing.<x..c>", .key = "back_off", .kind = SettingKind::OptionalNumber,
+   .field = GANTRY_FIELD(std::optional<double>, homing.retract[i]), .range = kPositive, .unit = SettingUnit::Axis,
+   .help = "how far this axis backs off the switch after the first contact, before the measured approach (g28move R; a length). Left out: `homing.back_off`",
+   .family = SettingFamily::Axes, .optional = true},
+  {.section = "homing.<x..c>", .key = "offset", .kind = SettingKind::OptionalNumber,
+   .field = GANTRY_FIELD(std::optional<double>, homing.offset[i]), .range = kPositive, .unit = SettingUnit::Axis,
+   .help = "how far off the switch this axis ends when homed (g28move X Y Z W; a length). Left out: the back-off",
+   .family = SettingFamily::Axes, .optional = true},
+  {.section = "homing.<x..c>", .key = "search", .kind = SettingKind::OptionalNumber,
+   .field = GANTRY_FIELD(std::optional<double>, homing.search[i]), .range = kPositive, .unit = SettingUnit::Axis,
+   .help = "the longest run towards the switch before homing gives up with an error (g28move L; a length). Left out: the axis's soft-limit span plus two back-offs",
+   .family = SettingFamily::Axes, .optional = true},
+  {.section = "homing", .key = "require", .kind = SettingKind::Coded,
+   .help = "the axes that must be homed again (C3, G28) after an E-stop or a card fault stopped a motion (WinCNC's enab A\"axes\"): a run or a typed line that moves one is refused until then, or until the operator types `confirm`; left out or `\"\"`: none",
+   .optional = true, .omit_empty = true, .encode = require_text, .decode = require_read,
+   .rule = "must list axes as letters x y z a b c", .docs_allowed = "letters `xyzabc`, or `\"\"`",
+   .docs_type = "string"},
+
   BOOL("limits", "travel_only", limits.travel_only,
-       "a limit switch stops the machine only while its axis travels towards it (WinCNC's lim_mode 1); false: any limit switch that closes stops it. The simulated card only, for now (docs/hardware.md, \"Limit modes\"); the `[limits]` table is optional",
+       "a limit switch stops the machine only while its axis travels towards it (WinCNC's lim_mode 1); false: any limit switch that closes stops it. Every card (docs/hardware.md, \"Limit modes\"); the `[limits]` table is optional",
        .optional = true, .optional_table = true),
   INT("limits", "debounce", limits.debounce, 1, 30,
-      "a limit switch stops the machine once its input has read active this many words (pacer ticks) in a row, so a shorter spike does not (WinCNC's lim_cnt, at most 30). The simulated card only, for now. Left out: 1",
+      "a limit switch stops the machine once its input has read active in this many of the card's input samples in a row (the simulated card samples every word, the PCI-7200 each pass of its feeder, the GPIO card at its input rate), so a shorter spike does not (WinCNC's lim_cnt, at most 30). Left out: 1",
       .optional = true, .optional_table = true),
+  INT("limits", "cushion_steps", limits.cushion_steps, 0, 100000,
+      "after a limit switch trips, every moving motor decelerates to rest within this many more steps instead of stopping dead (WinCNC's lim_step: the switch's safe compression times the lowest steps per unit); the steps are counted, and the run still ends on the limit. The simulated card (docs/hardware.md, \"Cushioned stop\"). Left out: 0, a dead stop",
+      .optional = true, .optional_table = true),
+  INT("limits", "esc_steps", limits.esc_steps, 0, 100000,
+      "the same cushion after the operator's E-stop (the console's and the window's E-stop, a second Ctrl-C; WinCNC's esc_step, 200 suggested); the E-stop input itself always stops dead. The simulated card. Left out: 0, a dead stop",
+      .optional = true, .optional_table = true),
+  {.section = "limits", .key = "soft_clamp", .kind = SettingKind::Choice,
+   .help = "a move beyond the soft limits: `\"off\"` refused (the file stops at its line), `\"vertical\"` Z's target clamped to its limit without a word and other axes refused (WinCNC's softlim V1), `\"all\"` every axis's target clamped, the run warned once (softlim B1; docs/hardware.md, \"Soft-limit clamp\"). Left out: `\"off\"`",
+   .names = kSoftClamps, .optional = true, .optional_table = true, GANTRY_ENUM(limits.soft_clamp, SoftClamp)},
 
   {.section = "simulator", .key = "home_<x..c>", .kind = SettingKind::OptionalNumber,
    .field = GANTRY_FIELD(std::optional<double>, simulator.home[i]), .range = kAny, .unit = SettingUnit::Axis,

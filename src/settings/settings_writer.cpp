@@ -68,7 +68,11 @@ void write_row(toml::table& root, const SettingRow& row, int i, const Settings& 
                          : fmt::format("{}{}:{}", out.empty() ? "" : ", ", b.line, b.bit);
       return put(out);
     }
-    case SettingKind::Coded: return put(row.encode(s));
+    case SettingKind::Coded: {
+      const std::string v = row.encode(s);
+      if (!(row.omit_empty && v.empty())) put(v);
+      return;
+    }
   }
 }
 

@@ -49,7 +49,8 @@ void MotionFeeder::request_hold(std::int64_t tick, bool pause, bool every_output
   hold_at_.store(tick, std::memory_order_release);
 }
 
-void MotionFeeder::request_halt(std::int64_t tick) {
+void MotionFeeder::request_halt(std::int64_t tick, int cushion) {
+  halt_cushion_.store(cushion, std::memory_order_relaxed);
   halt_at_.store(tick, std::memory_order_release);
 }
 
@@ -236,7 +237,7 @@ void MotionFeeder::halt_now() {
   halt_at_ = hold_at_ = steps_.kNever;
   parked_.reset();
   paused_off_ = 0;
-  steps_.halt();
+  steps_.halt(halt_cushion_.exchange(0, std::memory_order_relaxed));
   set_phase(FeedPhase::Halted);
 }
 

@@ -15,7 +15,8 @@ StepGenerator::StepGenerator(const Settings& settings, Card& card, std::size_t b
       placement_(settings, timing_),
       lead_(settings, card, block_words),
       writer_(settings, timing_, card, lead_.block_words()),
-      log_(std::llround(settings.card.pacer_hz())) {
+      log_(std::llround(settings.card.pacer_hz())),
+      channel_axis_(settings.drivers.channel_axis) {
   writer_.on_block([this] {
     check_card();
     lead_.after_block(writer_.sent(), [this] { check_card(); });
@@ -28,6 +29,7 @@ void StepGenerator::settings_changed(const Settings& s) {
   flush();
   placement_.settings_changed(s);
   writer_.settings_changed(s, placement_.positive());
+  channel_axis_ = s.drivers.channel_axis;
 }
 
 void StepGenerator::emit_levels() {
@@ -35,7 +37,19 @@ void StepGenerator::emit_levels() {
   emit_until(++segment_end_);
 }
 
+// A cushioned stop's words are the card's own: the words written played up to its start,
+// then each axis made its first channel's cushion steps.
 Steps6 StepGenerator::played_position() const {
+  if (const std::optional<CushionPlayed> c = card_.cushion_played())
+    if (std::optional<Steps6> p = position_at(c->from)) {
+      std::array<bool, kAxisCount> added{};
+      for (int k = 0; k < kAxisCount; ++k)
+        if (const int axis = channel_axis_[k]; !added[axis]) {
+          (*p)[axis] += c->steps[k];
+          added[axis] = true;
+        }
+      return *p;
+    }
   return *position_at(card_.ticks_played());
 }
 
@@ -49,7 +63,10 @@ void StepGenerator::watch_inputs(const InputWatch& w, std::function<void(const I
 // card stopped.
 void StepGenerator::check_card() {
   const std::uint64_t played = card_.ticks_played();
-  log_.confirm(played);
+  // A cushion's words are the card's, not ours: the log confirms ours up to its start (and
+  // keeps its history from there, however long the cushion took).
+  const std::optional<CushionPlayed> cushion = card_.cushion_played();
+  log_.confirm(cushion ? std::min(played, cushion->from) : played);
   while (level_changes_.size() > 1 && level_changes_[1].first <= static_cast<std::int64_t>(played))
     level_changes_.pop_front();
   if (on_block_) on_block_();
@@ -64,7 +81,13 @@ void StepGenerator::check_card() {
   faulted_ = true;
   // Where the tool stopped is said by the controller: it knows the operator's frame (a
   // restored or homed origin, the zero), which step counts alone do not.
-  const std::string detail = card_.fault_detail();
+  std::string detail = card_.fault_detail();
+  if (cushion) {
+    std::int64_t most = 0;
+    for (std::int64_t n : cushion->steps) most = std::max(most, n < 0 ? -n : n);
+    detail += fmt::format("{}cushioned: {} more steps at most after the hit, counted",
+                          detail.empty() ? "" : "; ", most);
+  }
   throw GantryError(Diagnostic{current_loc_, Severity::Error,
                                fmt::format("{}{}: the card stopped at {:.4f} s", fault_name(f),
                                            detail.empty() ? "" : " (" + detail + ")",
@@ -153,9 +176,9 @@ void StepGenerator::start_independent(const IndependentMotion& m) {
   placement_.start_independent(m, segment_end_);
 }
 
-void StepGenerator::halt() {
+void StepGenerator::halt(int cushion) {
   if (placement_.independent()) placement_.end_independent();  // E-stop: every axis stops at once
-  writer_.halt();
+  writer_.halt(cushion);
   levels_.switches = 0;  // the card idles with every output off; the next words too (restart)
   level_changes_.clear();
   level_changed();

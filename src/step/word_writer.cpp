@@ -122,11 +122,14 @@ bool WordWriter::write_block() {
   return true;
 }
 
-void WordWriter::halt() {
+void WordWriter::halt(int cushion) {
   if (!block_.empty()) card_.write(block_);
   block_.clear();
   sent_ = cursor_;
-  card_.stop(pins_.idle_word());  // outputs off, as an E-stop must
+  if (cushion > 0)
+    card_.stop_cushioned(pins_.idle_word(), cushion);  // outputs off after it
+  else
+    card_.stop(pins_.idle_word());  // outputs off, as an E-stop must
 }
 
 void WordWriter::restart() {

@@ -277,6 +277,51 @@ TEST(GpiodCard, ALimitSwitchTripsAsItClosesSoTheToolCanMoveOffIt) {
   EXPECT_EQ(rig.card->ticks_played(), 30u);  // seen by the tick-30 sample
 }
 
+// limits.travel_only and limits.debounce on the GPIO card's input path: the profile's rule
+// (LimitFilter, every card's), X's min switch on the limit line.
+GpioMap limit_rule_map(bool travel_only, int debounce) {
+  GpioMap map = test_map();
+  map.limit_bits = kLimitBit;  // active high
+  Settings s = default_settings();
+  s.limits.travel_only = travel_only;
+  s.limits.debounce = debounce;
+  s.inputs.min_bit = {0, -1, -1, -1, -1, -1};  // X's min switch is input bit 0
+  s.inputs.max_bit = {-1, -1, -1, -1, -1, -1};
+  map.limit_rule = LimitFilter(s, kPacerHz);
+  return map;
+}
+
+TEST(GpiodCard, TravelOnlyTripsOnlyWhileTheAxisStepsTowardsTheSwitch) {
+  for (const bool towards_minus : {true, false}) {
+    Rig rig(limit_rule_map(true, 1), VirtualClock::Mode::FreeRunning,
+            [](FakeGpioLines& lines) { lines.set_input(kLimitLine, 1, 5); });
+    rig.card->start(kPacerHz);
+    const std::uint32_t dir = towards_minus ? kXDir : 0;  // the direction line high: minus
+    std::vector<std::uint32_t> words;
+    for (int i = 0; i < 30; ++i) words.push_back(dir | (i % 2 ? kXStep : 0));
+    rig.card->write(words);
+    rig.card->drain();
+    EXPECT_EQ(rig.card->fault(), towards_minus ? CardFault::Limit : CardFault::None);
+    EXPECT_EQ(rig.card->ticks_played(), towards_minus ? 10u : 30u);  // the tick-10 sample
+  }
+}
+
+TEST(GpiodCard, ADebouncedLimitCountsInputSamples) {
+  // Active for one sample (10) only: forgotten; for two (10, 20): trips at the second.
+  for (const int until : {15, 25}) {
+    Rig rig(limit_rule_map(false, 2), VirtualClock::Mode::FreeRunning,
+            [until](FakeGpioLines& lines) {
+              lines.set_input(kLimitLine, 1, 5);
+              lines.set_input(kLimitLine, 0, until);
+            });
+    rig.card->start(kPacerHz);
+    rig.card->write(std::vector<std::uint32_t>(40, kXDir));
+    rig.card->drain();
+    EXPECT_EQ(rig.card->fault(), until == 15 ? CardFault::None : CardFault::Limit) << until;
+    EXPECT_EQ(rig.card->ticks_played(), until == 15 ? 40u : 20u) << until;
+  }
+}
+
 TEST(GpiodCard, TheWatchReportsAnEdgeAtTheTickOfItsSample) {
   Rig rig(test_map(), VirtualClock::Mode::FreeRunning,
           [](FakeGpioLines& lines) { lines.set_input(kProbeLine, 1, 23); });  // closes at 23

@@ -371,6 +371,30 @@ TEST(Pci7200Card, ALimitSwitchTripsAsItClosesSoTheToolCanMoveOffIt) {
   EXPECT_EQ(rig.card->fault(), CardFault::Limit);
 }
 
+// limits.travel_only on the PCI-7200's input path (LimitFilter, every card's rule): X's min
+// switch (bit 2) trips the card while X steps towards minus, not while it steps towards plus;
+// the steps are read from the words the feeder hands to the card.
+TEST(Pci7200Card, TravelOnlyTripsOnlyWhileTheAxisStepsTowardsTheSwitch) {
+  for (const bool towards_minus : {true, false}) {
+    Settings s = default_settings();
+    s.limits.travel_only = true;
+    Pci7200Options options;
+    options.limits = {1u << 2, 1u << 2};  // active high
+    options.limit_rule = LimitFilter(s, 200e3);
+    Rig rig = make_rig(stepped(), options);
+    rig.card->start(200e3);
+    const std::uint32_t dir = towards_minus ? 1u << s.pins[0].dir_bit : 0;  // high: minus
+    std::vector<std::uint32_t> w(3000, dir);
+    for (std::size_t i = 0; i < w.size(); i += 20) w[i] |= 1u << s.pins[0].step_bit;
+    rig.card->write(w);
+    rig.emu->advance(100);
+    rig.emu->set_inputs(1u << 2);
+    rig.emu->advance(50);
+    EXPECT_EQ(rig.card->fault(), towards_minus ? CardFault::Limit : CardFault::None)
+        << towards_minus;
+  }
+}
+
 TEST(Pci7200Card, TheWatchSeesAnEdgeAtItsSampleAndAStopBitHaltsThePacer) {
   Rig rig = make_rig(stepped());
   rig.card->start(200e3);

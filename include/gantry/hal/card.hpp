@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 
+#include "gantry/core/axes.hpp"        // Steps6
 #include "gantry/hal/input_roles.hpp"  // InputTrip
 
 namespace gantry {
@@ -74,6 +75,15 @@ class EdgeDetector {
   bool fired_ = false;
 };
 
+// A cushioned stop the card played by itself (limits.cushion_steps after a limit switch,
+// limits.esc_steps after the operator's E-stop; docs/hardware.md, "Cushioned stop"): the
+// words from tick `from` on were its own deceleration, not the ones written, and each driver
+// channel made `steps` in them (signed). ticks_played() counts them.
+struct CushionPlayed {
+  std::uint64_t from = 0;
+  Steps6 steps{};
+};
+
 class Card {
  public:
   virtual ~Card() = default;
@@ -90,6 +100,12 @@ class Card {
   // Stops the pacer at once (stop, E-stop, end of job): queued words that have not played
   // are dropped, and the output word returns to `idle_word`.
   virtual void stop(std::uint32_t idle_word) = 0;
+  // Stops as stop() does, after a cushion of `steps` (limits.esc_steps): every channel still
+  // moving decelerates to rest within that many steps (cushion_words). A card that cannot
+  // stops at once.
+  virtual void stop_cushioned(std::uint32_t idle_word, int /*steps*/) { stop(idle_word); }
+  // The cushion played since start(), if one was (a limit's or stop_cushioned's).
+  virtual std::optional<CushionPlayed> cushion_played() const { return std::nullopt; }
   // Words played since start(): the tick the card has reached.
   virtual std::uint64_t ticks_played() const = 0;
   // The input port's 32 bits as last sampled, raw (polarity is the profile's business).

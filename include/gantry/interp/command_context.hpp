@@ -52,6 +52,7 @@ struct FileCall {
   int start_line = 0;
   SourceLoc start_loc;    // where the start line was given, for its errors
   bool resolved = false;  // `path` is final (C<n> found it), not relative to the parts folder
+  bool homing = false;    // C3's macro: it may move axes homing.require holds (it homes them)
   // Set: these lines run instead of a file, as if typed at the console (RP, RR, SI): not
   // scaled or offset, and the values they change stay when they end.
   std::shared_ptr<const Script> lines;
@@ -298,6 +299,10 @@ class CommandContext {
   bool switch4_auto_ = false;          // ... and switch 4 came on with the warning
   bool spindle_speed_warned_ = false;  // TR with no speed output: this run was told once
   bool spindle_settles_ = true;        // false while a run's end switches everything off
+  bool soft_clamp_warned_ = false;     // limits.soft_clamp "all" clamped a move: told once
+  // limits.soft_clamp: the axes of `target` (machine coordinates) that move beyond their
+  // soft limits, clamped to them where the profile says so (WinCNC's softlim B1, V1).
+  void clamp_to_soft_limits(Vec6& target, const SourceLoc& loc);
   std::optional<DrawingState> drawn_;  // the drawing state the sink was last told
   std::optional<Units> file_units_;    // a G-code file's G20/G21 (none: VD's units)
 };

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <span>
 
@@ -42,6 +43,10 @@ class MachineLink {
   // SK: plays out the moves sent so far, then the operator jogs the machine with the keypad
   // until they close it; reports where the tool is then.
   virtual MotionReport keypad(const SourceLoc&) = 0;
+  // The axes (bit i: axis i) that must be homed before they move again (homing.require: an
+  // E-stop or a card fault stopped a motion), and the news that one was (C3, G28).
+  virtual std::uint32_t axes_to_home() const { return 0; }
+  virtual void homed(int /*axis*/) {}
 };
 
 }  // namespace gantry

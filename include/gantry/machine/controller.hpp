@@ -117,6 +117,10 @@ class Controller : private FeederEvents {
   Outcome stop();
   Outcome estop();
   Outcome acknowledge();
+  // homing.require: the axes that must be homed again before they move (bit i: axis i), and
+  // the operator's word that the position is right after all (CONFIRM: WinCNC's L29).
+  std::uint32_t axes_to_home() const { return must_home_.load(std::memory_order_acquire); }
+  void clear_home_flags() { must_home_.store(0, std::memory_order_release); }
   // Jogs run at rest, and while a file waits at SK (Keypad): a jog from there returns there.
   Outcome jog(const JogRequest& j);
   Outcome jog_release();
@@ -233,6 +237,9 @@ class Controller : private FeederEvents {
   std::optional<Diagnostic> error_;
   CardFault fault_ = CardFault::None;
   Steps6 fault_commanded_{};  // the steps generated when the card faulted
+  // homing.require: the axes that must be homed again (bit i: axis i), after an E-stop or a
+  // card fault stopped a motion; cleared by homing each axis, or clear_home_flags().
+  std::atomic<std::uint32_t> must_home_{0};
   double feed_override_ = 1;
   // Caller -> job thread, read after each statement: override_changed_ (exchanged by the job,
   // which then reads feed_override_ under m_) and single_step_ (a setting; seq_cst, no data

@@ -154,7 +154,9 @@ class FeederThread {
   // ---- requests (callers, under the controller's mutex) ----
   // A hold at `tick` (0: now): kept for resume, or discarded at rest.
   void hold(std::int64_t tick, bool discard, bool pause = false, bool every_output = false);
-  void halt(std::int64_t tick) { feeder_.request_halt(tick); }  // a scheduled E-stop
+  void halt(std::int64_t tick) {  // a scheduled E-stop: the operator's, cushioned as one
+    feeder_.request_halt(tick, settings_.limits.esc_steps);
+  }
   void request_resume() { cmd_resume_ = true; }
   void request_stop();  // a hold now, discarded; the activity aborts
   void request_estop();

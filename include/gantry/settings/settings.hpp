@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>  // fmod
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -161,13 +162,28 @@ struct HomingSettings {
   // How far the second motor then moves on its own past where its switch closed (WinCNC's
   // g28altmove): the squaring correction. Units.
   std::array<double, kAxisCount> square_offset{};
+  // Per axis, as WinCNC's g28move lines give them (nullopt: the values above): the first
+  // approach's speed (F), the measured approach's (T), the back-off between them (R), how far
+  // off the switch the axis ends (X Y Z W), and the longest search for the switch (L; left
+  // out: the axis's soft-limit span and two back-offs).
+  std::array<std::optional<double>, kAxisCount> fast{}, slow{}, retract{}, offset{}, search{};
+  // The axes that must be homed again after an E-stop or a card fault stopped the machine
+  // mid-motion (WinCNC's enab A"axes"): bit i, axis i. A run moving one of them is refused
+  // until C3 (or G28) homes it, or the operator confirms the position.
+  std::uint32_t require = 0;
 };
 
-// [limits]: how a limit switch stops the machine (WinCNC's lim_mode, lim_cnt, lim_step).
+// What a move beyond the soft limits does (WinCNC's softlim B and V).
+enum class SoftClamp { Off, Vertical, All };
+
+// [limits]: how a limit switch stops the machine (WinCNC's lim_mode, lim_cnt, lim_step,
+// esc_step) and what a move beyond the soft limits does (softlim B1, V1).
 struct LimitSettings {
   bool travel_only = false;  // only a switch on the side the axis travels to stops it
-  int debounce = 1;          // words in a row a limit input must read active to count
+  int debounce = 1;          // input samples in a row a limit input must read active to count
   int cushion_steps = 0;     // steps of deceleration after a hit, instead of a dead stop
+  int esc_steps = 0;         // the same after the operator's E-stop
+  SoftClamp soft_clamp = SoftClamp::Off;  // refused (Off), or clamped: Z only, or every axis
 };
 
 // The simulated card's machine (card.type "sim"; docs/hardware.md): where its proximity

@@ -72,7 +72,7 @@ struct SettingRow {
   std::span<const std::string_view> names{};  // Choice and Text: the allowed strings
   bool optional = false;                      // the key may be left out (the default stays)
   bool optional_table = false;                // its whole table may be left out (no key asked)
-  bool omit_empty = false;                    // Text, Texts: not written when empty
+  bool omit_empty = false;                    // Text, Texts, Coded: not written when empty
   int count = 0;                              // lists: how many values (0: any)
   // Choice: the held value as an index of `names`, and back (null: an int member holds it).
   int (*choice_get)(const Settings&, int i) = nullptr;

@@ -51,7 +51,9 @@ class MotionFeeder : public SegmentSink {
   // Output switches (bit n-1: switch n) that a pause turns off.
   void pause_outputs(std::uint32_t mask) { pause_mask_.store(mask, std::memory_order_relaxed); }
   // Stops the pulses at `tick` (0: at once): the card is stopped, unplayed words dropped.
-  void request_halt(std::int64_t tick = 0);
+  // `cushion` > 0 (the operator's E-stop with limits.esc_steps): the card decelerates every
+  // moving channel to rest within that many steps first (Card::stop_cushioned).
+  void request_halt(std::int64_t tick = 0, int cushion = 0);
   FeedPhase phase() const { return phase_.load(std::memory_order_acquire); }
   // Held: plays what was kept, from rest, and what follows.
   void resume();
@@ -99,6 +101,7 @@ class MotionFeeder : public SegmentSink {
   StepGenerator& steps_;
   std::atomic<FeedPhase> phase_{FeedPhase::Playing};
   std::atomic<std::int64_t> hold_at_{StepGenerator::kNever}, halt_at_{StepGenerator::kNever};
+  std::atomic<int> halt_cushion_{0};  // the next halt's cushion, steps
   // The live override: its factor (0: none set) and the tick from which it re-ramps.
   std::atomic<double> live_factor_{0};
   std::atomic<std::int64_t> override_at_{StepGenerator::kNever};

@@ -103,8 +103,9 @@ class StepGenerator : public SegmentSink {
   // At rest: one word at the levels set since (outputs switched between segments).
   void emit_levels();
   bool faulted() const { return faulted_; }
-  // E-stop: the words so far go to the card, which stops at once; unplayed words are lost.
-  void halt();
+  // E-stop: the words so far go to the card, which stops at once (after a cushion of
+  // `cushion` steps, limits.esc_steps, where it can); unplayed words are lost.
+  void halt(int cushion = 0);
   // After halt(): the card starts again and the step counts are the steps it played.
   void restart();
   // Confirms the steps the card has played; on a card fault, throws (once) the error naming
@@ -148,6 +149,7 @@ class StepGenerator : public SegmentSink {
   // Each change of levels_ and the tick it takes effect from; the front is in force at the
   // card's played tick (check_card drops what the card has played past).
   std::deque<std::pair<std::int64_t, OutputLevels>> level_changes_;
+  std::array<int, kAxisCount> channel_axis_{};  // drivers.channels: a cushion's steps per axis
 };
 
 }  // namespace gantry

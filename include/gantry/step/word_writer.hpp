@@ -107,7 +107,7 @@ class WordWriter {
   void watch(const InputWatch& w);
 
   // E-stop: the words so far go to the card, which stops at once with its outputs idle.
-  void halt();
+  void halt(int cushion = 0);
   // After halt(): the card starts again, the levels as at construction, and the words go
   // on from the tick it has played.
   void restart();
