@@ -115,16 +115,27 @@ void CardLead::after_block(std::int64_t sent, const std::function<void()>& poll)
     const auto asked = std::clamp<std::chrono::microseconds>(
         due, kShortestSleep, std::chrono::duration_cast<std::chrono::microseconds>(kLongestSleep));
     std::this_thread::sleep_for(asked);
-    woke_late_ = std::max(Clock::duration{}, Clock::now() - now - asked);
+    const auto slept = Clock::now() - now;
+    woke_late_ = std::max(Clock::duration{}, slept - asked);
     stats_.most_woke_late_s =
         std::max(stats_.most_woke_late_s, std::chrono::duration<double>(woke_late_).count());
     if (poll) poll();
+    const std::int64_t before = clock;
     clock = static_cast<std::int64_t>(card_.clock_tick());
     // A sleep the kernel ended late says what the next block may meet, even when this one
     // had time to spare: the lead grows before a block comes late (a computer that wakes a
     // thread 60 ms late now and then does so 10-30 ms late far more often).
-    if (const std::int64_t held = sent - clock; held > 0)
-      grow(std::llround(std::chrono::duration<double>(woke_late_).count() / tick_s_), held, true);
+    // Only on a card whose clock followed the wall's over the sleep (within a quarter): a
+    // test's stepped clock says nothing of the kernel's wake-ups. And late on the card's
+    // clock too: below the refill point now.
+    const double card_s = static_cast<double>(clock - before) * tick_s_;
+    const double wall_s = std::chrono::duration<double>(slept).count();
+    if (const std::int64_t held = sent - clock;
+        held > 0 && card_s > 0.75 * wall_s && card_s < 1.25 * wall_s)
+      grow(std::min<std::int64_t>(
+               std::llround(std::chrono::duration<double>(woke_late_).count() / tick_s_),
+               lead_ticks_ - block - held),
+           held, true);
   }
   resumed_ = Clock::now();
   starved_ = {};
