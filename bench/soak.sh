@@ -3,11 +3,11 @@
 # for about ten minutes while another process loads every core, under SCHED_FIFO where allowed.
 # Prints the underruns (target 0) and the feeder's worst lateness. Not for CI: it takes minutes.
 #
-#   bench/soak.sh [minutes] [gantry binary] [lead ms]   (defaults: 10, build/gantry, 15)
+#   bench/soak.sh [minutes] [gantry binary] [lead ms]   (defaults: 10, build/gantry, 20)
 set -eu
 minutes=${1:-10}
 gantry=${2:-build/gantry}
-lead=${3:-15}
+lead=${3:-20}
 here=$(cd "$(dirname "$0")/.." && pwd)
 [ -x "$gantry" ] || { echo "soak: no $gantry; build the gantry target first" >&2; exit 2; }
 work=$(mktemp -d)

@@ -453,7 +453,7 @@ TEST_F(GuiWindow, InContinuousModeATapIsOneStepAndAHoldJogsUntilLetGo) {
   std::stringstream text;
   text << in.rdbuf();
   std::string profile = text.str();
-  const std::size_t lead = profile.find("lead_ms = 15.0");
+  const std::size_t lead = profile.find("lead_ms = 20.0");
   ASSERT_NE(lead, std::string::npos);
   write("lead.toml", profile.replace(lead, 14, "lead_ms = 250.0"));
   for (int attempt = 0; attempt < 3; ++attempt) {

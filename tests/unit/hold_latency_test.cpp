@@ -222,8 +222,8 @@ TEST(HoldLatency, APauseOnTheEmulatedPci7200SlowsWithinTheLeadPlusOneBlock) {
     return true;
   });
   emu->advance(64);
-  EXPECT_EQ(r.lead_ticks, 3000);  // 15 ms at 200 kHz
-  EXPECT_EQ(r.block, 750);
+  EXPECT_EQ(r.lead_ticks, 4000);  // 20 ms at 200 kHz
+  EXPECT_EQ(r.block, 1000);
   EXPECT_EQ(card.fault(), CardFault::None);
   const std::vector<std::uint32_t> ref = reference_words(s, length);
   expect_hold_in_words(r, ref);
@@ -260,8 +260,8 @@ TEST(HoldLatency, APauseOnTheFakeGpioCardSlowsWithinTheLeadPlusOneBlock) {
     return true;
   });
   card.stop(0);
-  EXPECT_EQ(r.lead_ticks, 300);  // 15 ms at 20 kHz
-  EXPECT_EQ(r.block, 75);
+  EXPECT_EQ(r.lead_ticks, 400);  // 20 ms at 20 kHz
+  EXPECT_EQ(r.block, 100);
   const std::vector<std::uint32_t> ref = reference_words(s, length);
   expect_hold_in_words(r, ref);
 }

@@ -200,13 +200,13 @@ TEST(SimCardRealtime, RestBetweenStretchesOfOutputIsNoUnderrun) {
   EXPECT_EQ(card.fault_detail(), "");
 }
 
-// A stream that begins on an empty queue plays once half the lead is queued (7.5 ms at the
-// default 15 ms), as the real cards start theirs: a producer that writes the first block,
+// A stream that begins on an empty queue plays once half the lead is queued (10 ms at the
+// default 20 ms), as the real cards start theirs: a producer that writes the first block,
 // then is late, has that head start, and is no more late for words that never started.
 // A shorter stream plays when it ends at rest.
 TEST(SimCardRealtime, AStreamStartsOnceHalfTheLeadIsQueuedOrAtRest) {
   SimCard card(default_settings(), true);
-  EXPECT_EQ(card.start_words(), 1500u);  // 7.5 ms at 200 kHz
+  EXPECT_EQ(card.start_words(), 2000u);  // 10 ms at 200 kHz
   EXPECT_EQ(SimCard(default_settings(), false).start_words(), 0u);
   card.start(200000);
   play(card, idle_for(0.005));
