@@ -187,7 +187,7 @@ void HoldLatencyGpiod(benchmark::State& state) {
 }
 
 // range(0): 0 pause, 1 jog release; range(1): 1 without the lead (before); range(2): the lead
-// (ms): 15, the default, and 20, the default before (compared in one run: a loaded machine
+// (ms): 15 and 20, the default (compared in one run: a loaded machine
 // moves both alike).
 BENCHMARK(HoldLatencyPci7200)
     ->ArgsProduct({{0, 1}, {0}, {15, 20}})
