@@ -30,7 +30,8 @@ void App::run_line(const std::string& typed) {
       quit_ = true;
       return;
     case Word::Help: {
-      const session::HelpAnswer h = session::help_answer(session::FrontEnd::Window, rest);
+      const session::HelpAnswer h = session::help_answer(
+          session::FrontEnd::Window, rest, key_pendant_ ? &key_pendant_->bindings() : nullptr);
       return log(h.error ? LogLine::Error : LogLine::Info, h.text);
     }
     case Word::Status:

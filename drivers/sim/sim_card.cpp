@@ -67,6 +67,9 @@ SimCard::SimCard(const Settings& settings, bool realtime, SimWorld world,
       limits_(limits_of(settings)),
       monitor_(limits_, tick_s_),
       lead_s_(settings.card.lead_ms * 1e-3) {
+  queue_s_ = std::max({kRealtimeQueueS, kMostLeadS, lead_s_});
+  // Half the lead, as the real cards' drivers start a stream (open_pci7200, gpio_map_profile).
+  start_words_ = static_cast<std::uint64_t>(std::llround(lead_s_ * settings.card.pacer_hz() / 2));
   prev_ = pins_.idle_word();  // the lines rest idle, pointing positive, before the first word
   last_dir_change_.fill(kLongAgo);
   last_step_.fill(kLongAgo);
@@ -222,6 +225,7 @@ void SimCard::start(double pacer_hz) {
   // The tick count goes on from where it stopped: the wall clock's origin follows it, so a
   // restart neither waits for the ticks before it nor finds itself late.
   streaming_ = false;
+  starting_ = false;
   late_s_.reset();
   wall_start_ = std::chrono::steady_clock::now();
   wall_start_ -= wall_at(tick_) - wall_start_;
@@ -261,13 +265,25 @@ std::chrono::steady_clock::time_point SimCard::wall_at(std::uint64_t tick) const
 
 std::uint64_t SimCard::clock_tick() const {
   if (!realtime_ || !streaming_) return tick_;  // at rest the clock waits for the next word
+  if (starting_) return stream_first_;          // below the start threshold: nothing plays
   const double due =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count() /
       tick_s_;
   return std::min(tick_, static_cast<std::uint64_t>(std::max(0.0, due)));
 }
 
+void SimCard::begin_playing(std::chrono::steady_clock::time_point now) {
+  wall_start_ += now - wall_at(stream_first_);
+  starting_ = false;
+}
+
+void SimCard::end_stream() {
+  if (starting_) begin_playing(std::chrono::steady_clock::now());
+  streaming_ = false;
+}
+
 void SimCard::drain() {
+  if (starting_) begin_playing(std::chrono::steady_clock::now());
   if (realtime_ && !stopped_ && fault_ == CardFault::None)
     std::this_thread::sleep_until(wall_at(tick_));
   end_stream();
@@ -288,16 +304,22 @@ void SimCard::write(std::span<const std::uint32_t> words) {
     const auto now = std::chrono::steady_clock::now();
     const auto dry = wall_at(tick_);
     if (!streaming_) {
-      if (now > dry) wall_start_ += now - dry;
       streaming_ = true;
       stream_first_ = tick_;
+      // A new stretch on an empty queue waits for the start threshold; one that comes while
+      // the last one's words still play goes on after them.
+      starting_ = now > dry && start_words_ > 0;
+      if (now > dry && !starting_) wall_start_ += now - dry;
+    } else if (starting_) {
+      // Below the start threshold nothing plays yet, so nothing is late.
     } else if (now > dry) {
       late_s_ = std::chrono::duration<double>(now - dry).count();
       fault_ = CardFault::Underrun;
       return;
     } else if (static_cast<double>(tick_ - stream_first_) * tick_s_ >= lead_s_) {
       const double held = std::chrono::duration<double>(dry - now).count();
-      block_seen_ = std::max(block_seen_, words.size());  // the generator's block: its largest write
+      block_seen_ =
+          std::max(block_seen_, words.size());  // the generator's block: its largest write
       const double refill = lead_s_ - static_cast<double>(block_seen_) * tick_s_;
       feed_.least_queue_s = feed_.blocks == 0 ? held : std::min(feed_.least_queue_s, held);
       feed_.worst_late_s = std::max(feed_.worst_late_s, refill - held);
@@ -363,7 +385,9 @@ void SimCard::write(std::span<const std::uint32_t> words) {
     if (fault_ != CardFault::None || stopped_) break;  // a switch tripped by this word's step
   }
   if (fault_ == CardFault::Limit && !cushion_) play_cushion(cushion_steps_);
-  if (realtime_)  // the queue holds up to queue_s_ of words not yet played
+  if (starting_ && tick_ - stream_first_ >= start_words_)
+    begin_playing(std::chrono::steady_clock::now());
+  if (realtime_ && !starting_)  // the queue holds up to queue_s_ of words not yet played
     std::this_thread::sleep_until(wall_at(tick_) -
                                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                       std::chrono::duration<double>(queue_s_)));

@@ -47,7 +47,8 @@ class SimCard : public Card {
   void write(std::span<const std::uint32_t> words) override;
   // Virtual time: every word has played when write returns; real time: it waits for them.
   void drain() override;
-  void end_stream() override { streaming_ = false; }
+  // At rest: the card may run dry now (a stream still waiting for its start threshold starts).
+  void end_stream() override;
   void stop(std::uint32_t idle_word) override;
   std::uint64_t ticks_played() const override { return tick_; }
   // Real time: words queue ahead of the wall clock, and the step generator bounds its lead
@@ -55,6 +56,12 @@ class SimCard : public Card {
   // played, when written). Virtual time: words play as they are written.
   bool queues_words() const override { return realtime_; }
   std::uint64_t clock_tick() const override;
+  // Real time: a stretch of output that begins on an empty queue starts playing once this
+  // many words are queued (or at drain() or end_stream()), as the real cards start a stream
+  // with half the lead queued: the producer starts with that head start, not with the one
+  // block it wrote first. Virtual time: 0.
+  std::uint64_t start_words() const override { return realtime_ ? start_words_ : 0; }
+  void set_start_words(std::uint64_t words) { start_words_ = words; }
   std::uint32_t inputs() const override { return inputs_; }
   // A switch worked by hand at any time, the machine at rest or not (a stop button): input
   // `bit` reads `high` from the next word on.
@@ -62,8 +69,10 @@ class SimCard : public Card {
   CardFault fault() const override { return fault_; }
   std::string fault_detail() const override;
   // Real time: how far the card's queue may run ahead of the wall clock (a real card's
-  // FIFO). A producer that leaves it empty while a word is due underruns the card, and the
-  // fault says how late it was.
+  // FIFO): at least this, and as much as the step generator's lead may grow to (kMostLeadS,
+  // or card.lead_ms when longer), so that the lead bounds it, as it does the real cards'
+  // deeper queues. A producer that leaves it empty while a word is due underruns the card,
+  // and the fault says how late it was.
   static constexpr double kRealtimeQueueS = 0.05;
   void set_realtime_queue(double seconds) { queue_s_ = seconds; }
   std::optional<double> late_s() const { return late_s_; }  // an underrun's lateness
@@ -156,8 +165,11 @@ class SimCard : public Card {
   bool streaming_ = false;
   double queue_s_ = kRealtimeQueueS;
   std::optional<double> late_s_;
-  double lead_s_ = 0;                 // card.lead_ms
-  std::uint64_t stream_first_ = 0;    // the tick the stream began at
+  double lead_s_ = 0;               // card.lead_ms
+  std::uint64_t stream_first_ = 0;  // the tick the stream began at
+  std::uint64_t start_words_ = 0;   // the start threshold (half the lead)
+  bool starting_ = false;           // the stream waits for start_words_: its clock stands
+  void begin_playing(std::chrono::steady_clock::time_point now);  // stream_first_ plays now
   std::size_t block_seen_ = 0;
   FeedFigures feed_;
 };

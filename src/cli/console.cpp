@@ -75,8 +75,8 @@ std::pair<std::string, std::string> question_text(const Question& q) {
 
 }  // namespace
 
-Console::Console(Controller& c, OperatorMailbox& io, session::ValuesKeeper& values, const ConsoleArgs& args,
-                 bool realtime, std::atomic<int>& signal)
+Console::Console(Controller& c, OperatorMailbox& io, session::ValuesKeeper& values,
+                 const ConsoleArgs& args, bool realtime, std::atomic<int>& signal)
     : c_(c),
       io_(io),
       values_(values),
@@ -102,7 +102,9 @@ std::string Console::readout(const ControllerStatus& st) const {
 }
 
 std::string Console::help(const std::string& arg) const {
-  return session::help_answer(session::FrontEnd::Terminal, arg).text;
+  return session::help_answer(session::FrontEnd::Terminal, arg,
+                              keys_ ? &keys_->bindings() : nullptr)
+      .text;
 }
 
 std::string Console::status_report() const {
@@ -227,6 +229,13 @@ void Console::estop() {
 
 void Console::on_key(const Key& k) {
   if (bound_key(k)) return;  // a [pendant] key does only what it is bound to, in every mode
+  if (k.code == KeyCode::Char && k.alt) {  // an Alt+character no binding takes: ESC, then it
+    for (const Key& each : escape_and_char(k)) {
+      on_key(each);
+      if (quit_) return;
+    }
+    return;
+  }
   if (asking_) return answer_key(k);
   switch (mode_) {
     case Mode::Prompt:
@@ -274,7 +283,8 @@ void Console::job_key(const Key& k) {
     o = c_.stop();
   } else if (k.is_char('+') || k.is_char('=') || k.is_char('-') || k.is_char('0')) {
     const double now = c_.status().feed_override;
-    const double next = k.is_char('0') ? 1.0 : session::stepped_feed_override(now, k.is_char('-') ? -1 : 1);
+    const double next =
+        k.is_char('0') ? 1.0 : session::stepped_feed_override(now, k.is_char('-') ? -1 : 1);
     c_.set_feed_override(next);
     flash(session::feed_override_text(next) + " (moves already planned keep their speed)");
     return;

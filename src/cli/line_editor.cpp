@@ -166,7 +166,16 @@ std::size_t KeyDecoder::decode(Key& k) const {
       if (k.number > 0) k.code = KeyCode::Function;
       return 3;
     }
-    k.code = KeyCode::Escape;  // ESC and then another key: both count
+    // ESC and a printable character at once: Alt+character, which a terminal sends as the
+    // two (xterm's metaSendsEscape, the Linux console, tmux). A lone ESC waits for flush().
+    // ESC [ and ESC O start sequences, so Alt+[ and Alt+O read as Escape and the character.
+    if (const auto next = static_cast<unsigned char>(b[1]); next > 0x20 && next < 0x7f) {
+      k.code = KeyCode::Char;
+      k.text = b.substr(1, 1);
+      k.alt = true;
+      return 2;
+    }
+    k.code = KeyCode::Escape;  // ESC and then another key (a control, ESC): both count
     return 1;
   }
   if (c < 0x20 || c == 0x7f) {
@@ -228,25 +237,65 @@ std::string key_name(const Key& k) {
         break;
       }
       return (k.alt ? "Alt+" : "") + k.text;
-    case KeyCode::Enter: base = "Enter"; break;
-    case KeyCode::Tab: base = "Tab"; break;
-    case KeyCode::Backspace: base = "Backspace"; break;
-    case KeyCode::Delete: base = "Delete"; break;
-    case KeyCode::Insert: base = "Insert"; break;
-    case KeyCode::Left: base = "Left"; break;
-    case KeyCode::Right: base = "Right"; break;
-    case KeyCode::Up: base = "Up"; break;
-    case KeyCode::Down: base = "Down"; break;
-    case KeyCode::Home: base = "Home"; break;
-    case KeyCode::End: base = "End"; break;
-    case KeyCode::PageUp: base = "PageUp"; break;
-    case KeyCode::PageDown: base = "PageDown"; break;
-    case KeyCode::Escape: base = "Escape"; break;
-    case KeyCode::Function: base = "F" + std::to_string(k.number); break;
-    default: return "";
+    case KeyCode::Enter:
+      base = "Enter";
+      break;
+    case KeyCode::Tab:
+      base = "Tab";
+      break;
+    case KeyCode::Backspace:
+      base = "Backspace";
+      break;
+    case KeyCode::Delete:
+      base = "Delete";
+      break;
+    case KeyCode::Insert:
+      base = "Insert";
+      break;
+    case KeyCode::Left:
+      base = "Left";
+      break;
+    case KeyCode::Right:
+      base = "Right";
+      break;
+    case KeyCode::Up:
+      base = "Up";
+      break;
+    case KeyCode::Down:
+      base = "Down";
+      break;
+    case KeyCode::Home:
+      base = "Home";
+      break;
+    case KeyCode::End:
+      base = "End";
+      break;
+    case KeyCode::PageUp:
+      base = "PageUp";
+      break;
+    case KeyCode::PageDown:
+      base = "PageDown";
+      break;
+    case KeyCode::Escape:
+      base = "Escape";
+      break;
+    case KeyCode::Function:
+      base = "F" + std::to_string(k.number);
+      break;
+    default:
+      return "";
   }
   return std::string(k.ctrl ? "Ctrl+" : "") + (k.alt ? "Alt+" : "") + (k.shift ? "Shift+" : "") +
          base;
+}
+
+std::vector<Key> escape_and_char(const Key& k) {
+  if (k.code != KeyCode::Char || !k.alt) return {k};
+  Key esc;
+  esc.code = KeyCode::Escape;
+  Key c = k;
+  c.alt = false;
+  return {esc, c};
 }
 
 // ---- the line ----------------------------------------------------------------------------

@@ -33,15 +33,15 @@ enum class KeyCode {
   KillToStart,  // Ctrl-U
   Redraw,       // Ctrl-L
   Insert,
-  Function,     // F1-F12 (Key::number)
-  Unknown,      // any other control key or escape sequence
+  Function,  // F1-F12 (Key::number)
+  Unknown,   // any other control key or escape sequence
 };
 
 struct Key {
   KeyCode code = KeyCode::Unknown;
-  std::string text;   // KeyCode::Char
-  bool ctrl = false;  // Ctrl held with an arrow or page key (xterm's modifier parameter)
-  bool alt = false;   // Alt held, likewise
+  std::string text;    // KeyCode::Char
+  bool ctrl = false;   // Ctrl held with an arrow or page key (xterm's modifier parameter)
+  bool alt = false;    // Alt held, likewise
   bool shift = false;  // Shift held, likewise
   int number = 0;      // Function: 1-12
   char control = 0;    // the letter of a Ctrl+letter byte ('A' for 0x01), whatever `code` it is
@@ -53,9 +53,15 @@ struct Key {
 // "Ctrl+Right", "Ctrl+G", "a"; "" for a key that has none (an unknown sequence).
 std::string key_name(const Key& k);
 
+// A terminal's Alt+character is ESC and the character at once (KeyCode::Char with alt): when no
+// binding takes it, it is the two keys it was before Alt+ could be bound, Escape then the
+// character, as if typed quickly. Any other key is itself.
+std::vector<Key> escape_and_char(const Key& k);
+
 // Bytes from a terminal in raw mode into keys. Escape sequences (CSI `ESC [`, SS3 `ESC O`) are
-// decoded whole, even when they arrive split across reads. A lone ESC is the Escape key, but
-// only once nothing follows it: the caller calls flush() after a short quiet time (30 ms).
+// decoded whole, even when they arrive split across reads. ESC and a printable character is
+// Alt+character. A lone ESC is the Escape key, but only once nothing follows it: the caller
+// calls flush() after a short quiet time (30 ms), so an Esc pressed alone stays the Escape key.
 class KeyDecoder {
  public:
   void feed(std::string_view bytes, std::vector<Key>& out);

@@ -250,13 +250,17 @@ void FeederThread::main() {
     if (feeder_.phase() != last_phase_) on_feeder_event();
     apply_live_override();
     publish();
-    // The card needs words now and the planner holds what it would send only after more
-    // moves (its look-ahead of up to 1,024, say after SW's warning, with moves still queued
-    // unplanned): the front goes as the plan stands, before the next move is planned.
+    // The card's queue is half way down from the refill point and the planner holds what it
+    // would send only after more moves (its look-ahead of up to 1,024, say after SW's
+    // warning, with moves still queued unplanned): the front goes as the plan stands, before
+    // the next move is planned. Not at the refill point itself: the lead's wait returns
+    // there after every block, and moves queued are planned in microseconds; releasing then
+    // brought the path to rest after every move of a dense file (a 10 s circle of 720 chords
+    // took 55 s on the card).
     if (const CardLead& lead = steps_.lead();
         lead.bounded() && !dropping_ && !drop_to_flush_ && !planner_->empty() &&
         (feeder_.phase() == FeedPhase::Playing || feeder_.phase() == FeedPhase::Slowing) &&
-        lead.queued(steps_.sent()) > 0 && lead.slack(steps_.sent()) <= 0) {
+        lead.queued(steps_.sent()) > 0 && lead.queued(steps_.sent()) <= lead.refill_ticks() / 2) {
       release_front();
       continue;
     }

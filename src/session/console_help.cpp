@@ -1,6 +1,8 @@
 // HELP and STATUS per front end: the keys each front end has, the command table's help.
 #include "gantry/session/console_help.hpp"
 
+#include <algorithm>  // max
+
 #include <fmt/format.h>
 
 #include "gantry/commands/command_docs.hpp"   // command_help, command_list
@@ -8,6 +10,7 @@
 #include "gantry/interp/interpreter.hpp"      // InterpreterOptions: the macro folders
 #include "gantry/lang/scan.hpp"               // upper
 #include "gantry/session/live_position.hpp"   // shown
+#include "gantry/session/pendant_action.hpp"  // pendant_action_text
 #include "gantry/session/readout_lines.hpp"   // speeds_text, spindle_text
 #include "gantry/session/source_place.hpp"    // where
 
@@ -51,12 +54,24 @@ const char* const kWindowHelp =
 
 }  // namespace
 
-const char* keys_help(FrontEnd f) {
-  return f == FrontEnd::Terminal ? kTerminalHelp : kWindowHelp;
+std::string bound_keys_help(const KeyBindings& bound) {
+  if (bound.empty()) return {};
+  std::size_t width = 0;
+  for (const auto& [key, event] : bound.all()) width = std::max(width, key.size());
+  std::string out = "Keys bound in the profile's [pendant] keys (they act in every mode):\n";
+  for (const auto& [key, event] : bound.all())
+    out += fmt::format("  {:<{}}  {}\n", key, width, pendant_action_text(event));
+  return out;
 }
 
-HelpAnswer help_answer(FrontEnd f, const std::string& arg) {
-  if (arg.empty()) return {keys_help(f)};
+std::string keys_help(FrontEnd f, const KeyBindings* bound) {
+  std::string out = f == FrontEnd::Terminal ? kTerminalHelp : kWindowHelp;
+  if (bound) out += bound_keys_help(*bound);
+  return out;
+}
+
+HelpAnswer help_answer(FrontEnd f, const std::string& arg, const KeyBindings* bound) {
+  if (arg.empty()) return {keys_help(f, bound)};
   const CommandTable& table = CommandTable::standard();
   const std::string code = scan::upper(arg);
   if (f == FrontEnd::Terminal && code == "COMMANDS") return {command_list(table)};

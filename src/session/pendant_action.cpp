@@ -92,11 +92,32 @@ std::optional<PendantEvent> pendant_action_named(std::string_view name) {
   return std::nullopt;
 }
 
+std::string pendant_action_text(const PendantEvent& e) {
+  static constexpr std::string_view kAxes = "xyzabc";
+  switch (e.kind) {
+    case PendantEvent::Kind::Button:
+      if (e.button == PendantButton::Macro) return fmt::format("macro {}", e.macro);
+      return ascii::lower(button_name(e.button));
+    case PendantEvent::Kind::Wheel: {
+      if (e.axis < 0 || e.axis >= static_cast<int>(kAxes.size())) return {};
+      const std::string way =
+          fmt::format("{}{}", kAxes[static_cast<std::size_t>(e.axis)], e.delta < 0 ? '-' : '+');
+      if (e.step == 0)
+        return e.percent == 100 ? "jog " + way : fmt::format("jog {} {}%", way, e.percent);
+      if (e.step < 0) return "step " + way;  // VD's keypad step
+      return fmt::format("step {} {}", way, e.step);
+    }
+    default:
+      return {};
+  }
+}
+
 std::string pendant_action_names() {
   std::string s;
   for (int b = 0; b < static_cast<int>(PendantButton::Macro); ++b)
     s += fmt::format("\"{}\", ", button_name(static_cast<PendantButton>(b)));
-  return s + "\"macro 1\" to \"macro 10\", \"jog x+\" (\"jog z- 50%\"), \"step x+\" (\"step y- 0.01\")";
+  return s +
+         "\"macro 1\" to \"macro 10\", \"jog x+\" (\"jog z- 50%\"), \"step x+\" (\"step y- 0.01\")";
 }
 
 }  // namespace gantry::session

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -76,11 +77,29 @@ TEST(ConsoleKeys, ALoneEscapeIsAKeyOnlyOnceNothingFollows) {
   d.flush(keys);
   EXPECT_EQ(codes(keys), std::vector<KeyCode>{KeyCode::Escape});
   EXPECT_FALSE(d.pending());
-  // Escape then a letter (typed quickly): both keys, the letter as text.
+  // ESC and a letter at once: Alt+q, as a terminal sends it; the console makes it Escape then
+  // q (as before Alt+ could be bound) when no binding takes it.
   keys = decode({"\x1bq"});
-  ASSERT_EQ(keys.size(), 2u);
-  EXPECT_EQ(keys[0].code, KeyCode::Escape);
-  EXPECT_TRUE(keys[1].is_char('q'));
+  ASSERT_EQ(keys.size(), 1u);
+  EXPECT_TRUE(keys[0].is_char('q'));
+  EXPECT_TRUE(keys[0].alt);
+  EXPECT_EQ(key_name(keys[0]), "Alt+q");
+  const std::vector<Key> split = gantry::escape_and_char(keys[0]);
+  ASSERT_EQ(split.size(), 2u);
+  EXPECT_EQ(split[0].code, KeyCode::Escape);
+  EXPECT_TRUE(split[1].is_char('q'));
+  EXPECT_FALSE(split[1].alt);
+  // ESC then a letter in the next read, before the quiet time: still Alt+q. After it: Escape.
+  keys = decode({"\x1b", "X"});
+  ASSERT_EQ(keys.size(), 1u);
+  EXPECT_EQ(key_name(keys[0]), "Alt+X");
+  keys = decode({"\x1b"}, /*flush=*/true);
+  EXPECT_EQ(codes(keys), std::vector<KeyCode>{KeyCode::Escape});
+  // ESC ESC, ESC and a control key, ESC [ alone (Alt+[ is a sequence's start): both keys.
+  keys = decode({"\x1b\x1b\x1b\x0d\x1b["}, /*flush=*/true);
+  EXPECT_EQ(codes(keys), (std::vector<KeyCode>{KeyCode::Escape, KeyCode::Escape, KeyCode::Escape,
+                                               KeyCode::Enter, KeyCode::Escape, KeyCode::Char}));
+  EXPECT_EQ(gantry::escape_and_char(keys[0]).size(), 1u);  // not an Alt+character: itself
 }
 
 TEST(ConsoleKeys, ControlKeysTextAndUtf8) {
@@ -98,7 +117,8 @@ TEST(ConsoleKeys, ControlKeysTextAndUtf8) {
 // profile's [pendant] keys write it.
 TEST(ConsoleKeys, FunctionKeysAndKeyNamesForThePendantBindings) {
   const std::vector<Key> keys =
-      decode({"\x1bOP\x1b[15~\x1b[24~\x1b[1;2Q\x1b[17;5~\x1b[2~\x07" "a+\x1b[1;5C \x03"});
+      decode({"\x1bOP\x1b[15~\x1b[24~\x1b[1;2Q\x1b[17;5~\x1b[2~\x07"
+              "a+\x1b[1;5C \x03"});
   ASSERT_EQ(keys.size(), 12u);
   std::vector<std::string> names;
   for (const Key& k : keys) names.push_back(key_name(k));
@@ -646,6 +666,79 @@ TEST(ConsoleTerminal, KeysBoundInThePendantSectionActAsThePendantsButtons) {
   ASSERT_TRUE(t.wait_for_line(readout("idle", {0.25, 1, 0, 0, 0, 0}))) << t.text();
 }
 
+// The profile with `items` as its [pendant] keys.
+std::string profile_with_keys(const std::string& items) {
+  std::ifstream in(std::string(GANTRY_SOURCE_DIR) + "/settings/default.toml");
+  std::stringstream profile;
+  profile << in.rdbuf();
+  std::string text = profile.str();
+  if (text.back() != '\n') text += '\n';
+  return text + "[pendant]\nkeys = [" + items + "]\n";
+}
+
+// Alt+x at a terminal is ESC then x at once: bound, it is the pendant's step; help lists every
+// bound key from the bindings; Esc alone still stops a running line, and an Alt+character no
+// binding takes is Escape then the character, as before.
+TEST(ConsoleTerminal, AltKeysCanBeBoundAndHelpListsTheBoundKeysWhileEscStillStops) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim --realtime --profile profile.toml", "console",
+                {{"profile.toml", profile_with_keys("\"Alt+x = step y+ 0.5\", \"F5 = step x+ "
+                                                    "0.25\", \"Ctrl+G = feed +\", \"Alt+J = jog "
+                                                    "z- 50%\", \"F7 = macro 3\"")}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("help");
+  ASSERT_TRUE(
+      t.wait_for_line("Keys bound in the profile's [pendant] keys (they act in every mode):"))
+      << t.text();
+  for (const char* l : {"  Alt+J   jog z- 50%", "  Alt+x   step y+ 0.5", "  Ctrl+G  feed +",
+                        "  F5      step x+ 0.25", "  F7      macro 3"})
+    EXPECT_TRUE(t.wait_for_line(l, 2)) << l << "\n" << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.keys("M-x");                // tmux sends ESC x at once
+  ASSERT_TRUE(t.wait_for([&] {  // the step plays (real time), then status shows where it ended
+    t.line("status");
+    return t.wait_for_line(readout("idle", {0, 0.5, 0, 0, 0, 0}), 1);
+  })) << t.text();
+  t.line("SW, 0");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("MX, 16");  // 8 s
+  ASSERT_TRUE(t.wait_for([&] {
+    const std::optional<double> x = readout_x(t.last_line());
+    return t.last_line().starts_with("running ") && x && *x > 1;
+  })) << t.text();
+  t.keys("Escape");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  const auto last_x = [&] {  // the X of the last readout on the screen
+    std::optional<double> x;
+    for (const std::string& l : t.screen())  // (the help's "arrows X and Y" is not one)
+      if (const size_t at = l.find(" X ");
+          at != std::string::npos && at + 3 < l.size() &&
+          (std::isdigit(static_cast<unsigned char>(l[at + 3])) || l[at + 3] == '-'))
+        x = readout_x(l);
+    return x;
+  };
+  const std::optional<double> stopped = last_x();
+  ASSERT_TRUE(stopped) << t.text();
+  EXPECT_GT(*stopped, 1.0);
+  EXPECT_LT(*stopped, 16.0);
+  // Typed quickly, Esc and q reach the console as Alt+q, which is unbound: Escape, then q. The
+  // move back to 0 (at least 0.5 s) stops short, where it was when the Escape came.
+  t.line("MX, 0");
+  ASSERT_TRUE(t.wait_for([&] { return t.last_line().starts_with("running "); })) << t.text();
+  t.keys("M-q");
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  const std::string text = t.text();
+  const std::string said = "stopped: stopped by the operator";
+  const size_t first = text.find(said);
+  EXPECT_NE(first, std::string::npos) << text;
+  EXPECT_NE(text.find(said, first + 1), std::string::npos) << "the second stop\n" << text;
+  const std::optional<double> back = last_x();
+  ASSERT_TRUE(back) << text;
+  EXPECT_GT(*back, 0.0) << text;
+  EXPECT_LE(*back, *stopped) << text;
+}
+
 TEST(ConsoleTerminal, SkInAFileOpensTheKeypadAndEscGoesOnFromWhereTheToolIs) {
   REQUIRE_TMUX();
   TmuxConsole t("--card sim");
@@ -756,8 +849,8 @@ TEST(ConsoleTerminal, ATapIsOneStepAndAHeldKeyJogsUntilItsRepeatsStop) {
   ASSERT_TRUE(l.starts_with(prefix + "idle ")) << t.text();
   const std::optional<double> x = readout_x(l.substr(prefix.size()));
   ASSERT_TRUE(x) << l;
-  EXPECT_GT(*x, 0.5);   // more than the step: it ran while held (1.5 s at 2 in/s is 3 in)
-  EXPECT_LT(*x, 6.0);   // and stopped once the repeats did, far from the table's end
+  EXPECT_GT(*x, 0.5);  // more than the step: it ran while held (1.5 s at 2 in/s is 3 in)
+  EXPECT_LT(*x, 6.0);  // and stopped once the repeats did, far from the table's end
   // Y stays at the tap's step, to a motor step (after a continuous jog the readout is the
   // position the card's steps give).
   const size_t y = l.find(" Y ");

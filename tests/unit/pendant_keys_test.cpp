@@ -20,6 +20,7 @@
 
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/script.hpp"
+#include "gantry/session/console_help.hpp"
 #include "gantry/session/gamepad_pendant.hpp"
 #include "gantry/session/key_bindings.hpp"
 #include "gantry/session/pendant_action.hpp"
@@ -107,6 +108,48 @@ TEST(KeyBindings, ABadItemIsAProblemAndLeftOutTheOthersBind) {
   ASSERT_TRUE(b.find("Ctrl+Right"));
   EXPECT_EQ(b.find("Ctrl+Right")->axis, 0);
   EXPECT_FALSE(b.find("F6"));
+}
+
+// The help lists a bound key's action as the profile may write it: read back, the same event.
+TEST(PendantAction, EveryActionsTextReadsBackAsTheSameEvent) {
+  for (const char* name :
+       {"reset",          "stop",         "start/pause",  "feed +",       "feed -",
+        "spindle +",      "spindle -",    "machine home", "safe z",       "work home",
+        "spindle on/off", "probe z",      "macro 1",      "macro 10",     "jog x+",
+        "jog c- 50%",     "jog y+ 12.5%", "step a+",      "step z- 0.01", "step b+ 2.5"}) {
+    const std::optional<PendantEvent> e = pendant_action_named(name);
+    ASSERT_TRUE(e) << name;
+    EXPECT_EQ(pendant_action_text(*e), name);
+    const std::optional<PendantEvent> back = pendant_action_named(pendant_action_text(*e));
+    ASSERT_TRUE(back) << name;
+    EXPECT_EQ(back->kind, e->kind) << name;
+    EXPECT_EQ(back->button, e->button) << name;
+    EXPECT_EQ(back->macro, e->macro) << name;
+    EXPECT_EQ(back->axis, e->axis) << name;
+    EXPECT_EQ(back->delta, e->delta) << name;
+    EXPECT_EQ(back->step, e->step) << name;
+    EXPECT_EQ(back->percent, e->percent) << name;
+  }
+  EXPECT_EQ(pendant_action_text({.kind = PendantEvent::Kind::Lost}), "");
+}
+
+// HELP at both front ends lists the bound keys from the bindings, after the front end's keys.
+TEST(KeyBindings, TheFrontEndsHelpListsTheBoundKeysFromTheBindings) {
+  const KeyBindings b = KeyBindings::parse(
+      {"F5 = start/pause", "alt+x = step y+ 0.5", "Ctrl+Right = jog x+ 30%"}, nullptr);
+  const std::string list = bound_keys_help(b);
+  EXPECT_EQ(list,
+            "Keys bound in the profile's [pendant] keys (they act in every mode):\n"
+            "  Alt+x       step y+ 0.5\n"
+            "  Ctrl+Right  jog x+ 30%\n"
+            "  F5          start/pause\n");
+  for (const FrontEnd f : {FrontEnd::Terminal, FrontEnd::Window}) {
+    const std::string all = keys_help(f, &b);
+    EXPECT_EQ(all, keys_help(f) + list);
+    EXPECT_EQ(help_answer(f, "", &b).text, all);
+  }
+  EXPECT_EQ(bound_keys_help(KeyBindings{}), "");
+  EXPECT_EQ(keys_help(FrontEnd::Terminal, nullptr), keys_help(FrontEnd::Terminal));
 }
 
 // ---- the events keys make ------------------------------------------------------------------

@@ -168,6 +168,7 @@ std::vector<std::uint32_t> idle_for(double seconds) {
 TEST(SimCardRealtime, AProducerLateWhileWordsAreDueIsAnUnderrunWithItsLateness) {
   SimCard card(default_settings(), true);
   card.set_realtime_queue(0.001);
+  card.set_start_words(0);  // the first word starts a stream
   card.start(200000);
   play(card, idle_for(0.002));
   EXPECT_EQ(card.fault(), CardFault::None);
@@ -185,6 +186,7 @@ TEST(SimCardRealtime, AProducerLateWhileWordsAreDueIsAnUnderrunWithItsLateness) 
 TEST(SimCardRealtime, RestBetweenStretchesOfOutputIsNoUnderrun) {
   SimCard card(default_settings(), true);
   card.set_realtime_queue(0.001);
+  card.set_start_words(0);  // the first word starts a stream
   card.start(200000);
   play(card, idle_for(0.002));
   card.end_stream();  // at rest (a hold, the end of a move)
@@ -198,12 +200,44 @@ TEST(SimCardRealtime, RestBetweenStretchesOfOutputIsNoUnderrun) {
   EXPECT_EQ(card.fault_detail(), "");
 }
 
+// A stream that begins on an empty queue plays once half the lead is queued (10 ms at the
+// default 20 ms), as the real cards start theirs: a producer that writes the first block,
+// then is late, has that head start, and is no more late for words that never started.
+// A shorter stream plays when it ends at rest.
+TEST(SimCardRealtime, AStreamStartsOnceHalfTheLeadIsQueuedOrAtRest) {
+  SimCard card(default_settings(), true);
+  EXPECT_EQ(card.start_words(), 2000u);  // 10 ms at 200 kHz
+  EXPECT_EQ(SimCard(default_settings(), false).start_words(), 0u);
+  card.start(200000);
+  play(card, idle_for(0.005));
+  EXPECT_EQ(card.clock_tick(), 0u);  // below the threshold: its clock stands
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  play(card, idle_for(0.005));  // 10 ms queued: it starts now
+  EXPECT_EQ(card.fault(), CardFault::None);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  play(card, idle_for(0.002));  // its 10 ms have played: late
+  EXPECT_EQ(card.fault(), CardFault::Underrun);
+  EXPECT_EQ(card.ticks_played(), 2000u);
+
+  SimCard rest(default_settings(), true);
+  rest.start(200000);
+  play(rest, idle_for(0.002));
+  rest.end_stream();  // at rest below the threshold: what it holds plays from now
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  EXPECT_EQ(rest.clock_tick(), 400u);
+  play(rest, idle_for(0.002));  // a new stream after the last one played out
+  rest.drain();
+  EXPECT_EQ(rest.fault(), CardFault::None);
+  EXPECT_EQ(rest.ticks_played(), 800u);
+}
+
 // Started again after a stop (an E-stop acknowledged), the tick count goes on: the wall
 // clock's origin must follow it, or the card waits for ticks that have already played (a
 // wedge) and a late producer goes unseen.
 TEST(SimCardRealtime, ARestartNeitherWaitsForTheTicksBeforeItNorHidesALateProducer) {
   SimCard card(default_settings(), true);
   card.set_realtime_queue(0.001);
+  card.set_start_words(0);  // the first word starts a stream
   card.start(200000);
   play(card, idle_for(0.3));
   card.stop(0);
@@ -567,11 +601,20 @@ TEST(SimCardRuns, WordsInOneWriteDecodeAsWordsWrittenOneByOne) {
   for (int k = 0; k < 3000; ++k) {  // pulses, direction changes and the pump, some too close
     const int n = 1 + (k * 7919) % 23;
     switch (k % 5) {
-      case 0: state ^= kXStep; break;
-      case 1: state ^= 1u << 16; break;  // the charge pump: no rule
-      case 2: state ^= kYStep; break;
-      case 3: state ^= (k % 3 == 0 ? kXDir : kYDir); break;
-      default: state ^= kXStep | kYStep;
+      case 0:
+        state ^= kXStep;
+        break;
+      case 1:
+        state ^= 1u << 16;
+        break;  // the charge pump: no rule
+      case 2:
+        state ^= kYStep;
+        break;
+      case 3:
+        state ^= (k % 3 == 0 ? kXDir : kYDir);
+        break;
+      default:
+        state ^= kXStep | kYStep;
     }
     words.insert(words.end(), static_cast<std::size_t>(n), state);
   }

@@ -119,6 +119,9 @@ class Card {
   // hold begins within that lead. false: words play as they are written (the simulator in
   // virtual time), and the generator writes as far ahead as it goes.
   virtual bool queues_words() const { return false; }
+  // The most the lead grows to when the feeder is late (or card.lead_ms, when longer): a
+  // card's queue must hold at least this (docs/hardware.md, "The lead adapts").
+  static constexpr double kMostLeadS = 0.2;
   // The tick the card's clock has reached: ticks_played(), except on a card that plays (and
   // counts) a word when it is written but times it by the wall clock (the simulator in real
   // time), where it is the tick now due.

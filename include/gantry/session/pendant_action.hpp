@@ -19,6 +19,11 @@ inline constexpr double kKeypadStep = -1;
 // `percent`). nullopt when it is none.
 std::optional<PendantEvent> pendant_action_named(std::string_view name);
 
+// The action's name as pendant_action_named reads it back ("stop", "macro 3", "jog z- 50%",
+// "step x+ 0.25", "step y+" for VD's keypad step): what the front ends' help lists for a
+// bound key. "" for an event no binding makes (Lost, Release, Lead).
+std::string pendant_action_text(const PendantEvent& e);
+
 // The actions, for messages: "reset", "stop", ... "macro 1" to "macro 10", "jog x+", "step x+".
 std::string pendant_action_names();
 
