@@ -1,17 +1,17 @@
 // `gantry import-wincnc`: the files read, the profile and the custom cuts written.
 #include "import_wincnc.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <filesystem>
 #include <optional>
 
-#include "gantry/core/text.hpp"                // ascii::lower
-#include "gantry/core/text_file.hpp"           // read_text_file, write_file_atomically
-#include "gantry/session/key_bindings.hpp"     // the keys bound must be keys
-#include "gantry/settings/settings.hpp"        // load_settings_file
-#include "gantry/settings/wincnc_import.hpp"   // import_wincnc
+#include "gantry/core/text.hpp"               // ascii::lower
+#include "gantry/core/text_file.hpp"          // read_text_file, write_file_atomically
+#include "gantry/session/key_bindings.hpp"    // the keys bound must be keys
+#include "gantry/settings/settings.hpp"       // load_settings_file
+#include "gantry/settings/wincnc_import.hpp"  // import_wincnc
 
 namespace gantry {
 namespace {
@@ -117,8 +117,8 @@ int run_import_wincnc(const ImportWincncArgs& a) {
           if (text && write_file_atomically((dir / sub->filename()).string(), *text, &why))
             fmt::print("copied {} to {}\n", sub->string(), dir.string());
         } else {
-          fmt::print("note: {} calls {}, which is not beside {}: copy it into {}\n", m.name,
-                     m.file, a.ini, dir.string());
+          fmt::print("note: {} calls {}, which is not beside {}: copy it into {}\n", m.name, m.file,
+                     a.ini, dir.string());
         }
       }
     }

@@ -285,17 +285,18 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
     if (letter == 'W') {
       const int w_axis = ctx_.settings().display.w_axis;
       if (w_axis < 0)
-        fail(at(), "W is the axis of a second vertical head (WinCNC's W), and this machine's "
-                   "profile names none (display.w_axis): program the cut on Z, or name the W "
-                   "axis in the profile");
+        fail(at(),
+             "W is the axis of a second vertical head (WinCNC's W), and this machine's "
+             "profile names none (display.w_axis): program the cut on Z, or name the W "
+             "axis in the profile");
       letter = gcode::kAxes[static_cast<size_t>(w_axis)];
       if (w.has(letter))
         fail(at(), fmt::format("W and {} both name the W axis (display.w_axis); give one of them",
                                letter));
     } else if (w.has(letter) && ctx_.settings().display.w_axis >= 0 &&
                letter == gcode::kAxes[static_cast<size_t>(ctx_.settings().display.w_axis)]) {
-      fail(at(), fmt::format("W and {} both name the W axis (display.w_axis); give one of them",
-                             letter));
+      fail(at(),
+           fmt::format("W and {} both name the W axis (display.w_axis); give one of them", letter));
     }
     const int i = letter - 'A';
     if (w.has(letter))

@@ -510,10 +510,11 @@ static void check_consistency(const Settings& s, const std::string& origin,
     if (i == s.display.w_axis) {
       // W is a second vertical head: a length, on an axis the machine uses.
       if (i >= s.display.axes)
-        err(fmt::format("display.w_axis names {} as W, an axis display.axes = {} does not use",
-                        L, s.display.axes));
+        err(fmt::format("display.w_axis names {} as W, an axis display.axes = {} does not use", L,
+                        s.display.axes));
       else if (s.display.rotary_units[static_cast<size_t>(i - 3)] == AxisUnit::Degrees)
-        err(fmt::format("display.w_axis names {} as W, a vertical head, but display.units_{} is "
+        err(
+            fmt::format("display.w_axis names {} as W, a vertical head, but display.units_{} is "
                         "degrees; give it \"{}\"",
                         L, kAxisLetters[i], units_name(s.units)));
     }

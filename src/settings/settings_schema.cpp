@@ -32,7 +32,7 @@ constexpr std::string_view kLineBit[] = {"LINE:BIT"};
 constexpr std::string_view kSigns[] = {"-", "+"};
 constexpr std::string_view kTriggerAxes[] = {"z", "a"};
 constexpr std::string_view kAxisUnits[] = {"in", "mm", "deg"};  // AxisUnit's order
-constexpr std::string_view kWAxes[] = {"none", "a", "b", "c"};    // display.w_axis
+constexpr std::string_view kWAxes[] = {"none", "a", "b", "c"};  // display.w_axis
 
 // The speed limit of a speed group (xy z a b c): the axis max_speed, XY's the lower of X's and Y's.
 double group_limit(const Settings& s, int i) {

@@ -5,6 +5,7 @@
 #include "gantry/settings/wincnc_import.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>  // join
 
 #include <algorithm>
 #include <array>
@@ -31,8 +32,7 @@ constexpr WincncPending kPending[] = {
      kLimitsPart},
     {"esc_step", "a cushioned stop after Esc (a stop request)", kLimitsPart},
     {"lim_mode 2, 3", "a shorter debounce for a limit switch opening", kLimitsPart},
-    {"softlim B", "soft limits that clamp a move to the limit instead of refusing it",
-     kLimitsPart},
+    {"softlim B", "soft limits that clamp a move to the limit instead of refusing it", kLimitsPart},
     {"softlim V", "the clamp for the vertical axes only", kLimitsPart},
     {"g28move A", "homing on an alternate switch", kLimitsPart},
     {"g28move L", "the longest search for a home switch", kLimitsPart},
@@ -71,21 +71,31 @@ struct Keyword {
   std::string_view reason;   // not mapped: why ("": mapped, or partly, by the code)
 };
 
-constexpr std::string_view kScreen = "a WinCNC screen or Windows setting; Gantry's console and window are its own";
-constexpr std::string_view kProcess = "a process Gantry does not drive (plasma, laser, knife, saw, pump, scanning)";
-constexpr std::string_view kTuning = "WinCNC's own motion tuning; Gantry's planner is set in [planner] and [ramps] (docs/planner.md)";
+constexpr std::string_view kScreen =
+    "a WinCNC screen or Windows setting; Gantry's console and window are its own";
+constexpr std::string_view kProcess =
+    "a process Gantry does not drive (plasma, laser, knife, saw, pump, scanning)";
+constexpr std::string_view kTuning =
+    "WinCNC's own motion tuning; Gantry's planner is set in [planner] and [ramps] "
+    "(docs/planner.md)";
 constexpr std::string_view kHooks = "a WinCNC file or command option Gantry does not have";
 
 constexpr Keyword kKeywords[] = {
     {"accel", Form::Letters, "S", kTuning},
     {"ad", Form::Letters, "LHXYAB", "a spindle current monitor: Gantry reads no analog input"},
-    {"altaxishi", Form::Letters, "PBOAD", "Gantry reads one pair of limit switches per axis, not the second motor's: wire them in parallel with the first motor's"},
-    {"altaxislo", Form::Letters, "PBOAD", "Gantry reads one pair of limit switches per axis, not the second motor's: wire them in parallel with the first motor's"},
+    {"altaxishi", Form::Letters, "PBOAD",
+     "Gantry reads one pair of limit switches per axis, not the second motor's: wire them in "
+     "parallel with the first motor's"},
+    {"altaxislo", Form::Letters, "PBOAD",
+     "Gantry reads one pair of limit switches per axis, not the second motor's: wire them in "
+     "parallel with the first motor's"},
     {"altaxisspec", Form::Letters, "PSDOE", ""},
     {"anykey", Form::Letters, "AP", kScreen},
-    {"arc_err", Form::Raw, "", "Gantry checks an arc's radii with its own tolerance (docs/gcode.md)"},
+    {"arc_err", Form::Raw, "",
+     "Gantry checks an arc's radii with its own tolerance (docs/gcode.md)"},
     {"arc_min", Form::Raw, "", kTuning},
-    {"arcs", Form::Letters, "MA", "the WinCNC dialect's G2/G3 are not modal and I J incremental (docs/gcode.md)"},
+    {"arcs", Form::Letters, "MA",
+     "the WinCNC dialect's G2/G3 are not modal and I J incremental (docs/gcode.md)"},
     {"arctype", Form::Letters, "IMO", kTuning},
     {"atc1", Form::Letters, "HOZAM", ""},
     {"atc2", Form::Letters, "HOZAM", ""},
@@ -119,7 +129,8 @@ constexpr Keyword kKeywords[] = {
     {"cmdrestartfeed", Form::Raw, "", kHooks},
     {"cmdrestartrapid", Form::Raw, "", kHooks},
     {"cmdstart", Form::Raw, "", kHooks},
-    {"comchars", Form::Raw, "", "the WinCNC dialect's comments are [ ... ] and ( ... ) (docs/gcode.md)"},
+    {"comchars", Form::Raw, "",
+     "the WinCNC dialect's comments are [ ... ] and ( ... ) (docs/gcode.md)"},
     {"comdll", Form::Raw, "", kScreen},
     {"commatodec", Form::Raw, "", kHooks},
     {"contdelay", Form::Raw, "", kHooks},
@@ -159,14 +170,18 @@ constexpr Keyword kKeywords[] = {
     {"g58", Form::Letters, "XYTROMA", "workspaces and head swaps (G54-G59): one head's workspace"},
     {"g59", Form::Letters, "XYTROMA", "workspaces and head swaps (G54-G59): one head's workspace"},
     {"g81dwell", Form::Raw, "", "G82's P gives the dwell (docs/gcode.md)"},
-    {"g81set", Form::Letters, "DRL", "canned cycles take their values from the block (docs/gcode.md)"},
+    {"g81set", Form::Letters, "DRL",
+     "canned cycles take their values from the block (docs/gcode.md)"},
     {"helpfile", Form::Raw, "", kScreen},
-    {"hibound", Form::Letters, "XYZW", "boundaries in workspace coordinates: Gantry has the soft limits only"},
+    {"hibound", Form::Letters, "XYZW",
+     "boundaries in workspace coordinates: Gantry has the soft limits only"},
     {"hilim", Form::Letters, "XYZWUVABC", ""},
     {"homedir", Form::Raw, "", kScreen},
     {"keyfact", Form::Raw, "", "the security key's timing: Gantry has no key"},
-    {"keypad", Form::Letters, "CBPS", "serial keypads: Gantry reads the keyboard, the XHC pendant and gamepads (docs/hardware.md)"},
-    {"keypaddir", Form::Raw, "", "serial keypads: Gantry reads the keyboard, the XHC pendant and gamepads (docs/hardware.md)"},
+    {"keypad", Form::Letters, "CBPS",
+     "serial keypads: Gantry reads the keyboard, the XHC pendant and gamepads (docs/hardware.md)"},
+    {"keypaddir", Form::Raw, "",
+     "serial keypads: Gantry reads the keyboard, the XHC pendant and gamepads (docs/hardware.md)"},
     {"knifeangle", Form::Letters, "AMXY", kProcess},
     {"knifemode", Form::Letters, "TALZPNCDMRV", kProcess},
     {"laser", Form::Letters, "PDSMOABR", kProcess},
@@ -174,7 +189,8 @@ constexpr Keyword kKeywords[] = {
     {"lim_cnt", Form::Raw, "", ""},
     {"lim_mode", Form::Raw, "", ""},
     {"lim_step", Form::Raw, "", ""},
-    {"lobound", Form::Letters, "XYZW", "boundaries in workspace coordinates: Gantry has the soft limits only"},
+    {"lobound", Form::Letters, "XYZW",
+     "boundaries in workspace coordinates: Gantry has the soft limits only"},
     {"logdir", Form::Raw, "", "Gantry keeps its own part-file log (gantry log)"},
     {"logfile", Form::Raw, "", "Gantry keeps its own part-file log (gantry log)"},
     {"lolim", Form::Letters, "XYZWUVABC", ""},
@@ -183,18 +199,25 @@ constexpr Keyword kKeywords[] = {
     {"maxtrans", Form::Raw, "", "Gantry's keypad jogs run to the soft limits"},
     {"nmode", Form::Raw, "", "a G-code file starts in G90 (docs/gcode.md)"},
     {"numkp", Form::Raw, "", kScreen},
-    {"override", Form::Letters, "ELHDU", "Gantry's feed override runs 10 % to 200 %, from the keys, the window and the pendant; no inputs step it"},
-    {"pci24h", Form::Letters, "A", "expansion I/O cards: Gantry drives the PCI-7200's 32 outputs and inputs"},
-    {"pci48h", Form::Letters, "AB", "expansion I/O cards: Gantry drives the PCI-7200's 32 outputs and inputs"},
-    {"portin", Form::Raw, "", "Gantry addresses the PCI-7200's inputs as ports 0-3 (docs/hardware.md)"},
-    {"portout", Form::Raw, "", "Gantry addresses the PCI-7200's outputs as ports 0, 6 and 7 (docs/hardware.md)"},
+    {"override", Form::Letters, "ELHDU",
+     "Gantry's feed override runs 10 % to 200 %, from the keys, the window and the pendant; no "
+     "inputs step it"},
+    {"pci24h", Form::Letters, "A",
+     "expansion I/O cards: Gantry drives the PCI-7200's 32 outputs and inputs"},
+    {"pci48h", Form::Letters, "AB",
+     "expansion I/O cards: Gantry drives the PCI-7200's 32 outputs and inputs"},
+    {"portin", Form::Raw, "",
+     "Gantry addresses the PCI-7200's inputs as ports 0-3 (docs/hardware.md)"},
+    {"portout", Form::Raw, "",
+     "Gantry addresses the PCI-7200's outputs as ports 0, 6 and 7 (docs/hardware.md)"},
     {"positions", Form::Letters, "PHTW", "stored positions: not offered"},
     {"pumpcont", Form::Letters, "TLHABIR", kProcess},
     {"pwm", Form::Letters, "FM", ""},
     {"quadmode", Form::Raw, "", "quadrature output: Gantry puts out step and direction"},
     {"rapid_lock", Form::Raw, "", "Gantry's feed override does not change jogs"},
     {"rapidjog", Form::Raw, "", "Gantry's keypad jogs at the jog speed (speeds.jog)"},
-    {"restart", Form::Letters, "V", "Gantry's start at a line (--from-line) goes to the line's place by Safe-Z"},
+    {"restart", Form::Letters, "V",
+     "Gantry's start at a line (--from-line) goes to the line's place by Safe-Z"},
     {"sawmode", Form::Letters, "TAROZ", kProcess},
     {"scan", Form::Letters, "TACSHFPD", ""},
     {"signal", Form::Letters, "CMTI", ""},
@@ -292,9 +315,9 @@ class Importer {
   }
   void later(const Line& l, std::string_view key, std::string what_given = "") {
     const WincncPending* p = pending(key);
-    r_.unmapped.push_back({at(*l.file, l.number), what_given.empty() ? std::string(key) : what_given,
-                           fmt::format("{} (being added: {})", p ? p->what : "", p ? p->part : ""),
-                           true});
+    r_.unmapped.push_back(
+        {at(*l.file, l.number), what_given.empty() ? std::string(key) : what_given,
+         fmt::format("{} (being added: {})", p ? p->what : "", p ? p->part : ""), true});
   }
   void mapped(const Line& l, std::string what) {
     r_.mapped.push_back(fmt::format("{}:{}: {}", l.file->path, l.number, what));
@@ -353,7 +376,8 @@ class Importer {
       const int column = l.value_column + static_cast<int>(i);
       const char c = ascii::upper(v[i]);
       if (!(c >= 'A' && c <= 'Z')) {
-        error(l, column, fmt::format("{}: expected a parameter letter, found '{}'", l.keyword, v[i]));
+        error(l, column,
+              fmt::format("{}: expected a parameter letter, found '{}'", l.keyword, v[i]));
         return false;
       }
       if (letters.find(c) == std::string_view::npos) {
@@ -372,7 +396,8 @@ class Importer {
       if (i < v.size() && v[i] == '"') {
         const size_t close = v.find('"', i + 1);
         if (close == std::string::npos) {
-          error(l, column, fmt::format("{} {}: the text opened with \" is not closed", l.keyword, c));
+          error(l, column,
+                fmt::format("{} {}: the text opened with \" is not closed", l.keyword, c));
           return false;
         }
         p.quoted = true;
@@ -447,7 +472,8 @@ class Importer {
         continue;
       }
       if (l.keyword == "unit" && !first)
-        error(l, l.column, "unit= must be the first line of WINCNC.INI (the manual, Unit Settings)");
+        error(l, l.column,
+              "unit= must be the first line of WINCNC.INI (the manual, Unit Settings)");
       first = false;
       if (k->form == Form::Letters && !read_params(l, k->letters)) continue;
       lines_.push_back(std::move(l));
@@ -477,10 +503,10 @@ class Importer {
 
   void read_screen() {
     static constexpr std::string_view kTypes[] = {
-        "icon",      "display",   "viewer",     "slidecontrol", "jogmode",     "jogmodeex",
-        "frame",     "auxin",     "virtualin",  "auxout",       "auxoutex",    "jobcmd",
-        "shellcmdbtn", "userbtn", "rptcmd",     "keypadout",    "menubtn",     "axiscontrol",
-        "axislabel", "rapidmode", "statebtn",   "statebtnex",   "virtinbtn",   "virtinbtnex"};
+        "icon",        "display",   "viewer",    "slidecontrol", "jogmode",   "jogmodeex",
+        "frame",       "auxin",     "virtualin", "auxout",       "auxoutex",  "jobcmd",
+        "shellcmdbtn", "userbtn",   "rptcmd",    "keypadout",    "menubtn",   "axiscontrol",
+        "axislabel",   "rapidmode", "statebtn",  "statebtnex",   "virtinbtn", "virtinbtnex"};
     const WincncFile& f = *in_.screen;
     int number = 0;
     size_t pos = 0;
@@ -613,6 +639,7 @@ class Importer {
   };
   std::vector<ScreenRecord> screen_;
   const Line* limit_polarity_ = nullptr;  // the first limit switch line: its O is everyone's
+  Settings defaults_ = default_settings();
 };
 
 // Output word bits: WinCNC's port 0 is the step/direction port (step S -> bit S, direction D
@@ -655,10 +682,14 @@ void Importer::build() {
     const std::string& key = l.keyword;
     if (key == "unit") {
       const std::string u = ascii::upper(l.value);
-      if (u == "IN") s.units = Units::Inches;
-      else if (u == "MM") s.units = Units::Millimetres;
-      else if (u == "CM") s.units = Units::Millimetres, len = 10;
-      else error(l, l.value_column, fmt::format("unit={} is not IN, CM or MM", l.value));
+      if (u == "IN")
+        s.units = Units::Inches;
+      else if (u == "MM")
+        s.units = Units::Millimetres;
+      else if (u == "CM")
+        s.units = Units::Millimetres, len = 10;
+      else
+        error(l, l.value_column, fmt::format("unit={} is not IN, CM or MM", l.value));
       if (u == "CM") mapped(l, "unit=CM -> units = \"mm\" (every length times 10)");
       continue;
     }
@@ -670,7 +701,8 @@ void Importer::build() {
         error(l, l.value_column, "axischar= must name X first and Y second (the manual, axischar)");
       std::set<char> seen;
       for (char c : axischar)
-        if (std::string_view("XYZWUVABC").find(c) == std::string_view::npos || !seen.insert(c).second)
+        if (std::string_view("XYZWUVABC").find(c) == std::string_view::npos ||
+            !seen.insert(c).second)
           error(l, l.value_column,
                 fmt::format("axischar={}: '{}' is not an axis letter (X Y Z W U V A B C), or is "
                             "named twice",
@@ -698,9 +730,10 @@ void Importer::build() {
         key == "altaxislo" || key == "altaxishi" || key == "axisadj" || key == "axismap" ||
         key == "axismode") {
       if (axes.empty()) {
-        error(l, l.column, fmt::format("{}= comes before the first axisspec=: an axis's lines follow "
-                                       "its axisspec",
-                                       key));
+        error(l, l.column,
+              fmt::format("{}= comes before the first axisspec=: an axis's lines follow "
+                          "its axisspec",
+                          key));
         continue;
       }
       AxisBlock& b = axes.back();
@@ -708,7 +741,8 @@ void Importer::build() {
       if (key == "axislo") b.lo = &l;
       if (key == "axishi") b.hi = &l;
       if (key == "altaxisspec") b.alt = &l;
-      if (!k.reason.empty()) unmapped(l, fmt::format("{} ({})", key, b.letter), std::string(k.reason));
+      if (!k.reason.empty())
+        unmapped(l, fmt::format("{} ({})", key, b.letter), std::string(k.reason));
       continue;
     }
     if (key == "g28move") {
@@ -831,8 +865,10 @@ void Importer::build() {
     if (has(l, 'T'))
       if (auto v = whole(l, 'T', 1, 4)) b.type = *v;
     if (b.letter == 'W') {
-      b.type = 3;  // W is the second vertical head
+      b.type = 3;  // W is the second vertical head: Z's defaults, not A's degrees
       s.display.w_axis = i;
+      ax = defaults_.axes[2];
+      s.homing.at[static_cast<size_t>(i)] = defaults_.homing.at[2];
     }
     if (b.type == 4 && i < 3)
       error(l, l.params.at('T').column,
@@ -859,9 +895,10 @@ void Importer::build() {
     }
     if (has(l, 'B'))
       if (auto v = number(l, 'B', 0, 1000 / per_unit)) ax.backlash = *v * per_unit;
-    mapped(l, fmt::format("axisspec ({}) S D O E R A{} B -> pins.{}, axes.{}.steps_per_unit, "
-                          "max_accel (units/min/s / 60{}), backlash",
-                          b.letter, has(l, 'F') ? " F" : "", L, L, has(l, 'F') ? ", the lower" : ""));
+    mapped(l,
+           fmt::format("axisspec ({}) S D O E R A{} B -> pins.{}, axes.{}.steps_per_unit, "
+                       "max_accel (units/min/s / 60{}), backlash",
+                       b.letter, has(l, 'F') ? " F" : "", L, L, has(l, 'F') ? ", the lower" : ""));
     // axisspec K: the keyboard's jog keys; Gantry's keypad already has the arrows for X and Y
     // and PageUp/PageDown for Z (K1 K2 K3), so only other keys are bound.
     const int k_default = b.letter == 'X' ? 1 : b.letter == 'Y' ? 2 : b.letter == 'Z' ? 3 : 4;
@@ -888,7 +925,8 @@ void Importer::build() {
       if (has(v, 'R'))
         if (auto r = number(v, 'R', 0, 6e6, true)) ax.max_speed = *r / 60 * per_unit;
       if (has(v, 'F'))
-        if (auto f = number(v, 'F', 0, 6e6, true)) feed[static_cast<size_t>(i)] = *f / 60 * per_unit;
+        if (auto f = number(v, 'F', 0, 6e6, true))
+          feed[static_cast<size_t>(i)] = *f / 60 * per_unit;
       mapped(v, fmt::format("axisvel ({}) R F -> axes.{}.max_speed, the jog and move speeds "
                             "(units/min / 60)",
                             b.letter, L));
@@ -911,13 +949,15 @@ void Importer::build() {
     for (const auto& [side, line] : {std::pair{'l', b.lo}, std::pair{'h', b.hi}}) {
       if (!line) continue;
       const Line& sw = *line;
-      std::optional<int> port = has(sw, 'P') ? whole(sw, 'P', 0, 3) : std::optional<int>(0);
-      std::optional<int> bit = has(sw, 'B') ? whole(sw, 'B', 0, 7) : std::nullopt;
-      if (!has(sw, 'B'))
+      if (!has(sw, 'B')) {
         error(sw, sw.column, fmt::format("{}= needs B, the input bit", sw.keyword));
-      if (!port || !bit) continue;
-      (side == 'l' ? s.inputs.min_bit : s.inputs.max_bit)[static_cast<size_t>(i)] =
-          input_bit(*port, *bit);
+        continue;
+      }
+      const int port = has(sw, 'P') ? whole(sw, 'P', 0, 3).value_or(-1) : 0;
+      const int bit = whole(sw, 'B', 0, 7).value_or(-1);
+      if (port < 0 || bit < 0) continue;
+      const int word = input_bit(port, bit);
+      (side == 'l' ? s.inputs.min_bit : s.inputs.max_bit)[static_cast<size_t>(i)] = word;
       const bool low = has(sw, 'O') && sw.params.at('O').value == 1;
       if (!limit_polarity_) {
         limit_polarity_ = &sw;
@@ -929,8 +969,7 @@ void Importer::build() {
                              limit_polarity_->file->path, limit_polarity_->number));
       }
       mapped(sw, fmt::format("{} ({}) P B O -> inputs.{}.{} = {} (port P bit B: 8 P + B)",
-                             sw.keyword, b.letter, L, side == 'l' ? "min_bit" : "max_bit",
-                             input_bit(*port, *bit)));
+                             sw.keyword, b.letter, L, side == 'l' ? "min_bit" : "max_bit", word));
       for (char c : std::string_view("AD"))
         if (has(sw, c))
           unmapped(sw, fmt::format("{} {} ({})", sw.keyword, c, b.letter),
@@ -941,19 +980,19 @@ void Importer::build() {
   // Slaved axes: the second motor on a driver channel of an axis the machine does not use.
   for (AxisBlock& b : axes) {
     if (b.slot < 0 || !b.alt) continue;
-    int free = -1;
-    for (int k = kAxisCount - 1; k >= s.display.axes && free < 0; --k)
-      if (!channel_set[static_cast<size_t>(k)]) free = k;
-    if (free < 0) {
+    int spare = -1;
+    for (int k = kAxisCount - 1; k >= s.display.axes && spare < 0; --k)
+      if (!channel_set[static_cast<size_t>(k)]) spare = k;
+    if (spare < 0) {
       unmapped(*b.alt, fmt::format("altaxisspec ({})", b.letter),
                "no driver channel is free for the second motor: the six are used");
       continue;
     }
-    pins_from(*b.alt, free, "altaxisspec");
-    s.drivers.channel_axis[static_cast<size_t>(free)] = b.slot;
+    pins_from(*b.alt, spare, "altaxisspec");
+    s.drivers.channel_axis[static_cast<size_t>(spare)] = b.slot;
     mapped(*b.alt, fmt::format("altaxisspec ({}) -> the second motor on driver channel {} "
                                "(drivers.channels, pins.{})",
-                               b.letter, free + 1, kAxisLetters[static_cast<size_t>(free)]));
+                               b.letter, spare + 1, kAxisLetters[static_cast<size_t>(spare)]));
   }
   // The channels no motor of the files uses keep out of the way of those that are.
   for (int k = 0; k < kAxisCount; ++k) {
@@ -968,17 +1007,27 @@ void Importer::build() {
 
   // Speeds: jogs at the rapid (G0) speed, moves at the default feed, each within max_speed.
   auto group_speed = [&](int g) {  // 0 XY, then Z A B C
-    const std::array<int, 2> ax = g == 0 ? std::array<int, 2>{0, 1} : std::array<int, 2>{g + 1, g + 1};
+    const std::array<int, 2> ax =
+        g == 0 ? std::array<int, 2>{0, 1} : std::array<int, 2>{g + 1, g + 1};
     const double top = std::min(s.axes[static_cast<size_t>(ax[0])].max_speed,
                                 s.axes[static_cast<size_t>(ax[1])].max_speed);
-    double f = std::min(feed[static_cast<size_t>(ax[0])] ? feed[static_cast<size_t>(ax[0])] : 1e300,
-                        feed[static_cast<size_t>(ax[1])] ? feed[static_cast<size_t>(ax[1])] : 1e300);
+    double f =
+        std::min(feed[static_cast<size_t>(ax[0])] ? feed[static_cast<size_t>(ax[0])] : 1e300,
+                 feed[static_cast<size_t>(ax[1])] ? feed[static_cast<size_t>(ax[1])] : 1e300);
     return std::pair{top, f};
   };
   for (int g = 0; g < 5; ++g) {
     auto [top, f] = group_speed(g);
-    double* move = g == 0 ? &s.speeds.move.xy : g == 1 ? &s.speeds.move.z : g == 2 ? &s.speeds.move.a : g == 3 ? &s.speeds.move.b : &s.speeds.move.c;
-    double* jog = g == 0 ? &s.speeds.jog.xy : g == 1 ? &s.speeds.jog.z : g == 2 ? &s.speeds.jog.a : g == 3 ? &s.speeds.jog.b : &s.speeds.jog.c;
+    double* move = g == 0   ? &s.speeds.move.xy
+                   : g == 1 ? &s.speeds.move.z
+                   : g == 2 ? &s.speeds.move.a
+                   : g == 3 ? &s.speeds.move.b
+                            : &s.speeds.move.c;
+    double* jog = g == 0   ? &s.speeds.jog.xy
+                  : g == 1 ? &s.speeds.jog.z
+                  : g == 2 ? &s.speeds.jog.a
+                  : g == 3 ? &s.speeds.jog.b
+                           : &s.speeds.jog.c;
     const bool imported = g == 0 ? block('X') || block('Y') : [&] {
       for (const AxisBlock& b : axes)
         if (b.slot == g + 1) return true;
@@ -1015,7 +1064,8 @@ void Importer::build() {
   }
   for (const Line* l : {hilim, lolim}) {
     if (!l) continue;
-    mapped(*l, fmt::format("{} -> axes.<axis>.{}", l->keyword, l->keyword == "hilim" ? "max" : "min"));
+    mapped(*l,
+           fmt::format("{} -> axes.<axis>.{}", l->keyword, l->keyword == "hilim" ? "max" : "min"));
     for (const auto& [c, p] : l->params)
       if (!block(c))
         unmapped(*l, fmt::format("{} {}", l->keyword, c),
@@ -1028,8 +1078,10 @@ void Importer::build() {
         s.machine.limit_checking = *t == 1;
         mapped(l, fmt::format("softlim T{} -> machine.limit_checking = {}", *t, *t == 1));
       }
-    if (has(l, 'B') && l.params.at('B').value != 0) later(l, "softlim B", fmt::format("softlim B{}", num(l.params.at('B').value)));
-    if (has(l, 'V') && l.params.at('V').value != 0) later(l, "softlim V", fmt::format("softlim V{}", num(l.params.at('V').value)));
+    if (has(l, 'B') && l.params.at('B').value != 0)
+      later(l, "softlim B", fmt::format("softlim B{}", num(l.params.at('B').value)));
+    if (has(l, 'V') && l.params.at('V').value != 0)
+      later(l, "softlim V", fmt::format("softlim V{}", num(l.params.at('V').value)));
     if (has(l, 'M')) unmapped(l, "softlim M", std::string(kScreen));
   }
 
@@ -1038,7 +1090,8 @@ void Importer::build() {
     if (auto m = raw_number(*it->second, 0, 3)) {
       const int mode = static_cast<int>(*m);
       s.limits.travel_only = mode == 1 || mode == 3;
-      mapped(*it->second, fmt::format("lim_mode={} -> limits.travel_only = {}", mode, s.limits.travel_only));
+      mapped(*it->second,
+             fmt::format("lim_mode={} -> limits.travel_only = {}", mode, s.limits.travel_only));
       if (mode >= 2) later(*it->second, "lim_mode 2, 3", fmt::format("lim_mode={}", mode));
     }
   if (const auto it = single.find("lim_cnt"); it != single.end())
@@ -1058,7 +1111,8 @@ void Importer::build() {
     std::string vertical, other;
     for (char c : std::string_view("XYZWABC"))
       if (has(*l, c) && block(c))
-        (block(c)->type == 3 ? vertical : other) += kAxisLetters[static_cast<size_t>(block(c)->slot)];
+        (block(c)->type == 3 ? vertical : other) +=
+            kAxisLetters[static_cast<size_t>(block(c)->slot)];
     for (char c : vertical + other)
       if (order.find(c) == std::string::npos) order += c;
   }
@@ -1090,7 +1144,8 @@ void Importer::build() {
       if (!has(l, c)) continue;
       const AxisBlock* b = block(c);
       if (!b) {
-        unmapped(l, fmt::format("g28move {}", c), fmt::format("axischar names no {} axis Gantry drives", c));
+        unmapped(l, fmt::format("g28move {}", c),
+                 fmt::format("axischar names no {} axis Gantry drives", c));
         continue;
       }
       if (auto d = number(l, c, 0, 1e9)) {
@@ -1103,8 +1158,7 @@ void Importer::build() {
     }
     if (has(l, 'A')) later(l, "g28move A");
     if (has(l, 'L')) later(l, "g28move L");
-    if (has(l, 'M'))
-      mapped(l, "g28move M: Gantry homes each axis on its own, in homing.order");
+    if (has(l, 'M')) mapped(l, "g28move M: Gantry homes each axis on its own, in homing.order");
   }
   if (!g28moves.empty()) {
     // WinCNC homes each axis on its limit switch of the homing side; C3 watches homing.input.
@@ -1149,7 +1203,8 @@ void Importer::build() {
     channel_bit[*c] = {word, &l};
     if (*c <= 12) {
       s.inputs.switch_bits[static_cast<size_t>(*c - 1)] = word;
-      mapped(l, fmt::format("auxin C{} P B -> input switch {}: inputs.switch_bits bit {}", *c, *c, word));
+      mapped(l, fmt::format("auxin C{} P B -> input switch {}: inputs.switch_bits bit {}", *c, *c,
+                            word));
     } else {
       unmapped(l, fmt::format("auxin C{}", *c), "Gantry's part files read input switches 1-12");
     }
@@ -1162,7 +1217,8 @@ void Importer::build() {
         mapped(l, fmt::format("auxin F1 (enable) -> inputs.estop_bit = {}", word));
       } else if (f == 100 && *c <= 12) {
         s.switches.input_modes[static_cast<size_t>(*c - 1)] = low ? 4 : 3;
-        mapped(l, fmt::format("auxin F100 (abort) -> switches.input_modes: input {} a stop switch", *c));
+        mapped(l, fmt::format("auxin F100 (abort) -> switches.input_modes: input {} a stop switch",
+                              *c));
       } else if (f != 0) {
         unmapped(l, fmt::format("auxin F{}", f),
                  "pause, continue, start and user signals on inputs: Gantry's inputs stop "
@@ -1170,7 +1226,9 @@ void Importer::build() {
       }
     }
     for (char p : std::string_view("DLI"))
-      if (has(l, p)) unmapped(l, fmt::format("auxin {}", p), "a debounce, signal or initial state per input: not offered");
+      if (has(l, p))
+        unmapped(l, fmt::format("auxin {}", p),
+                 "a debounce, signal or initial state per input: not offered");
     if (has(l, 'M')) unmapped(l, "auxin M", "a custom message: Gantry names the input");
     if (has(l, 'A')) later(l, "require-home", "auxin A");
     if (has(l, 'O') && !has(l, 'F') && l.params.at('O').value == 1)
@@ -1200,11 +1258,14 @@ void Importer::build() {
         s.inputs.estop_active_low = has(in, 'O') && in.params.at('O').value == 1;
         mapped(l, fmt::format("enab C{} T{} -> inputs.estop_bit = {}", *c, t, s.inputs.estop_bit));
       } else {
-        unmapped(l, fmt::format("enab T{}", t), "an enable that pauses or lets the keys jog: Gantry's E-stop input stops");
+        unmapped(l, fmt::format("enab T{}", t),
+                 "an enable that pauses or lets the keys jog: Gantry's E-stop input stops");
       }
       if (has(l, 'A')) later(l, "require-home", "enab A");
       for (char p : std::string_view("MLI"))
-        if (has(l, p)) unmapped(l, fmt::format("enab {}", p), "a message, signal or initial state of the enable: not offered");
+        if (has(l, p))
+          unmapped(l, fmt::format("enab {}", p),
+                   "a message, signal or initial state of the enable: not offered");
     }
   }
   if (const auto it = single.find("signal"); it != single.end()) {
@@ -1215,7 +1276,9 @@ void Importer::build() {
         const Line& in = *channel_bit[*c].second;
         s.switches.input_modes[static_cast<size_t>(*c - 1)] =
             has(in, 'O') && in.params.at('O').value == 1 ? 4 : 3;
-        mapped(l, fmt::format("signal C{} T100 (abort) -> switches.input_modes: input {} a stop switch", *c, *c));
+        mapped(l, fmt::format(
+                      "signal C{} T100 (abort) -> switches.input_modes: input {} a stop switch", *c,
+                      *c));
       } else {
         unmapped(l, fmt::format("signal T{}", t),
                  "pause, continue, start, inhibit and user signals: Gantry's inputs stop (VN) or "
@@ -1227,7 +1290,8 @@ void Importer::build() {
     const Line& l = *it->second;
     if (const auto c = channel(l, "scan")) {
       s.inputs.probe_bit = channel_bit[*c].first;
-      mapped(l, fmt::format("scan C{} -> inputs.probe_bit = {} (the touch probe)", *c, s.inputs.probe_bit));
+      mapped(l, fmt::format("scan C{} -> inputs.probe_bit = {} (the touch probe)", *c,
+                            s.inputs.probe_bit));
     }
     unmapped(l, "scan T A S H F P D", "3D digitizing with the probe: not offered (G38.2 probes)");
   }
@@ -1254,9 +1318,11 @@ void Importer::build() {
       unmapped(l, fmt::format("auxout C{}", *c), "Gantry has output switches 1-12");
       continue;
     }
-    if (s.outputs.aux_bits.size() < static_cast<size_t>(*c)) s.outputs.aux_bits.resize(static_cast<size_t>(*c), -1);
+    if (s.outputs.aux_bits.size() < static_cast<size_t>(*c))
+      s.outputs.aux_bits.resize(static_cast<size_t>(*c), -1);
     s.outputs.aux_bits[static_cast<size_t>(*c - 1)] = word;
-    mapped(l, fmt::format("auxout C{} P B -> output switch {}: outputs.aux_bits bit {}", *c, *c, word));
+    mapped(l, fmt::format("auxout C{} P B -> output switch {}: outputs.aux_bits bit {}", *c, *c,
+                          word));
     for (char p : std::string_view("OSETXWR"))
       if (has(l, p))
         unmapped(l, fmt::format("auxout {}", p),
@@ -1276,9 +1342,11 @@ void Importer::build() {
         // D: the square wave's period, ms.
         if (has(l, 'D'))
           if (auto d = number(l, 'D', 0, 1e6, true)) s.outputs.charge_pump_hz = 1000 / *d;
-        mapped(l, fmt::format("watch T7 C{} D -> outputs.charge_pump_bit = {}", *c, s.outputs.charge_pump_bit));
+        mapped(l, fmt::format("watch T7 C{} D -> outputs.charge_pump_bit = {}", *c,
+                              s.outputs.charge_pump_bit));
       } else if (c) {
-        error(l, l.params.at('C').column, fmt::format("watch C{}: no auxout= line defines output channel {}", *c, *c));
+        error(l, l.params.at('C').column,
+              fmt::format("watch C{}: no auxout= line defines output channel {}", *c, *c));
       }
     } else {
       unmapped(l, fmt::format("watch T{}", t),
@@ -1304,7 +1372,10 @@ void Importer::build() {
       mapped(l, "backlash B0 -> no backlash compensation (axes.<axis>.backlash = 0)");
     }
     for (char c : std::string_view("SF"))
-      if (has(l, c)) unmapped(l, fmt::format("backlash {}", c), "backlash smoothing and arc slow-down: the takeup runs at the corner jump speed (docs/hardware.md, \"Backlash\")");
+      if (has(l, c))
+        unmapped(l, fmt::format("backlash {}", c),
+                 "backlash smoothing and arc slow-down: the takeup runs at the corner jump speed "
+                 "(docs/hardware.md, \"Backlash\")");
   }
   if (const auto it = single.find("table"); it != single.end()) {
     const Line& l = *it->second;
@@ -1324,7 +1395,8 @@ void Importer::build() {
       unmapped(*it->second, "vgroup=" + g, "Gantry's speed groups are XY, Z, A, B, C");
   }
   if (const auto it = single.find("xhc"); it != single.end())
-    unmapped(*it->second, "xhc", "Gantry finds an XHC WHB04B pendant when it is plugged in (USB); no setting");
+    unmapped(*it->second, "xhc",
+             "Gantry finds an XHC WHB04B pendant when it is plugged in (USB); no setting");
 
   // Keys: CTRL+F1..F8 and the XHC pendant's keys run the pendant's macros.
   std::array<std::string, 10>& macros = s.pendant.macros;
@@ -1336,9 +1408,9 @@ void Importer::build() {
     if (xhc && type == "userbtn" && scan >= 1 && scan <= 10 && rec.fields.size() > 8 &&
         macros[static_cast<size_t>(scan - 1)].empty()) {
       macros[static_cast<size_t>(scan - 1)] = bound_command(rec.fields[8]);
-      r_.mapped.push_back(fmt::format("{}:{}: \"UserBtn\" on the XHC pendant's key {} -> pendant.macro_{} = \"{}\"",
-                                      rec.line.file->path, rec.line.number, scan, scan,
-                                      macros[static_cast<size_t>(scan - 1)]));
+      r_.mapped.push_back(fmt::format(
+          "{}:{}: \"UserBtn\" on the XHC pendant's key {} -> pendant.macro_{} = \"{}\"",
+          rec.line.file->path, rec.line.number, scan, scan, macros[static_cast<size_t>(scan - 1)]));
       continue;
     }
     std::string why;
@@ -1367,19 +1439,20 @@ void Importer::build() {
   }
   s.pendant.keys = keys;
   for (const WincncMacro& m : r_.macros)
-    r_.mapped.push_back(fmt::format("{}:{}: {} -> custom cut C{} (C{}.sbp)", m.loc.file ? *m.loc.file : "",
-                                    m.loc.line, m.name, m.cut, m.cut));
+    r_.mapped.push_back(fmt::format("{}:{}: {} -> custom cut C{} (C{}.sbp)",
+                                    m.loc.file ? *m.loc.file : "", m.loc.line, m.name, m.cut,
+                                    m.cut));
 
   if (!r_.errors.empty()) return;
   // The rules across keys, as the profile's loader checks them.
   for (const std::string& why : settings_problems(s))
-    r_.errors.push_back({file_loc(in_.ini.path), Severity::Error,
-                         "the imported profile breaks a rule: " + why});
-  std::stable_sort(r_.unmapped.begin(), r_.unmapped.end(),
-                   [](const WincncUnmapped& a, const WincncUnmapped& b) {
-                     const std::string fa = a.loc.file ? *a.loc.file : "", fb = b.loc.file ? *b.loc.file : "";
-                     return std::tie(fa, a.loc.line) < std::tie(fb, b.loc.line);
-                   });
+    r_.errors.push_back(
+        {file_loc(in_.ini.path), Severity::Error, "the imported profile breaks a rule: " + why});
+  std::stable_sort(
+      r_.unmapped.begin(), r_.unmapped.end(), [](const WincncUnmapped& a, const WincncUnmapped& b) {
+        const std::string fa = a.loc.file ? *a.loc.file : "", fb = b.loc.file ? *b.loc.file : "";
+        return std::tie(fa, a.loc.line) < std::tie(fb, b.loc.line);
+      });
 }
 
 }  // namespace
@@ -1394,11 +1467,13 @@ WincncImport import_wincnc(const WincncSources& in) {
 
 std::string wincnc_profile_text(const WincncImport& r, const WincncSources& in) {
   std::string head = fmt::format(
-      "# Gantry profile \"{}\", imported from a WinCNC set-up by `gantry import-wincnc`:\n# {}{}{}\n",
+      "# Gantry profile \"{}\", imported from a WinCNC set-up by `gantry import-wincnc`:\n# "
+      "{}{}{}\n",
       r.settings.name, in.ini.path, in.screen ? ", " + in.screen->path : "",
       in.macros ? ", " + in.macros->path : "");
-  head += "# What WinCNC's files do not say is Gantry's default profile's. Not carried over (see\n"
-          "# the import's report for why):\n";
+  head +=
+      "# What WinCNC's files do not say is Gantry's default profile's. Not carried over (see\n"
+      "# the import's report for why):\n";
   std::string line = "#  ";
   for (const WincncUnmapped& u : r.unmapped) {
     const std::string item = fmt::format(" {}:{} {}{};", u.loc.file ? *u.loc.file : "", u.loc.line,
@@ -1420,11 +1495,13 @@ std::string wincnc_report(const WincncImport& r) {
   out += fmt::format("not mapped ({}):\n", now);
   for (const WincncUnmapped& u : r.unmapped)
     if (!u.later)
-      out += fmt::format("  {}:{}: {}: {}\n", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword, u.why);
+      out += fmt::format("  {}:{}: {}: {}\n", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword,
+                         u.why);
   out += fmt::format("not mapped yet ({}): settings issue 28 is adding\n", later);
   for (const WincncUnmapped& u : r.unmapped)
     if (u.later)
-      out += fmt::format("  {}:{}: {}: {}\n", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword, u.why);
+      out += fmt::format("  {}:{}: {}: {}\n", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword,
+                         u.why);
   return out;
 }
 

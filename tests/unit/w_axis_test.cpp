@@ -65,7 +65,7 @@ TEST(WAxis, TheProfileNamesItAndTheLoaderKeepsItToAVerticalHeadInUse) {
   ASSERT_TRUE(settings_problems(w_profile()).empty()) << settings_problems(w_profile())[0];
   // Written and read back by the schema: display.w_axis = "a".
   const std::string text = settings_text(w_profile());
-  EXPECT_NE(text.find("w_axis = \"a\""), std::string::npos);
+  EXPECT_NE(text.find("w_axis = 'a'"), std::string::npos);
   const SettingsLoad back = parse_settings(text, "w.toml");
   ASSERT_TRUE(back.ok()) << back.errors[0].message;
   EXPECT_EQ(back.settings.display.w_axis, 3);
@@ -86,7 +86,7 @@ TEST(WAxis, TheProfileNamesItAndTheLoaderKeepsItToAVerticalHeadInUse) {
   EXPECT_NE(settings_problems(s)[0].find("display.units_a is degrees"), std::string::npos);
   // The error is located at the key in the profile.
   std::string bad = text;
-  bad.replace(bad.find("units_a = \"in\""), 14, "units_a = \"deg\"");
+  bad.replace(bad.find("units_a = 'in'"), 14, "units_a = 'deg'");
   const SettingsLoad load = parse_settings(bad, "w.toml");
   ASSERT_FALSE(load.ok());
   EXPECT_GT(load.errors[0].loc.line, 0);

@@ -160,8 +160,12 @@ TEST(WincncImport, TheManualsNumbersLandInTheirKeys) {
   EXPECT_EQ(r.macros[2].name, "M3");
   EXPECT_EQ(r.macros[2].cut, 102);
   EXPECT_EQ(r.macros[2].file, "SPIN.MAC");
-  EXPECT_EQ(wincnc_macro_cut(r.macros[0]).substr(wincnc_macro_cut(r.macros[0]).rfind('\n', wincnc_macro_cut(r.macros[0]).size() - 2) + 1),
-            "M11C2\n");
+  EXPECT_EQ(
+      wincnc_macro_cut(r.macros[0])
+          .substr(
+              wincnc_macro_cut(r.macros[0]).rfind('\n', wincnc_macro_cut(r.macros[0]).size() - 2) +
+              1),
+      "M11C2\n");
   ASSERT_NE(find(r, "M5=["), nullptr);
   EXPECT_EQ(find(r, "M5=[")->loc.line, 4);
 }
@@ -255,14 +259,14 @@ TEST(WincncImport, BadInputIsLocated) {
   const Case cases[] = {
       {"axischar=XYZ\nthis line has no equals\n", 2, 1, "expected keyword=value"},
       {"axischar=XYZ\nlimstep=100\n", 2, 1, "unknown keyword limstep="},
-      {"axischar=XYZ\naxisspec = p0 s7 d0 r818\n", 2, 17, "axisspec S7 is out of range"},
-      {"axischar=XYZ\naxisspec = p0 s0 d0 r818 q4\n", 2, 30, "axisspec has no parameter Q"},
-      {"axischar=XYZ\naxisspec = p0 s0 d0 rx\n", 2, 22, "R needs a number"},
+      {"axischar=XYZ\naxisspec = p0 s7 d0 r818\n", 2, 15, "axisspec S7 is out of range"},
+      {"axischar=XYZ\naxisspec = p0 s0 d0 r818 q4\n", 2, 26, "axisspec has no parameter Q"},
+      {"axischar=XYZ\naxisspec = p0 s0 d0 rx\n", 2, 21, "R needs a number"},
       {"axischar=XYZ\nlim_mode=7\n", 2, 10, "lim_mode=7 is out of range"},
       {"axischar=XYZ\nunit=MM\n", 2, 1, "unit= must be the first line"},
       {"axischar=ZXY\n", 1, 10, "must name X first and Y second"},
       {"axisvel=r100\n", 1, 1, "comes before the first axisspec"},
-      {"axischar=XY\naxisspec=p0 s0 d0 r1\naxisspec=p0 s0 d1 r1\n", 3, 14,
+      {"axischar=XY\naxisspec=p0 s0 d0 r1\naxisspec=p0 s0 d1 r1\n", 3, 13,
        "step bit 0 is already another motor's"},
       {"axischar=XYZ\nenab=c4 t1\n", 2, 6, "no auxin= line defines input channel 4"},
   };

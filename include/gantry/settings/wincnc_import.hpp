@@ -23,10 +23,10 @@ struct WincncFile {
 };
 
 struct WincncSources {
-  WincncFile ini;                     // WINCNC.INI
-  std::optional<WincncFile> screen;   // CNCSCRN.INI
-  std::optional<WincncFile> macros;   // CNC.MAC
-  std::string name = "wincnc";        // the profile's name
+  WincncFile ini;                    // WINCNC.INI
+  std::optional<WincncFile> screen;  // CNCSCRN.INI
+  std::optional<WincncFile> macros;  // CNC.MAC
+  std::string name = "wincnc";       // the profile's name
 };
 
 // A documented keyword (or one parameter of it) the profile does not carry.
