@@ -57,7 +57,7 @@ void App::readout_window() {
   const int axes = std::clamp(settings_.display.axes, 3, kAxisCount);
   const float number_x = ImGui::CalcTextSize("X ").x;
   for (int i = 0; i < axes; ++i) {
-    ImGui::TextColored(kGrey, "%c", kAxes[i]);
+    ImGui::TextColored(kGrey, "%c", axis_name(settings_, i));  // W: the profile's W axis
     ImGui::SameLine(number_x);
     ImGui::Text("%11.4f", shown(p[i]));
   }

@@ -90,6 +90,7 @@ void Console::snapshot() {
   const Settings s = values_.settings();
   live_.snapshot(m, s);
   units_ = s.units;
+  axis_names_ = axis_names(s);
   keypad_step_ = s.display.keypad_step;
 }
 
@@ -98,7 +99,7 @@ std::string Console::readout(const ControllerStatus& st) const {
   // under way, the pulses played say where the tool is.
   const bool rest = ((at_rest(st.state) && st.settled) || st.state == MachineState::Keypad) &&
                     mode_ != Mode::Job && !kp_.active;
-  return session::readout_text(session::state_word(st), live_.at(st, rest), units_);
+  return session::readout_text(session::state_word(st), live_.at(st, rest), units_, axis_names_);
 }
 
 std::string Console::help(const std::string& arg) const {

@@ -104,6 +104,7 @@ class Console {
   session::LivePosition live_;  // the frame and exact position at the last snapshot
   session::ActivityWatch activity_;  // the ends of motions, the pendant's included
   Units units_ = Units::Inches;
+  std::string axis_names_ = "XYZABC";  // W for the profile's W axis
   double keypad_step_ = 0.1;
 
   LineEditor editor_;

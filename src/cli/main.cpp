@@ -12,6 +12,7 @@
 
 #include "console.hpp"       // the console subcommand
 #include "export_gcode.hpp"  // GcodeWriter
+#include "import_wincnc.hpp"  // gantry import-wincnc
 #ifdef GANTRY_HAVE_GUI
 #include "gui_command.hpp"  // the gui subcommand (ui/)
 #endif
@@ -299,6 +300,7 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   describe(profile, lang.allow_paths, opt.interpreter);
   PersistentStore store = lang.store();
   report.units = settings.units;
+  report.axis_names = axis_names(settings);
   std::shared_ptr<const Script> script = load_part_file(a.file, opt.interpreter.language);
   // A person at a terminal answers the file's questions, unless --yes/--input do. With
   // --json, stdout holds only the report: PRINT goes to stderr.
@@ -764,6 +766,9 @@ int main(int argc, char** argv) {
   add_profile_option(export_cmd, export_settings);
   export_lang.add_to(export_cmd);
 
+  ImportWincncArgs import_args;
+  CLI::App* import_cmd = add_import_wincnc_command(app, import_args);
+
   std::string commands_group;
   bool commands_json = false;
   CLI::App* commands_cmd = app.add_subcommand("commands", "List the command table");
@@ -827,6 +832,7 @@ int main(int argc, char** argv) {
     if (*help_cmd && help_man) return fmt::print("{}", man_page(app)), 0;
     if (*help_cmd) return cmd_help(help_code, help_markdown);
     if (*export_cmd) return cmd_export_gcode(export_file, export_out, export_settings, export_lang);
+    if (*import_cmd) return run_import_wincnc(import_args);
     if (*console_cmd) return run_console(console_args);
     if (*preview_cmd) return cmd_preview(preview_args, preview_lang);
 #ifdef GANTRY_HAVE_GUI

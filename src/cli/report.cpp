@@ -113,7 +113,7 @@ std::string to_text(const RunReport& r) {
   std::string out = fmt::format("status     {}\n", status_text(r));
   out += "position  ";
   for (int i = 0; i < kAxisCount; ++i)
-    out += fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.position[i]);
+    out += fmt::format(" {}={:.4f}", r.axis_names[static_cast<size_t>(i)], r.position[i]);
   out += fmt::format(" ({})\nsteps     ", units_name(r.units));
   for (int i = 0; i < kAxisCount; ++i)
     out += fmt::format(" {}={}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), r.steps[i]);

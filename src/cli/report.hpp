@@ -24,6 +24,7 @@ struct RunReport {
   // statement budget): the run went past it unchecked, and the report says so.
   std::optional<Diagnostic> check_stopped;
   Units units = Units::Inches;
+  std::string axis_names = "XYZABC";  // the text's letters: W for the profile's W axis
   Vec6 position = Vec6::Zero();  // from the steps the card counted
   Steps6 steps{};                // counted by the card from its pulses
   Steps6 commanded_steps{};      // emitted by the step generator

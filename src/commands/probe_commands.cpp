@@ -90,7 +90,7 @@ void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
   const double dir = h.direction[i];
   const AxisHoming a = axis_homing(s, i);
   const double reach = a.search;
-  const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');
+  const char L = axis_name(s, i);
   const int first_input = h.input, second_input = h.square_input[i];
   int first = -1, second = -1;  // the axis's two channels, in channel order
   for (int k = 0; k < kAxisCount; ++k)

@@ -79,7 +79,7 @@ void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) con
     if (table[i] == now[i]) continue;  // only axes that move are checked
     const AxisSettings& ax = settings_.axes[i];
     if (!std::isfinite(table[i]) || table[i] < ax.min || table[i] > ax.max) {
-      const char letter = static_cast<char>(std::toupper(kAxisLetters[i]));
+      const char letter = axis_name(settings_, i);
       const std::string base =
           table[i] == target[i] ? "" : fmt::format(" (table base {}={:.4f})", letter, table[i]);
       fail(loc,

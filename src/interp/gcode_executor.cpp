@@ -280,9 +280,27 @@ void GcodeExecutor::read_words(const GcodeBlock& b, const SourceLoc& loc, Words&
       slot_col = word.column;
       continue;
     }
-    const int i = word.letter - 'A';
-    if (w.has(word.letter))
-      fail(at(), fmt::format("{} appears twice in this block; give each word once", word.letter));
+    // W moves the axis the profile names W (display.w_axis), as its own letter does.
+    char letter = word.letter;
+    if (letter == 'W') {
+      const int w_axis = ctx_.settings().display.w_axis;
+      if (w_axis < 0)
+        fail(at(),
+             "W is the axis of a second vertical head (WinCNC's W), and this machine's "
+             "profile names none (display.w_axis): program the cut on Z, or name the W "
+             "axis in the profile");
+      letter = gcode::kAxes[static_cast<size_t>(w_axis)];
+      if (w.has(letter))
+        fail(at(), fmt::format("W and {} both name the W axis (display.w_axis); give one of them",
+                               letter));
+    } else if (w.has(letter) && ctx_.settings().display.w_axis >= 0 &&
+               letter == gcode::kAxes[static_cast<size_t>(ctx_.settings().display.w_axis)]) {
+      fail(at(),
+           fmt::format("W and {} both name the W axis (display.w_axis); give one of them", letter));
+    }
+    const int i = letter - 'A';
+    if (w.has(letter))
+      fail(at(), fmt::format("{} appears twice in this block; give each word once", letter));
     w.present |= 1u << i;
     w.value[i] = v;
     w.column[i] = word.column;

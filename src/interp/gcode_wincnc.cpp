@@ -308,11 +308,14 @@ void GcodeExecutor::wincnc_home(const Words& w, const SourceLoc& loc) {
   for (char c : kAxes) {
     if (!w.has(c)) continue;
     const char lower = static_cast<char>(c - 'A' + 'a');
-    if (order.find(lower) == std::string::npos)
+    if (order.find(lower) == std::string::npos)  // W: its axis's letter is in the order
       fail(w.at(c, loc),
            fmt::format("G28 {0}: {0} is not in the profile's homing order ([homing] order = "
-                       "\"{1}\"), so it has no switch to home on",
-                       c, order));
+                       "\"{1}\"{2}), so it has no switch to home on",
+                       axis_name(ctx_.settings(), static_cast<int>(kAxes.find(c))), order,
+                       axis_name(ctx_.settings(), static_cast<int>(kAxes.find(c))) == 'W'
+                           ? fmt::format(", where W is {}", lower)
+                           : ""));
     only += lower;
   }
   home_on_switches(ctx_, loc, only);

@@ -241,19 +241,19 @@ class BlockReader {
         i_ = end;
       }
     }
-    if (letter == 'W' || letter == 'U' || letter == 'V')
+    // W is read as a word: the executor moves the axis the profile names W (display.w_axis)
+    // or says there is none.
+    if (letter == 'U' || letter == 'V')
       error(at, fmt::format("{} is not a G-code word letter: in WinCNC it is the axis of {} "
-                            "vertical head; Gantry drives one head, Z: program the cut on Z",
-                            letter,
-                            letter == 'W'   ? "a second"
-                            : letter == 'U' ? "a third"
-                                            : "a fourth"));
+                            "vertical head; Gantry drives Z and a W head at most: program the "
+                            "cut on Z",
+                            letter, letter == 'U' ? "a third" : "a fourth"));
     if (letter == 'E')
       error(at,
             "E is not a G-code word letter: in WinCNC it is L10's (a cut array), which Gantry "
             "does not run: repeat the cut in the CAM program, or with FP from an OpenSBP file");
     if (!m37_offset &&
-        std::string_view("ABCDFGHIJKLMPQRSTXYZ").find(letter) == std::string_view::npos)
+        std::string_view("ABCDFGHIJKLMPQRSTWXYZ").find(letter) == std::string_view::npos)
       error(at,
             fmt::format("'{}' is not a G-code word letter; the letters are A B C D F G H I J K L "
                         "M N P Q R S T X Y Z",

@@ -639,8 +639,7 @@ void Controller::say_where_the_card_stopped() {
   std::string where;
   for (int i = 0; i < kAxisCount; ++i)
     if (i < 3 || st.position[i] != 0)
-      where +=
-          fmt::format(" {}={:.4f}", static_cast<char>(kAxisLetters[i] - 'a' + 'A'), st.position[i]);
+      where += fmt::format(" {}={:.4f}", axis_name(settings_, i), st.position[i]);
   message_ += fmt::format("; the tool is at{} (the pulses played)", where);
   if (error_) error_->message = message_;
 }
@@ -715,8 +714,7 @@ std::string Controller::active_limits(std::uint32_t bits) const {
   for (int i = 0; i < kAxisCount; ++i)
     for (const auto& [bit, side] : {std::pair{in.min_bit[i], "low"}, {in.max_bit[i], "high"}})
       if (bit >= 0 && (active >> bit & 1u)) {
-        add(fmt::format("{} {} limit switch (input bit {})",
-                        static_cast<char>(kAxisLetters[i] - 'a' + 'A'), side, bit));
+        add(fmt::format("{} {} limit switch (input bit {})", axis_name(settings_, i), side, bit));
         active &= ~(1u << bit);
       }
   for (; active; active &= active - 1)  // VN's limit inputs: no axis of their own
@@ -744,7 +742,7 @@ std::optional<std::string> Controller::input_refusal(const Vec6& direction) cons
   auto active = [&](int bit) { return bit >= 0 && (roles_.limits.active(bits) >> bit & 1u); };
   const bool any_way = direction.isZero();
   for (int i = 0; i < kAxisCount; ++i) {
-    const char L = static_cast<char>(kAxisLetters[i] - 'a' + 'A');
+    const char L = axis_name(settings_, i);
     if (active(in.min_bit[i]) && (any_way || direction[i] < 0))
       return fmt::format(
           "the {} low limit switch is closed: {}", L,

@@ -14,10 +14,11 @@ std::string state_word(const ControllerStatus& s) {
   return state_name(s.state);
 }
 
-std::string readout_text(std::string_view state, const Vec6& p, Units u) {
-  return fmt::format("{:<9}X {:.4f}  Y {:.4f}  Z {:.4f}  A {:.4f}  B {:.4f}  C {:.4f}  {}", state,
-                     shown(p[0]), shown(p[1]), shown(p[2]), shown(p[3]), shown(p[4]), shown(p[5]),
-                     units_name(u));
+std::string readout_text(std::string_view state, const Vec6& p, Units u, std::string_view names) {
+  std::string out = fmt::format("{:<9}", state);
+  for (int i = 0; i < kAxisCount; ++i)
+    out += fmt::format("{} {:.4f}  ", names[static_cast<size_t>(i)], shown(p[i]));
+  return out + units_name(u);
 }
 std::string spindle_text(const ControllerStatus& s, double recorded_rpm) {
   const bool on = (s.outputs & 1u) != 0;

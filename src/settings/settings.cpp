@@ -581,6 +581,17 @@ static void check_consistency(const Settings& s, const std::string& origin,
       err(fmt::format("drivers.channels names no driver channel for {}, an axis in use "
                       "(display.axes = {})",
                       L, s.display.axes));
+    if (i == s.display.w_axis) {
+      // W is a second vertical head: a length, on an axis the machine uses.
+      if (i >= s.display.axes)
+        err(fmt::format("display.w_axis names {} as W, an axis display.axes = {} does not use", L,
+                        s.display.axes));
+      else if (s.display.rotary_units[static_cast<size_t>(i - 3)] == AxisUnit::Degrees)
+        err(
+            fmt::format("display.w_axis names {} as W, a vertical head, but display.units_{} is "
+                        "degrees; give it \"{}\"",
+                        L, kAxisLetters[i], units_name(s.units)));
+    }
     if (s.homing.square_input[i] != 0 && channels_of[i] != 2)
       err(fmt::format("homing.{}.square_input needs {} on two driver channels (drivers.channels), "
                       "a slaved axis",

@@ -37,6 +37,7 @@ constexpr std::string_view kAxisUnits[] = {"in", "mm", "deg"};  // AxisUnit's or
 constexpr std::string_view kSpeedModes[] = {"pwm", "frequency"};     // SpindleSettings::SpeedMode
 constexpr std::string_view kReverseWirings[] = {"direction", "run"};  // ...::ReverseWiring
 constexpr std::string_view kSoftClamps[] = {"off", "vertical", "all"};  // SoftClamp's order
+constexpr std::string_view kWAxes[] = {"none", "a", "b", "c"};  // display.w_axis
 
 // The speed limit of a speed group (xy z a b c): the axis max_speed, XY's the lower of X's and Y's.
 double group_limit(const Settings& s, int i) {
@@ -313,6 +314,12 @@ const SettingRow kRows[] = {
    .names = kAxisUnits, GANTRY_ENUM(display.rotary_units[1], AxisUnit)},
   {.section = "display", .key = "units_c", .kind = SettingKind::Choice, .help = "VD unit of C",
    .names = kAxisUnits, GANTRY_ENUM(display.rotary_units[2], AxisUnit)},
+  {.section = "display", .key = "w_axis", .kind = SettingKind::Choice,
+   .help = "the axis shown and programmed as W, a second vertical head (WinCNC's W): the readouts and messages name it W, G-code's W words move it, G28 W homes it; OpenSBP still reaches it through its own letter's commands (docs/hardware.md, \"The W axis\"). It must be an axis in use with a length unit. Left out: `\"none\"`",
+   .names = kWAxes, .optional = true,
+   .choice_get = [](const Settings& s, int) { return s.display.w_axis < 3 ? 0 : s.display.w_axis - 2; },
+   .choice_set = [](Settings& s, int, int v) { s.display.w_axis = v == 0 ? -1 : v + 2; },
+   .owner = SettingOwner::MachineKey},
   BOOL("display", "show_comments", display.show_comments, "VD part-file comments shown as the file runs"),
   NUM("display", "keypad_step", display.keypad_step, (SettingRange{0, 1e4, true}), Length,
       "VD SK fixed-distance step (a length)"),

@@ -14,7 +14,9 @@ namespace gantry::session {
 // move" (SW's warning), "pausing" (slowing to a hold), else the state's name.
 std::string state_word(const ControllerStatus& s);
 // The position readout: the state word, X Y Z A B C (`p`, working coordinates), the units.
-std::string readout_text(std::string_view state, const Vec6& p, Units u);
+// `names`: the axes' letters (axis_names: W for the profile's W axis).
+std::string readout_text(std::string_view state, const Vec6& p, Units u,
+                         std::string_view names = "XYZABC");
 // "spindle on, 18000 RPM", "spindle off". `recorded_rpm`: TR's value when the profile wires
 // no speed output (the card then carries none, and the RPM is only what TR recorded).
 // The spindle: on or off (output switch 1, ShopBot's wiring) and its speed, as the card

@@ -249,6 +249,8 @@ struct DisplaySettings {  // VD
   bool system_log = true;           // a system log for diagnostics
   bool show_progress = false;       // a progress bar while a file runs
   bool keypad_outputs_off = false;  // output switches off when the keypad closes
+  // The axis (3 A, 4 B, 5 C) shown and programmed as W, WinCNC's second vertical head; -1: none.
+  int w_axis = -1;
 };
 
 struct PreviewSettings {  // VP
@@ -351,6 +353,18 @@ struct Settings {
   FilesSettings files;
   PendantSettings pendant;
 };
+
+// The letter an axis is shown and programmed by: X Y Z A B C, or W for the axis the profile
+// names W (display.w_axis; docs/hardware.md, "The W axis").
+inline char axis_name(const Settings& s, int i) {
+  return i == s.display.w_axis ? 'W' : "XYZABC"[i];
+}
+// The six letters, in axis order ("XYZWBC" when A is W).
+inline std::string axis_names(const Settings& s) {
+  std::string out = "XYZABC";
+  if (s.display.w_axis >= 0) out[static_cast<size_t>(s.display.w_axis)] = 'W';
+  return out;
+}
 
 // The result of loading a profile: settings, or every problem found in it.
 struct SettingsLoad {
