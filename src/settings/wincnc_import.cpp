@@ -28,12 +28,7 @@ constexpr std::string_view kToolsPart = "tool changer and spindle";
 // The settings other parts of issue 28 are adding now: each keyword here is reported "not
 // mapped yet" until its row lands and this table loses the line.
 constexpr WincncPending kPending[] = {
-    {"lim_step", "a cushioned stop: this many steps of deceleration after a limit switch closes",
-     kLimitsPart},
-    {"esc_step", "a cushioned stop after Esc (a stop request)", kLimitsPart},
     {"lim_mode 2, 3", "a shorter debounce for a limit switch opening", kLimitsPart},
-    {"softlim B", "soft limits that clamp a move to the limit instead of refusing it", kLimitsPart},
-    {"softlim V", "the clamp for the vertical axes only", kLimitsPart},
     {"g28move A", "homing on an alternate switch", kLimitsPart},
     {"g28move L", "the longest search for a home switch", kLimitsPart},
     {"g28move switches",
@@ -1078,10 +1073,16 @@ void Importer::build() {
         s.machine.limit_checking = *t == 1;
         mapped(l, fmt::format("softlim T{} -> machine.limit_checking = {}", *t, *t == 1));
       }
-    if (has(l, 'B') && l.params.at('B').value != 0)
-      later(l, "softlim B", fmt::format("softlim B{}", num(l.params.at('B').value)));
-    if (has(l, 'V') && l.params.at('V').value != 0)
-      later(l, "softlim V", fmt::format("softlim V{}", num(l.params.at('V').value)));
+    // B1 clamps every axis to its soft limits; V1 only the vertical ones, silently.
+    if (has(l, 'B') && l.params.at('B').value != 0) {
+      s.limits.soft_clamp = SoftClamp::All;
+      mapped(l, fmt::format("softlim B{} -> limits.soft_clamp = \"all\"",
+                            num(l.params.at('B').value)));
+    } else if (has(l, 'V') && l.params.at('V').value != 0) {
+      s.limits.soft_clamp = SoftClamp::Vertical;
+      mapped(l, fmt::format("softlim V{} -> limits.soft_clamp = \"vertical\"",
+                            num(l.params.at('V').value)));
+    }
     if (has(l, 'M')) unmapped(l, "softlim M", std::string(kScreen));
   }
 
@@ -1101,9 +1102,16 @@ void Importer::build() {
       mapped(*it->second, fmt::format("lim_cnt -> limits.debounce = {}{}", s.limits.debounce,
                                       *n > 30 ? " (at most 30, as WinCNC)" : ""));
     }
-  for (const char* k : {"lim_step", "esc_step", "g28_lim_cnt"})
+  for (auto [k, steps] :
+       {std::pair{"lim_step", &s.limits.cushion_steps}, std::pair{"esc_step", &s.limits.esc_steps}})
     if (const auto it = single.find(k); it != single.end())
-      later(*it->second, k, fmt::format("{}={}", k, it->second->value));
+      if (auto n = raw_number(*it->second, 0, 100000)) {  // the schema's range
+        *steps = static_cast<int>(std::round(*n));
+        mapped(*it->second, fmt::format("{} -> limits.{} = {}", k,
+                                        k[0] == 'l' ? "cushion_steps" : "esc_steps", *steps));
+      }
+  if (const auto it = single.find("g28_lim_cnt"); it != single.end())
+    later(*it->second, "g28_lim_cnt", fmt::format("g28_lim_cnt={}", it->second->value));
 
   // Homing: G28's order, speeds, back-off and the place of each switch.
   std::string order;

@@ -127,7 +127,10 @@ TEST(WincncImport, TheManualsNumbersLandInTheirKeys) {
   EXPECT_DOUBLE_EQ(s.axes[0].max, 96);
   EXPECT_DOUBLE_EQ(s.axes[3].max, 0.4);
   EXPECT_LT(s.axes[3].min, s.axes[3].max);
-  EXPECT_TRUE(s.machine.limit_checking);  // softlim t1
+  EXPECT_TRUE(s.machine.limit_checking);                // softlim t1
+  EXPECT_EQ(s.limits.soft_clamp, SoftClamp::Vertical);  // softlim v1
+  EXPECT_EQ(s.limits.cushion_steps, 100);               // lim_step=100
+  EXPECT_EQ(s.limits.esc_steps, 200);                   // esc_step=200
   // G28: Z and W first (the first g28move line), up; X and Y down; zero .5 inside each switch.
   EXPECT_EQ(s.homing.order, "zaxy");
   EXPECT_EQ(s.homing.direction[3], 1);
@@ -183,12 +186,10 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
   };
   const Want wants[] = {
       {"axisvel S (X)", "WINCNC.INI", 12, false}, {"override", "WINCNC.INI", 57, false},
-      {"lim_step=100", "WINCNC.INI", 37, true},   {"esc_step=200", "WINCNC.INI", 38, true},
-      {"softlim V1", "WINCNC.INI", 33, true},     {"g28_lim_cnt=20", "WINCNC.INI", 43, true},
-      {"enab A", "WINCNC.INI", 48, true},         {"spindle T, I", "WINCNC.INI", 54, true},
-      {"atc1", "WINCNC.INI", 62, true},           {"keypad", "WINCNC.INI", 61, false},
-      {"axishi O (W)", "WINCNC.INI", 29, false},  {"\"Viewer\"", "CNCSCRN.INI", 4, false},
-      {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
+      {"g28_lim_cnt=20", "WINCNC.INI", 43, true}, {"enab A", "WINCNC.INI", 48, true},
+      {"spindle T, I", "WINCNC.INI", 54, true},   {"atc1", "WINCNC.INI", 62, true},
+      {"keypad", "WINCNC.INI", 61, false},        {"axishi O (W)", "WINCNC.INI", 29, false},
+      {"\"Viewer\"", "CNCSCRN.INI", 4, false},    {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
   };
   for (const Want& w : wants) {
     const WincncUnmapped* u = find(r, w.keyword);
@@ -205,7 +206,10 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
   // The table the "not mapped yet" rows come from names what each will need.
   for (const WincncPending& p : wincnc_not_mapped_yet()) EXPECT_FALSE(p.what.empty()) << p.keyword;
   const std::string report = wincnc_report(r);
-  EXPECT_NE(report.find("WINCNC.INI:37: lim_step=100: a cushioned stop"), std::string::npos);
+  EXPECT_NE(report.find("WINCNC.INI:43: g28_lim_cnt=20"), std::string::npos);
+  // Mapped since the cushioned stop and the clamp landed: not listed.
+  for (const char* k : {"lim_step=100", "esc_step=200", "softlim V1"})
+    EXPECT_EQ(find(r, k), nullptr) << k;
 }
 
 // The profile written loads as --profile reads it and runs on the simulated card: W moves
