@@ -73,7 +73,11 @@ void FmDataFiles::open_input(std::string_view name, const SourceLoc& loc) {
     fail(loc, fmt::format("G23: an input file is open already ({}); G24 closes it (one input "
                           "file at a time)",
                           in_path_));
-  const std::string path = resolve_(fm_data_file_name(name, loc), FileAccess::Read, loc);
+  std::string path = resolve_(fm_data_file_name(name, loc), FileAccess::Read, loc);
+  // Programs written on DOS name files in any case: `G23LOT` finds lot.dat (an exact name wins).
+  const PartFileLookup found = find_part_file(files_, path);
+  if (!found.error.empty()) fail(loc, fmt::format("G23: {}", found.error));
+  if (found.path != path) path = resolve_(found.path, FileAccess::Read, loc);  // may be a link
   if (const std::string why = files_.read_problem(path); !why.empty())
     fail(loc, fmt::format("G23: cannot read the data file {}: {}", path, why));
   std::shared_ptr<std::istream> in = files_.open_read(path);

@@ -172,6 +172,21 @@ TEST(FmDataFiles, EveryWriteIsOnTheDiskAtOnce) {
   EXPECT_EQ(f.dir.read("LIVE.dat"), "1.0000,2.0000,3.0000,4.0000,5.0000\r\nSERIAL 312A3\r\n");
 }
 
+// Programs from DOS name their files in any case; an exact name wins.
+TEST(FmDataFiles, G23FindsANameInAnotherCase) {
+  Files f;
+  f.dir.write("lot.dat", "1\n");
+  f.files.open_input("LOT", kLoc);
+  EXPECT_EQ(f.files.input_path(), f.dir.path("lot.dat"));
+  EXPECT_EQ(f.files.read_values(1.0, 1, kLoc), std::vector<double>{1});
+  f.files.close_input(kLoc);
+  // Two that differ only in case, and no exact one: which was meant is unknown.
+  f.dir.write("Dup.dat", "2\n");
+  f.dir.write("dUP.dat", "3\n");
+  expect_error([&] { f.files.open_input("DUP", kLoc); }, {"G23"});
+  EXPECT_FALSE(f.files.input_open());
+}
+
 TEST(FmDataFiles, OneOutputAndOneInputAtATime) {
   Files f;
   f.dir.write("IN.dat", "7\n");
