@@ -204,8 +204,11 @@ std::vector<double> FmDataFiles::read_values(std::optional<double> record, std::
                         std::isfinite(v) && !(word.front() == '+' && digits.front() == '-');
     if (!number) {
       const std::size_t rec = record_of(pos);
+      // A binary file read by mistake has one long word: show its start.
+      const std::string shown =
+          word.size() > 40 ? std::string(word.substr(0, 40)) + "..." : std::string(word);
       fail(loc, fmt::format("G27: record {} of {}, column {}: \"{}\" is not a number", rec,
-                            in_path_, pos - record_starts()[rec - 1] + 1, word));
+                            in_path_, pos - record_starts()[rec - 1] + 1, shown));
     }
     values.push_back(v);
     pos = end;

@@ -117,12 +117,16 @@ TEST(FmDataFiles, AFailedReadReadsNothing) {
   expect_error([&] { f.files.read_values(std::nullopt, 2, kLoc); }, {"\"abc\""});
   EXPECT_EQ(f.files.read_values(std::nullopt, 1, kLoc), std::vector<double>{3});
   f.files.close_input(kLoc);
-  for (const char* word : {"+-4", "nan", "inf", "1x", "1,2.3.4"}) {
+  for (const char* word : {"+-4", "+", "-", "nan", "inf", "1e400", "1x", "1,2.3.4"}) {
     f.dir.write("odd.dat", std::string(word) + "\n");
     f.files.open_input("odd.dat", kLoc);
     expect_error([&] { f.files.read_values(std::nullopt, 3, kLoc); }, {"is not a number"});
     f.files.close_input(kLoc);
   }
+  f.dir.write("long.dat", std::string(100, 'x'));
+  f.files.open_input("long", kLoc);
+  expect_error([&] { f.files.read_values(std::nullopt, 1, kLoc); },
+               {"\"" + std::string(40, 'x') + "...\" is not a number"});
 }
 
 TEST(FmDataFiles, RecordNumbersAndCountsAreChecked) {
