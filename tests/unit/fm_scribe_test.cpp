@@ -6,6 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -128,6 +132,68 @@ TEST(FmScribe, HelloMary) {
   expect_strokes({p.strokes[8]}, {{{3.1875, 0.5 / 6}, {3.1875, 0}, {3.125, -1.0 / 6}}});
   // `_` prints as a space: the same as H_H with a blank.
   EXPECT_DOUBLE_EQ(scribe("H_H").strokes[3][0][0], (5 + 3) * 0.125);
+}
+
+// The glyph table as src/commands/stroke_font.cpp writes it, read from the source text here
+// (`{4, "0,0 2,6 4,0; 0.67,2 3.33,2"},  // A`): width and strokes by character.
+struct SourceGlyph {
+  double width = 0;
+  std::vector<std::vector<FmPoint>> strokes;
+};
+std::map<char, SourceGlyph> glyph_table_source() {
+  std::ifstream in(GANTRY_SOURCE_DIR "/src/commands/stroke_font.cpp");
+  const std::regex entry(R"re(^\s*\{([0-9.]+), "([^"]*)"\},\s*// (\S+)\s*$)re");
+  std::map<char, SourceGlyph> out;
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (!std::regex_match(line, m, entry)) continue;
+    const std::string name = m[3];
+    const char c = name == "backslash" ? '\\' : name == "space" ? ' ' : name[0];
+    SourceGlyph g;
+    g.width = std::stod(m[1]);
+    std::vector<FmPoint> stroke;
+    std::istringstream points(std::regex_replace(std::string(m[2]), std::regex(";"), " ; "));
+    for (std::string p; points >> p;) {
+      if (p == ";") {
+        g.strokes.push_back(stroke);
+        stroke.clear();
+        continue;
+      }
+      const std::size_t comma = p.find(',');
+      stroke.push_back({std::stod(p.substr(0, comma)), std::stod(p.substr(comma + 1))});
+    }
+    if (!stroke.empty()) g.strokes.push_back(stroke);
+    out[c] = g;
+  }
+  return out;
+}
+
+// Every character of the manual's set, a new line among them, at G19 0.25: each stroke where
+// the font's source puts it, scaled 0.25/8 across and 0.25/6 up from its pen position.
+TEST(FmScribe, TheWholeCharacterSetFollowsTheFontSource) {
+  const std::map<char, SourceGlyph> table = glyph_table_source();
+  ASSERT_GE(table.size(), 60u) << "the glyph table's layout changed";
+  const std::string text = "ABCDEFGHIJKLMNOPQRSTUVWXYZ)0123456789_!#'*+,-./:;<=>[\\]^";
+  const double h = 0.25, kx = h / 8, ky = h / 6;
+  Strokes want;
+  double pen = 0, base = 0;
+  for (char c : text) {
+    if (c == ')') {
+      pen = 0;
+      base -= 1.5 * h;
+      continue;
+    }
+    const SourceGlyph& g = table.at(c == '_' ? ' ' : c);
+    for (const auto& s : g.strokes) {
+      std::vector<FmPoint>& out = want.emplace_back();
+      for (const FmPoint& p : s) out.push_back({(pen + p[0]) * kx, base + p[1] * ky});
+    }
+    pen += g.width + 1;
+  }
+  const FmScribePath got = fm_scribe(text, 0, "", {h, 0.5}, kText);
+  expect_strokes(got.strokes, want);
+  EXPECT_NEAR(got.end[0], pen * kx, 1e-12);
+  EXPECT_NEAR(got.end[1], -1.5 * h, 1e-12);
 }
 
 TEST(FmScribe, LowerCaseIsScribedAsCapitals) {
