@@ -35,30 +35,30 @@ std::string fm_data_file_name(std::string_view name, const SourceLoc& loc) {
   return out;
 }
 
-FmDataFiles::FmDataFiles(FileSystem& files, Resolve resolve)
-    : files_(files), resolve_(std::move(resolve)) {}
+FmDataFiles::FmDataFiles(Resolve resolve) : resolve_(std::move(resolve)) {}
 
-void FmDataFiles::open_output(std::string_view name, bool append, const SourceLoc& loc) {
+void FmDataFiles::open_output(FileSystem& files, std::string_view name, bool append,
+                              const SourceLoc& loc) {
   const char* command = append ? "G21" : "G20";
   if (out_)
     fail(loc, fmt::format("{}: an output file is open already ({}); G22 closes it (one output "
                           "file at a time)",
                           command, out_path_));
   const std::string path = resolve_(fm_data_file_name(name, loc), FileAccess::Write, loc);
-  if (const std::string why = files_.write_problem(path); !why.empty())
+  if (const std::string why = files.write_problem(path); !why.empty())
     fail(loc, fmt::format("{}: cannot write {}: {}", command, path, why));
-  std::shared_ptr<std::ostream> out = files_.open_write(path, append);
+  std::shared_ptr<std::ostream> out = files.open_write(path, append);
   if (!out || !*out) fail(loc, fmt::format("{}: cannot open {} for writing", command, path));
   out_ = std::move(out);
   out_path_ = path;
 }
 
-void FmDataFiles::create_output(std::string_view name, const SourceLoc& loc) {
-  open_output(name, false, loc);
+void FmDataFiles::create_output(FileSystem& files, std::string_view name, const SourceLoc& loc) {
+  open_output(files, name, false, loc);
 }
 
-void FmDataFiles::append_output(std::string_view name, const SourceLoc& loc) {
-  open_output(name, true, loc);
+void FmDataFiles::append_output(FileSystem& files, std::string_view name, const SourceLoc& loc) {
+  open_output(files, name, true, loc);
 }
 
 void FmDataFiles::close_output(const SourceLoc& loc) {
@@ -68,19 +68,19 @@ void FmDataFiles::close_output(const SourceLoc& loc) {
   out_path_.clear();
 }
 
-void FmDataFiles::open_input(std::string_view name, const SourceLoc& loc) {
+void FmDataFiles::open_input(FileSystem& files, std::string_view name, const SourceLoc& loc) {
   if (in_)
     fail(loc, fmt::format("G23: an input file is open already ({}); G24 closes it (one input "
                           "file at a time)",
                           in_path_));
   std::string path = resolve_(fm_data_file_name(name, loc), FileAccess::Read, loc);
   // Programs written on DOS name files in any case: `G23LOT` finds lot.dat (an exact name wins).
-  const PartFileLookup found = find_part_file(files_, path);
+  const PartFileLookup found = find_part_file(files, path);
   if (!found.error.empty()) fail(loc, fmt::format("G23: {}", found.error));
   if (found.path != path) path = resolve_(found.path, FileAccess::Read, loc);  // may be a link
-  if (const std::string why = files_.read_problem(path); !why.empty())
+  if (const std::string why = files.read_problem(path); !why.empty())
     fail(loc, fmt::format("G23: cannot read the data file {}: {}", path, why));
-  std::shared_ptr<std::istream> in = files_.open_read(path);
+  std::shared_ptr<std::istream> in = files.open_read(path);
   if (!in) fail(loc, fmt::format("G23: cannot read the data file {}", path));
   in_ = std::string(std::istreambuf_iterator<char>(*in), std::istreambuf_iterator<char>());
   in_path_ = path;

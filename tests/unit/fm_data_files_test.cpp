@@ -41,9 +41,9 @@ struct Files {
   TempDir dir{"fm_data"};
   DiskFileSystem disk;
   // The executor's rule in small: a relative name lands in the data folder (here the temp dir).
-  FmDataFiles files{disk, [this](const std::string& name, FileAccess, const SourceLoc&) {
-                      return name.front() == '/' ? name : dir.path(name);
-                    }};
+  FmDataFiles files{[this](const std::string& name, FileAccess, const SourceLoc&) {
+    return name.front() == '/' ? name : dir.path(name);
+  }};
 };
 
 TEST(FmDataFileName, DatIsAddedWhenTheNameHasNoExtension) {
@@ -58,7 +58,7 @@ TEST(FmDataFileName, DatIsAddedWhenTheNameHasNoExtension) {
 
 TEST(FmDataFiles, G26RecordsReadBackByG27WithAndWithoutR) {
   Files f;
-  f.files.create_output("VALUES", kLoc);
+  f.files.create_output(f.disk, "VALUES", kLoc);
   EXPECT_EQ(f.files.output_path(), f.dir.path("VALUES.dat"));
   f.files.write_values(std::vector<double>{1, 2.5, -3}, kLoc);
   f.files.write_values(std::vector<double>{4, 5}, kLoc);
@@ -66,7 +66,7 @@ TEST(FmDataFiles, G26RecordsReadBackByG27WithAndWithoutR) {
   f.files.close_output(kLoc);
   EXPECT_EQ(f.dir.read("VALUES.dat"), "1.0000,2.5000,-3.0000\r\n4.0000,5.0000\r\n6.0000\r\n");
 
-  f.files.open_input("VALUES", kLoc);
+  f.files.open_input(f.disk, "VALUES", kLoc);
   EXPECT_EQ(f.files.input_record(), 1u);
   // R2: the second record; then, without R, on from where it stopped, over the line's end.
   EXPECT_EQ(f.files.read_values(2.0, 1, kLoc), std::vector<double>{4});
@@ -87,7 +87,7 @@ TEST(FmDataFiles, G26RecordsReadBackByG27WithAndWithoutR) {
 TEST(FmDataFiles, G27ReadsOnlyWhatItNeeds) {
   Files f;
   f.dir.write("row.dat", "10 20,30\n40\n");
-  f.files.open_input("row", kLoc);
+  f.files.open_input(f.disk, "row", kLoc);
   EXPECT_EQ(f.files.read_values(std::nullopt, 1, kLoc), std::vector<double>{10});
   EXPECT_EQ(f.files.input_record(), 1u);
   EXPECT_EQ(f.files.input_column(), 3u);
@@ -100,7 +100,7 @@ TEST(FmDataFiles, G27ReadsOnlyWhatItNeeds) {
 TEST(FmDataFiles, RecordsAreLinesCountingBlankOnesAndCrLf) {
   Files f;
   f.dir.write("gaps.dat", "1\r\n\r\n+2.5 .5 -1e3\r\n");
-  f.files.open_input("gaps", kLoc);
+  f.files.open_input(f.disk, "gaps", kLoc);
   // Record 2 is blank: reading from it finds the next value, in record 3.
   EXPECT_EQ(f.files.read_values(2.0, 1, kLoc), std::vector<double>{2.5});
   EXPECT_EQ(f.files.read_values(3.0, 3, kLoc), (std::vector<double>{2.5, 0.5, -1000}));
@@ -110,7 +110,7 @@ TEST(FmDataFiles, RecordsAreLinesCountingBlankOnesAndCrLf) {
 TEST(FmDataFiles, AFailedReadReadsNothing) {
   Files f;
   f.dir.write("bad.dat", "1,2\n3,abc,5\n");
-  f.files.open_input("bad", kLoc);
+  f.files.open_input(f.disk, "bad", kLoc);
   expect_error([&] { f.files.read_values(2.0, 3, kLoc); },
                {"record 2 of", "bad.dat", "column 3", "\"abc\" is not a number"});
   EXPECT_EQ(f.files.read_values(std::nullopt, 2, kLoc), (std::vector<double>{1, 2}));
@@ -119,12 +119,12 @@ TEST(FmDataFiles, AFailedReadReadsNothing) {
   f.files.close_input(kLoc);
   for (const char* word : {"+-4", "+", "-", "nan", "inf", "1e400", "1x", "1,2.3.4"}) {
     f.dir.write("odd.dat", std::string(word) + "\n");
-    f.files.open_input("odd.dat", kLoc);
+    f.files.open_input(f.disk, "odd.dat", kLoc);
     expect_error([&] { f.files.read_values(std::nullopt, 3, kLoc); }, {"is not a number"});
     f.files.close_input(kLoc);
   }
   f.dir.write("long.dat", std::string(100, 'x'));
-  f.files.open_input("long", kLoc);
+  f.files.open_input(f.disk, "long", kLoc);
   expect_error([&] { f.files.read_values(std::nullopt, 1, kLoc); },
                {"\"" + std::string(40, 'x') + "...\" is not a number"});
 }
@@ -132,14 +132,14 @@ TEST(FmDataFiles, AFailedReadReadsNothing) {
 TEST(FmDataFiles, RecordNumbersAndCountsAreChecked) {
   Files f;
   f.dir.write("r.dat", "1\n2\n");
-  f.files.open_input("r", kLoc);
+  f.files.open_input(f.disk, "r", kLoc);
   for (double r : {0.0, -1.0, 1.5})
     expect_error([&] { f.files.read_values(r, 1, kLoc); }, {"does not exist", "count from 1"});
   expect_error([&] { f.files.read_values(1.0, 0, kLoc); }, {"1 to 5 values, not 0"});
   expect_error([&] { f.files.read_values(1.0, 6, kLoc); }, {"1 to 5 values, not 6"});
   f.dir.write("empty.dat", "");
   f.files.close_input(kLoc);
-  f.files.open_input("empty", kLoc);
+  f.files.open_input(f.disk, "empty", kLoc);
   expect_error([&] { f.files.read_values(1.0, 1, kLoc); }, {"has 0 records"});
   expect_error([&] { f.files.read_values(std::nullopt, 1, kLoc); }, {"past the end"});
 }
@@ -147,14 +147,14 @@ TEST(FmDataFiles, RecordNumbersAndCountsAreChecked) {
 TEST(FmDataFiles, G20EmptiesAFileAndG21AppendsOrCreates) {
   Files f;
   f.dir.write("LOG.dat", "old\r\n");
-  f.files.append_output("LOG", kLoc);
+  f.files.append_output(f.disk, "LOG", kLoc);
   f.files.write_text("RUN 2", kLoc);
   f.files.close_output(kLoc);
   EXPECT_EQ(f.dir.read("LOG.dat"), "old\r\nRUN 2\r\n");
-  f.files.create_output("LOG", kLoc);
+  f.files.create_output(f.disk, "LOG", kLoc);
   EXPECT_EQ(f.dir.read("LOG.dat"), "");  // emptied when it opens, before anything is written
   f.files.close_output(kLoc);
-  f.files.append_output("NEW", kLoc);
+  f.files.append_output(f.disk, "NEW", kLoc);
   EXPECT_TRUE(f.dir.exists("NEW.dat"));
   f.files.write_values(std::vector<double>{-0.00001}, kLoc);
   f.files.close_output(kLoc);
@@ -166,8 +166,8 @@ TEST(FmDataFiles, EveryWriteIsOnTheDiskAtOnce) {
   Files f;
   {
     FmDataFiles files(
-        f.disk, [&](const std::string& n, FileAccess, const SourceLoc&) { return f.dir.path(n); });
-    files.create_output("LIVE", kLoc);
+        [&](const std::string& n, FileAccess, const SourceLoc&) { return f.dir.path(n); });
+    files.create_output(f.disk, "LIVE", kLoc);
     files.write_values(std::vector<double>{1, 2, 3, 4, 5}, kLoc);
     EXPECT_EQ(f.dir.read("LIVE.dat"), "1.0000,2.0000,3.0000,4.0000,5.0000\r\n");
     files.write_text("SERIAL 312A3", kLoc);
@@ -180,26 +180,28 @@ TEST(FmDataFiles, EveryWriteIsOnTheDiskAtOnce) {
 TEST(FmDataFiles, G23FindsANameInAnotherCase) {
   Files f;
   f.dir.write("lot.dat", "1\n");
-  f.files.open_input("LOT", kLoc);
+  f.files.open_input(f.disk, "LOT", kLoc);
   EXPECT_EQ(f.files.input_path(), f.dir.path("lot.dat"));
   EXPECT_EQ(f.files.read_values(1.0, 1, kLoc), std::vector<double>{1});
   f.files.close_input(kLoc);
   // Two that differ only in case, and no exact one: which was meant is unknown.
   f.dir.write("Dup.dat", "2\n");
   f.dir.write("dUP.dat", "3\n");
-  expect_error([&] { f.files.open_input("DUP", kLoc); }, {"G23"});
+  expect_error([&] { f.files.open_input(f.disk, "DUP", kLoc); }, {"G23"});
   EXPECT_FALSE(f.files.input_open());
 }
 
 TEST(FmDataFiles, OneOutputAndOneInputAtATime) {
   Files f;
   f.dir.write("IN.dat", "7\n");
-  f.files.create_output("A", kLoc);
-  expect_error([&] { f.files.create_output("B", kLoc); }, {"G20", "open already", "A.dat", "G22"});
-  expect_error([&] { f.files.append_output("B", kLoc); }, {"G21", "open already", "A.dat"});
+  f.files.create_output(f.disk, "A", kLoc);
+  expect_error([&] { f.files.create_output(f.disk, "B", kLoc); },
+               {"G20", "open already", "A.dat", "G22"});
+  expect_error([&] { f.files.append_output(f.disk, "B", kLoc); }, {"G21", "open already", "A.dat"});
   EXPECT_FALSE(f.dir.exists("B.dat"));
-  f.files.open_input("IN", kLoc);  // an input beside the output is fine
-  expect_error([&] { f.files.open_input("IN", kLoc); }, {"G23", "open already", "IN.dat", "G24"});
+  f.files.open_input(f.disk, "IN", kLoc);  // an input beside the output is fine
+  expect_error([&] { f.files.open_input(f.disk, "IN", kLoc); },
+               {"G23", "open already", "IN.dat", "G24"});
   f.files.close_all();
   EXPECT_FALSE(f.files.output_open());
   EXPECT_FALSE(f.files.input_open());
@@ -218,17 +220,17 @@ TEST(FmDataFiles, NothingOpenIsALocatedError) {
 
 TEST(FmDataFiles, AMissingInputFileSaysWhereItLooked) {
   Files f;
-  expect_error([&] { f.files.open_input("NOPE", kLoc); }, {"G23", f.dir.path("NOPE.dat")});
+  expect_error([&] { f.files.open_input(f.disk, "NOPE", kLoc); }, {"G23", f.dir.path("NOPE.dat")});
   EXPECT_FALSE(f.files.input_open());
   // A folder named as the file is no data file either.
   std::filesystem::create_directories(f.dir.path("box.dat"));
-  expect_error([&] { f.files.open_input("box", kLoc); }, {"G23", "box.dat"});
-  expect_error([&] { f.files.create_output("box", kLoc); }, {"G20", "box.dat"});
+  expect_error([&] { f.files.open_input(f.disk, "box", kLoc); }, {"G23", "box.dat"});
+  expect_error([&] { f.files.create_output(f.disk, "box", kLoc); }, {"G20", "box.dat"});
 }
 
 TEST(FmDataFiles, G26TakesOneToFiveFiniteValues) {
   Files f;
-  f.files.create_output("V", kLoc);
+  f.files.create_output(f.disk, "V", kLoc);
   expect_error([&] { f.files.write_values(std::vector<double>{}, kLoc); }, {"1 to 5", "not 0"});
   expect_error([&] { f.files.write_values(std::vector<double>(6, 1.0), kLoc); }, {"not 6"});
   expect_error(
@@ -244,13 +246,13 @@ TEST(FmDataFiles, G26TakesOneToFiveFiniteValues) {
 TEST(FmDataFiles, ANameTheResolveRefusesOpensNothing) {
   TempDir dir("fm_reach");
   DiskFileSystem disk;
-  FmDataFiles files(
-      disk, [](const std::string& name, FileAccess access, const SourceLoc& loc) -> std::string {
-        fail(loc,
-             std::string(access == FileAccess::Write ? "may not write " : "may not read ") + name);
-      });
-  expect_error([&] { files.create_output("/etc/x", kLoc); }, {"may not write /etc/x.dat"});
-  expect_error([&] { files.open_input("/etc/passwd", kLoc); }, {"may not read /etc/passwd.dat"});
+  FmDataFiles files([](const std::string& name, FileAccess access,
+                       const SourceLoc& loc) -> std::string {
+    fail(loc, std::string(access == FileAccess::Write ? "may not write " : "may not read ") + name);
+  });
+  expect_error([&] { files.create_output(disk, "/etc/x", kLoc); }, {"may not write /etc/x.dat"});
+  expect_error([&] { files.open_input(disk, "/etc/passwd", kLoc); },
+               {"may not read /etc/passwd.dat"});
   EXPECT_FALSE(files.output_open());
   EXPECT_FALSE(files.input_open());
 }
@@ -260,12 +262,12 @@ TEST(FmDataFiles, ACheckWritesIntoItsSandbox) {
   TempDir dir("fm_sandbox");
   SandboxFileSystem sandbox;
   FmDataFiles files(
-      sandbox, [&](const std::string& n, FileAccess, const SourceLoc&) { return dir.path(n); });
-  files.create_output("S", kLoc);
+      [&](const std::string& n, FileAccess, const SourceLoc&) { return dir.path(n); });
+  files.create_output(sandbox, "S", kLoc);
   files.write_values(std::vector<double>{8, 9}, kLoc);
   files.close_output(kLoc);
   EXPECT_FALSE(dir.exists("S.dat"));
-  files.open_input("S", kLoc);
+  files.open_input(sandbox, "S", kLoc);
   EXPECT_EQ(files.read_values(1.0, 2, kLoc), (std::vector<double>{8, 9}));
 }
 

@@ -1,9 +1,11 @@
 // Friendly Motion's data files, G20-G27: one output file and one input file open at a time,
 // plain text, `.dat` by default (docs/friendlymotion.md, "Data files, scribed text and the
 // display"). The executor evaluates the commands' expressions and hands the values here; this
-// keeps the two files, writes records, and reads values back by record. Files go through the
-// interpreter's FileSystem, so a check writes into its sandbox and a test into a temporary
-// folder; where a name lands (and whether the part file may reach it) the executor decides.
+// keeps the two files, writes records, and reads values back by record. Files are opened
+// through the FileSystem the interpreter uses at that moment (a check's sandbox, a start
+// line's quiet sandbox, the disk; a test's temporary folder), given to each open; an open file
+// stays where it was opened. Where a name lands, and whether the part file may reach it, the
+// executor decides (Resolve).
 #pragma once
 
 #include <cstddef>
@@ -40,17 +42,17 @@ class FmDataFiles {
   // The most values one G26 writes and one G27 reads.
   static constexpr std::size_t kMaxValues = 5;
 
-  FmDataFiles(FileSystem& files, Resolve resolve);
+  explicit FmDataFiles(Resolve resolve);
 
   // G20: creates the output file, emptying one that exists. G21: opens it to append, creating
   // it when missing. Either is an error while an output file is open (G22 closes it).
-  void create_output(std::string_view name, const SourceLoc& loc);
-  void append_output(std::string_view name, const SourceLoc& loc);
+  void create_output(FileSystem& files, std::string_view name, const SourceLoc& loc);
+  void append_output(FileSystem& files, std::string_view name, const SourceLoc& loc);
   // G22. An error when no output file is open.
   void close_output(const SourceLoc& loc);
   // G23: opens the input file, read as it is now; reading starts at its beginning. A missing
   // or unreadable file is an error saying why. An error while an input file is open.
-  void open_input(std::string_view name, const SourceLoc& loc);
+  void open_input(FileSystem& files, std::string_view name, const SourceLoc& loc);
   // G24. An error when no input file is open.
   void close_input(const SourceLoc& loc);
   // The job's end: both files closed, without complaint when none is open.
@@ -81,13 +83,12 @@ class FmDataFiles {
   std::size_t input_column() const;
 
  private:
-  void open_output(std::string_view name, bool append, const SourceLoc& loc);
+  void open_output(FileSystem& files, std::string_view name, bool append, const SourceLoc& loc);
   std::ostream& output(const char* command, const SourceLoc& loc);
   void flushed(const char* command, const SourceLoc& loc);
   const std::vector<std::size_t>& record_starts();
   std::size_t record_of(std::size_t pos);
 
-  FileSystem& files_;
   Resolve resolve_;
   std::shared_ptr<std::ostream> out_;
   std::string out_path_;
