@@ -11,6 +11,7 @@
 #include <iterator>      // istreambuf_iterator
 #include <system_error>  // errc
 
+#include "gantry/core/file_problem.hpp"  // kNoSuchFile
 #include "gantry/interp/file_system.hpp"
 #include "gantry/interp/fm_display.hpp"  // fm_number_text
 
@@ -62,7 +63,7 @@ void FmDataFiles::append_output(FileSystem& files, std::string_view name, const 
 }
 
 void FmDataFiles::close_output(const SourceLoc& loc) {
-  if (!out_) fail(loc, "G22 closes the output file, and none is open (G20 or G21 opens one)");
+  if (!out_) fail(loc, "G22: no output file is open to close (G20 or G21 opens one)");
   out_->flush();
   out_.reset();
   out_path_.clear();
@@ -78,7 +79,9 @@ void FmDataFiles::open_input(FileSystem& files, std::string_view name, const Sou
   const PartFileLookup found = find_part_file(files, path);
   if (!found.error.empty()) fail(loc, fmt::format("G23: {}", found.error));
   if (found.path != path) path = resolve_(found.path, FileAccess::Read, loc);  // may be a link
-  if (const std::string why = files.read_problem(path); !why.empty())
+  if (const std::string why = files.read_problem(path); why == kNoSuchFile)
+    fail(loc, fmt::format("G23: there is no file {}", path));
+  else if (!why.empty())
     fail(loc, fmt::format("G23: cannot read the data file {}: {}", path, why));
   std::shared_ptr<std::istream> in = files.open_read(path);
   if (!in) fail(loc, fmt::format("G23: cannot read the data file {}", path));
@@ -89,7 +92,7 @@ void FmDataFiles::open_input(FileSystem& files, std::string_view name, const Sou
 }
 
 void FmDataFiles::close_input(const SourceLoc& loc) {
-  if (!in_) fail(loc, "G24 closes the input file, and none is open (G23 opens one)");
+  if (!in_) fail(loc, "G24: no input file is open to close (G23 opens one)");
   in_.reset();
   in_path_.clear();
   in_records_.clear();
@@ -106,9 +109,8 @@ void FmDataFiles::close_all() {
 
 std::ostream& FmDataFiles::output(const char* command, const SourceLoc& loc) {
   if (!out_)
-    fail(loc, fmt::format("{} writes to the output file, and none is open (G20 creates one, G21 "
-                          "appends to one)",
-                          command));
+    fail(loc,
+         fmt::format("{}: no output file is open (G20 creates one, G21 appends to one)", command));
   return *out_;
 }
 
@@ -171,7 +173,7 @@ std::size_t FmDataFiles::input_column() const {
 
 std::vector<double> FmDataFiles::read_values(std::optional<double> record, std::size_t count,
                                              const SourceLoc& loc) {
-  if (!in_) fail(loc, "G27 reads from the input file, and none is open (G23 opens one)");
+  if (!in_) fail(loc, "G27: no input file is open (G23 opens one)");
   if (count == 0 || count > kMaxValues)
     fail(loc, fmt::format("G27 reads 1 to {} values, not {}", kMaxValues, count));
   const std::string& t = *in_;

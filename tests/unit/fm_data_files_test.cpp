@@ -210,17 +210,18 @@ TEST(FmDataFiles, OneOutputAndOneInputAtATime) {
 
 TEST(FmDataFiles, NothingOpenIsALocatedError) {
   Files f;
-  expect_error([&] { f.files.close_output(kLoc); }, {"G22", "none is open"});
-  expect_error([&] { f.files.close_input(kLoc); }, {"G24", "none is open"});
-  expect_error([&] { f.files.write_text("X", kLoc); }, {"G25", "none is open"});
+  expect_error([&] { f.files.close_output(kLoc); }, {"G22", "no output file is open"});
+  expect_error([&] { f.files.close_input(kLoc); }, {"G24", "no input file is open"});
+  expect_error([&] { f.files.write_text("X", kLoc); }, {"G25", "no output file is open"});
   expect_error([&] { f.files.write_values(std::vector<double>{1}, kLoc); },
-               {"G26", "none is open"});
-  expect_error([&] { f.files.read_values(1.0, 1, kLoc); }, {"G27", "none is open"});
+               {"G26", "no output file is open"});
+  expect_error([&] { f.files.read_values(1.0, 1, kLoc); }, {"G27", "no input file is open"});
 }
 
 TEST(FmDataFiles, AMissingInputFileSaysWhereItLooked) {
   Files f;
-  expect_error([&] { f.files.open_input(f.disk, "NOPE", kLoc); }, {"G23", f.dir.path("NOPE.dat")});
+  expect_error([&] { f.files.open_input(f.disk, "NOPE", kLoc); },
+               {"G23: there is no file", f.dir.path("NOPE.dat")});
   EXPECT_FALSE(f.files.input_open());
   // A folder named as the file is no data file either.
   std::filesystem::create_directories(f.dir.path("box.dat"));
