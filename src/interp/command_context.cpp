@@ -734,6 +734,10 @@ std::string CommandContext::write_file(const std::string& name, std::string_view
   return path;
 }
 
+FileSystem& CommandContext::file_system() {
+  return *interp_->files_system_;
+}
+
 bool CommandContext::writes_to_disk() const {
   return dynamic_cast<DiskFileSystem*>(interp_->files_system_) != nullptr;
 }

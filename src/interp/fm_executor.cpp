@@ -15,21 +15,24 @@
 #include <vector>
 
 #include "gantry/commands/command_table.hpp"  // home_on_switches: M99
-#include "gantry/commands/stroke_font.hpp"    // G16's characters
 #include "gantry/core/text.hpp"               // ascii::upper, ascii::lower
+#include "gantry/interp/fm_display.hpp"       // G58, G25
+#include "gantry/interp/fm_scribe.hpp"        // G10, G16, G19
 
 namespace gantry {
 namespace {
 
 constexpr double kDeg = M_PI / 180;
 
-std::string four_decimals(double v) {
-  return fmt::format("{:.4f}", v == 0 ? 0.0 : v);
-}
-
 }  // namespace
 
-FmExecutor::FmExecutor(CommandContext& ctx, OperatorIO& io) : ctx_(ctx), io_(io) {
+FmExecutor::FmExecutor(CommandContext& ctx, OperatorIO& io)
+    : ctx_(ctx),
+      io_(io),
+      // A data file's name is found as OPEN's are: in the parts folder, within the reach.
+      data_([&ctx](const std::string& name, FileAccess access, const SourceLoc& loc) {
+        return ctx.reachable_path(name, loc, access);
+      }) {
   reset();
 }
 
@@ -57,18 +60,14 @@ void FmExecutor::reset() {
   v_[87] = (metric_ ? 0.1 * 25.4 : 0.1);
   v_[88] = ctx_.settings().speeds.move.xy * u;
   v_[89] = ctx_.settings().speeds.jog.xy * u;
-  out_path_.reset();
-  out_text_.clear();
-  in_text_.reset();
-  in_pos_ = 0;
+  data_.close_all();
   laser_warned_ = analog_warned_ = false;
 }
 
 void FmExecutor::end_file(const SourceLoc& loc) {
   if (profile_) ctx_.come_to_rest(loc);
   profile_ = false;
-  out_path_.reset();
-  in_text_.reset();
+  data_.close_all();
 }
 
 double FmExecutor::unit() const {
@@ -350,22 +349,21 @@ void FmExecutor::output(int code, const SourceLoc& loc) {
 // ---- text ---------------------------------------------------------------------------------
 
 std::string FmExecutor::show_text(const FmCommand& c) const {
-  std::string out;
+  std::vector<FmDisplayItem> items;
   for (const FmShowItem& item : c.items) {
-    if (!out.empty()) out += ' ';
     switch (item.kind) {
       case FmShowItem::Kind::Text:
-        out += ascii::upper(item.text);
+        items.push_back(FmDisplayItem::quoted(item.text));
         break;
       case FmShowItem::Kind::Variable:
-        out += four_decimals(variable(item.index));
+        items.push_back(FmDisplayItem::value(variable(item.index)));
         break;
       case FmShowItem::Kind::String:
-        out += ascii::upper(strings_[static_cast<size_t>(item.index)]);
+        items.push_back(FmDisplayItem::string(strings_[static_cast<size_t>(item.index)]));
         break;
     }
   }
-  return out;
+  return fm_display_line(items);
 }
 
 // ---- data files ---------------------------------------------------------------------------
@@ -385,137 +383,40 @@ std::string FmExecutor::file_name(const FmCommand& c, const SourceLoc& loc) {
     name = *a;
     if (name.empty()) fail(loc, "no data file name was given");
   }
-  const size_t slash = name.find_last_of("/\\");
-  if (name.find('.', slash == std::string::npos ? 0 : slash + 1) == std::string::npos)
-    name += ".dat";
   return name;
 }
 
-void FmExecutor::write_output(std::string_view text, const SourceLoc& loc) {
-  if (!out_path_) fail(loc, "no output file is open: G20 (create) or G21 (append) opens one");
-  out_text_ += text;
-  ctx_.write_file(*out_path_, out_text_, loc);
-}
-
+// G27: the record and the values from the file, then each destination's index (V1, VV3,
+// V1+2) evaluated in turn, so an index may use a value this G27 has just read.
 void FmExecutor::read_values(const FmCommand& c, const FmLine& line, const SourceLoc& loc) {
-  if (!in_text_) fail(loc, "no input file is open: G23 opens one");
-  const std::string& t = *in_text_;
-  if (c.record >= 0) {
-    const double r = value(line, c.record, loc);
-    if (r != std::trunc(r) || r < 1)
-      fail(loc, fmt::format("record {} does not exist: records (lines) count from 1", r));
-    size_t at = 0;
-    for (long k = 1; k < static_cast<long>(r); ++k) {
-      const size_t nl = t.find('\n', at);
-      if (nl == std::string::npos)
-        fail(loc, fmt::format("{} has no record {}: it has {}", in_path_, r, k));
-      at = nl + 1;
-    }
-    in_pos_ = at;
-  }
-  for (int target_expr : c.list) {
-    const double idx = value(line, target_expr, loc);
+  std::optional<double> record;
+  if (c.record >= 0) record = value(line, c.record, loc);
+  const std::vector<double> got = data_.read_values(record, c.list.size(), loc);
+  for (size_t k = 0; k < got.size(); ++k) {
+    const double idx = value(line, c.list[k], loc);
     if (idx != std::trunc(idx) || idx < 0 || idx > 99)
       fail(loc, fmt::format("G27 reads into V{}, which does not exist", idx));
-    while (in_pos_ < t.size() && std::string_view(" \t\r\n,").find(t[in_pos_]) != std::string::npos)
-      ++in_pos_;
-    if (in_pos_ >= t.size()) fail(loc, fmt::format("G27 read past the end of {}", in_path_));
-    const char* begin = t.c_str() + in_pos_;
-    char* end = nullptr;
-    const double v = std::strtod(begin, &end);
-    if (end == begin) {
-      const size_t stop = t.find_first_of(" \t\r\n,", in_pos_);
-      fail(loc, fmt::format("G27 expected a number in {} and found \"{}\"", in_path_,
-                            t.substr(in_pos_, stop == std::string::npos ? stop : stop - in_pos_)));
-    }
-    in_pos_ += static_cast<size_t>(end - begin);
-    assign(static_cast<int>(idx), v, loc);
+    assign(static_cast<int>(idx), got[k], loc);
   }
 }
 
 // ---- scribing -----------------------------------------------------------------------------
 
-// The text with its one variable put in (%s @0, %i %f %c V73, printf's width and precision).
-std::string fm_scribe_text(std::string_view text, double v73, std::string_view s0,
-                           const SourceLoc& loc) {
-  const size_t pct = text.find('%');
-  if (pct == std::string::npos) return std::string(text);
-  if (text.find('%', pct + 1) != std::string::npos)
-    fail(loc, "only one variable can be put in a G16 text; use one G16 for each");
-  size_t k = pct + 1;
-  const size_t flags = k;
-  while (k < text.size() && std::string_view("-+ 0#").find(text[k]) != std::string_view::npos) ++k;
-  while (k < text.size() && std::isdigit(static_cast<unsigned char>(text[k]))) ++k;
-  if (k < text.size() && text[k] == '.') {
-    ++k;
-    while (k < text.size() && std::isdigit(static_cast<unsigned char>(text[k]))) ++k;
-  }
-  if (k >= text.size())
-    fail(loc, "% in a G16 text is followed by s, i, f or c (with printf's width and precision)");
-  const std::string spec(text.substr(flags, k - flags));
-  const char conv = ascii::lower(text[k]);
-  std::string value;
-  char buf[256];
-  switch (conv) {
-    case 's':
-      value = s0;
-      if (!spec.empty()) {
-        std::snprintf(buf, sizeof buf, ("%" + spec + "s").c_str(), value.c_str());
-        value = buf;
-      }
-      break;
-    case 'i':
-    case 'd':
-      std::snprintf(buf, sizeof buf, ("%" + spec + "lld").c_str(),
-                    static_cast<long long>(std::trunc(v73)));
-      value = buf;
-      break;
-    case 'f':
-      if (spec.empty()) {
-        value = fmt::format("{}", v73);  // the manual's %f prints 66.55, not 66.550000
-      } else {
-        std::snprintf(buf, sizeof buf, ("%" + spec + "f").c_str(), v73);
-        value = buf;
-      }
-      break;
-    case 'c': {
-      const double code = std::trunc(v73);
-      if (code < 32 || code > 126)
-        fail(loc, fmt::format("%c prints the character whose code is V73, {}: not a printable "
-                              "character (32 to 126)",
-                              code));
-      value = std::string(1, static_cast<char>(code));
-      break;
-    }
-    default:
-      fail(loc, fmt::format("%{} is not a G16 variable: %s (@0), %i, %f or %c (V73)", text[k]));
-  }
-  return std::string(text.substr(0, pct)) + value + std::string(text.substr(k + 1));
-}
-
 void FmExecutor::scribe(const FmCommand& c, const SourceLoc& loc) {
   std::string text;
+  SourceLoc text_loc = loc;
   if (c.has_text) {
     text = c.text;
+    if (text_loc.column > 0) text_loc.column += 4;  // after G16"
   } else {
     const std::optional<std::string> a = io_.ask("G16: the text to scribe", "&G16", "", loc);
     if (!a) throw OperatorStop({loc, Severity::Error, "stopped by the operator"});
     text = *a;
+    text_loc.column = 0;  // the operator's answer: no column of the file
   }
-  text = fm_scribe_text(text, v_[73], strings_[0], loc);
-  for (char& ch : text) {
-    if (ch == '_') ch = ' ';
-    if (ch == ')') ch = '\n';
-    if (ch != '\n' && !StrokeFont::glyph(ch))
-      fail(loc, fmt::format("G16 cannot scribe '{}': the font has the printable ASCII "
-                            "characters",
-                            ch));
-  }
-  // 1 (G19) high: capitals are the font's kCapHeight tall, and an H is half as wide as it is
-  // high (the manual's 2:1); lines are 1.5 heights apart.
-  const double h = char_size_ * unit();
-  const double ky = h / StrokeFont::kCapHeight;
-  const double kx = (h / 2) / StrokeFont::glyph('H')->width;
+  // char_size_ is the height in program units; the path is worked in machine units.
+  const FmScribePath path =
+      fm_scribe(text, v_[73], strings_[0], {char_size_ * unit(), 0.5}, text_loc);
   const Vec6 start = ctx_.position();
   const std::vector<int>& wired = ctx_.settings().outputs.aux_bits;
   const bool laser = !dry_run_ && !wired.empty() && wired[0] >= 0;
@@ -523,35 +424,24 @@ void FmExecutor::scribe(const FmCommand& c, const SourceLoc& loc) {
     ctx_.warn(loc,
               "G16: this profile wires no output 1 (M100, the Q-switch gate), so the "
               "characters are traced with the laser off");
-  auto point = [&](double dx, double dy) {
-    const std::array<double, 2> r = rotate(dx, dy);
+  auto point = [&](const FmPoint& d) {
+    const std::array<double, 2> r = rotate(d[0], d[1]);
     Vec6 p = start;
     p[0] += r[0];
     p[1] += r[1];
     return p;
   };
-  double pen_x = 0, pen_y = 0;
-  for (char ch : text) {
-    if (ch == '\n') {
-      pen_x = 0;
-      pen_y -= 1.5 * h;
-      continue;
-    }
-    const StrokeGlyph* g = StrokeFont::glyph(ch);
-    for (const auto& stroke : g->strokes) {
-      line_to(point(pen_x + stroke.front()[0] * kx, pen_y + stroke.front()[1] * ky), loc);
+  for (const std::vector<FmPoint>& stroke : path.strokes) {
+    line_to(point(stroke.front()), loc);
+    after_move(loc);
+    if (laser) ctx_.set_output(1, true, loc);
+    for (size_t k = 1; k < stroke.size(); ++k) {
+      line_to(point(stroke[k]), loc);
       after_move(loc);
-      if (laser) ctx_.set_output(1, true, loc);
-      for (size_t k = 1; k < stroke.size(); ++k) {
-        line_to(point(pen_x + stroke[k][0] * kx, pen_y + stroke[k][1] * ky), loc);
-        after_move(loc);
-      }
-      if (laser) ctx_.set_output(1, false, loc);
     }
-    pen_x += StrokeFont::advance(ch) * kx;
+    if (laser) ctx_.set_output(1, false, loc);
   }
-  // The stage ends where the next character would start.
-  line_to(point(pen_x, pen_y), loc);
+  line_to(point(path.end), loc);  // where the next character would start
   after_move(loc);
 }
 
@@ -581,66 +471,36 @@ void FmExecutor::g_code(const FmCommand& c, const FmLine& line, const SourceLoc&
     case 9:
       profile_ = true;
       return;
-    case 10: {
-      const std::string name = ascii::lower(c.text);
-      if (name != "fontfile.txt" && name != "fontfile")
-        fail(loc, fmt::format("G10\"{}\": the manual does not give the font file's format, so "
-                              "Gantry scribes with its own stroke font (the default "
-                              "fontfile.txt) only",
-                              c.text));
+    case 10:
+      fm_select_font(c.text, loc);
       return;
-    }
     case 16:
       return scribe(c, loc);
     case 19: {
-      const double s = value(line, c.expr, loc);
-      if (!(s > 0)) fail(loc, fmt::format("G19{}: the character size must be above 0", s));
-      char_size_ = s * (metric_ ? 25.4 : 1);
+      char_size_ = fm_character_height(value(line, c.expr, loc), metric_, loc);
       return;
     }
     case 20:
-    case 21: {
-      if (out_path_)
-        fail(loc, fmt::format("an output file is open already ({}); G22 closes it: one output "
-                              "file at a time",
-                              *out_path_));
-      const std::string name = file_name(c, loc);
-      std::string text;
-      if (c.code == 21)
-        if (std::optional<std::string> old = ctx_.read_file(name, loc)) text = std::move(*old);
-      out_text_ = std::move(text);
-      out_path_ = name;
-      ctx_.write_file(name, out_text_, loc);  // created now (G20: emptied)
+      data_.create_output(ctx_.file_system(), file_name(c, loc), loc);
       return;
-    }
+    case 21:
+      data_.append_output(ctx_.file_system(), file_name(c, loc), loc);
+      return;
     case 22:
-      if (!out_path_) fail(loc, "G22 closes the output file, and none is open");
-      out_path_.reset();
+      data_.close_output(loc);
       return;
-    case 23: {
-      if (in_text_)
-        fail(loc, fmt::format("an input file is open already ({}); G24 closes it: one input "
-                              "file at a time",
-                              in_path_));
-      const std::string name = file_name(c, loc);
-      std::string path;
-      std::optional<std::string> text = ctx_.read_file(name, loc, &path);
-      if (!text) fail(loc, fmt::format("G23: there is no file {}", path));
-      in_text_ = std::move(text);
-      in_path_ = name;
-      in_pos_ = 0;
+    case 23:
+      data_.open_input(ctx_.file_system(), file_name(c, loc), loc);
       return;
-    }
     case 24:
-      if (!in_text_) fail(loc, "G24 closes the input file, and none is open");
-      in_text_.reset();
+      data_.close_input(loc);
       return;
     case 25:
-      return write_output(show_text(c) + "\r\n", loc);
+      return data_.write_text(show_text(c), loc);
     case 26: {
-      std::string text;
-      for (int e : c.list) text += (text.empty() ? "" : ",") + four_decimals(value(line, e, loc));
-      return write_output(text + "\r\n", loc);
+      std::vector<double> values;
+      for (int e : c.list) values.push_back(value(line, e, loc));
+      return data_.write_values(values, loc);
     }
     case 27:
       return read_values(c, line, loc);
@@ -772,7 +632,7 @@ void FmExecutor::execute(const FmCommand& c, const FmLine& line, const SourceLoc
       const std::string name = fmt::format("&{}{}", str ? "@" : "V", c.code);
       const std::string prompt = c.has_text ? c.text : fmt::format("{}{}", str ? "@" : "V", c.code);
       const std::optional<std::string> a =
-          io_.ask(prompt, name, str ? "" : four_decimals(variable(c.code)), loc);
+          io_.ask(prompt, name, str ? "" : fm_number_text(variable(c.code)), loc);
       if (!a) throw OperatorStop({loc, Severity::Error, "stopped by the operator"});
       if (str) {
         strings_[static_cast<size_t>(c.code)] = *a;
@@ -786,7 +646,7 @@ void FmExecutor::execute(const FmCommand& c, const FmLine& line, const SourceLoc
       return assign(c.code, v, loc);
     }
     case FmOp::ShowVariable:
-      io_.print(fmt::format("V{}={}\n", c.code, four_decimals(variable(c.code))));
+      io_.print(fmt::format("V{}={}\n", c.code, fm_number_text(variable(c.code))));
       return;
     case FmOp::SetString:
       strings_[static_cast<size_t>(c.code)] = c.text;

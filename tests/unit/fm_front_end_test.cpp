@@ -19,6 +19,7 @@
 #include "gantry/commands/stroke_font.hpp"
 #include "gantry/core/diagnostic_log.hpp"
 #include "gantry/interp/fm_executor.hpp"
+#include "gantry/interp/fm_scribe.hpp"
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/lang/fm.hpp"
 #include "gantry/lang/script.hpp"
@@ -629,16 +630,16 @@ TEST_F(FmTest, RefusedNamedWithWhy) {
 
 TEST(FmScribe, PrintfAsTheManualShowsIt) {  // facts 85, 87-89
   const SourceLoc at;
-  EXPECT_EQ(fm_scribe_text("%f", 66.55, "ABCD", at), "66.55");
-  EXPECT_EQ(fm_scribe_text("%I", 66.55, "ABCD", at), "66");
-  EXPECT_EQ(fm_scribe_text("%c", 66.55, "ABCD", at), "B");
-  EXPECT_EQ(fm_scribe_text("%s", 66.55, "ABCD", at), "ABCD");
-  EXPECT_EQ(fm_scribe_text("%sEFGH", 66.55, "ABCD", at), "ABCDEFGH");
+  EXPECT_EQ(fm_scribe_insert("%f", 66.55, "ABCD", at), "66.55");
+  EXPECT_EQ(fm_scribe_insert("%I", 66.55, "ABCD", at), "66");
+  EXPECT_EQ(fm_scribe_insert("%c", 66.55, "ABCD", at), "B");
+  EXPECT_EQ(fm_scribe_insert("%s", 66.55, "ABCD", at), "ABCD");
+  EXPECT_EQ(fm_scribe_insert("%sEFGH", 66.55, "ABCD", at), "ABCDEFGH");
   // With a width, C's printf (the manual's COUNT=066 is not reproduced: docs).
-  EXPECT_EQ(fm_scribe_text("V73=%6.2f", 66.55, "", at), "V73= 66.55");
-  EXPECT_EQ(fm_scribe_text("COUNT=_%3i", 66.55, "", at), "COUNT=_ 66");
-  EXPECT_EQ(fm_scribe_text("COUNT=_%03i", 66.55, "", at), "COUNT=_066");
-  EXPECT_THROW(fm_scribe_text("%i%f", 1, "", at), GantryError);  // fact 88
+  EXPECT_EQ(fm_scribe_insert("V73=%6.2f", 66.55, "", at), "V73= 66.55");
+  EXPECT_EQ(fm_scribe_insert("COUNT=_%3i", 66.55, "", at), "COUNT=_ 66");
+  EXPECT_EQ(fm_scribe_insert("COUNT=_%03i", 66.55, "", at), "COUNT=_066");
+  EXPECT_THROW(fm_scribe_insert("%i%f", 1, "", at), GantryError);  // fact 88
 }
 
 TEST_F(FmTest, ScribingFollowsTheStrokeFontWithTheLaserOnAlongTheStrokes) {  // facts 84-86, 90

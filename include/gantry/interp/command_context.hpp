@@ -24,6 +24,7 @@ class CommandRecorder;      // gantry/commands/command_recorder.hpp
 class Interpreter;          // gantry/interp/interpreter.hpp
 class Script;               // gantry/lang/script.hpp
 struct InterpreterOptions;  // gantry/interp/interpreter_options.hpp
+class FileSystem;           // gantry/interp/file_system.hpp
 enum class FileAccess;      // gantry/interp/file_reach.hpp
 
 // How long a value command's change lasts: for good, or (VS, VU, VI, VL, SF in a part
@@ -197,6 +198,9 @@ class CommandContext {
   std::string write_file(const std::string& name, std::string_view text, const SourceLoc& loc);
   // Whether write_file writes to the disk now (false: a check, a preview, FG's quiet lines).
   bool writes_to_disk() const;
+  // The files the interpreter reads and writes now (a check's or a start line's sandbox, or
+  // the disk): Friendly Motion's data files open through it.
+  FileSystem& file_system();
   // The text of a file found as write_file finds it (a check sees its own writes); nullopt
   // when it cannot be read. `path` receives where it looked.
   std::optional<std::string> read_file(const std::string& name, const SourceLoc& loc,

@@ -10,16 +10,11 @@
 #include <string_view>
 
 #include "gantry/interp/command_context.hpp"  // CommandContext
+#include "gantry/interp/fm_data_files.hpp"    // FmDataFiles: G20-G27
 #include "gantry/interp/operator_io.hpp"      // OperatorIO
 #include "gantry/lang/fm.hpp"                 // FmLine, FmCommand
 
 namespace gantry {
-
-// G16's text with its one variable put in: %s the string @0 (`s0`), %i and %f V73 (`v73`) as
-// an integer (truncated) or a number (bare %f: shortest, as the manual prints 66.55), %c the
-// character whose code V73 holds; width and precision as C's printf. `_` and `)` stay.
-std::string fm_scribe_text(std::string_view text, double v73, std::string_view s0,
-                           const SourceLoc& loc);
 
 class FmExecutor {
  public:
@@ -60,7 +55,6 @@ class FmExecutor {
   std::string show_text(const FmCommand& c) const;  // G58 / G25
   std::string file_name(const FmCommand& c, const SourceLoc& loc);
   void scribe(const FmCommand& c, const SourceLoc& loc);
-  void write_output(std::string_view text, const SourceLoc& loc);
   void read_values(const FmCommand& c, const FmLine& line, const SourceLoc& loc);
 
   CommandContext& ctx_;
@@ -78,14 +72,7 @@ class FmExecutor {
   std::array<double, 2> origin_{0, 0};
   double theta_ = 0;
   double char_size_ = 1;  // G19: the characters' height in program units
-  // Data files: the output's path and everything written to it (written through whole at each
-  // write, so what a stop leaves on the disk is every record so far); the input's text and
-  // where reading is.
-  std::optional<std::string> out_path_;
-  std::string out_text_;
-  std::optional<std::string> in_text_;
-  std::string in_path_;
-  size_t in_pos_ = 0;
+  FmDataFiles data_;      // G20-G27
   bool laser_warned_ = false;
   bool analog_warned_ = false;
 };
