@@ -418,19 +418,19 @@ class Importer {
     return true;
   }
 
-  void read_ini() {
-    const WincncFile& f = in_.ini;
+  // Each line of an INI file that holds more than a comment, its quotes made plain and what
+  // follows a '[' outside quotes cut (a comment: the manual's "[X Axis]" and "[Group 1]"),
+  // with its place: fn(line, raw, trimmed text).
+  template <class Fn>
+  static void for_each_line(const WincncFile& f, Fn fn) {
     int number = 0;
-    size_t pos = 0;
-    bool first = true;
-    while (pos <= f.text.size()) {
+    for (size_t pos = 0; pos <= f.text.size();) {
       size_t end = f.text.find('\n', pos);
       if (end == std::string::npos) end = f.text.size();
       std::string raw = plain_quotes(std::string_view(f.text).substr(pos, end - pos));
       pos = end + 1;
       ++number;
       if (!raw.empty() && raw.back() == '\r') raw.pop_back();
-      // A '[' outside quotes starts a comment (the manual's "[X Axis]" lines, as its G-code).
       bool quoted = false;
       for (size_t i = 0; i < raw.size(); ++i) {
         if (raw[i] == '"') quoted = !quoted;
@@ -445,13 +445,20 @@ class Importer {
       l.file = &f;
       l.number = number;
       l.column = static_cast<int>(raw.find_first_not_of(" \t")) + 1;
+      fn(std::move(l), raw, text);
+    }
+  }
+
+  void read_ini() {
+    bool first = true;
+    for_each_line(in_.ini, [&](Line l, const std::string& raw, std::string_view text) {
       const size_t eq = raw.find('=');
       if (eq == std::string::npos) {
         error(l, l.column,
               fmt::format("expected keyword=value, as the manual writes every WINCNC.INI line "
                           "(\"{}\")",
                           text));
-        continue;
+        return;
       }
       l.keyword = ascii::lower(ascii::trim(std::string_view(raw).substr(0, eq)));
       const std::string_view rest(raw.c_str() + eq + 1);
@@ -464,15 +471,15 @@ class Importer {
               fmt::format("unknown keyword {}=: the WinCNC manual does not document it; check its "
                           "spelling, or remove the line",
                           l.keyword));
-        continue;
+        return;
       }
       if (l.keyword == "unit" && !first)
         error(l, l.column,
               "unit= must be the first line of WINCNC.INI (the manual, Unit Settings)");
       first = false;
-      if (k->form == Form::Letters && !read_params(l, k->letters)) continue;
+      if (k->form == Form::Letters && !read_params(l, k->letters)) return;
       lines_.push_back(std::move(l));
-    }
+    });
   }
 
   // ---- CNCSCRN.INI: "Type", fields ... ----
@@ -502,36 +509,12 @@ class Importer {
         "frame",       "auxin",     "virtualin", "auxout",       "auxoutex",  "jobcmd",
         "shellcmdbtn", "userbtn",   "rptcmd",    "keypadout",    "menubtn",   "axiscontrol",
         "axislabel",   "rapidmode", "statebtn",  "statebtnex",   "virtinbtn", "virtinbtnex"};
-    const WincncFile& f = *in_.screen;
-    int number = 0;
-    size_t pos = 0;
-    while (pos <= f.text.size()) {
-      size_t end = f.text.find('\n', pos);
-      if (end == std::string::npos) end = f.text.size();
-      std::string raw = plain_quotes(std::string_view(f.text).substr(pos, end - pos));
-      pos = end + 1;
-      ++number;
-      if (!raw.empty() && raw.back() == '\r') raw.pop_back();
-      // A '[' outside quotes starts a comment (the manual's "[Group 1]").
-      bool quoted = false;
-      for (size_t i = 0; i < raw.size(); ++i) {
-        if (raw[i] == '"') quoted = !quoted;
-        if (raw[i] == '[' && !quoted) {
-          raw.resize(i);
-          break;
-        }
-      }
-      const std::string_view text = ascii::trim(raw);
-      if (text.empty()) continue;
-      Line l;
-      l.file = &f;
-      l.number = number;
-      l.column = static_cast<int>(raw.find_first_not_of(" \t")) + 1;
+    for_each_line(*in_.screen, [&](Line l, const std::string&, std::string_view text) {
       if (text.front() != '"') {
         error(l, l.column,
               "expected a record: a quoted type, then its fields, as \"UserBtn\", 5, 5, 50, 25, "
               "0, 0, \"G90\", \"G90\", \"\", -1, -1");
-        continue;
+        return;
       }
       std::vector<std::string> fs = fields(text);
       const std::string type = ascii::lower(fs[0]);
@@ -540,11 +523,11 @@ class Importer {
               fmt::format("unknown record \"{}\": the WinCNC manual's CNCSCRN.INI has no such "
                           "type",
                           fs[0]));
-        continue;
+        return;
       }
       l.keyword = fs[0];
       screen_.push_back({std::move(l), std::move(fs)});
-    }
+    });
   }
 
   // ---- CNC.MAC: NAME = COMMAND [comment] ----
