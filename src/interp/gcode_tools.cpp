@@ -5,7 +5,7 @@
 
 #include <cmath>  // round
 
-#include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
+#include "gantry/core/text_file.hpp"  // read_text_file
 #include "gantry/interp/gcode_executor.hpp"
 #include "gantry/interp/tool_changer.hpp"  // the rack and the sensor
 #include "gcode_words.hpp"
@@ -185,12 +185,10 @@ void GcodeExecutor::tool_data(const Words& w, const SourceLoc& loc) {
   }
   if (w.has('R')) e->diameter = 2 * w.get('R') * length_scale();
   if (!changed.implicit() && ctx_.writes_to_disk()) {
-    const std::string text = changed.text();
-    if (std::string why; !write_file_atomically(changed.path(), text, &why))
+    if (std::string why; !save_tool_table(changed, &why))
       fail(loc, fmt::format("could not write the tool table {} ({}); the previous file and "
                             "tool {}'s offsets are kept",
                             changed.path(), why, p));
-    changed = ToolTable::parse(text, changed.path());
   }
   table = std::move(changed);
 }

@@ -7,7 +7,6 @@
 
 #include <vector>
 
-#include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
 #include "gantry/interp/command_context.hpp"
 #include "gantry/interp/tool_table.hpp"
 #include "gantry/interp/value.hpp"  // format_number
@@ -60,9 +59,7 @@ ToolTable& current_table(CommandContext& ctx, const SourceLoc& loc) {
     if (!table.implicit()) table = ToolTable{};
     return table;
   }
-  const std::optional<std::string> text = read_text_file(path);
-  if (table.path() != path || !text || *text != table.source_text())
-    table = load_tool_table(path, loc);
+  refresh_tool_table(table, path, loc);
   return table;
 }
 
@@ -78,12 +75,10 @@ void length_to_tool_table(CommandContext& ctx, int tool, double length, const So
                           tool, table.path(), format_number(length), tool, tool));
   e->offset[kZ] = length;
   if (!changed.implicit() && ctx.writes_to_disk()) {
-    const std::string out = changed.text();
-    if (std::string why; !write_file_atomically(changed.path(), out, &why))
+    if (std::string why; !save_tool_table(changed, &why))
       fail(loc, fmt::format("could not write tool {}'s measured length ({}) to the tool table "
                             "{} ({}); the previous file is kept",
                             tool, format_number(length), changed.path(), why));
-    changed = ToolTable::parse(out, changed.path());
   }
   table = std::move(changed);
 }

@@ -12,7 +12,7 @@
 #include <cmath>      // isfinite
 
 #include "gantry/core/file_problem.hpp"  // read_problem, kNoSuchFile
-#include "gantry/core/text_file.hpp"     // read_text_file
+#include "gantry/core/text_file.hpp"     // read_text_file, write_file_atomically
 
 namespace gantry {
 namespace {
@@ -222,6 +222,19 @@ ToolTable load_tool_table(const std::string& path, const SourceLoc& need) {
   const std::optional<std::string> text = read_text_file(path);
   if (!text) fail(at, fmt::format("cannot read the tool table {}; check its permissions", path));
   return ToolTable::parse(*text, path);
+}
+
+void refresh_tool_table(ToolTable& table, const std::string& path, const SourceLoc& loc) {
+  const std::optional<std::string> text = read_text_file(path);
+  if (table.path() != path || !text || *text != table.source_text())
+    table = load_tool_table(path, loc);
+}
+
+bool save_tool_table(ToolTable& changed, std::string* why) {
+  const std::string text = changed.text();
+  if (!write_file_atomically(changed.path(), text, why)) return false;
+  changed = ToolTable::parse(text, changed.path());
+  return true;
 }
 
 }  // namespace gantry

@@ -4,7 +4,6 @@
 // writer as G10 L1.
 #include <fmt/format.h>  // messages
 
-#include "gantry/core/text_file.hpp"  // read_text_file, write_file_atomically
 #include "gantry/interp/command_context.hpp"
 #include "gantry/interp/tool_table.hpp"
 #include "gantry/interp/value.hpp"  // format_number
@@ -17,9 +16,7 @@ void cutter_to_tool_table(CommandContext& ctx, double diameter, const SourceLoc&
   if (path.empty() || o.tool == 0) return;  // no file, or the empty spindle: VC only
   ToolTable& table = o.tools;
   // The file as it is now (an editor may have changed it since G-code last read it).
-  const std::optional<std::string> text = read_text_file(path);
-  if (table.path() != path || !text || *text != table.source_text())
-    table = load_tool_table(path, loc);
+  refresh_tool_table(table, path, loc);
   ToolTable changed = table;  // a failed write keeps the file and this table as they were
   ToolEntry* e = changed.change(o.tool);
   if (!e)
@@ -29,12 +26,10 @@ void cutter_to_tool_table(CommandContext& ctx, double diameter, const SourceLoc&
   if (e->diameter == diameter) return;
   e->diameter = diameter;
   if (ctx.writes_to_disk()) {  // a check or a preview changes the table in memory only
-    const std::string out = changed.text();
-    if (std::string why; !write_file_atomically(path, out, &why))
+    if (std::string why; !save_tool_table(changed, &why))
       fail(loc, fmt::format("VC: could not write tool {}'s diameter to the tool table {} ({}); "
                             "the previous file is kept",
                             o.tool, path, why));
-    changed = ToolTable::parse(out, path);
   }
   table = std::move(changed);
 }
@@ -45,15 +40,13 @@ void tool_into_spindle(CommandContext& ctx, int number, const SourceLoc& loc) {
   const std::string& path = ctx.settings().tool_table_path;
   if (path.empty() || number == 0) return;  // no file: the cutter stays VC's
   ToolTable& table = o.tools;
-  const std::optional<std::string> text = read_text_file(path);
-  if (table.path() != path || !text || *text != table.source_text())
-    table = load_tool_table(path, loc);
+  refresh_tool_table(table, path, loc);
   const ToolEntry* e = table.find(number);
   if (!e) {
     ctx.warn(loc, fmt::format("tool {} is not in the tool table {}, so the cutter stays VC's "
                               "({}); add a line T{} P{} D<diameter> for it",
-                              number, path, format_number(ctx.settings().cutter.diameter),
-                              number, number));
+                              number, path, format_number(ctx.settings().cutter.diameter), number,
+                              number));
     return;
   }
   if (e->diameter <= 0 || e->diameter == ctx.settings().cutter.diameter) return;

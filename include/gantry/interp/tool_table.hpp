@@ -79,6 +79,14 @@ std::string format_tool_line(const ToolEntry& t);
 // read (located at `need`, the line that needed the table, when given), or for a bad line.
 ToolTable load_tool_table(const std::string& path, const SourceLoc& need = {});
 
+// `table` as the file at `path` is now: read again when an editor changed it since `table`
+// was read (or it was read from another path); located at `loc` as load_tool_table.
+void refresh_tool_table(ToolTable& table, const std::string& path, const SourceLoc& loc);
+
+// Writes `changed` to its file atomically, then makes it the table as written (re-read from
+// its own text); false with `why` when the write failed, the file and `changed` untouched.
+bool save_tool_table(ToolTable& changed, std::string* why);
+
 class CommandContext;
 // VC changed the cutter's diameter to `diameter`: with a tool table file configured and a tool
 // (not T0) in the spindle, it becomes that tool's D in the file (tool_table_cutter.cpp), the
