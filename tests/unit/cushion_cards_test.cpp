@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -18,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "gantry/hal/limit_filter.hpp"
+#include "gantry/hal/pin_map.hpp"
 #include "gantry/settings/settings.hpp"
 #include "gantry/step/step_generator.hpp"
 #include "gpiod/fake_gpio_lines.hpp"
@@ -118,6 +121,57 @@ PlannedSegment the_move(bool diagonal) {
   return test::segment(vec(0), diagonal ? vec(1.0, 0.5) : vec(1.0), 4, 4, 4, 20);
 }
 
+// ---- the words every card plays ----------------------------------------------------
+
+// Leading edges of channel k's step bit in words[0, n): the steps in them.
+std::int64_t steps_in(const PinMap& pins, int k, const std::vector<std::uint32_t>& words,
+                      std::size_t n, std::uint32_t before) {
+  std::int64_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t m = pins.axes[k].step_mask;
+    if ((words[i] & m) && !(before & m)) count += pins.positive(k, words[i]) ? 1 : -1;
+    before = words[i];
+  }
+  return count;
+}
+
+// A player that sleeps through runs of alike words (the GPIO card's) gets the same words as
+// one that takes every word (the PCI-7200's, the simulated card's), and the steps counted
+// in a cushion cut short are those of the words played.
+TEST(CushionStream, RunsOfAlikeWordsAndACutShortCushionCountAsEveryWord) {
+  const Settings s = default_settings();
+  const PinMap pins = PinMap::from(s.pins);
+  std::array<ChannelMotion, kAxisCount> motion{};
+  motion[0] = {1.0 / 7, true};
+  motion[1] = {1.0 / 13, false};
+  const std::array<std::int64_t, kAxisCount> since{3, 5, 1 << 30, 1 << 30, 1 << 30, 1 << 30};
+  const std::uint32_t word = pins.idle_word() | pins.dir_bits(1, false);
+  const std::vector<std::uint32_t> all = cushion_words(pins, word, motion, since, 40, 2);
+  ASSERT_GT(all.size(), 40u * 7);
+  const CushionStream start(pins, word, motion, since, 40, 2);
+  CushionStream stream = start;
+  std::size_t i = 0;
+  while (!stream.done()) {
+    const std::uint64_t n = stream.alike_ahead();
+    ASSERT_GE(n, 1u);
+    const std::uint32_t w = stream.next();
+    for (std::uint64_t k = 0; k < n; ++k) ASSERT_EQ(all.at(i + k), w) << i + k;
+    stream.skip(n - 1);
+    i += n;
+    EXPECT_EQ(stream.given(), i);
+  }
+  EXPECT_EQ(i, all.size());
+  EXPECT_EQ(stream.steps()[0], 40);
+  EXPECT_EQ(stream.steps()[0], steps_in(pins, 0, all, all.size(), word));
+  EXPECT_EQ(stream.steps()[1], steps_in(pins, 1, all, all.size(), word));
+  EXPECT_NEAR(static_cast<double>(stream.steps()[1]), -40.0 * 7 / 13, 1);
+  for (const std::size_t cut : {std::size_t{0}, std::size_t{1}, all.size() / 3, all.size() - 1})
+    for (int k = 0; k < 2; ++k)
+      EXPECT_EQ(start.steps_in(cut)[k], steps_in(pins, k, all, cut, word)) << cut;
+  // Nothing moving: nothing to play, a dead stop.
+  EXPECT_TRUE(CushionStream(pins, word, {}, since, 40, 2).done());
+}
+
 // ---- the simulated card: the reference -----------------------------------------------
 
 std::string trace_path(const char* name) {
@@ -177,7 +231,7 @@ struct PciRig {
   std::unique_ptr<pci7200::Pci7200Card> card;
 };
 
-PciRig pci_rig(const Settings& s) {
+PciRig pci_rig(const Settings& s, bool dma) {
   std::string error;
   std::optional<pci7200::Pci7200Options> options =
       pci7200_options_for(s, Pci7200OpenOptions{}, &error);
@@ -186,6 +240,7 @@ PciRig pci_rig(const Settings& s) {
   options->limits = {1u << s.inputs.max_bit[0], 1u << s.inputs.max_bit[0]};
   pci7200::EmulatedPci7200Config config;
   config.stepped = true;
+  if (!dma) config.dma_words = 0;  // programmed I/O into the FIFO
   PciRig rig;
   rig.emu = std::make_shared<pci7200::EmulatedPci7200>(config);
   rig.card = std::make_unique<pci7200::Pci7200Card>(rig.emu, *options);
@@ -195,8 +250,8 @@ PciRig pci_rig(const Settings& s) {
 // The move on the PCI-7200: X's max limit switch closes once `at` ticks have played (the
 // feeder samples it at its next pass), or, with `esc` >= 0 and no switch, the operator's
 // E-stop comes then (stop_cushioned from another thread, as the controller's).
-CardRun pci_run(const Settings& s, std::uint64_t at, bool diagonal, int esc = -1) {
-  PciRig rig = pci_rig(s);
+CardRun pci_run(const Settings& s, std::uint64_t at, bool diagonal, int esc = -1, bool dma = true) {
+  PciRig rig = pci_rig(s, dma);
   WriteAhead card(*rig.card);
   card.start(s.card.pacer_hz());
   StepGenerator gen(s, card);
@@ -379,20 +434,23 @@ constexpr std::uint64_t kGpioHit = 3'000;  // the same at 20 kHz
 
 TEST(CushionedStopOnCards, ThePci7200DeceleratesAfterALimitHitAsTheSimulatedCardDoes) {
   const Settings s = pci_settings(100, 0);
-  const CardRun pci = pci_run(s, kPciHit, /*diagonal=*/true);
-  EXPECT_EQ(pci.fault, CardFault::Limit);
-  expect_cushion(s, pci, 100, "PCI-7200");
-  ASSERT_TRUE(pci.cushion);
-  // Y, at half X's rate, makes half X's cushion.
-  EXPECT_NEAR(static_cast<double>(pci.cushion->steps[1]), 50, 1);
-  // The same move on the simulated card, its switch closing at the tick the PCI-7200's
-  // cushion began (after the words already in its FIFO).
-  EXPECT_GE(pci.cushion->from, kPciHit);
-  EXPECT_LE(pci.cushion->from, kPciHit + 64 + 8);  // the pass that saw it, and the FIFO
-  const CardRun sim = sim_limit_at(s, pci.cushion->from, true);
-  EXPECT_EQ(sim.fault, CardFault::Limit);
-  expect_same_as_sim(s, pci, sim, "PCI-7200");
-  EXPECT_EQ(pci.reported, sim.reported);
+  for (const bool dma : {true, false}) {  // the DMA double buffer, and programmed I/O
+    const char* name = dma ? "PCI-7200 (DMA)" : "PCI-7200 (programmed I/O)";
+    const CardRun pci = pci_run(s, kPciHit, /*diagonal=*/true, -1, dma);
+    EXPECT_EQ(pci.fault, CardFault::Limit) << name;
+    expect_cushion(s, pci, 100, name);
+    ASSERT_TRUE(pci.cushion) << name;
+    // Y, at half X's rate, makes half X's cushion.
+    EXPECT_NEAR(static_cast<double>(pci.cushion->steps[1]), 50, 1) << name;
+    // The same move on the simulated card, its switch closing at the tick the PCI-7200's
+    // cushion began (after the words already in its FIFO).
+    EXPECT_GE(pci.cushion->from, kPciHit) << name;
+    EXPECT_LE(pci.cushion->from, kPciHit + 64 + 8) << name;  // the pass that saw it, the FIFO
+    const CardRun sim = sim_limit_at(s, pci.cushion->from, true);
+    EXPECT_EQ(sim.fault, CardFault::Limit);
+    expect_same_as_sim(s, pci, sim, name);
+    EXPECT_EQ(pci.reported, sim.reported) << name;
+  }
 }
 
 TEST(CushionedStopOnCards, TheGpioCardDeceleratesAfterALimitHitAsTheSimulatedCardDoes) {
