@@ -217,9 +217,11 @@ OutputLevels StepGenerator::played_levels() const {
 void StepGenerator::restart() {
   const Steps6 played = played_position();
   placement_.restart(played);
-  log_.restart(played, static_cast<std::int64_t>(card_.ticks_played()));
   faulted_ = false;
   writer_.restart();
+  // From the card's count after it started again: a real card counts from 0 again (the
+  // simulated card goes on), and a log left at the old count found no position after it.
+  log_.restart(played, writer_.cursor());
   segment_end_ = writer_.cursor();
 }
 

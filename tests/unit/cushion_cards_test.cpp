@@ -21,6 +21,9 @@
 
 #include "gantry/hal/limit_filter.hpp"
 #include "gantry/hal/pin_map.hpp"
+#include "gantry/interp/operator_io.hpp"
+#include "gantry/lang/script.hpp"
+#include "gantry/machine/controller.hpp"
 #include "gantry/settings/settings.hpp"
 #include "gantry/step/step_generator.hpp"
 #include "gpiod/fake_gpio_lines.hpp"
@@ -519,6 +522,39 @@ TEST(CushionedStopOnCards, WithoutACushionBothCardsStillStopDead) {
     EXPECT_LT(gpio.ticks, kGpioHit + 20);
     EXPECT_LE(count_from(p.x, kGpioHit), 4);
   }
+}
+
+// The live machine on the GPIO card: a run into X's limit switch ends stopped with the
+// switch named and the cushion said, and the position the controller reports is the pulses
+// the lines made, the cushion's included.
+TEST(CushionedStopOnCards, TheControllerReportsWhereTheGpioCardsCushionLeftTheTool) {
+  Settings s = gpio_settings();
+  s.limits.cushion_steps = 50;
+  // No E-stop or stop switch line on the fake card: they read 0, which is inactive so.
+  s.inputs.estop_active_low = false;
+  s.switches.stop_normally_open = true;
+  const GpioMap map = gpio_map(s);  // the whole run queued, then played at the end (drain)
+  auto lines = std::make_unique<FakeGpioLines>(map);
+  FakeGpioLines& fake = *lines;
+  GpiodCard card(map, std::move(lines), std::make_unique<VirtualClock>());
+  fake.set_tick_source([&] { return card.line_tick(); });
+  fake.set_input(4, 1, 6'000);  // 0.3 s in
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{s, card, io, store};
+  const Outcome o = c.run(Script::from_text("MX, 3\n", "part.sbp"));
+  ASSERT_TRUE(o) << o.reason;
+  c.wait();
+  const ControllerStatus st = c.status();
+  EXPECT_NE(st.state, MachineState::Idle);
+  EXPECT_NE(st.message.find("X high limit switch"), std::string::npos) << st.message;
+  EXPECT_NE(st.message.find("cushioned: 50 more steps"), std::string::npos) << st.message;
+  // The switch closes at an input sample (every 20 ticks from the stream's first): the
+  // cushion's steps are X's last.
+  const Pulses p = pulses(s, trace_of_lines(map, fake.changes()));
+  EXPECT_EQ(count_from(p.x, 6'000), 50);
+  EXPECT_EQ(st.steps[0], count(p.x));
+  EXPECT_GT(st.steps[0], 50);
 }
 
 }  // namespace
