@@ -221,10 +221,12 @@ void Pci7200Card::pass() {
       }
     }
   const Phase phase = phase_.load(std::memory_order_acquire);
-  if (const int steps = esc_request_.exchange(0, std::memory_order_acq_rel); steps > 0) {
-    // The operator's E-stop with limits.esc_steps: a cushion, or (nothing moving, output
-    // not running) nothing, and the caller stops the card.
-    if (phase != Phase::Running || cushioning_ || !begin_cushion(steps, CardFault::None))
+  // The operator's E-stop with limits.esc_steps: a cushion, or (nothing moving, output not
+  // running) nothing, and the caller stops the card. A limit's cushion under way plays out
+  // first, and its fault stands; the caller waits for it.
+  if (const int steps = esc_request_.exchange(0, std::memory_order_acq_rel);
+      steps > 0 && !cushioning_) {
+    if (phase != Phase::Running || !begin_cushion(steps, CardFault::None))
       esc_busy_.store(false, std::memory_order_release);
     else
       output_.feed(*this);
