@@ -51,6 +51,9 @@ struct GpioMap {
   // When a limit bit trips the card: the profile's [limits] (travel_only, debounce in input
   // samples), the rule every card applies; default: any limit bit as it becomes active.
   LimitFilter limit_rule;
+  // The cushioned stop (limits.cushion_steps after a limit trip, and the words' pins and
+  // pulse width for limits.esc_steps too); default: a dead stop.
+  CushionRule cushion;
 
   double input_sample_hz = 1'000;     // inputs are read every pacer_hz / input_sample_hz ticks
   double late_tolerance_ticks = 0.5;  // a tick played later than this counts as late

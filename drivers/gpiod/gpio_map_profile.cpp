@@ -22,6 +22,7 @@ void apply_profile(GpioMap& map, const Settings& settings) {
   map.active_low_bits = (roles.estop.mask & ~roles.estop.active_high) |
                         (roles.limits.mask & ~roles.limits.active_high);
   map.limit_rule = LimitFilter(settings, map.pacer_hz);
+  map.cushion = CushionRule(settings);
 }
 
 }  // namespace gantry

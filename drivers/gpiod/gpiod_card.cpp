@@ -117,6 +117,16 @@ void GpiodCard::stop(std::uint32_t idle_word) {
   player_.output(idle_word);  // the thread has ended: the lines are this thread's now
 }
 
+void GpiodCard::stop_cushioned(std::uint32_t idle_word, int steps) {
+  if (steps > 0 && running_ && pacing_ && player_.fault() == CardFault::None) {
+    player_.request_cushion(steps);
+    // The player ends the stream once the cushion has played (or at once: nothing moved).
+    while (running_ && pacing_ && !stop_requested_ && player_.fault() == CardFault::None)
+      std::this_thread::sleep_for(kDrainPoll);
+  }
+  stop(idle_word);
+}
+
 void GpiodCard::halt_player() {
   stop_requested_ = true;
   clock_->interrupt();
@@ -156,7 +166,10 @@ bool GpiodCard::play_stream() {
     const std::uint64_t tick = player_.next_event_tick();
     const std::int64_t due = schedule.deadline(tick - first_tick);
     clock_->sleep_until_ns(due);
-    if (stop_requested_) break;
+    if (stop_requested_) {
+      player_.leave_stream();  // a cushion cut short counts what it played
+      break;
+    }
     const std::int64_t late_ns = clock_->now_ns() - due;
     const auto outcome = player_.play_through(tick, late_ns, drain_requested_);
     if (outcome == TickPlayer::Outcome::Played) continue;

@@ -41,6 +41,11 @@ class GpiodCard : public Card {
   void write(std::span<const std::uint32_t> words) override;
   void drain() override;
   void stop(std::uint32_t idle_word) override;
+  // limits.esc_steps: the player thread plays the cushion (CushionStream) from its next tick
+  // (within one input sample, as it wakes at least that often), then this stops as stop()
+  // does. A stream not playing stops at once.
+  void stop_cushioned(std::uint32_t idle_word, int steps) override;
+  std::optional<CushionPlayed> cushion_played() const override { return player_.cushion_played(); }
   std::uint64_t ticks_played() const override { return player_.ticks_played(); }
   std::uint32_t inputs() const override { return player_.inputs(); }
   CardFault fault() const override { return player_.fault(); }
@@ -60,6 +65,7 @@ class GpiodCard : public Card {
   std::uint64_t late_ticks() const { return player_.late_ticks(); }
   std::int64_t worst_late_ns() const { return player_.worst_late_ns(); }
   std::size_t queued_words() const { return ring_.size(); }
+  std::uint64_t line_tick() const { return player_.line_tick(); }  // TickPlayer::line_tick
   // Why start() refused or what failed on a Hardware fault; empty otherwise.
   std::string error() const;
   // What real-time set-up the player thread got (after start(), with map.realtime).

@@ -70,7 +70,8 @@ TickPlayer::TickPlayer(const GpioMap& map, GpioLines& lines, WordRing& ring)
       ring_(ring),
       map_(map),
       current_word_(map.initial_word),
-      limit_rule_(map.limit_rule) {
+      limit_rule_(map.limit_rule),
+      trail_(map.cushion.pins, 2) {
   for (std::size_t i = 0; i < map.outputs.size() && i < 64; ++i) {
     lines_of_bit_[map.outputs[i].bit] |= std::uint64_t{1} << i;
     mapped_bits_ |= 1u << map.outputs[i].bit;
@@ -87,7 +88,13 @@ void TickPlayer::reset(double pacer_hz) {
   late_tolerance_ns_ = std::llround(map_.late_tolerance_ticks * 1e9 / pacer_hz);
   next_sample_tick_ = 0;
   limit_rule_.reset();
+  tick_s_ = 1.0 / pacer_hz;
+  trail_.reset(current_word_);
+  cushioning_ = false;
+  esc_request_.store(0, std::memory_order_relaxed);
+  cushion_ready_.store(false, std::memory_order_release);
   ticks_played_.store(0, std::memory_order_release);
+  line_tick_.store(0, std::memory_order_release);
   fault_.store(CardFault::None, std::memory_order_release);
   late_ticks_.store(0, std::memory_order_relaxed);
   worst_late_ns_.store(0, std::memory_order_relaxed);
@@ -101,6 +108,21 @@ void TickPlayer::begin_stream() {
 }
 
 std::uint64_t TickPlayer::next_event_tick() const {
+  if (cushioning_) {
+    // The cushion's first word unlike the lines (runs of alike words are skipped whole),
+    // or the next sample, or its end.
+    CushionStream peek = cushion_;
+    std::uint64_t tick = cushion_from_ + peek.given();
+    while (!peek.done() && tick < next_sample_tick_) {
+      const std::uint64_t n = peek.alike_ahead();
+      if ((peek.next() ^ current_word_) & mapped_bits_) break;
+      peek.skip(n - 1);
+      tick += n;
+    }
+    return std::min(tick, next_sample_tick_);
+  }
+  if (esc_request_.load(std::memory_order_acquire) != 0)
+    return ticks_played_.load(std::memory_order_relaxed);  // at once
   const std::uint64_t tick = ticks_played_.load(std::memory_order_relaxed);
   // The scan stops at the next sample tick, so it never reads more than sample_every_ words.
   const std::uint64_t horizon =
@@ -112,9 +134,17 @@ std::uint64_t TickPlayer::next_event_tick() const {
 
 TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t late_ns,
                                              bool stream_may_end) {
+  if (cushioning_) return play_cushion(tick, late_ns);
   // The words before `tick` equal the current output on every mapped bit: nothing to drive.
   ring_.drop(tick - ticks_played_.load(std::memory_order_relaxed));
   ticks_played_.store(tick, std::memory_order_release);
+  line_tick_.store(tick, std::memory_order_release);
+
+  // The operator's E-stop with limits.esc_steps: the cushion from this tick on.
+  if (const int steps = esc_request_.exchange(0, std::memory_order_acq_rel); steps > 0) {
+    if (!begin_cushion(tick, steps, CardFault::None)) return Outcome::Stopped;
+    return play_cushion(tick, late_ns);
+  }
 
   // Inputs first: a tick that finds the E-stop active plays nothing more.
   if (tick == next_sample_tick_) {
@@ -132,6 +162,10 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
     const bool closed = limit_rule_.sample(limits, tick, last_sample_, bits);
     last_sample_ = bits;
     if (closed) {
+      // limits.cushion_steps: the cushion first (the word at this tick is not played),
+      // the fault once it has played.
+      if (begin_cushion(tick, map_.cushion.limit_steps, CardFault::Limit))
+        return play_cushion(tick, late_ns);
       fail(CardFault::Limit);
       return Outcome::Faulted;
     }
@@ -144,15 +178,89 @@ TickPlayer::Outcome TickPlayer::play_through(std::uint64_t tick, std::int64_t la
   }
   const std::uint32_t word = ring_.peek(0);
   limit_rule_.note_word(tick, current_word_, word);  // the steps, for travel_only
+  trail_.note_word(tick, current_word_, word);       // and for a cushion's rates
   if (!write_word(word)) return Outcome::Faulted;
   ring_.drop(1);
 
+  count_late(late_ns);
+  ticks_played_.store(tick + 1, std::memory_order_release);
+  return Outcome::Played;
+}
+
+void TickPlayer::count_late(std::int64_t late_ns) {
   worst_late_ns_.store(std::max(worst_late_ns_.load(std::memory_order_relaxed), late_ns),
                        std::memory_order_relaxed);
   if (late_ns > late_tolerance_ns_)
     late_ticks_.store(late_ticks_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
-  ticks_played_.store(tick + 1, std::memory_order_release);
-  return Outcome::Played;
+}
+
+// Each channel's rate from its last two steps played, decelerating from the word on the
+// lines (docs/hardware.md, "Cushioned stop"). False when nothing moves: a dead stop.
+bool TickPlayer::begin_cushion(std::uint64_t tick, int steps, CardFault fault) {
+  if (steps <= 0) return false;
+  std::array<ChannelMotion, kAxisCount> motion{};
+  std::array<std::int64_t, kAxisCount> since{};
+  trail_.motion_at(tick, tick_s_, motion, since);
+  cushion_ = CushionStream(map_.cushion.pins, current_word_, motion, since, steps,
+                           map_.cushion.pulse_ticks);
+  if (cushion_.done()) return false;
+  cushion_start_ = cushion_;
+  cushion_from_ = tick;
+  cushion_fault_ = fault;
+  cushioning_ = true;
+  ring_.drop(ring_.available());  // the words written are not played now
+  return true;
+}
+
+TickPlayer::Outcome TickPlayer::play_cushion(std::uint64_t tick, std::int64_t late_ns) {
+  // The words before `tick` are like the lines (next_event_tick): nothing to drive.
+  const std::uint64_t at = tick - cushion_from_;
+  while (cushion_.given() < at && !cushion_.done())
+    cushion_.skip(std::min<std::uint64_t>(cushion_.alike_ahead(), at - cushion_.given()));
+  ring_.drop(ring_.available());  // words written meanwhile are dropped, never played
+  line_tick_.store(tick, std::memory_order_release);
+  if (tick == next_sample_tick_) {  // the E-stop input still stops dead
+    if (!read_inputs()) {
+      end_cushion(tick, CardFault::Hardware);
+      return Outcome::Faulted;
+    }
+    next_sample_tick_ += sample_every_;
+    const std::uint32_t bits = inputs_.load(std::memory_order_relaxed);
+    sample_watch(tick, bits);
+    last_sample_ = bits;
+    if (unpack(estop_trip_.load(std::memory_order_acquire)).tripped(bits)) {
+      end_cushion(tick, CardFault::EStop);
+      return Outcome::Faulted;
+    }
+  }
+  if (!cushion_.done()) {
+    const std::uint32_t word = cushion_.next();
+    if (!write_word(word)) {
+      end_cushion(tick, CardFault::Hardware);  // hardware_fault() has set the fault
+      return Outcome::Faulted;
+    }
+    count_late(late_ns);
+    if (!cushion_.done()) return Outcome::Played;
+  }
+  const CardFault fault = cushion_fault_;
+  end_cushion(cushion_from_ + cushion_.given(), fault);
+  return fault == CardFault::None ? Outcome::Stopped : Outcome::Faulted;
+}
+
+// The cushion's words up to `end_tick` played: published before the ticks, and both before
+// the fault, so that whoever sees the fault finds where the tool is.
+void TickPlayer::end_cushion(std::uint64_t end_tick, CardFault fault) {
+  const std::uint64_t words = end_tick - cushion_from_;
+  cushion_result_ = {cushion_from_,
+                     words == cushion_.given() ? cushion_.steps() : cushion_start_.steps_in(words)};
+  cushion_ready_.store(true, std::memory_order_release);
+  cushioning_ = false;
+  ticks_played_.store(end_tick, std::memory_order_release);
+  if (fault != CardFault::None && this->fault() == CardFault::None) fail(fault);
+}
+
+void TickPlayer::leave_stream() {
+  if (cushioning_) end_cushion(cushion_from_ + cushion_.given(), CardFault::None);
 }
 
 bool TickPlayer::sample_inputs() {

@@ -30,11 +30,27 @@ class TickPlayer {
   // ticks before it repeat the current output, so the thread sleeps through them.
   std::uint64_t next_event_tick() const;
 
-  enum class Outcome { Played, StreamEnded, Faulted };
+  // Stopped: a cushioned stop asked for by request_cushion() has played (or nothing moved);
+  // the card stops as asked, without a fault.
+  enum class Outcome { Played, StreamEnded, Faulted, Stopped };
   // Plays through `tick` (from next_event_tick()), `late_ns` after its deadline. With no
   // word for `tick`, the stream ends when `stream_may_end` (drain() was called) and the
   // card underruns otherwise. Real-time path: no allocation, no locks.
+  // A limit trip with map.cushion.limit_steps, or a request_cushion(), plays the cushioned
+  // stop's words (CushionStream) from that tick instead of the queue's; ticks_played() stays
+  // at the cushion's first tick until it has played, then counts its words, cushion_played()
+  // says what it was, and only then does a limit trip fault the card.
   Outcome play_through(std::uint64_t tick, std::int64_t late_ns, bool stream_may_end);
+  // From any thread: the next tick played begins a cushion of `steps` (limits.esc_steps)
+  // and the stream stops after it (Outcome::Stopped).
+  void request_cushion(int steps) { esc_request_.store(steps, std::memory_order_release); }
+  // The player leaves a stream before its end (the card stops it): a cushion under way
+  // counts the words it played.
+  void leave_stream();
+  std::optional<CushionPlayed> cushion_played() const {
+    if (!cushion_ready_.load(std::memory_order_acquire)) return std::nullopt;
+    return cushion_result_;
+  }
 
   // Outside a stream only (the thread idle, or stopped): read the inputs now; drive the
   // lines to `word` now. False (with a Hardware fault) on a device error.
@@ -52,6 +68,9 @@ class TickPlayer {
   std::optional<InputEdge> watch_fired() const;
 
   std::uint64_t ticks_played() const { return ticks_played_.load(std::memory_order_acquire); }
+  // The tick whose word the lines were last driven for: ticks_played()'s, and a cushion's
+  // own ticks while ticks_played() waits at its start.
+  std::uint64_t line_tick() const { return line_tick_.load(std::memory_order_acquire); }
   std::uint32_t inputs() const { return inputs_.load(std::memory_order_acquire); }
   CardFault fault() const { return fault_.load(std::memory_order_acquire); }
   std::uint64_t late_ticks() const { return late_ticks_.load(std::memory_order_relaxed); }
@@ -81,7 +100,23 @@ class TickPlayer {
   std::uint32_t last_sample_ = 0;  // the inputs at the sample before
   LimitFilter limit_rule_;         // the map's: the player's own copy
 
+  // The cushioned stop (the player's, but for the request and the published result).
+  bool begin_cushion(std::uint64_t tick, int steps, CardFault fault);
+  Outcome play_cushion(std::uint64_t tick, std::int64_t late_ns);
+  void end_cushion(std::uint64_t end_tick, CardFault fault);
+  void count_late(std::int64_t late_ns);
+  StepTrail trail_;  // each channel's last two steps, from the words played
+  double tick_s_ = 0;
+  bool cushioning_ = false;
+  CushionStream cushion_, cushion_start_;  // the words to come; as it began
+  std::uint64_t cushion_from_ = 0;
+  CardFault cushion_fault_ = CardFault::None;
+  std::atomic<int> esc_request_{0};
+  CushionPlayed cushion_result_;  // written before cushion_ready_
+  std::atomic<bool> cushion_ready_{false};
+
   std::atomic<std::uint64_t> ticks_played_{0};
+  std::atomic<std::uint64_t> line_tick_{0};
   std::atomic<std::uint32_t> inputs_{0};
   std::atomic<std::uint64_t> estop_trip_{0}, limit_trip_{0};  // mask << 32 | active_high
   void sample_watch(std::uint64_t tick, std::uint32_t bits);  // the player, at a sample

@@ -58,6 +58,7 @@ std::optional<pci7200::Pci7200Options> pci7200_options_for(const Settings& setti
   out.estop = roles.estop;
   out.limits = roles.limits;
   out.limit_rule = LimitFilter(settings, card.pacer_hz());
+  out.cushion = CushionRule(settings);  // played by the feeder thread
   return out;
 }
 

@@ -19,6 +19,13 @@ constexpr std::size_t kPioPrimeWords = 64;
 
 Pci7200Card::Pci7200Card(std::shared_ptr<Pci7200Bus> bus, Pci7200Options options)
     : bus_(std::move(bus)), options_(options), ring_(options.ring_words), output_(*bus_) {
+  // The feeder takes words up to two DMA halves (PIO: the FIFO) before they play: the trail
+  // keeps a step of every two words of that, so a cushion finds the steps before its start.
+  trail_ = StepTrail(options_.cushion.pins,
+                     (output_.uses_dma() ? output_.half_words() : amcc::kFifoWords) + 8,
+                     options_.charge_pump_bit >= 0 && options_.charge_pump_bit < 32
+                         ? 1u << options_.charge_pump_bit
+                         : 0u);
   {
     // Whatever the card was doing (a previous run that crashed), it stops here.
     std::lock_guard lock(hardware_);
@@ -86,6 +93,11 @@ void Pci7200Card::start(double pacer_hz) {
   }
   stream_position_ = 0;
   options_.limit_rule.reset();
+  trail_.reset(last_taken_);
+  cushioning_ = false;
+  esc_request_.store(0, std::memory_order_relaxed);
+  esc_busy_.store(false, std::memory_order_relaxed);
+  cushion_ready_.store(false, std::memory_order_release);
   const std::size_t prime = options_.prime_words > 0 ? options_.prime_words
                             : output_.uses_dma()     ? output_.half_words()
                                                      : kPioPrimeWords;
@@ -124,12 +136,31 @@ void Pci7200Card::stop(std::uint32_t idle_word) {
   phase_.store(Phase::Idle, std::memory_order_release);
 }
 
+void Pci7200Card::stop_cushioned(std::uint32_t idle_word, int steps) {
+  if (steps > 0 && phase_.load(std::memory_order_acquire) == Phase::Running) {
+    esc_busy_.store(true, std::memory_order_release);
+    esc_request_.store(steps, std::memory_order_release);
+    while (esc_busy_.load(std::memory_order_acquire) && active())
+      std::this_thread::sleep_for(kProducerWait);
+  }
+  stop(idle_word);
+}
+
 std::size_t Pci7200Card::take(std::span<std::uint32_t> out) {
+  if (cushioning_) {  // the cushion's words, in place of the queue's
+    std::size_t n = 0;
+    while (n < out.size() && !cushion_.done()) out[n++] = cushion_.next();
+    pump_.stamp(out.first(n), stream_position_);
+    stream_position_ += n;
+    return n;
+  }
   const std::size_t n = ring_.pop(out);
   pump_.stamp(out.first(n), stream_position_);
   for (std::size_t i = 0; i < n; ++i) {  // the steps, for limits.travel_only: at their ticks
-    if (out[i] != last_taken_)
+    if (out[i] != last_taken_) {
       options_.limit_rule.note_word(stream_position_ + i, last_taken_, out[i]);
+      trail_.note_word(stream_position_ + i, last_taken_, out[i]);  // a cushion's rates
+    }
     last_taken_ = out[i];
   }
   stream_position_ += n;
@@ -190,6 +221,17 @@ void Pci7200Card::pass() {
       }
     }
   const Phase phase = phase_.load(std::memory_order_acquire);
+  // The operator's E-stop with limits.esc_steps: a cushion, or (nothing moving, output not
+  // running) nothing, and the caller stops the card. A limit's cushion under way plays out
+  // first, and its fault stands; the caller waits for it.
+  if (const int steps = esc_request_.exchange(0, std::memory_order_acq_rel);
+      steps > 0 && !cushioning_) {
+    if (phase != Phase::Running || !begin_cushion(steps, CardFault::None))
+      esc_busy_.store(false, std::memory_order_release);
+    else
+      output_.feed(*this);
+    return;
+  }
   switch (phase) {
     case Phase::Idle:
     case Phase::Faulted:
@@ -219,8 +261,14 @@ void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, bool limit_close
   const FeederSnapshot s = output_.poll();
   const std::uint64_t into_card = output_.words_into_card();
   if (s.device_lost || s.dma_error) return trip(CardFault::Hardware, false);
-  if (options_.estop.tripped(inputs)) return trip(CardFault::EStop, true);
-  if (limit_closed) return trip(CardFault::Limit, true);
+  if (options_.estop.tripped(inputs)) return trip(CardFault::EStop, true);  // even a cushion
+  if (cushioning_) return run_cushion(s);
+  if (limit_closed) {
+    // limits.cushion_steps: the cushion first, the fault once it has played.
+    if (phase == Phase::Running && begin_cushion(options_.cushion.limit_steps, CardFault::Limit))
+      return output_.feed(*this);
+    return trip(CardFault::Limit, true);
+  }
 
   // The card flags a pacer tick that found its FIFO empty.
   const bool underran = (bus_->read32(Bar::Card, card::kDioCsr) & card::kDioDoUnderrun) != 0;
@@ -298,13 +346,13 @@ void Pci7200Card::halt_output(bool play_out) {
                 i8254::control_word(i8254::kPacerCounter, i8254::kPacerMode));
   bus_->write32(Bar::Card, card::kDioCsr, card::kDioDoUnderrun);
   const std::uint64_t into_card = output_.words_into_card();
-  if (empty) {
-    ticks_.store(into_card, std::memory_order_release);
-  } else {
+  std::uint64_t ticks = into_card;
+  if (!empty) {
     const std::uint64_t lower = into_card - std::min<std::uint64_t>(into_card, amcc::kFifoWords);
-    ticks_.store(std::max(lower, ticks_.load(std::memory_order_relaxed)),
-                 std::memory_order_release);
+    ticks = std::max(lower, ticks_.load(std::memory_order_relaxed));
   }
+  if (cushioning_) end_cushion(ticks);  // counted before the ticks (and any fault) show
+  ticks_.store(ticks, std::memory_order_release);
   bus_->write32(Bar::Amcc, amcc::kMcsr, amcc::kMcsrP2aFifoReset | amcc::kMcsrReadPriority);
   bus_->write32(Bar::Amcc, amcc::kMcsr, amcc::kMcsrReadPriority);
 }
@@ -314,6 +362,56 @@ void Pci7200Card::trip(CardFault fault, bool play_out) {
   ring_.clear();
   fault_.store(fault, std::memory_order_release);
   phase_.store(Phase::Faulted, std::memory_order_release);
+}
+
+// The words already in the card play first; the cushion decelerates from the last of them,
+// each channel's rate from its last two steps before it (the trail).
+bool Pci7200Card::begin_cushion(int steps, CardFault fault) {
+  if (steps <= 0) return false;
+  auto plan = [&](std::uint64_t from) {
+    std::array<ChannelMotion, kAxisCount> motion{};
+    std::array<std::int64_t, kAxisCount> since{};
+    trail_.motion_at(from, tick_seconds_, motion, since);
+    cushion_ = CushionStream(options_.cushion.pins, trail_.word_before(from), motion, since, steps,
+                             options_.cushion.pulse_ticks);
+    return !cushion_.done();
+  };
+  if (!plan(output_.words_into_card())) return false;  // nothing moves: transfers untouched
+  output_.stop_transfers();                            // no more of the queue's words
+  const std::uint64_t from = output_.words_into_card();
+  if (!plan(from)) {  // came to rest meanwhile: the stream's end plays out as a dead stop
+    ring_.clear();
+    return false;
+  }
+  cushion_start_ = cushion_;
+  cushion_from_ = from;
+  cushion_fault_ = fault;
+  cushioning_ = true;
+  stream_position_ = from;  // the charge pump's phase goes on from the words played
+  ring_.clear();
+  return true;
+}
+
+// While the cushion plays: a pacer tick that finds the FIFO empty only holds the lines a
+// tick longer (the words and their steps are the same), so underruns are not faults here.
+void Pci7200Card::run_cushion(const FeederSnapshot& s) {
+  ring_.clear();  // words written meanwhile are dropped, never played
+  if (s.fifo_empty && !s.in_flight && !s.words_staged && cushion_.done()) {
+    if (cushion_fault_ != CardFault::None) return trip(cushion_fault_, false);
+    halt_output(false);
+    phase_.store(Phase::Idle, std::memory_order_release);
+    esc_busy_.store(false, std::memory_order_release);
+    return;
+  }
+  output_.feed(*this);
+}
+
+void Pci7200Card::end_cushion(std::uint64_t ticks) {
+  const std::uint64_t words = ticks > cushion_from_ ? ticks - cushion_from_ : 0;
+  cushion_result_ = {cushion_from_,
+                     words == cushion_.given() ? cushion_.steps() : cushion_start_.steps_in(words)};
+  cushion_ready_.store(true, std::memory_order_release);
+  cushioning_ = false;
 }
 
 bool Pci7200Card::active() const {

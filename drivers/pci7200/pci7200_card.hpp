@@ -35,6 +35,9 @@ struct Pci7200Options {
   // The profile's [limits] (travel_only, debounce in input samples: one a feeder pass), the
   // rule every card applies; default: any limit bit as it becomes active.
   LimitFilter limit_rule;
+  // The cushioned stop (limits.cushion_steps after a limit trip; the pins and pulse width
+  // for limits.esc_steps too); default: a dead stop.
+  CushionRule cushion;
   RealtimeRequest realtime;     // for the feeder thread
 };
 
@@ -56,6 +59,14 @@ class Pci7200Card : public Card, private WordSource {
   // The words already inside the card's FIFO (at most 8) play out first, so that
   // ticks_played() is exact and no pulse is cut; then the pacer halts.
   void stop(std::uint32_t idle_word) override;
+  // limits.esc_steps: the feeder's next pass stops taking the queue's words and feeds the
+  // cushion (CushionStream) after the words already in the card; once it has played, this
+  // stops as stop() does. Output not running stops at once.
+  void stop_cushioned(std::uint32_t idle_word, int steps) override;
+  std::optional<CushionPlayed> cushion_played() const override {
+    if (!cushion_ready_.load(std::memory_order_acquire)) return std::nullopt;
+    return cushion_result_;
+  }
   // Exact once output has stopped (drained, stopped, underrun); while words play it may lag
   // by up to the FIFO depth.
   std::uint64_t ticks_played() const override { return ticks_.load(std::memory_order_acquire); }
@@ -94,6 +105,12 @@ class Pci7200Card : public Card, private WordSource {
   void begin_output();
   void halt_output(bool play_out);
   void trip(CardFault fault, bool play_out);
+  // The cushioned stop, in the feeder's pass: begun after the words already in the card
+  // (false, and nothing changed, when nothing moves), fed as the stream's words were, and
+  // counted when output halts (halt_output).
+  bool begin_cushion(int steps, CardFault fault);
+  void run_cushion(const FeederSnapshot& s);
+  void end_cushion(std::uint64_t ticks);
   bool active() const;
   void acknowledge_drain(std::uint64_t request);
 
@@ -110,6 +127,15 @@ class Pci7200Card : public Card, private WordSource {
   std::uint32_t last_taken_ = 0;       // the last word taken from the ring (steps, travel_only)
   EdgeDetector watcher_;
   std::optional<InputEdge> fired_;
+  StepTrail trail_;  // the steps taken, deep enough for the words not yet played
+  bool cushioning_ = false;
+  CushionStream cushion_, cushion_start_;  // the words to come; as it began
+  std::uint64_t cushion_from_ = 0;
+  CardFault cushion_fault_ = CardFault::None;
+  CushionPlayed cushion_result_;  // written before cushion_ready_
+  std::atomic<bool> cushion_ready_{false};
+  std::atomic<int> esc_request_{0};    // stop_cushioned's steps, for the next pass
+  std::atomic<bool> esc_busy_{false};  // until its cushion has played (or none could)
   std::atomic<std::size_t> prime_words_{0};
   double tick_seconds_ = 0;
 

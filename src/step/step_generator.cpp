@@ -82,9 +82,11 @@ void StepGenerator::check_card() {
   // Where the tool stopped is said by the controller: it knows the operator's frame (a
   // restored or homed origin, the zero), which step counts alone do not.
   std::string detail = card_.fault_detail();
-  if (cushion) {
+  // Read again: a real card's thread publishes its cushion before its fault, but may have
+  // done both since the read above.
+  if (const std::optional<CushionPlayed> c = card_.cushion_played()) {
     std::int64_t most = 0;
-    for (std::int64_t n : cushion->steps) most = std::max(most, n < 0 ? -n : n);
+    for (std::int64_t n : c->steps) most = std::max(most, n < 0 ? -n : n);
     detail += fmt::format("{}cushioned: {} more steps at most after the hit, counted",
                           detail.empty() ? "" : "; ", most);
   }
@@ -215,9 +217,11 @@ OutputLevels StepGenerator::played_levels() const {
 void StepGenerator::restart() {
   const Steps6 played = played_position();
   placement_.restart(played);
-  log_.restart(played, static_cast<std::int64_t>(card_.ticks_played()));
   faulted_ = false;
   writer_.restart();
+  // From the card's count after it started again: a real card counts from 0 again (the
+  // simulated card goes on), and a log left at the old count found no position after it.
+  log_.restart(played, writer_.cursor());
   segment_end_ = writer_.cursor();
 }
 
