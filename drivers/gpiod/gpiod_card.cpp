@@ -75,7 +75,9 @@ void GpiodCard::start(double pacer_hz) {
   {
     std::lock_guard lock(producer_mutex_);
     accepting_ = true;
+    written_ = 0;
   }
+  stream_end_.store(0, std::memory_order_release);
   running_ = true;
   thread_ = std::thread([this] { run(); });
 }
@@ -92,6 +94,7 @@ void GpiodCard::write(std::span<const std::uint32_t> words) {
       std::lock_guard lock(producer_mutex_);
       if (!accepting_ || stop_requested_ || player_.fault() != CardFault::None) return;
       pushed = ring_.push(words);
+      written_ += pushed;
     }
     words = words.subspan(pushed);
     if (!words.empty()) std::this_thread::sleep_for(wait);
@@ -105,6 +108,11 @@ void GpiodCard::drain() {
          (ring_.size() > 0 || pacing_))
     std::this_thread::sleep_for(kDrainPoll);
   drain_requested_ = false;
+}
+
+void GpiodCard::end_stream() {
+  std::lock_guard lock(producer_mutex_);
+  stream_end_.store(written_, std::memory_order_release);
 }
 
 void GpiodCard::stop(std::uint32_t idle_word) {
@@ -147,7 +155,8 @@ void GpiodCard::run() {
   }
   while (!stop_requested_) {
     const std::size_t queued = ring_.available();
-    if (queued >= map_.start_words || (queued > 0 && drain_requested_)) {
+    const bool ended = stream_end_.load(std::memory_order_acquire) > player_.ticks_played();
+    if (queued >= map_.start_words || (queued > 0 && (drain_requested_ || ended))) {
       if (!play_stream()) return;
       continue;
     }
@@ -171,7 +180,10 @@ bool GpiodCard::play_stream() {
       break;
     }
     const std::int64_t late_ns = clock_->now_ns() - due;
-    const auto outcome = player_.play_through(tick, late_ns, drain_requested_);
+    // Dry at the end of a stream that ended at rest (end_stream) is no underrun (issue 26: a
+    // hold on this card faulted as soon as its queue ran dry at rest).
+    const bool at_end = tick == stream_end_.load(std::memory_order_acquire);
+    const auto outcome = player_.play_through(tick, late_ns, drain_requested_ || at_end);
     if (outcome == TickPlayer::Outcome::Played) continue;
     pacing_ = false;
     return outcome == TickPlayer::Outcome::StreamEnded;

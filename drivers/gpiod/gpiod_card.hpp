@@ -40,6 +40,10 @@ class GpiodCard : public Card {
   // are dropped. May race stop() from another thread (an E-stop); not start().
   void write(std::span<const std::uint32_t> words) override;
   void drain() override;
+  // The words written so far end at rest (Card::end_stream: a hold, the end of the motion):
+  // running dry right after them ends the stream, as after drain(), and a stream shorter than
+  // start_words starts. Never blocks.
+  void end_stream() override;
   void stop(std::uint32_t idle_word) override;
   // limits.esc_steps: the player thread plays the cushion (CushionStream) from its next tick
   // (within one input sample, as it wakes at least that often), then this stops as stop()
@@ -91,6 +95,8 @@ class GpiodCard : public Card {
 
   std::mutex producer_mutex_;  // write() against stop() clearing the queue
   bool accepting_ = false;     // guarded by producer_mutex_
+  std::uint64_t written_ = 0;  // words queued since start(); guarded by producer_mutex_
+  std::atomic<std::uint64_t> stream_end_{0};  // written_ at the last end_stream()
 
   mutable std::mutex status_mutex_;
   std::string refusal_;

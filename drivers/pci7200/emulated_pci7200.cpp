@@ -256,7 +256,14 @@ void EmulatedPci7200::pause() {
     std::this_thread::sleep_for(config_.poll_interval);
     lock.lock();
     const auto now = std::chrono::steady_clock::now();
-    const std::uint64_t most = (config_.fifo_words - 1) * nominal_period_cycles();
+    // The card holds the FIFO and what the bridge has still to read of the transfer in
+    // flight (it keeps the FIFO topped up): a late feeder slows the card down only past
+    // what it holds, the reload deadline of a real card (not the FIFO alone: with the real
+    // 8 words the card could hardly keep the wall clock's pace).
+    const std::uint64_t held =
+        fifo_.size() + ((mcsr_control_ & amcc::kMcsrReadEnable) ? mrtc_ / 4 : 0);
+    const std::uint64_t most =
+        (std::max<std::uint64_t>(config_.fifo_words, held) - 1) * nominal_period_cycles();
     run_cycles(std::min(most, cycles_of(now - wall_last_)));
     wall_last_ = now;
     return;

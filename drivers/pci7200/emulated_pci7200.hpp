@@ -29,9 +29,10 @@ struct EmulatedPci7200Config {
   // Stepped time: virtual time passes only in advance(), which runs the feeder in lockstep.
   bool stepped = false;
   // Wall-clock time (not stepped): each pause sleeps poll_interval and then plays the ticks
-  // the wall clock has moved on, at most a FIFO's worth less one (a descheduled feeder makes
-  // the emulated card slow down rather than miss a DMA reload, which on a real card needs a
-  // PREEMPT_RT kernel): the pace of a real card, for the hold-latency bench.
+  // the wall clock has moved on, at most what the card holds (the FIFO and the transfer in
+  // flight) less one, or a FIFO's worth less one (a descheduled feeder makes the emulated
+  // card slow down rather than miss a DMA reload, which on a real card needs a PREEMPT_RT
+  // kernel): the pace of a real card, for the hold-latency bench.
   bool wall_clock = false;
   // Whether the DIO register reads back the underrun flag (public sources do not settle it).
   bool flags_underrun = true;

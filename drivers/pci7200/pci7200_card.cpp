@@ -103,6 +103,8 @@ void Pci7200Card::start(double pacer_hz) {
                                                      : kPioPrimeWords;
   prime_words_.store(std::min(prime, ring_.capacity()), std::memory_order_release);
   ticks_.store(0, std::memory_order_release);
+  written_ = 0;
+  stream_end_.store(0, std::memory_order_release);
   fault_.store(CardFault::None, std::memory_order_release);
   drains_done_.store(drains_requested_.load(std::memory_order_acquire), std::memory_order_release);
   phase_.store(Phase::Armed, std::memory_order_release);
@@ -113,6 +115,7 @@ void Pci7200Card::write(std::span<const std::uint32_t> words) {
     const Phase phase = phase_.load(std::memory_order_acquire);
     if (phase == Phase::Idle || phase == Phase::Faulted) return;  // dropped
     const std::size_t n = ring_.push(words);
+    written_ += n;
     words = words.subspan(n);
     if (n == 0) std::this_thread::sleep_for(kProducerWait);
   }
@@ -126,6 +129,10 @@ void Pci7200Card::drain() {
     if (drains_done_.load(std::memory_order_acquire) >= mine) return;
     std::this_thread::sleep_for(kProducerWait);
   }
+}
+
+void Pci7200Card::end_stream() {
+  stream_end_.store(written_, std::memory_order_release);
 }
 
 void Pci7200Card::stop(std::uint32_t idle_word) {
@@ -203,6 +210,8 @@ void Pci7200Card::pass() {
   // so a request seen here comes with all the words it covers.
   const std::uint64_t drain_request = drains_requested_.load(std::memory_order_acquire);
   const bool drain_pending = drain_request > drains_done_.load(std::memory_order_acquire);
+  // Read before the ring too: an end marked here comes with its words.
+  const std::uint64_t stream_end = stream_end_.load(std::memory_order_acquire);
   const std::uint32_t inputs = bus_->read32(Bar::Card, card::kDiPort);
   inputs_.store(inputs, std::memory_order_release);
   // A limit switch trips as it becomes active (the E-stop while it is): the tool that stopped
@@ -246,18 +255,21 @@ void Pci7200Card::pass() {
         if (drain_pending) acknowledge_drain(drain_request);
         return;
       }
-      if (queued >= prime_words_.load(std::memory_order_relaxed) || drain_pending) begin_output();
+      if (queued >= prime_words_.load(std::memory_order_relaxed) || drain_pending ||
+          stream_end > stream_position_)
+        begin_output();
       return;
     }
     case Phase::Running:
     case Phase::Starved:
     case Phase::Drained:
-      return run_output(phase, inputs, limit_closed, drain_request, drain_pending);
+      return run_output(phase, inputs, limit_closed, drain_request, drain_pending, stream_end);
   }
 }
 
 void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, bool limit_closed,
-                             std::uint64_t drain_request, bool drain_pending) {
+                             std::uint64_t drain_request, bool drain_pending,
+                             std::uint64_t stream_end) {
   const FeederSnapshot s = output_.poll();
   const std::uint64_t into_card = output_.words_into_card();
   if (s.device_lost || s.dma_error) return trip(CardFault::Hardware, false);
@@ -283,6 +295,16 @@ void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, bool limit_close
 
   switch (phase) {
     case Phase::Running:
+      // Played out to the end of a stream that ended at rest (end_stream), nothing after it
+      // taken: no underrun, however long the pacer has ticked on the empty FIFO since; what
+      // was written since starts a new stretch. (Issue 26: a hold on this card ended in an
+      // underrun, at once or at the resume's first word.)
+      if (s.fifo_empty && !s.in_flight && !s.words_staged && stream_position_ == stream_end) {
+        ticks_.store(into_card, std::memory_order_release);
+        if (drain_pending && queued == 0) acknowledge_drain(drain_request);
+        phase_.store(Phase::Drained, std::memory_order_release);
+        return;
+      }
       if ((underran && words_due) || ran_dry) return trip(CardFault::Underrun, true);
       if (all_played) {
         ticks_.store(into_card, std::memory_order_release);
@@ -315,7 +337,9 @@ void Pci7200Card::run_output(Phase phase, std::uint32_t inputs, bool limit_close
       return;
     case Phase::Drained:
       // After a drain the next words start a new stretch of output, as at start().
-      if (queued > 0 && (queued >= prime_words_.load(std::memory_order_relaxed) || drain_pending)) return begin_output();
+      if (queued > 0 && (queued >= prime_words_.load(std::memory_order_relaxed) || drain_pending ||
+                         stream_end > stream_position_))
+        return begin_output();
       if (queued == 0 && drain_pending) acknowledge_drain(drain_request);
       return;
     default:

@@ -38,7 +38,7 @@ struct Pci7200Options {
   // The cushioned stop (limits.cushion_steps after a limit trip; the pins and pulse width
   // for limits.esc_steps too); default: a dead stop.
   CushionRule cushion;
-  RealtimeRequest realtime;     // for the feeder thread
+  RealtimeRequest realtime;  // for the feeder thread
 };
 
 class Pci7200Card : public Card, private WordSource {
@@ -56,6 +56,10 @@ class Pci7200Card : public Card, private WordSource {
   // Blocks while the ring is full; the feeder makes room as words play.
   void write(std::span<const std::uint32_t> words) override;
   void drain() override;
+  // The words written so far end at rest (Card::end_stream: a hold, the end of the motion):
+  // running dry right after them is no underrun, a stream shorter than prime_words starts,
+  // and the next words start a new stretch of output, as after drain().
+  void end_stream() override;
   // The words already inside the card's FIFO (at most 8) play out first, so that
   // ticks_played() is exact and no pulse is cut; then the pacer halts.
   void stop(std::uint32_t idle_word) override;
@@ -101,7 +105,7 @@ class Pci7200Card : public Card, private WordSource {
   void feeder_loop();
   void pass();
   void run_output(Phase phase, std::uint32_t inputs, bool limit_closed, std::uint64_t drain_request,
-                  bool drain_pending);
+                  bool drain_pending, std::uint64_t stream_end);
   void begin_output();
   void halt_output(bool play_out);
   void trip(CardFault fault, bool play_out);
@@ -146,6 +150,8 @@ class Pci7200Card : public Card, private WordSource {
   std::atomic<double> pacer_hz_{0};
   std::atomic<std::uint64_t> drains_requested_{0};
   std::atomic<std::uint64_t> drains_done_{0};
+  std::uint64_t written_ = 0;                 // the producer's: words written since start()
+  std::atomic<std::uint64_t> stream_end_{0};  // written_ at the last end_stream()
   std::atomic<bool> exit_{false};
   std::atomic<bool> feeder_ready_{false};
   std::atomic<bool> feeder_running_{false};

@@ -128,19 +128,29 @@ std::optional<double> StepGenerator::segment_until(const PlannedSegment& seg, St
   }
   writer_.rest_channels(seg.resting_channels);  // squaring a slaved axis (docs/hardware.md)
   const std::int64_t end = placement_.place(seg, t0, writer_.cursor(), writer_.pulse_end());
+  // The words go out to the end of the block being filled at most, then the stop ticks are
+  // read again: a full block is where the bounded lead waits (CardLead::after_block), and a
+  // hold that arrives meanwhile cuts the words at that block's end, not at the next event
+  // (a step period later: 0.55 ms at 2 in/s) or after a dwell's next block. So the words
+  // generated ahead of the card's clock never exceed the lead, and neither does a hold's
+  // latency.
+  const auto block = static_cast<std::int64_t>(writer_.block_words());
+  const auto block_end = [&] { return writer_.sent() + block; };
   // The events in tick order; a stop tick cuts them: each axis is left as its last played
   // event left it.
   std::int64_t stop_tick = stops.now();
+  bool stopped = false;
   while (const StepEvent* e = placement_.next_event()) {
-    if (e->tick >= (stop_tick = stops.now())) break;
+    while (!(stopped = e->tick >= (stop_tick = stops.now())) && e->tick >= block_end())
+      emit_until(block_end());  // a full block: the lead may wait here
+    if (stopped) break;
     emit_until(e->tick);
     play(*e);
   }
   // What is left has no event (a dwell, the last pulse): it goes out a block at a time, so
   // a stop that comes meanwhile still cuts it (a dwell may last seconds).
-  const auto block = static_cast<std::int64_t>(writer_.block_words());
   while ((stop_tick = stops.now()) >= end && writer_.cursor() < end)
-    emit_until(std::min(end, writer_.cursor() + block));
+    emit_until(std::min(end, block_end()));
   if (stop_tick >= end) {
     segment_end_ = end;
     return std::nullopt;

@@ -266,6 +266,101 @@ TEST(HoldLatency, APauseOnTheFakeGpioCardSlowsWithinTheLeadPlusOneBlock) {
   expect_hold_in_words(r, ref);
 }
 
+// A card that queues words, whose clock the test holds (`gate`) and then lets go: it plays
+// each word as it is written. Gated, its clock_tick() stirs by one tick on every other read,
+// so the lead never takes it for a stopped card (CardLead lets a clock that stands 2 s go);
+// ticks_played(), what a request is measured from, stays at the gate.
+class GatedCard : public Card {
+ public:
+  void start(double) override {}
+  void write(std::span<const std::uint32_t> w) override {
+    written_.fetch_add(w.size(), std::memory_order_acq_rel);
+  }
+  void drain() override {}
+  void stop(std::uint32_t) override {}
+  std::uint64_t ticks_played() const override {
+    return free_.load() ? written() : gate_.load(std::memory_order_acquire);
+  }
+  std::uint64_t clock_tick() const override {
+    return free_.load() ? written() : gate_.load(std::memory_order_acquire) + (reads_++ & 1u);
+  }
+  std::uint32_t inputs() const override { return 0; }
+  CardFault fault() const override { return CardFault::None; }
+  bool queues_words() const override { return true; }
+
+  std::uint64_t written() const { return written_.load(std::memory_order_acquire); }
+  void set_gate(std::uint64_t tick) { gate_.store(tick, std::memory_order_release); }
+  void let_go() { free_.store(true); }
+
+ private:
+  std::atomic<std::uint64_t> written_{0}, gate_{0};
+  mutable std::atomic<std::uint64_t> reads_{0};
+  std::atomic<bool> free_{false};
+};
+
+// Issue 26: the latency is the lead, not the lead plus a step period. A hold that lands while
+// the generator waits with the lead full (every block sent, the card's clock short of the
+// refill point: the wait in which a request most often lands) begins at the end of the
+// block it waited on. It began at the next step event after it (the rest of the run between
+// two events went out first: 0.55 ms at 2 in/s, the bench's 20.45 ms at a 20 ms lead), or
+// during a dwell at the end of the dwell's next block (up to a whole block late). The test
+// holds the card's clock, so the interleaving is forced: no time is measured.
+HoldRun hold_while_the_lead_is_full(const Settings& s, const std::vector<CanonMove>& moves) {
+  GatedCard card;
+  card.start(s.card.pacer_hz());
+  HoldRun r;
+  StepGenerator steps(s, card);
+  MotionFeeder feeder(steps);
+  LookAheadPlanner planner(s, feeder);
+  r.lead_ticks = steps.lead().lead_ticks();
+  r.block = static_cast<std::int64_t>(steps.lead().block_words());
+  std::thread gen([&] {
+    for (const CanonMove& m : moves) planner.move(m);
+    planner.flush();
+  });
+  const auto give_up = std::chrono::steady_clock::now() + 60s;
+  const auto wait_for = [&](auto done) {
+    while (!done() && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::sleep_for(100us);
+  };
+  // The clock at 0: the generator sends the lead (four blocks), then waits for the card to
+  // play down to the refill point (lead - block).
+  wait_for([&] { return card.written() >= static_cast<std::uint64_t>(r.lead_ticks); });
+  r.lead_end = static_cast<std::int64_t>(card.written());  // sent when the request lands
+  r.request_tick = static_cast<std::int64_t>(card.ticks_played());
+  feeder.request_hold(0, /*pause=*/true);
+  card.set_gate(static_cast<std::uint64_t>(r.lead_ticks - r.block));  // the wait ends
+  wait_for([&] { return feeder.hold_tick() >= 0; });
+  card.let_go();
+  gen.join();
+  r.hold_tick = feeder.hold_tick();
+  EXPECT_EQ(feeder.phase(), FeedPhase::Held);
+  return r;
+}
+
+TEST(HoldLatency, AHoldThatLandsWhileTheLeadIsFullBeginsAtTheEndOfThatBlock) {
+  const Settings s = default_settings();  // 200 kHz, a 20 ms lead: 4000 ticks, blocks of 1000
+  const HoldRun r = hold_while_the_lead_is_full(s, {x_move(s, 10.0)});
+  EXPECT_EQ(r.lead_ticks, 4000);
+  EXPECT_EQ(r.block, 1000);
+  EXPECT_EQ(r.lead_end, r.lead_ticks) << "the generator waited with the lead full";
+  EXPECT_EQ(r.request_tick, 0);
+  EXPECT_EQ(r.hold_tick, r.lead_end) << "the ramp down begins with the next word not sent";
+  EXPECT_LE(r.hold_tick - r.request_tick, r.lead_ticks) << "the latency is at most the lead";
+}
+
+TEST(HoldLatency, AHoldThatLandsInADwellWhileTheLeadIsFullBeginsAtTheEndOfThatBlock) {
+  const Settings s = default_settings();
+  CanonMove dwell;
+  dwell.kind = MoveKind::Dwell;
+  dwell.dwell_s = 1.0;
+  // A short move first, so that the dwell starts part-way through a block.
+  const HoldRun r = hold_while_the_lead_is_full(s, {x_move(s, 0.005), dwell});
+  EXPECT_EQ(r.lead_end, r.lead_ticks);
+  EXPECT_EQ(r.hold_tick, r.lead_end);
+  EXPECT_LE(r.hold_tick - r.request_tick, r.lead_ticks);
+}
+
 // Issue 25 item 5 / 26: the operator's feed override acted on the planner only, so the
 // segment playing (and the feeder's queue) kept its speed and a change reached a real card
 // late. Now the feeder re-ramps what it has not generated: the words change within the lead

@@ -376,6 +376,29 @@ TEST(GpiodCard, DrainPlaysAShortStreamAndEndsItCleanly) {
   EXPECT_EQ(rig.lines->changes().size(), 5u);
 }
 
+// Issue 26: a hold comes to rest and the stream ends there (Card::end_stream). The card ran
+// dry after it and faulted (an underrun) while the tool stood still.
+TEST(GpiodCard, AStreamEndedAtRestRunsDryCleanlyAndTheNextWordsStartANewOne) {
+  Rig rig(test_map());
+  rig.card->start(kPacerHz);
+  std::vector<std::uint32_t> words;
+  for (int i = 0; i < 10; ++i) words.push_back(i % 2 ? kXStep : kXDir);
+  rig.card->write(words);
+  rig.card->end_stream();  // at rest after these
+  ASSERT_TRUE(eventually([&] { return rig.card->ticks_played() == 10u; }));
+  rig.card->write(words);  // the resume, once the card has run dry
+  rig.card->end_stream();
+  ASSERT_TRUE(eventually(
+      [&] { return rig.card->ticks_played() == 20u || rig.card->fault() != CardFault::None; }));
+  EXPECT_EQ(rig.card->fault(), CardFault::None);
+  rig.card->write(std::vector<std::uint32_t>{kXStep, 0});  // below start_words: the end starts it
+  rig.card->end_stream();
+  ASSERT_TRUE(eventually(
+      [&] { return rig.card->ticks_played() == 22u || rig.card->fault() != CardFault::None; }));
+  EXPECT_EQ(rig.card->fault(), CardFault::None);
+  EXPECT_EQ(rig.card->ticks_played(), 22u);
+}
+
 TEST(GpiodCard, StopDropsQueuedWordsAndSetsTheIdleWord) {
   Rig rig(test_map(), VirtualClock::Mode::Gated);
   rig.card->start(kPacerHz);

@@ -245,6 +245,46 @@ TEST(Pci7200Card, WordsWrittenAfterTheCardRanDryAreAnUnderrun) {
   EXPECT_EQ(rig.emu->played(), all);
 }
 
+// Issue 26: a hold comes to rest and the stream ends there (Card::end_stream); the card runs
+// dry and the pacer ticks on an empty FIFO for as long as the operator waits. That was
+// taken for an underrun: the card faulted at the resume's first word.
+TEST(Pci7200Card, AStreamEndedAtRestRunsDryWithoutAFaultAndTheNextWordsStartAnew) {
+  Pci7200Options options;
+  options.prime_words = 64;
+  Rig rig = make_rig(stepped(2 * 1024), options);
+  const std::vector<std::uint32_t> a = words(1500, 21), b = words(300, 22), c = words(10, 23);
+  rig.card->start(200e3);
+  rig.card->write(a);
+  rig.card->end_stream();  // at rest after these
+  rig.emu->advance(1600);  // played out, then 100 ticks on an empty FIFO
+  EXPECT_GT(rig.emu->underrun_ticks(), 0u);
+  EXPECT_EQ(rig.card->fault(), CardFault::None);
+  EXPECT_EQ(rig.card->ticks_played(), a.size());
+
+  rig.card->write(b);  // the resume: a new stretch of output
+  rig.card->end_stream();
+  rig.emu->advance(400);
+  EXPECT_EQ(rig.card->fault(), CardFault::None);
+  EXPECT_EQ(rig.card->ticks_played(), a.size() + b.size());
+
+  rig.card->write(c);  // fewer than prime_words: the end starts them
+  rig.card->end_stream();
+  rig.emu->advance(40);
+  EXPECT_EQ(rig.card->fault(), CardFault::None);
+  std::vector<std::uint32_t> all = a;
+  all.insert(all.end(), b.begin(), b.end());
+  all.insert(all.end(), c.begin(), c.end());
+  EXPECT_EQ(rig.emu->played(), all);
+  EXPECT_EQ(rig.card->ticks_played(), all.size());
+
+  // Dry before the end of what was written is still an underrun.
+  rig.card->write(words(1500, 24));
+  rig.emu->advance(4);
+  rig.emu->advance_without_feeder(2000);
+  rig.emu->advance(8);
+  EXPECT_EQ(rig.card->fault(), CardFault::Underrun);
+}
+
 // ---------------------------------------------------------------------------------------
 // Stop, faults, shutdown.
 
