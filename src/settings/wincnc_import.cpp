@@ -28,16 +28,10 @@ constexpr std::string_view kToolsPart = "tool changer and spindle";
 // The settings other parts of issue 28 are adding now: each keyword here is reported "not
 // mapped yet" until its row lands and this table loses the line.
 constexpr WincncPending kPending[] = {
-    {"lim_mode 2, 3", "a shorter debounce for a limit switch opening", kLimitsPart},
-    {"g28move A", "homing on an alternate switch", kLimitsPart},
-    {"g28move L", "the longest search for a home switch", kLimitsPart},
     {"g28move switches",
      "each axis homing on its own limit switch (axislo or axishi on its homing side); C3 now "
      "watches one input, homing.input",
      kLimitsPart},
-    {"g28move speeds", "a homing speed and back-off per g28move line (one set now)", kLimitsPart},
-    {"g28coord", "a position to go to after homing", kLimitsPart},
-    {"g28_lim_cnt", "a limit switch debounce while homing", kLimitsPart},
     {"require-home", "the axes to home again after an enable trips during motion (enab A, auxin A)",
      kLimitsPart},
     {"atc1", "a tool changer: unload height, tool sensor offset, changing spindle's height",
@@ -194,9 +188,7 @@ constexpr Keyword kKeywords[] = {
     {"maxtrans", Form::Raw, "", "Gantry's keypad jogs run to the soft limits"},
     {"nmode", Form::Raw, "", "a G-code file starts in G90 (docs/gcode.md)"},
     {"numkp", Form::Raw, "", kScreen},
-    {"override", Form::Letters, "ELHDU",
-     "Gantry's feed override runs 10 % to 200 %, from the keys, the window and the pendant; no "
-     "inputs step it"},
+    {"override", Form::Letters, "ELHDU", ""},
     {"pci24h", Form::Letters, "A",
      "expansion I/O cards: Gantry drives the PCI-7200's 32 outputs and inputs"},
     {"pci48h", Form::Letters, "AB",
@@ -1074,9 +1066,13 @@ void Importer::build() {
     if (auto m = raw_number(*it->second, 0, 3)) {
       const int mode = static_cast<int>(*m);
       s.limits.travel_only = mode == 1 || mode == 3;
+      // Modes 2 and 3 differ from 0 and 1 by a shorter debounce as a switch opens: Gantry's
+      // limit trips as a switch closes, so there is no release to debounce.
       mapped(*it->second,
-             fmt::format("lim_mode={} -> limits.travel_only = {}", mode, s.limits.travel_only));
-      if (mode >= 2) later(*it->second, "lim_mode 2, 3", fmt::format("lim_mode={}", mode));
+             fmt::format("lim_mode={} -> limits.travel_only = {}{}", mode, s.limits.travel_only,
+                         mode >= 2 ? " (the shorter debounce on opening: Gantry's limits trip "
+                                     "on closing only)"
+                                   : ""));
     }
   if (const auto it = single.find("lim_cnt"); it != single.end())
     if (auto n = raw_number(*it->second, 1, 1e6)) {
@@ -1094,7 +1090,12 @@ void Importer::build() {
                                         k[0] == 'l' ? "cushion_steps" : "esc_steps", *steps));
       }
   if (const auto it = single.find("g28_lim_cnt"); it != single.end())
-    later(*it->second, "g28_lim_cnt", fmt::format("g28_lim_cnt={}", it->second->value));
+    if (auto n = raw_number(*it->second, 1, 1e6)) {
+      // At most 30, as lim_cnt (the manual gives g28_lim_cnt no maximum of its own).
+      s.homing.debounce = static_cast<int>(std::min(30.0, std::round(*n)));
+      mapped(*it->second, fmt::format("g28_lim_cnt -> homing.debounce = {}{}", s.homing.debounce,
+                                      *n > 30 ? " (at most 30, as lim_cnt)" : ""));
+    }
 
   // Homing: G28's order, speeds, back-off and the place of each switch.
   std::string order;
@@ -1128,9 +1129,35 @@ void Importer::build() {
       if (has(l, 'R'))
         if (auto r = number(l, 'R', 0, 1e6, true)) s.homing.back_off = *r * len;
       mapped(l, "g28move F T R -> homing.fast_speed, slow_speed (units/min / 60), back_off");
-    } else if (has(l, 'F') || has(l, 'T') || has(l, 'R')) {
-      later(l, "g28move speeds", "g28move F T R (a second line)");
     }
+    // The axes this line homes: its speeds (a line after the first) and its search length
+    // are theirs.
+    std::vector<size_t> line_axes;
+    for (char c : std::string_view("XYZWABC"))
+      if (has(l, c) && block(c)) line_axes.push_back(static_cast<size_t>(block(c)->slot));
+    if (n > 0 && (has(l, 'F') || has(l, 'T') || has(l, 'R'))) {
+      std::optional<double> f, t, r;
+      if (has(l, 'F')) f = number(l, 'F', 0, 6e7, true);
+      if (has(l, 'T')) t = number(l, 'T', 0, 6e7, true);
+      if (has(l, 'R')) r = number(l, 'R', 0, 1e6, true);
+      std::string keys;
+      for (size_t i : line_axes) {
+        if (f) s.homing.fast[i] = *f / 60 * len;
+        if (t) s.homing.slow[i] = *t / 60 * len;
+        if (r) s.homing.retract[i] = *r * len;
+        keys += fmt::format("{}homing.{}", keys.empty() ? "" : ", ", kAxisLetters[i]);
+      }
+      if (!line_axes.empty())
+        mapped(l, fmt::format("g28move F T R (this line's) -> {} fast_speed, slow_speed, back_off",
+                              keys));
+    }
+    if (has(l, 'L'))
+      if (auto len_l = number(l, 'L', 0, 1e9, true))
+        for (size_t i : line_axes) {
+          s.homing.search[i] = *len_l * len;
+          mapped(l, fmt::format("g28move L -> homing.{}.search = {}", kAxisLetters[i],
+                                num(s.homing.search[i].value_or(0))));
+        }
     for (char c : std::string_view("XYZWABC")) {
       if (!has(l, c)) continue;
       const AxisBlock* b = block(c);
@@ -1145,10 +1172,19 @@ void Importer::build() {
         s.homing.at[i] = s.homing.direction[i] * *d * len;
         mapped(l, fmt::format("g28move {0} -> homing.{1}.at = {2} (zero is {0} inside the switch)",
                               c, kAxisLetters[i], num(s.homing.at[i])));
+        // WinCNC ends the homing cycle that far off the switch, at its zero.
+        if (*d > 0) {
+          s.homing.offset[i] = *d * len;
+          mapped(l, fmt::format("g28move {} -> homing.{}.offset = {} (homing ends at zero)", c,
+                                kAxisLetters[i], num(*d * len)));
+        }
       }
     }
-    if (has(l, 'A')) later(l, "g28move A");
-    if (has(l, 'L')) later(l, "g28move L");
+    if (has(l, 'A'))
+      unmapped(l, "g28move A",
+               "homing on an axis's alternate limit switch: Gantry homes on input switches, not "
+               "on the limit inputs; set homing.<axis>.input to the input switch (auxin channel) "
+               "that switch is wired to");
     if (has(l, 'M')) mapped(l, "g28move M: Gantry homes each axis on its own, in homing.order");
   }
   if (!g28moves.empty()) {
@@ -1170,7 +1206,49 @@ void Importer::build() {
       }
     }
   }
-  if (const auto it = single.find("g28coord"); it != single.end()) later(*it->second, "g28coord");
+  if (const auto it = single.find("g28coord"); it != single.end()) {
+    // "not used if all positions are zero"
+    const Line& l = *it->second;
+    bool all_zero = true;
+    for (const auto& [c, p] : l.params) all_zero = all_zero && p.value == 0;
+    if (all_zero) {
+      mapped(l, "g28coord: every position 0, not used (as WinCNC)");
+    } else {
+      for (const auto& [c, p] : l.params) {
+        const AxisBlock* b = block(c);
+        if (!b) {
+          unmapped(l, fmt::format("g28coord {}", c), fmt::format("axischar names no {} axis", c));
+          continue;
+        }
+        if (auto v = number(l, c, -1e9, 1e9)) {
+          const size_t i = static_cast<size_t>(b->slot);
+          s.homing.park[i] = *v * len;
+          mapped(l, fmt::format("g28coord {} -> homing.{}.park = {}", c, kAxisLetters[i],
+                                num(*v * len)));
+        }
+      }
+    }
+  }
+  if (const auto it = single.find("override"); it != single.end()) {
+    const Line& l = *it->second;
+    std::optional<int> lo, hi;
+    if (has(l, 'L')) lo = whole(l, 'L', 1, 200);
+    if (has(l, 'H')) hi = whole(l, 'H', 1, 200);
+    if (lo) s.feed_override.min = *lo;
+    if (hi) s.feed_override.max = *hi;
+    if (lo || hi)
+      mapped(l, fmt::format("override L H -> feed_override.min = {}, max = {} (percent)",
+                            s.feed_override.min, s.feed_override.max));
+    if (has(l, 'E') && l.params.at('E').value == 0)
+      unmapped(l, "override E0",
+               "Gantry's feed override cannot be switched off: feed_override.min and max of "
+               "100 would be the nearest, and they must differ");
+    for (char c : {'D', 'U'})
+      if (has(l, c))
+        unmapped(l, fmt::format("override {}", c),
+                 "an input switch that steps the feed override: the pendant's feed buttons and "
+                 "keys do");
+  }
 
   // Inputs: auxin channels are the input switches (1-12); enab, signal and scan give them
   // their roles.
