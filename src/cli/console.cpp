@@ -116,9 +116,10 @@ std::string Console::status_report() const {
   // confirmed, as the window's readout says UNCONFIRMED.
   if (memory_)
     if (const session::SavedMachine m = memory_->state(); !m.confirmed)
-      out += fmt::format("the position is UNCONFIRMED until homed (C3, G28) or confirmed "
-                         "(confirm): {}\n",
-                         m.why.empty() ? "the last known position" : m.why);
+      out += fmt::format(
+          "the position is UNCONFIRMED until homed (C3, G28) or confirmed "
+          "(confirm): {}\n",
+          m.why.empty() ? "the last known position" : m.why);
   return out;
 }
 

@@ -784,10 +784,10 @@ void values_unknown(CommandContext&, const CommandCall& call) {
 std::string_view sheet_of(const SettingRow& row, bool* as_parameter) {
   if (as_parameter) *as_parameter = true;
   const std::pair<std::string_view, const std::vector<Field>*> sheets[] = {
-      {"VC", &vc_sb3()}, {"VC", &vc_fabmo()}, {"VB", &vb_fields()}, {"VD", &vd_sb3()},
-      {"VD", &vd_fabmo()}, {"VH", &vh_fields()}, {"VI", &vi_sb3()}, {"VI", &vi_fabmo()},
-      {"VL", &vl_sb3()}, {"VL", &vl_fabmo()}, {"VN", &vn_fields()}, {"VP", &vp_fields()},
-      {"VR", &vr_sb3()}, {"VR", &vr_fabmo()}, {"VU", &vu_fields()}};
+      {"VC", &vc_sb3()},   {"VC", &vc_fabmo()},  {"VB", &vb_fields()}, {"VD", &vd_sb3()},
+      {"VD", &vd_fabmo()}, {"VH", &vh_fields()}, {"VI", &vi_sb3()},    {"VI", &vi_fabmo()},
+      {"VL", &vl_sb3()},   {"VL", &vl_fabmo()},  {"VN", &vn_fields()}, {"VP", &vp_fields()},
+      {"VR", &vr_sb3()},   {"VR", &vr_fabmo()},  {"VU", &vu_fields()}};
   for (const auto& [code, fields] : sheets)
     for (const Field& f : *fields)
       if (f.row == &row) return code;

@@ -19,22 +19,24 @@ namespace {
 // here is shown however it came to be (a new key of [limits] is in VL's listing by itself);
 // a new table needs its line here or in kProfileOnly (values_sheets_test checks both ways).
 constexpr SheetRows kSheetRows[] = {
-    {"VL", "limits."},                     // the limit switches (WinCNC's lim_*, softlim)
-    {"VL", "homing."},                     // homing, per axis (g28move, g28coord, ...)
-    {"VU", "axes.<x..c>.backlash"},        // the drive's calibration
-    {"VU", "axes.<x..c>.wrap"},            //
-    {"VD", "display.w_axis"},              // the axes shown
-    {"VC", "spindle."},                    // the cutter: its spindle and its changer
-    {"VC", "toolchanger."},                //
-    {"VS", "feed_override."},              // the speeds: the live override's bounds
-    {"VN", "inputs.switch_bits"},          // the input switches' bits, beside their modes
+    {"VL", "limits."},                // the limit switches (WinCNC's lim_*, softlim)
+    {"VL", "homing."},                // homing, per axis (g28move, g28coord, ...)
+    {"VU", "axes.<x..c>.max_speed"},  // the drive's limits and calibration
+    {"VU", "axes.<x..c>.max_accel"},  //
+    {"VU", "axes.<x..c>.backlash"},   //
+    {"VU", "axes.<x..c>.wrap"},       //
+    {"VD", "display.w_axis"},         // the axes shown
+    {"VC", "spindle."},               // the cutter: its spindle and its changer
+    {"VC", "toolchanger."},           //
+    {"VS", "feed_override."},         // the speeds: the live override's bounds
+    {"VN", "inputs.switch_bits"},     // the input switches' bits, beside their modes
 };
 
 // The machine's wiring and set-up: read from the profile only, shown in no sheet.
 constexpr std::string_view kProfileOnly[] = {
     "",  // name, dialect, gcode_dialect, tool_table, subroutines (units: VD's)
-    "card", "pins.<x..c>", "inputs", "inputs.<x..c>", "outputs", "files", "pendant",
-    "simulator", "planner", "machine",
+    "card",  "pins.<x..c>", "inputs",    "inputs.<x..c>", "outputs",
+    "files", "pendant",     "simulator", "planner",       "machine",
 };
 
 // A row's value as the listing shows it: a key left out as "-", text as written.
@@ -85,7 +87,8 @@ std::string sheet_profile_lines(std::string_view code, const Settings& s) {
   for (const SettingRow& row : settings_schema()) {
     const std::string path = row.path();
     bool shown = false;
-    for (const SheetRows& r : kSheetRows) shown = shown || (r.code == code && path.starts_with(r.prefix));
+    for (const SheetRows& r : kSheetRows)
+      shown = shown || (r.code == code && path.starts_with(r.prefix));
     if (!shown) continue;
     if (row.family == SettingFamily::None) {
       lines.emplace_back(path, profile_value_text(row, s, 0));
@@ -107,7 +110,8 @@ std::string sheet_profile_lines(std::string_view code, const Settings& s) {
   std::size_t width = 0;
   for (const auto& l : lines) width = std::max(width, l.first.size());
   std::string out = "  set in the profile (docs/settings.md; - : left out):\n";
-  for (const auto& [key, value] : lines) out += fmt::format("      {:<{}}  {}\n", key, width, value);
+  for (const auto& [key, value] : lines)
+    out += fmt::format("      {:<{}}  {}\n", key, width, value);
   return out;
 }
 

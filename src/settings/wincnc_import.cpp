@@ -1097,11 +1097,14 @@ void Importer::build() {
                                       *n > 30 ? " (at most 30, as lim_cnt)" : ""));
     }
 
-  // Homing: G28's order, speeds, back-off and the place of each switch.
+  // Homing: G28's order, speeds, back-off and the place of each switch. On g28move, A is the
+  // manual's alternate-switch flag ("A# is used to specify that an alternate limit switch is
+  // to be used"), never an A axis's distance: the manual's axis letters there are X Y Z W.
+  constexpr std::string_view kG28moveAxes = "XYZWBC";
   std::string order;
   for (const Line* l : g28moves) {
     std::string vertical, other;
-    for (char c : std::string_view("XYZWABC"))
+    for (char c : std::string_view(kG28moveAxes))
       if (has(*l, c) && block(c))
         (block(c)->type == 3 ? vertical : other) +=
             kAxisLetters[static_cast<size_t>(block(c)->slot)];
@@ -1133,7 +1136,7 @@ void Importer::build() {
     // The axes this line homes: its speeds (a line after the first) and its search length
     // are theirs.
     std::vector<size_t> line_axes;
-    for (char c : std::string_view("XYZWABC"))
+    for (char c : std::string_view(kG28moveAxes))
       if (has(l, c) && block(c)) line_axes.push_back(static_cast<size_t>(block(c)->slot));
     if (n > 0 && (has(l, 'F') || has(l, 'T') || has(l, 'R'))) {
       std::optional<double> f, t, r;
@@ -1158,7 +1161,7 @@ void Importer::build() {
           mapped(l, fmt::format("g28move L -> homing.{}.search = {}", kAxisLetters[i],
                                 num(s.homing.search[i].value_or(0))));
         }
-    for (char c : std::string_view("XYZWABC")) {
+    for (char c : std::string_view(kG28moveAxes)) {
       if (!has(l, c)) continue;
       const AxisBlock* b = block(c);
       if (!b) {

@@ -9,12 +9,12 @@
 
 #include "../support/interpreter_fixture.hpp"
 #include "gantry/commands/values_sheets.hpp"
-#include "gantry/settings/settings_schema.hpp"
 #include "gantry/core/text_file.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/system_variables.hpp"
 #include "gantry/lang/script.hpp"
 #include "gantry/machine/job.hpp"
+#include "gantry/settings/settings_schema.hpp"
 #include "gantry/settings/values_file.hpp"
 #include "sim/sim_card.hpp"
 

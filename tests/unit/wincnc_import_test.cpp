@@ -196,9 +196,12 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
       {"axisvel S (X)", "WINCNC.INI", 12, false},
       {"g28move (the limit switches as home switches)", "WINCNC.INI", 40, true},
       {"enab A", "WINCNC.INI", 48, true},
-      {"spindle T, I", "WINCNC.INI", 54, true},   {"atc1", "WINCNC.INI", 62, true},
-      {"keypad", "WINCNC.INI", 61, false},        {"axishi O (W)", "WINCNC.INI", 29, false},
-      {"\"Viewer\"", "CNCSCRN.INI", 4, false},    {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
+      {"spindle T, I", "WINCNC.INI", 54, true},
+      {"atc1", "WINCNC.INI", 62, true},
+      {"keypad", "WINCNC.INI", 61, false},
+      {"axishi O (W)", "WINCNC.INI", 29, false},
+      {"\"Viewer\"", "CNCSCRN.INI", 4, false},
+      {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
   };
   for (const Want& w : wants) {
     const WincncUnmapped* u = find(r, w.keyword);
