@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>  // toupper
 #include <charconv>
 #include <cmath>
 #include <cstdlib>  // atoi
@@ -31,8 +32,6 @@ constexpr WincncPending kPending[] = {
     {"g28move switches",
      "each axis homing on its own limit switch (axislo or axishi on its homing side); C3 now "
      "watches one input, homing.input",
-     kLimitsPart},
-    {"require-home", "the axes to home again after an enable trips during motion (enab A, auxin A)",
      kLimitsPart},
     {"atc1", "a tool changer: unload height, tool sensor offset, changing spindle's height",
      kToolsPart},
@@ -1256,6 +1255,24 @@ void Importer::build() {
   // Inputs: auxin channels are the input switches (1-12); enab, signal and scan give them
   // their roles.
   std::map<int, std::pair<int, const Line*>> channel_bit;  // auxin C -> input bit
+  // A"axes" on an enable (enab, auxin F1): the axes to home again when it trips during motion,
+  // homing.require.
+  auto require_home = [&](const Line& l, std::string_view what) {
+    const Param& p = l.params.at('A');
+    for (char c : p.text) {
+      const char upper = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      const AxisBlock* b = block(upper);
+      if (!b) {
+        unmapped(l, fmt::format("{} A {}", what, upper),
+                 fmt::format("axischar names no {} axis Gantry drives", upper));
+        continue;
+      }
+      s.homing.require |= 1u << b->slot;
+    }
+    mapped(l, fmt::format("{} A\"{}\" -> homing.require (the axes to home again after it trips "
+                          "during motion)",
+                          what, p.text));
+  };
   for (const Line* lp : auxins) {
     const Line& l = *lp;
     if (!has(l, 'C') || !has(l, 'B')) {
@@ -1302,7 +1319,12 @@ void Importer::build() {
         unmapped(l, fmt::format("auxin {}", p),
                  "a debounce, signal or initial state per input: not offered");
     if (has(l, 'M')) unmapped(l, "auxin M", "a custom message: Gantry names the input");
-    if (has(l, 'A')) later(l, "require-home", "auxin A");
+    if (has(l, 'A')) {
+      if (has(l, 'F') && l.params.at('F').value == 1)
+        require_home(l, "auxin");
+      else
+        unmapped(l, "auxin A", "the manual's require-home flags belong to an enable (F1)");
+    }
     if (has(l, 'O') && !has(l, 'F') && l.params.at('O').value == 1)
       unmapped(l, "auxin O", "an inverted input switch: Gantry reads 1 as closed");
   }
@@ -1333,7 +1355,12 @@ void Importer::build() {
         unmapped(l, fmt::format("enab T{}", t),
                  "an enable that pauses or lets the keys jog: Gantry's E-stop input stops");
       }
-      if (has(l, 'A')) later(l, "require-home", "enab A");
+      if (has(l, 'A')) {
+        if (t <= 2)
+          require_home(l, "enab");
+        else
+          unmapped(l, "enab A", "the require-home flags of an enable Gantry does not map");
+      }
       for (char p : std::string_view("MLI"))
         if (has(l, p))
           unmapped(l, fmt::format("enab {}", p),

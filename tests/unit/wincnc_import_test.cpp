@@ -146,6 +146,8 @@ TEST(WincncImport, TheManualsNumbersLandInTheirKeys) {
   EXPECT_EQ(s.homing.offset[0], 0.5);
   EXPECT_EQ(s.homing.offset[3], 0.5);
   EXPECT_EQ(s.homing.debounce, 20);  // g28_lim_cnt=20
+  // enab=c2 ... t1 a"XYZW": X, Y, Z and W (on A) to home again after the E-stop mid-motion.
+  EXPECT_EQ(s.homing.require, 0b1111u);
   // override=E1 L10 H150
   EXPECT_EQ(s.feed_override.min, 10);
   EXPECT_EQ(s.feed_override.max, 150);
@@ -195,7 +197,6 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
   const Want wants[] = {
       {"axisvel S (X)", "WINCNC.INI", 12, false},
       {"g28move (the limit switches as home switches)", "WINCNC.INI", 40, true},
-      {"enab A", "WINCNC.INI", 48, true},
       {"spindle T, I", "WINCNC.INI", 54, true},
       {"atc1", "WINCNC.INI", 62, true},
       {"keypad", "WINCNC.INI", 61, false},
