@@ -23,16 +23,11 @@
 namespace gantry {
 namespace {
 
-constexpr std::string_view kLimitsPart = "limits and homing";
 constexpr std::string_view kToolsPart = "tool changer and spindle";
 
 // The settings other parts of issue 28 are adding now: each keyword here is reported "not
 // mapped yet" until its row lands and this table loses the line.
 constexpr WincncPending kPending[] = {
-    {"g28move switches",
-     "each axis homing on its own limit switch (axislo or axishi on its homing side); C3 now "
-     "watches one input, homing.input",
-     kLimitsPart},
     {"atc1", "a tool changer: unload height, tool sensor offset, changing spindle's height",
      kToolsPart},
     {"atc2", "a second tool changer", kToolsPart},
@@ -1189,10 +1184,6 @@ void Importer::build() {
                "that switch is wired to");
     if (has(l, 'M')) mapped(l, "g28move M: Gantry homes each axis on its own, in homing.order");
   }
-  if (!g28moves.empty()) {
-    // WinCNC homes each axis on its limit switch of the homing side; C3 watches homing.input.
-    later(*g28moves.front(), "g28move switches", "g28move (the limit switches as home switches)");
-  }
   if (const auto it = single.find("g28altmove"); it != single.end()) {
     const Line& l = *it->second;
     for (const auto& [c, p] : l.params) {
@@ -1393,6 +1384,51 @@ void Importer::build() {
                             s.inputs.probe_bit));
     }
     unmapped(l, "scan T A S H F P D", "3D digitizing with the probe: not offered (G38.2 probes)");
+  }
+
+  // G28 homes each axis on its limit switch of the homing side (axislo homing down, axishi up).
+  // Gantry homes on input switches: each such limit bit becomes one (the input switch an auxin
+  // already puts on it, or the first free of 1-12), the axis's homing.<axis>.input. The card
+  // does not trip on a bit homing watches, so the approach stops on the switch, not in a fault.
+  if (!g28moves.empty()) {
+    const Line& l = *g28moves.front();
+    for (const char c : s.homing.order) {
+      const auto i = std::string_view("xyzabc").find(c);
+      if (i >= static_cast<size_t>(kAxisCount)) continue;
+      const bool up = s.homing.direction[i] > 0;
+      const int bit = (up ? s.inputs.max_bit : s.inputs.min_bit)[i];
+      if (bit < 0) {
+        unmapped(l, fmt::format("g28move ({})", c),
+                 fmt::format("no {} limit switch (axis{}) to home on: homing.input's switch "
+                             "stays this axis's",
+                             up ? "high" : "low", up ? "hi" : "lo"));
+        continue;
+      }
+      // An input switch reads 1 as closed: a switch that reads 0 when closed (O1) cannot be one.
+      const Line* side = nullptr;
+      for (const AxisBlock& b : axes)
+        if (b.slot == static_cast<int>(i)) side = up ? b.hi : b.lo;
+      if (side && has(*side, 'O') && side->params.at('O').value == 1) {
+        unmapped(l, fmt::format("g28move ({})", c),
+                 fmt::format("its {} limit switch reads 0 when closed (axis{} O1) and an input "
+                             "switch reads 1 as closed: homing.input's switch stays this axis's",
+                             up ? "high" : "low", up ? "hi" : "lo"));
+        continue;
+      }
+      auto& bits = s.inputs.switch_bits;
+      auto k = std::find(bits.begin(), bits.end(), bit);
+      if (k == bits.end()) k = std::find(bits.begin(), bits.end(), -1);
+      if (k == bits.end()) {
+        unmapped(l, fmt::format("g28move ({})", c),
+                 "every input switch 1-12 is taken: no switch for its homing limit");
+        continue;
+      }
+      *k = bit;
+      s.homing.axis_input[i] = static_cast<int>(k - bits.begin()) + 1;
+      mapped(l, fmt::format("g28move: {} homes on its {} limit switch (bit {}): input switch {}, "
+                            "homing.{}.input",
+                            c, up ? "high" : "low", bit, s.homing.axis_input[i], c));
+    }
   }
 
   // Outputs: auxout channels are the output switches (SO numbers).

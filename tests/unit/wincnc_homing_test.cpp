@@ -302,5 +302,31 @@ TEST(WinCncHoming, AnAxisHomesOnItsOwnInput) {
   }
 }
 
+// WinCNC homes on the limit switch of the homing side (the import makes it an input switch,
+// homing.x.input): X homes down onto its min limit switch (bit 2, input 5) and stops there
+// without a limit fault, as the card does not trip on a bit homing watches.
+TEST(WinCncHoming, AnAxisHomesOnItsLimitSwitch) {
+  Settings s = profile();
+  s.inputs.switch_bits[4] = s.inputs.min_bit[0];
+  s.homing.axis_input[0] = 5;
+  s.homing.search[0] = 3.0;
+  SimWorld w;
+  w.min_switch[0] = kSwitch;
+  const std::string path =
+      (fs::temp_directory_path() / ("gantry_homing_limit_" + std::to_string(getpid()))).string();
+  SimCard card(s, false, w, path);
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{s, card, io, store};
+  const Outcome o = c.run(Script::from_text("G28 X\n", "part.nc"));
+  ASSERT_TRUE(o) << o.reason;
+  c.wait();
+  ASSERT_EQ(c.status().state, MachineState::Idle) << c.status().message;
+  const double spu = s.axes[0].steps_per_unit;
+  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * spu));
+  EXPECT_EQ(card.steps()[0], at_switch + std::llround(0.5 * spu));
+  fs::remove(path);
+}
+
 }  // namespace
 }  // namespace gantry

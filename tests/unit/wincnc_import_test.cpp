@@ -148,6 +148,17 @@ TEST(WincncImport, TheManualsNumbersLandInTheirKeys) {
   EXPECT_EQ(s.homing.debounce, 20);  // g28_lim_cnt=20
   // enab=c2 ... t1 a"XYZW": X, Y, Z and W (on A) to home again after the E-stop mid-motion.
   EXPECT_EQ(s.homing.require, 0b1111u);
+  // G28 homes each axis on its limit switch of the homing side: Z and W up (axishi p3 b3, p2
+  // b4 o0), Y down (axislo p3 b0 o0), each made an input switch after the auxin ones; X's
+  // reads 0 when closed (o1), which an input switch cannot: listed.
+  EXPECT_EQ(s.homing.axis_input[2], 4);
+  EXPECT_EQ(s.inputs.switch_bits[3], 27);
+  EXPECT_EQ(s.homing.axis_input[3], 5);
+  EXPECT_EQ(s.inputs.switch_bits[4], 20);
+  EXPECT_EQ(s.homing.axis_input[1], 6);
+  EXPECT_EQ(s.inputs.switch_bits[5], 24);
+  EXPECT_EQ(s.homing.axis_input[0], 0);
+  EXPECT_NE(find(r, "g28move (x)"), nullptr);
   // override=E1 L10 H150
   EXPECT_EQ(s.feed_override.min, 10);
   EXPECT_EQ(s.feed_override.max, 150);
@@ -195,14 +206,10 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
     bool later;
   };
   const Want wants[] = {
-      {"axisvel S (X)", "WINCNC.INI", 12, false},
-      {"g28move (the limit switches as home switches)", "WINCNC.INI", 40, true},
-      {"spindle T, I", "WINCNC.INI", 54, true},
-      {"atc1", "WINCNC.INI", 62, true},
-      {"keypad", "WINCNC.INI", 61, false},
-      {"axishi O (W)", "WINCNC.INI", 29, false},
-      {"\"Viewer\"", "CNCSCRN.INI", 4, false},
-      {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
+      {"axisvel S (X)", "WINCNC.INI", 12, false}, {"enab M", "WINCNC.INI", 48, false},
+      {"spindle T, I", "WINCNC.INI", 54, true},   {"atc1", "WINCNC.INI", 62, true},
+      {"keypad", "WINCNC.INI", 61, false},        {"axishi O (W)", "WINCNC.INI", 29, false},
+      {"\"Viewer\"", "CNCSCRN.INI", 4, false},    {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
   };
   for (const Want& w : wants) {
     const WincncUnmapped* u = find(r, w.keyword);
@@ -219,7 +226,7 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
   // The table the "not mapped yet" rows come from names what each will need.
   for (const WincncPending& p : wincnc_not_mapped_yet()) EXPECT_FALSE(p.what.empty()) << p.keyword;
   const std::string report = wincnc_report(r);
-  EXPECT_NE(report.find("WINCNC.INI:40: g28move (the limit switches"), std::string::npos);
+  EXPECT_NE(report.find("WINCNC.INI:54: spindle T, I"), std::string::npos);
   // Mapped since the cushioned stop, the clamp, the homing debounce and the override bounds
   // landed: not listed.
   for (const char* k : {"lim_step=100", "esc_step=200", "softlim V1", "g28_lim_cnt=20",
