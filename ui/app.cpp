@@ -238,10 +238,12 @@ void App::global_keys() {
     if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) report(c_.stop(), "stop");
     // + and - step the feed override (the command line is read-only while a file runs).
     if (ImGui::IsKeyPressed(GLFW_KEY_KP_ADD, false) || ImGui::IsKeyPressed(GLFW_KEY_EQUAL, false))
-      set_feed_override(session::stepped_feed_override(status_.feed_override, 1));
+      set_feed_override(session::stepped_feed_override(status_.feed_override, 1,
+                                                       session::feed_override_bounds(settings_)));
     if (ImGui::IsKeyPressed(GLFW_KEY_KP_SUBTRACT, false) ||
         ImGui::IsKeyPressed(GLFW_KEY_MINUS, false))
-      set_feed_override(session::stepped_feed_override(status_.feed_override, -1));
+      set_feed_override(session::stepped_feed_override(status_.feed_override, -1,
+                                                       session::feed_override_bounds(settings_)));
   }
 }
 

@@ -80,13 +80,15 @@ void App::job_window() {
     ImGui::SameLine();
     if (button("Ack")) run_line("ack");
   }
-  // The live feed override, 10 % to 200 % (+ and - while a file runs).
+  // The live feed override, within the profile's bounds (+ and - while a file runs).
+  const session::FeedOverrideBounds bounds = session::feed_override_bounds(settings_);
   int percent = static_cast<int>(std::lround(status_.feed_override * 100));
   ImGui::SetNextItemWidth(200);
-  if (ImGui::SliderInt("feed %", &percent, 10, 200, "%d %%"))
-    set_feed_override(session::clamped_feed_override(percent / 100.0));
+  if (ImGui::SliderInt("feed %", &percent, settings_.feed_override.min, settings_.feed_override.max,
+                       "%d %%"))
+    set_feed_override(session::clamped_feed_override(percent / 100.0, bounds));
   ImGui::SameLine();
-  if (button("100 %")) set_feed_override(1.0);
+  if (button("100 %")) set_feed_override(session::clamped_feed_override(1.0, bounds));
   ImGui::SetNextItemWidth(110);
   ImGui::InputInt("##from", &start_line_);
   start_line_ = std::max(start_line_, 1);

@@ -38,6 +38,7 @@ void TickPlayer::set_trips(const InputTrip& estop, const InputTrip& limits) {
 void TickPlayer::arm_watch(const InputWatch& w, std::uint32_t bits_now) {
   watch_levels_.store(std::uint64_t{w.mask} << 32 | (w.levels & w.mask), std::memory_order_relaxed);
   watch_bits_now_.store(bits_now, std::memory_order_relaxed);
+  watch_debounce_.store(w.debounce, std::memory_order_relaxed);
   watch_gen_.fetch_add(1, std::memory_order_release);
 }
 
@@ -54,13 +55,14 @@ void TickPlayer::sample_watch(std::uint64_t tick, std::uint32_t bits) {
   if (gen != armed_gen_) {
     armed_gen_ = gen;
     const std::uint64_t w = watch_levels_.load(std::memory_order_relaxed);
-    detector_.arm({static_cast<std::uint32_t>(w >> 32), static_cast<std::uint32_t>(w), 0},
+    detector_.arm({static_cast<std::uint32_t>(w >> 32), static_cast<std::uint32_t>(w), 0,
+                   watch_debounce_.load(std::memory_order_relaxed)},
                   watch_bits_now_.load(std::memory_order_relaxed));
   }
-  if (const std::optional<int> bit = detector_.sample(bits)) {
-    edge_tick_.store(tick, std::memory_order_relaxed);
-    edge_bit_.store(*bit, std::memory_order_relaxed);
-    edge_bits_.store(bits, std::memory_order_relaxed);
+  if (const std::optional<InputEdge> e = detector_.sample(bits, tick)) {
+    edge_tick_.store(e->tick, std::memory_order_relaxed);
+    edge_bit_.store(e->bit, std::memory_order_relaxed);
+    edge_bits_.store(e->bits, std::memory_order_relaxed);
     fired_gen_.store(gen, std::memory_order_release);
   }
 }

@@ -124,6 +124,7 @@ class TickPlayer {
   // detector when it sees a new generation, and publishes an edge with that generation.
   std::atomic<std::uint64_t> watch_levels_{0};  // mask << 32 | levels
   std::atomic<std::uint32_t> watch_bits_now_{0};
+  std::atomic<int> watch_debounce_{1};                   // InputWatch::debounce, in input samples
   std::atomic<unsigned> watch_gen_{0}, fired_gen_{~0u};  // none fired yet
   std::atomic<std::uint64_t> edge_tick_{0};
   std::atomic<std::uint32_t> edge_bits_{0};

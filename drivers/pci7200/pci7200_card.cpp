@@ -220,9 +220,10 @@ void Pci7200Card::pass() {
       options_.limits, ticks_.load(std::memory_order_acquire), last_inputs_, inputs);
   last_inputs_ = inputs;
   if (!fired_)
-    if (const std::optional<int> bit = watcher_.sample(inputs)) {
-      fired_ = InputEdge{ticks_.load(std::memory_order_acquire), *bit, inputs};
-      if ((watcher_.watch().stop >> *bit & 1u) && active()) {  // an instant stop, no fault
+    if (const std::optional<InputEdge> e =
+            watcher_.sample(inputs, ticks_.load(std::memory_order_acquire))) {
+      fired_ = e;
+      if ((watcher_.watch().stop >> e->bit & 1u) && active()) {  // an instant stop, no fault
         halt_output(true);
         ring_.clear();
         phase_.store(Phase::Idle, std::memory_order_release);

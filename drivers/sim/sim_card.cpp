@@ -197,14 +197,29 @@ void SimCard::set_trips(const InputTrip& estop, const InputTrip& limits) {
 void SimCard::watch(const InputWatch& w) {
   watcher_.arm(w, inputs_);
   fired_.reset();
+  watch_tick_ = tick_;
+  watch_bits_ = inputs_;
+  watch_at_ = UINT64_MAX;
 }
 
+// Each word is a sample of the inputs, as for the limit rule: the inputs last sampled at
+// watch_tick_ held for the words since, so they count for those first (a debounce under way
+// reaches its count there, or not), then the inputs now count once. A count under way makes
+// the loop stop at watch_at_, the word where it is reached if nothing changes before.
 void SimCard::sample_watch(std::uint64_t played) {
-  if (fired_) return;
-  if (const std::optional<int> bit = watcher_.sample(inputs_)) {
-    fired_ = InputEdge{played, *bit, inputs_};
-    if (watcher_.watch().stop >> *bit & 1u) stopped_ = true;
-  }
+  if (fired_ || watcher_.watch().mask == 0) return;
+  std::optional<InputEdge> e;
+  if (played > watch_tick_ + 1 && watcher_.samples_left() != EdgeDetector::kNone)
+    e = watcher_.sample(watch_bits_, watch_tick_ + 1, played - watch_tick_ - 1);
+  if (!e && (played > watch_tick_ || inputs_ != watch_bits_)) e = watcher_.sample(inputs_, played);
+  watch_tick_ = std::max(watch_tick_, played);
+  watch_bits_ = inputs_;
+  const std::uint64_t left = watcher_.samples_left();
+  watch_at_ = left == EdgeDetector::kNone ? UINT64_MAX : watch_tick_ + left;
+  if (!e) return;
+  fired_ = e;
+  watch_at_ = UINT64_MAX;
+  if (watcher_.watch().stop >> e->bit & 1u) stopped_ = true;
 }
 
 // The monitor checks what follows against the new calibration; the simulated switches stay
@@ -250,7 +265,7 @@ void SimCard::start(double pacer_hz) {
 std::uint64_t SimCard::next_event_tick() const {
   const std::uint64_t input =
       next_input_ < input_ticks_.size() ? input_ticks_[next_input_] : UINT64_MAX;
-  return std::min({estop_tick_, stall_tick_, input, pending_at_});
+  return std::min({estop_tick_, stall_tick_, input, pending_at_, watch_at_});
 }
 
 void SimCard::stop(std::uint32_t idle_word) {
@@ -348,6 +363,11 @@ void SimCard::write(std::span<const std::uint32_t> words) {
         return;
       }
       event_tick = next_event_tick();  // a limit input may have begun its count
+    }
+    if (tick_ >= watch_at_) {  // an input watched read its level long enough (or not)
+      sample_watch(tick_);
+      if (stopped_) return;  // the word at this tick is not played
+      event_tick = next_event_tick();
     }
     if (tick_ >= event_tick && tick_ < pending_at_ && tick_ < estop_tick_ && tick_ < stall_tick_)
       event_tick = next_event_tick();  // a limit input's count ended in its release: go on

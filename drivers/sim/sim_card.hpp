@@ -121,6 +121,10 @@ class SimCard : public Card {
   void sample_watch(std::uint64_t played);  // the inputs may have changed; `played` words in
   EdgeDetector watcher_;
   std::optional<InputEdge> fired_;
+  // The watch's last sample and its inputs; a debounce under way reaches its count at
+  // watch_at_ if the inputs stay as they are.
+  std::uint64_t watch_tick_ = 0, watch_at_ = UINT64_MAX;
+  std::uint32_t watch_bits_ = 0;
 
   SimWorld world_;
   InputSettings input_bits_;

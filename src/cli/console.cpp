@@ -110,8 +110,17 @@ std::string Console::help(const std::string& arg) const {
 
 std::string Console::status_report() const {
   const ControllerStatus st = c_.status();
-  return session::terminal_status(readout(st), st, c_.modal(), live_.table_base(), keypad_step_,
-                                  units_);
+  std::string out = session::terminal_status(readout(st), st, c_.modal(), live_.table_base(),
+                                             keypad_step_, units_);
+  // The last known position (WinCNC shows it at start until G28): said until homed or
+  // confirmed, as the window's readout says UNCONFIRMED.
+  if (memory_)
+    if (const session::SavedMachine m = memory_->state(); !m.confirmed)
+      out += fmt::format(
+          "the position is UNCONFIRMED until homed (C3, G28) or confirmed "
+          "(confirm): {}\n",
+          m.why.empty() ? "the last known position" : m.why);
+  return out;
 }
 
 std::string Console::refusal(const std::string& prefix, const std::string& line, const Outcome& o,
@@ -284,8 +293,10 @@ void Console::job_key(const Key& k) {
     o = c_.stop();
   } else if (k.is_char('+') || k.is_char('=') || k.is_char('-') || k.is_char('0')) {
     const double now = c_.status().feed_override;
-    const double next =
-        k.is_char('0') ? 1.0 : session::stepped_feed_override(now, k.is_char('-') ? -1 : 1);
+    const session::FeedOverrideBounds b = session::feed_override_bounds(values_.settings());
+    const double next = k.is_char('0')
+                            ? session::clamped_feed_override(1.0, b)
+                            : session::stepped_feed_override(now, k.is_char('-') ? -1 : 1, b);
     c_.set_feed_override(next);
     flash(session::feed_override_text(next) + " (moves already planned keep their speed)");
     return;

@@ -2,6 +2,7 @@
 #include <fmt/format.h>  // output
 #include <CLI/CLI.hpp>   // command-line parsing
 
+#include <algorithm>   // clamp
 #include <cctype>      // tolower
 #include <charconv>    // from_chars
 #include <cstdio>      // stdout, stderr
@@ -221,6 +222,18 @@ struct LanguageArgs {
     out.check_budget = budget;
     out.max_errors = max_errors;
     out.feed_override = feed_override / 100;
+    // The profile's bounds (feed_override.min, max), as the live override keeps to them; the
+    // default, 100 %, is taken to the nearer bound when they leave it out.
+    const double lo = settings.feed_override.min, hi = settings.feed_override.max;
+    if (feed_override == 100 && (feed_override < lo || feed_override > hi))
+      out.feed_override = std::clamp(feed_override, lo, hi) / 100;
+    else if (feed_override < lo || feed_override > hi) {
+      fmt::print(stderr,
+                 "error: --feed-override {} is outside the profile's feed override bounds, {} % "
+                 "to {} % (feed_override.min, max)\n",
+                 feed_override, settings.feed_override.min, settings.feed_override.max);
+      return false;
+    }
     out.yes = yes;
     out.interpreter.start_line = from_line;
     if (!language.empty()) {
@@ -720,8 +733,10 @@ int main(int argc, char** argv) {
                    "Start at this line: the lines before it set modes, values and the location "
                    "without moving, then the tool goes there by Safe-Z")
       ->check(CLI::Range(1, 1'000'000'000));
-  run_cmd->add_option("--feed-override", run_lang.feed_override, "Percent of the file's speeds")
-      ->check(CLI::Range(10.0, 200.0));
+  run_cmd
+      ->add_option("--feed-override", run_lang.feed_override,
+                   "Percent of the file's speeds (within the profile's feed_override.min and max)")
+      ->check(CLI::Range(1.0, 200.0));
 
   std::string check_file, check_settings;
   CLI::App* check_cmd = app.add_subcommand("check", "Check a part file without motion");
@@ -754,8 +769,9 @@ int main(int argc, char** argv) {
   estimate_cmd->add_flag("--json", estimate_json, "Print the estimate as one JSON object");
   estimate_lang.add_to(estimate_cmd);
   estimate_cmd
-      ->add_option("--feed-override", estimate_lang.feed_override, "Percent of the file's speeds")
-      ->check(CLI::Range(10.0, 200.0));
+      ->add_option("--feed-override", estimate_lang.feed_override,
+                   "Percent of the file's speeds (within the profile's feed_override.min and max)")
+      ->check(CLI::Range(1.0, 200.0));
 
   std::string export_file, export_out, export_settings;
   LanguageArgs export_lang;

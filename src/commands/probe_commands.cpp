@@ -91,7 +91,8 @@ void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
   const AxisHoming a = axis_homing(s, i);
   const double reach = a.search;
   const char L = axis_name(s, i);
-  const int first_input = h.input, second_input = h.square_input[i];
+  const int first_input = h.axis_input[i] != 0 ? h.axis_input[i] : h.input;
+  const int second_input = h.square_input[i];
   int first = -1, second = -1;  // the axis's two channels, in channel order
   for (int k = 0; k < kAxisCount; ++k)
     if (s.drivers.channel_axis[k] == i) (first < 0 ? first : second) = k;
@@ -146,6 +147,24 @@ void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
   back_off(a.offset);
 }
 
+// WinCNC's g28coord: the axes just homed that have a park position (homing.<axis>.park, table
+// base) go there at jog speed, the soft limits checked as for any move: the axes that home
+// down (X and Y, mostly) first, together, then those that home up (the vertical heads), so a
+// head parked lower comes down last, over its place.
+void park_after_homing(CommandContext& ctx, const SourceLoc& loc, unsigned homed) {
+  const HomingSettings& h = ctx.settings().homing;
+  for (const int up : {-1, 1}) {
+    Vec6 working = ctx.state().position;
+    bool any = false;
+    for (int i = 0; i < kAxisCount; ++i)
+      if ((homed >> i & 1u) && h.park[i] && h.direction[i] == up) {
+        working[i] = *h.park[i] - ctx.state().zero[i];
+        any = true;
+      }
+    if (any) ctx.line_to(ctx.transform().to_file(working), SpeedClass::Jog, loc);
+  }
+}
+
 }  // namespace
 
 // Each axis of the profile's order: fast to its switch, back off, slowly to it again (the
@@ -154,13 +173,16 @@ void home_squared(CommandContext& ctx, const SourceLoc& loc, int i) {
 void home_on_switches(CommandContext& ctx, const SourceLoc& loc, std::string_view only) {
   const Settings& s = ctx.settings();
   const HomingSettings& h = s.homing;
+  unsigned homed = 0;
   for (const char letter : h.order) {
     if (!only.empty() && only.find(letter) == std::string_view::npos) continue;
     const int i = static_cast<int>(std::string_view("xyzabc").find(letter));
+    homed |= 1u << i;
     if (h.square_input[i] != 0) {
       home_squared(ctx, loc, i);
       continue;
     }
+    const int input = h.axis_input[i] != 0 ? h.axis_input[i] : h.input;
     const double dir = h.direction[i];
     const AxisHoming a = axis_homing(s, i);
     const char L = static_cast<char>(letter - 'a' + 'A');
@@ -170,28 +192,28 @@ void home_on_switches(CommandContext& ctx, const SourceLoc& loc, std::string_vie
       return t;
     };
     auto back_off = [&](double by) { ctx.homing_line(toward(-by), a.fast, loc); };
-    if (const auto in = ctx.input_switches(); in && (*in)[h.input - 1]) {
+    if (const auto in = ctx.input_switches(); in && (*in)[input - 1]) {
       back_off(a.retract);  // resting on the switch: off it first
-      if (const auto again = ctx.input_switches(); again && (*again)[h.input - 1])
+      if (const auto again = ctx.input_switches(); again && (*again)[input - 1])
         fail(loc, fmt::format("homing {}: input {} stays closed after backing off {}: check the "
                               "switch and its wiring",
-                              L, h.input, a.retract));
+                              L, input, a.retract));
     }
-    const bool live =
-        ctx.probe(toward(a.search), a.fast, h.input, loc, MachineLink::Watching::Home);
+    const bool live = ctx.probe(toward(a.search), a.fast, input, loc, MachineLink::Watching::Home);
     if (!live && ctx.input_switches())
       fail(loc, fmt::format("homing {}: input {} never closed within {} (the search length, "
                             "homing.{}.search or the table's length): check the switch and its "
                             "wiring",
-                            L, h.input, a.search, letter));
+                            L, input, a.search, letter));
     back_off(a.retract);
-    if (!ctx.probe(toward(2 * a.retract), a.slow, h.input, loc, MachineLink::Watching::Home) &&
+    if (!ctx.probe(toward(2 * a.retract), a.slow, input, loc, MachineLink::Watching::Home) &&
         ctx.input_switches())
       fail(loc,
-           fmt::format("homing {}: input {} did not close again on the slow approach", L, h.input));
+           fmt::format("homing {}: input {} did not close again on the slow approach", L, input));
     ctx.home_axis(i, h.at[i]);
     back_off(a.offset);
   }
+  park_after_homing(ctx, loc, homed);
 }
 
 void add_probe_commands(std::vector<CommandSpec>& out) {

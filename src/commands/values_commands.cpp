@@ -7,6 +7,7 @@
 #include <functional>  // a field's setter
 
 #include "gantry/commands/command_table.hpp"
+#include "gantry/commands/values_sheets.hpp"
 #include "gantry/interp/command_context.hpp"
 #include "gantry/interp/tool_table.hpp"  // cutter_to_tool_table
 #include "gantry/lang/expression.hpp"    // parse_lvalue: VV's names
@@ -779,6 +780,24 @@ void values_unknown(CommandContext&, const CommandCall& call) {
 }
 
 }  // namespace
+
+std::string_view sheet_of(const SettingRow& row, bool* as_parameter) {
+  if (as_parameter) *as_parameter = true;
+  const std::pair<std::string_view, const std::vector<Field>*> sheets[] = {
+      {"VC", &vc_sb3()},   {"VC", &vc_fabmo()},  {"VB", &vb_fields()}, {"VD", &vd_sb3()},
+      {"VD", &vd_fabmo()}, {"VH", &vh_fields()}, {"VI", &vi_sb3()},    {"VI", &vi_fabmo()},
+      {"VL", &vl_sb3()},   {"VL", &vl_fabmo()},  {"VN", &vn_fields()}, {"VP", &vp_fields()},
+      {"VR", &vr_sb3()},   {"VR", &vr_fabmo()},  {"VU", &vu_fields()}};
+  for (const auto& [code, fields] : sheets)
+    for (const Field& f : *fields)
+      if (f.row == &row) return code;
+  if (row.section.starts_with("speeds.")) return "VS";  // VS's (mode_commands.cpp)
+  if (as_parameter) *as_parameter = false;
+  const std::string path = row.path();
+  for (const SheetRows& r : sheet_profile_rows())
+    if (path.starts_with(r.prefix)) return r.code;
+  return "";
+}
 
 void add_values_commands(std::vector<CommandSpec>& out) {
   const auto V = CommandGroup::Values;

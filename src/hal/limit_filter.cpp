@@ -11,11 +11,11 @@
 namespace gantry {
 LimitFilter::LimitFilter(const Settings& s, double pacer_hz)
     : travel_only_(s.limits.travel_only),
-      debounce_(std::max(1, s.limits.debounce)),
       window_(std::llround(kTravelS * pacer_hz)),
       pins_(PinMap::from(s.pins)),
       min_bit_(s.inputs.min_bit),
-      max_bit_(s.inputs.max_bit) {
+      max_bit_(s.inputs.max_bit),
+      count_(s.limits.debounce) {
   for (const AxisPins& a : pins_.axes) step_bits_ |= a.steps;
 }
 
@@ -49,25 +49,9 @@ bool LimitFilter::travelling_to(std::uint32_t fresh, std::uint64_t tick) const {
 bool LimitFilter::sample(const InputTrip& limits, std::uint64_t tick, std::uint32_t before,
                          std::uint32_t bits, std::uint64_t repeat) {
   const std::uint32_t active = limits.active(bits);
-  pending_ &= active;  // released before its count: forgotten
-  if (pending_ == 0)
-    count_ = 0;
-  else
-    count_ += repeat;  // the inputs counting read active again
-  const std::uint32_t fresh = active & ~limits.active(before) & ~pending_;
-  if (fresh != 0 && (!travel_only_ || travelling_to(fresh, tick))) {
-    // Inputs counting share one count, from the first of them: a later one may trip with it
-    // (a second switch closing while the first counts is a limit hit all the same).
-    if (pending_ == 0) count_ = repeat;
-    pending_ |= fresh;
-  }
-  return pending_ != 0 && count_ >= static_cast<std::uint64_t>(debounce_);
-}
-
-std::uint64_t LimitFilter::samples_to_trip() const {
-  if (pending_ == 0) return kNone;
-  const auto d = static_cast<std::uint64_t>(debounce_);
-  return count_ >= d ? 0 : d - count_;
+  std::uint32_t fresh = active & ~limits.active(before) & ~(count_.pending() & active);
+  if (fresh != 0 && travel_only_ && !travelling_to(fresh, tick)) fresh = 0;
+  return count_.sample(active, fresh, repeat);
 }
 
 ChannelMotion motion_from_steps(std::int64_t prev, std::int64_t last, bool positive,

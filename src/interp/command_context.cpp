@@ -633,7 +633,10 @@ bool CommandContext::probe(const Vec6& file_target, double speed, int input, con
                           closing ? "closed" : "open",
                           closing ? "the probe is touching: move it clear first"
                                   : "the probe is not touching"));
-  const std::array<InputTrigger, 1> watch{{{input, closing, false}}};
+  // Homing's switch counts once it has read closed in homing.debounce samples in a row
+  // (WinCNC's g28_lim_cnt); a probe stops on its first closing.
+  const int debounce = why == MachineLink::Watching::Home ? settings_.homing.debounce : 1;
+  const std::array<InputTrigger, 1> watch{{{input, closing, false, debounce}}};
   interp_->gated_sink_->watch_inputs(watch, why);
   const Vec6 start = state_.position;
   const SpeedSettings speeds = state_.speeds;

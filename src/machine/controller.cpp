@@ -346,13 +346,17 @@ Controller::Summary Controller::summary() const {
 }
 
 void Controller::set_feed_override(double factor) {
+  // Within the profile's [feed_override] bounds, whichever front end asks (the front ends
+  // step within them too, so what they show is what runs).
+  factor =
+      std::clamp(factor, settings_.feed_override.min / 100.0, settings_.feed_override.max / 100.0);
   std::lock_guard lock(m_);
   feed_override_ = factor;
   // On a card that queues words it acts at once (the feeder re-plans and re-ramps what is not
   // yet generated); in virtual time after the statement running, in order with the moves, so
   // that a run is the same every time.
   if (card_.queues_words())
-    feed_.live_override(std::clamp(factor, 0.1, 2.0));
+    feed_.live_override(factor);
   else
     override_changed_ = true;
 }

@@ -6,6 +6,7 @@
 #include <sched.h>
 #include <sys/mman.h>
 
+#include <algorithm>  // max
 #include <cerrno>
 #include <cstdio>   // stderr
 #include <cstring>  // strerror
@@ -444,6 +445,7 @@ void FeederThread::arm_watch(std::shared_ptr<const std::vector<InputTrigger>> tr
     w.mask |= 1u << bit;
     if (t.closing) w.levels |= 1u << bit;
     if (t.instant) w.stop |= 1u << bit;
+    w.debounce = std::max(w.debounce, t.debounce);
   }
   fired_.reset();
   steps_.watch_inputs(w, [this](const InputEdge& e) { on_input_edge(e); });

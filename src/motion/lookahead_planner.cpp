@@ -166,7 +166,7 @@ void LookAheadPlanner::set_speeds(Block& b, const Block* prev) const {
 }
 
 void LookAheadPlanner::feed_override(double factor) {
-  override_ = std::clamp(factor, 0.1, 2.0);
+  override_ = std::clamp(factor, 0.01, 2.0);  // feed_override.min and max: 1 % to 200 %
   // Every held block gets its new speeds. When they are lower, the machine, already moving
   // at the front's locked entry speed, can only slow down at its acceleration: the speed
   // it can get down to by each block (`floor`) stays allowed there. The old plan was at or

@@ -6,14 +6,23 @@
 #include <algorithm>  // clamp
 #include <cmath>      // round
 
+#include "gantry/settings/settings.hpp"
+
 namespace gantry::session {
 
-double clamped_feed_override(double factor) {
-  return std::clamp(factor, kMinFeedOverride, kMaxFeedOverride);
+FeedOverrideBounds feed_override_bounds(const Settings& s) {
+  return {s.feed_override.min / 100.0, s.feed_override.max / 100.0};
 }
 
-double stepped_feed_override(double now, int steps) {
-  return clamped_feed_override((std::round(now * 10) + steps) / 10);
+double clamped_feed_override(double factor, const FeedOverrideBounds& b) {
+  return std::clamp(factor, b.lo, b.hi);
+}
+
+double stepped_feed_override(double now, int steps, const FeedOverrideBounds& b) {
+  // From between two tens (a bound such as 15 %, a slider's 104 %), the first step goes to
+  // the ten on the side it steps to.
+  const double tens = steps > 0 ? std::floor(now * 10 + 1e-9) : std::ceil(now * 10 - 1e-9);
+  return clamped_feed_override((tens + steps) / 10, b);
 }
 
 std::string feed_override_text(double factor) {

@@ -221,8 +221,9 @@ void PendantInput::button(const PendantEvent& e) {
       }
     case PendantButton::FeedPlus:
     case PendantButton::FeedMinus: {
-      c_.set_feed_override(
-          stepped_feed_override(st.feed_override, e.button == PendantButton::FeedPlus ? 1 : -1));
+      c_.set_feed_override(stepped_feed_override(st.feed_override,
+                                                 e.button == PendantButton::FeedPlus ? 1 : -1,
+                                                 feed_override_bounds(settings_)));
       return;
     }
     case PendantButton::SpindlePlus:

@@ -568,6 +568,9 @@ static void check_consistency(const Settings& s, const std::string& origin,
       for (int i = 0; i < row.size(); ++i)
         if (const double v = row.get(s, i), limit = row.most(s, i); v > limit)
           err(fmt::format("{} = {} exceeds the axis max_speed {}", row.path(i), v, limit));
+  if (s.feed_override.min >= s.feed_override.max)
+    err(fmt::format("feed_override.min ({} %) must be below feed_override.max ({} %)",
+                    s.feed_override.min, s.feed_override.max));
   // A slaved axis (docs/hardware.md) takes a second channel from an axis not in use.
   std::array<int, kAxisCount> channels_of{};
   for (int axis : s.drivers.channel_axis) ++channels_of[axis];
@@ -596,6 +599,10 @@ static void check_consistency(const Settings& s, const std::string& origin,
       err(fmt::format("homing.{}.square_input needs {} on two driver channels (drivers.channels), "
                       "a slaved axis",
                       kAxisLetters[i], L));
+    if (const std::optional<double>& p = s.homing.park[i];
+        p && (*p < s.axes[i].min || *p > s.axes[i].max))
+      err(fmt::format("homing.{}.park {} is outside {}'s soft limits {} to {} (axes.{}.min/max)",
+                      kAxisLetters[i], *p, L, s.axes[i].min, s.axes[i].max, kAxisLetters[i]));
   }
 }
 

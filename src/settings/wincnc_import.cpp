@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>  // toupper
 #include <charconv>
 #include <cmath>
 #include <cstdlib>  // atoi
@@ -22,24 +23,11 @@
 namespace gantry {
 namespace {
 
-constexpr std::string_view kLimitsPart = "limits and homing";
 constexpr std::string_view kToolsPart = "tool changer and spindle";
 
 // The settings other parts of issue 28 are adding now: each keyword here is reported "not
 // mapped yet" until its row lands and this table loses the line.
 constexpr WincncPending kPending[] = {
-    {"lim_mode 2, 3", "a shorter debounce for a limit switch opening", kLimitsPart},
-    {"g28move A", "homing on an alternate switch", kLimitsPart},
-    {"g28move L", "the longest search for a home switch", kLimitsPart},
-    {"g28move switches",
-     "each axis homing on its own limit switch (axislo or axishi on its homing side); C3 now "
-     "watches one input, homing.input",
-     kLimitsPart},
-    {"g28move speeds", "a homing speed and back-off per g28move line (one set now)", kLimitsPart},
-    {"g28coord", "a position to go to after homing", kLimitsPart},
-    {"g28_lim_cnt", "a limit switch debounce while homing", kLimitsPart},
-    {"require-home", "the axes to home again after an enable trips during motion (enab A, auxin A)",
-     kLimitsPart},
     {"atc1", "a tool changer: unload height, tool sensor offset, changing spindle's height",
      kToolsPart},
     {"atc2", "a second tool changer", kToolsPart},
@@ -194,9 +182,7 @@ constexpr Keyword kKeywords[] = {
     {"maxtrans", Form::Raw, "", "Gantry's keypad jogs run to the soft limits"},
     {"nmode", Form::Raw, "", "a G-code file starts in G90 (docs/gcode.md)"},
     {"numkp", Form::Raw, "", kScreen},
-    {"override", Form::Letters, "ELHDU",
-     "Gantry's feed override runs 10 % to 200 %, from the keys, the window and the pendant; no "
-     "inputs step it"},
+    {"override", Form::Letters, "ELHDU", ""},
     {"pci24h", Form::Letters, "A",
      "expansion I/O cards: Gantry drives the PCI-7200's 32 outputs and inputs"},
     {"pci48h", Form::Letters, "AB",
@@ -1074,9 +1060,13 @@ void Importer::build() {
     if (auto m = raw_number(*it->second, 0, 3)) {
       const int mode = static_cast<int>(*m);
       s.limits.travel_only = mode == 1 || mode == 3;
+      // Modes 2 and 3 differ from 0 and 1 by a shorter debounce as a switch opens: Gantry's
+      // limit trips as a switch closes, so there is no release to debounce.
       mapped(*it->second,
-             fmt::format("lim_mode={} -> limits.travel_only = {}", mode, s.limits.travel_only));
-      if (mode >= 2) later(*it->second, "lim_mode 2, 3", fmt::format("lim_mode={}", mode));
+             fmt::format("lim_mode={} -> limits.travel_only = {}{}", mode, s.limits.travel_only,
+                         mode >= 2 ? " (the shorter debounce on opening: Gantry's limits trip "
+                                     "on closing only)"
+                                   : ""));
     }
   if (const auto it = single.find("lim_cnt"); it != single.end())
     if (auto n = raw_number(*it->second, 1, 1e6)) {
@@ -1094,13 +1084,21 @@ void Importer::build() {
                                         k[0] == 'l' ? "cushion_steps" : "esc_steps", *steps));
       }
   if (const auto it = single.find("g28_lim_cnt"); it != single.end())
-    later(*it->second, "g28_lim_cnt", fmt::format("g28_lim_cnt={}", it->second->value));
+    if (auto n = raw_number(*it->second, 1, 1e6)) {
+      // At most 30, as lim_cnt (the manual gives g28_lim_cnt no maximum of its own).
+      s.homing.debounce = static_cast<int>(std::min(30.0, std::round(*n)));
+      mapped(*it->second, fmt::format("g28_lim_cnt -> homing.debounce = {}{}", s.homing.debounce,
+                                      *n > 30 ? " (at most 30, as lim_cnt)" : ""));
+    }
 
-  // Homing: G28's order, speeds, back-off and the place of each switch.
+  // Homing: G28's order, speeds, back-off and the place of each switch. On g28move, A is the
+  // manual's alternate-switch flag ("A# is used to specify that an alternate limit switch is
+  // to be used"), never an A axis's distance: the manual's axis letters there are X Y Z W.
+  constexpr std::string_view kG28moveAxes = "XYZWBC";
   std::string order;
   for (const Line* l : g28moves) {
     std::string vertical, other;
-    for (char c : std::string_view("XYZWABC"))
+    for (char c : std::string_view(kG28moveAxes))
       if (has(*l, c) && block(c))
         (block(c)->type == 3 ? vertical : other) +=
             kAxisLetters[static_cast<size_t>(block(c)->slot)];
@@ -1128,10 +1126,36 @@ void Importer::build() {
       if (has(l, 'R'))
         if (auto r = number(l, 'R', 0, 1e6, true)) s.homing.back_off = *r * len;
       mapped(l, "g28move F T R -> homing.fast_speed, slow_speed (units/min / 60), back_off");
-    } else if (has(l, 'F') || has(l, 'T') || has(l, 'R')) {
-      later(l, "g28move speeds", "g28move F T R (a second line)");
     }
-    for (char c : std::string_view("XYZWABC")) {
+    // The axes this line homes: its speeds (a line after the first) and its search length
+    // are theirs.
+    std::vector<size_t> line_axes;
+    for (char c : std::string_view(kG28moveAxes))
+      if (has(l, c) && block(c)) line_axes.push_back(static_cast<size_t>(block(c)->slot));
+    if (n > 0 && (has(l, 'F') || has(l, 'T') || has(l, 'R'))) {
+      std::optional<double> f, t, r;
+      if (has(l, 'F')) f = number(l, 'F', 0, 6e7, true);
+      if (has(l, 'T')) t = number(l, 'T', 0, 6e7, true);
+      if (has(l, 'R')) r = number(l, 'R', 0, 1e6, true);
+      std::string keys;
+      for (size_t i : line_axes) {
+        if (f) s.homing.fast[i] = *f / 60 * len;
+        if (t) s.homing.slow[i] = *t / 60 * len;
+        if (r) s.homing.retract[i] = *r * len;
+        keys += fmt::format("{}homing.{}", keys.empty() ? "" : ", ", kAxisLetters[i]);
+      }
+      if (!line_axes.empty())
+        mapped(l, fmt::format("g28move F T R (this line's) -> {} fast_speed, slow_speed, back_off",
+                              keys));
+    }
+    if (has(l, 'L'))
+      if (auto len_l = number(l, 'L', 0, 1e9, true))
+        for (size_t i : line_axes) {
+          s.homing.search[i] = *len_l * len;
+          mapped(l, fmt::format("g28move L -> homing.{}.search = {}", kAxisLetters[i],
+                                num(s.homing.search[i].value_or(0))));
+        }
+    for (char c : std::string_view(kG28moveAxes)) {
       if (!has(l, c)) continue;
       const AxisBlock* b = block(c);
       if (!b) {
@@ -1145,15 +1169,20 @@ void Importer::build() {
         s.homing.at[i] = s.homing.direction[i] * *d * len;
         mapped(l, fmt::format("g28move {0} -> homing.{1}.at = {2} (zero is {0} inside the switch)",
                               c, kAxisLetters[i], num(s.homing.at[i])));
+        // WinCNC ends the homing cycle that far off the switch, at its zero.
+        if (*d > 0) {
+          s.homing.offset[i] = *d * len;
+          mapped(l, fmt::format("g28move {} -> homing.{}.offset = {} (homing ends at zero)", c,
+                                kAxisLetters[i], num(*d * len)));
+        }
       }
     }
-    if (has(l, 'A')) later(l, "g28move A");
-    if (has(l, 'L')) later(l, "g28move L");
+    if (has(l, 'A'))
+      unmapped(l, "g28move A",
+               "homing on an axis's alternate limit switch: Gantry homes on input switches, not "
+               "on the limit inputs; set homing.<axis>.input to the input switch (auxin channel) "
+               "that switch is wired to");
     if (has(l, 'M')) mapped(l, "g28move M: Gantry homes each axis on its own, in homing.order");
-  }
-  if (!g28moves.empty()) {
-    // WinCNC homes each axis on its limit switch of the homing side; C3 watches homing.input.
-    later(*g28moves.front(), "g28move switches", "g28move (the limit switches as home switches)");
   }
   if (const auto it = single.find("g28altmove"); it != single.end()) {
     const Line& l = *it->second;
@@ -1170,11 +1199,71 @@ void Importer::build() {
       }
     }
   }
-  if (const auto it = single.find("g28coord"); it != single.end()) later(*it->second, "g28coord");
+  if (const auto it = single.find("g28coord"); it != single.end()) {
+    // "not used if all positions are zero"
+    const Line& l = *it->second;
+    bool all_zero = true;
+    for (const auto& [c, p] : l.params) all_zero = all_zero && p.value == 0;
+    if (all_zero) {
+      mapped(l, "g28coord: every position 0, not used (as WinCNC)");
+    } else {
+      for (const auto& [c, p] : l.params) {
+        const AxisBlock* b = block(c);
+        if (!b) {
+          unmapped(l, fmt::format("g28coord {}", c), fmt::format("axischar names no {} axis", c));
+          continue;
+        }
+        if (auto v = number(l, c, -1e9, 1e9)) {
+          const size_t i = static_cast<size_t>(b->slot);
+          s.homing.park[i] = *v * len;
+          mapped(l, fmt::format("g28coord {} -> homing.{}.park = {}", c, kAxisLetters[i],
+                                num(*v * len)));
+        }
+      }
+    }
+  }
+  if (const auto it = single.find("override"); it != single.end()) {
+    const Line& l = *it->second;
+    std::optional<int> lo, hi;
+    if (has(l, 'L')) lo = whole(l, 'L', 1, 200);
+    if (has(l, 'H')) hi = whole(l, 'H', 1, 200);
+    if (lo) s.feed_override.min = *lo;
+    if (hi) s.feed_override.max = *hi;
+    if (lo || hi)
+      mapped(l, fmt::format("override L H -> feed_override.min = {}, max = {} (percent)",
+                            s.feed_override.min, s.feed_override.max));
+    if (has(l, 'E') && l.params.at('E').value == 0)
+      unmapped(l, "override E0",
+               "Gantry's feed override cannot be switched off: feed_override.min and max of "
+               "100 would be the nearest, and they must differ");
+    for (char c : {'D', 'U'})
+      if (has(l, c))
+        unmapped(l, fmt::format("override {}", c),
+                 "an input switch that steps the feed override: the pendant's feed buttons and "
+                 "keys do");
+  }
 
   // Inputs: auxin channels are the input switches (1-12); enab, signal and scan give them
   // their roles.
   std::map<int, std::pair<int, const Line*>> channel_bit;  // auxin C -> input bit
+  // A"axes" on an enable (enab, auxin F1): the axes to home again when it trips during motion,
+  // homing.require.
+  auto require_home = [&](const Line& l, std::string_view what) {
+    const Param& p = l.params.at('A');
+    for (char c : p.text) {
+      const char upper = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      const AxisBlock* b = block(upper);
+      if (!b) {
+        unmapped(l, fmt::format("{} A {}", what, upper),
+                 fmt::format("axischar names no {} axis Gantry drives", upper));
+        continue;
+      }
+      s.homing.require |= 1u << b->slot;
+    }
+    mapped(l, fmt::format("{} A\"{}\" -> homing.require (the axes to home again after it trips "
+                          "during motion)",
+                          what, p.text));
+  };
   for (const Line* lp : auxins) {
     const Line& l = *lp;
     if (!has(l, 'C') || !has(l, 'B')) {
@@ -1221,7 +1310,12 @@ void Importer::build() {
         unmapped(l, fmt::format("auxin {}", p),
                  "a debounce, signal or initial state per input: not offered");
     if (has(l, 'M')) unmapped(l, "auxin M", "a custom message: Gantry names the input");
-    if (has(l, 'A')) later(l, "require-home", "auxin A");
+    if (has(l, 'A')) {
+      if (has(l, 'F') && l.params.at('F').value == 1)
+        require_home(l, "auxin");
+      else
+        unmapped(l, "auxin A", "the manual's require-home flags belong to an enable (F1)");
+    }
     if (has(l, 'O') && !has(l, 'F') && l.params.at('O').value == 1)
       unmapped(l, "auxin O", "an inverted input switch: Gantry reads 1 as closed");
   }
@@ -1252,7 +1346,12 @@ void Importer::build() {
         unmapped(l, fmt::format("enab T{}", t),
                  "an enable that pauses or lets the keys jog: Gantry's E-stop input stops");
       }
-      if (has(l, 'A')) later(l, "require-home", "enab A");
+      if (has(l, 'A')) {
+        if (t <= 2)
+          require_home(l, "enab");
+        else
+          unmapped(l, "enab A", "the require-home flags of an enable Gantry does not map");
+      }
       for (char p : std::string_view("MLI"))
         if (has(l, p))
           unmapped(l, fmt::format("enab {}", p),
@@ -1285,6 +1384,51 @@ void Importer::build() {
                             s.inputs.probe_bit));
     }
     unmapped(l, "scan T A S H F P D", "3D digitizing with the probe: not offered (G38.2 probes)");
+  }
+
+  // G28 homes each axis on its limit switch of the homing side (axislo homing down, axishi up).
+  // Gantry homes on input switches: each such limit bit becomes one (the input switch an auxin
+  // already puts on it, or the first free of 1-12), the axis's homing.<axis>.input. The card
+  // does not trip on a bit homing watches, so the approach stops on the switch, not in a fault.
+  if (!g28moves.empty()) {
+    const Line& l = *g28moves.front();
+    for (const char c : s.homing.order) {
+      const auto i = std::string_view("xyzabc").find(c);
+      if (i >= static_cast<size_t>(kAxisCount)) continue;
+      const bool up = s.homing.direction[i] > 0;
+      const int bit = (up ? s.inputs.max_bit : s.inputs.min_bit)[i];
+      if (bit < 0) {
+        unmapped(l, fmt::format("g28move ({})", c),
+                 fmt::format("no {} limit switch (axis{}) to home on: homing.input's switch "
+                             "stays this axis's",
+                             up ? "high" : "low", up ? "hi" : "lo"));
+        continue;
+      }
+      // An input switch reads 1 as closed: a switch that reads 0 when closed (O1) cannot be one.
+      const Line* side = nullptr;
+      for (const AxisBlock& b : axes)
+        if (b.slot == static_cast<int>(i)) side = up ? b.hi : b.lo;
+      if (side && has(*side, 'O') && side->params.at('O').value == 1) {
+        unmapped(l, fmt::format("g28move ({})", c),
+                 fmt::format("its {} limit switch reads 0 when closed (axis{} O1) and an input "
+                             "switch reads 1 as closed: homing.input's switch stays this axis's",
+                             up ? "high" : "low", up ? "hi" : "lo"));
+        continue;
+      }
+      auto& bits = s.inputs.switch_bits;
+      auto k = std::find(bits.begin(), bits.end(), bit);
+      if (k == bits.end()) k = std::find(bits.begin(), bits.end(), -1);
+      if (k == bits.end()) {
+        unmapped(l, fmt::format("g28move ({})", c),
+                 "every input switch 1-12 is taken: no switch for its homing limit");
+        continue;
+      }
+      *k = bit;
+      s.homing.axis_input[i] = static_cast<int>(k - bits.begin()) + 1;
+      mapped(l, fmt::format("g28move: {} homes on its {} limit switch (bit {}): input switch {}, "
+                            "homing.{}.input",
+                            c, up ? "high" : "low", bit, s.homing.axis_input[i], c));
+    }
   }
 
   // Outputs: auxout channels are the output switches (SO numbers).

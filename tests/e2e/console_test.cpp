@@ -434,6 +434,20 @@ TEST(ConsolePiped, ABareValueCommandShowsTheValuesInForce) {
   EXPECT_EQ(r.out.find("> VS, , , , , 5\nVS, Values"), std::string::npos) << r.out;
 }
 
+// A bare VL lists the limit and homing keys of the profile after its parameters, VS the feed
+// override's bounds (docs/values.md, "What the sheets show").
+TEST(ConsolePiped, ABareSheetListsTheProfilesKeysOfItsSubject) {
+  const Result r = console_piped("VL\nVS\n");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::size_t vl = r.out.find("VL, Values for table limits (in force):\n");
+  ASSERT_NE(vl, std::string::npos) << r.out;
+  const std::size_t listed = r.out.find("  set in the profile", vl);
+  ASSERT_NE(listed, std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("limits.debounce ", listed), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("homing.<x..c>.park ", listed), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("feed_override.min  10\n"), std::string::npos) << r.out;
+}
+
 TEST(ConsolePiped, ABareValueCommandInAPartFileShowsNothing) {
   TempDir dir;
   const fs::path part = dir.path() / "bare.sbp";

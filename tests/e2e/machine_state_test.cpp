@@ -125,6 +125,10 @@ TEST(MachineState, SigkillMidMoveRestoresThePositionUnconfirmed) {
             std::string::npos)
       << console.out;
   EXPECT_NE(console.out.find("UNCONFIRMED"), std::string::npos) << console.out;
+  // Its status says so too, until homed or confirmed (WinCNC's last known position).
+  EXPECT_NE(console.out.find("the position is UNCONFIRMED until homed (C3, G28) or confirmed"),
+            std::string::npos)
+      << console.out;
   EXPECT_NE(console.out.find("idle     X 0.5000  Y 0.0000"), std::string::npos) << console.out;
   EXPECT_NE(console.out.find("table base X 1.5000"), std::string::npos) << console.out;
 

@@ -168,4 +168,23 @@ TEST(PendantInput, ButtonsRunTheirLinesAndMacrosTheirBindings) {
 }
 
 }  // namespace
+// The profile's feed override bounds (WinCNC's override L and H) hold for the pendant's
+// buttons, and for the controller whoever asks.
+TEST(PendantInput, FeedButtonsKeepToTheProfilesOverrideBounds) {
+  Settings s = default_settings();
+  s.feed_override.min = 85;
+  s.feed_override.max = 120;
+  Bench b(false, s);
+  for (int k = 0; k < 5; ++k) b.in().handle(press(PendantButton::FeedPlus));
+  EXPECT_NEAR(b.c.status().feed_override, 1.2, 1e-12);
+  for (int k = 0; k < 5; ++k) b.in().handle(press(PendantButton::FeedMinus));
+  EXPECT_NEAR(b.c.status().feed_override, 0.85, 1e-12);
+  b.in().handle(press(PendantButton::FeedPlus));  // from 85 % to the next ten
+  EXPECT_NEAR(b.c.status().feed_override, 0.9, 1e-12);
+  b.c.set_feed_override(2.0);  // any front end: the controller keeps to the bounds
+  EXPECT_NEAR(b.c.status().feed_override, 1.2, 1e-12);
+  b.c.set_feed_override(0.1);
+  EXPECT_NEAR(b.c.status().feed_override, 0.85, 1e-12);
+}
+
 }  // namespace gantry::session

@@ -6,6 +6,7 @@
 
 #include "gantry/session/feed_override.hpp"
 #include "gantry/session/readout_lines.hpp"
+#include "gantry/settings/settings.hpp"
 
 namespace gantry::session {
 namespace {
@@ -116,13 +117,30 @@ TEST(SpindleText, OnOffAndTheSpeedPlayedOrRecorded) {
   EXPECT_EQ(spindle_text(s, 12000), "spindle on, 12000 RPM (set on the spindle; TR recorded it)");
 }
 
+// feed_override.min 15 and max 150 (WinCNC's override L15 H150): the bounds are steps of
+// their own, and reset (100 %) stays within them.
+TEST(FeedOverride, TheProfilesBoundsHold) {
+  Settings s = default_settings();
+  s.feed_override.min = 15;
+  s.feed_override.max = 150;
+  const FeedOverrideBounds b = feed_override_bounds(s);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(0.2, -1, b), 0.15);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(0.15, 1, b), 0.2);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.5, 1, b), 1.5);
+  EXPECT_DOUBLE_EQ(clamped_feed_override(2.0, b), 1.5);
+  s.feed_override.max = 80;
+  EXPECT_DOUBLE_EQ(clamped_feed_override(1.0, feed_override_bounds(s)), 0.8);
+}
+
 TEST(FeedOverride, StepsOfTenPercentWithinTenToTwoHundred) {
-  EXPECT_DOUBLE_EQ(stepped_feed_override(1.0, 1), 1.1);
-  EXPECT_DOUBLE_EQ(stepped_feed_override(1.0, -3), 0.7);
-  EXPECT_DOUBLE_EQ(stepped_feed_override(1.04, 1), 1.1);  // to a whole ten
-  EXPECT_DOUBLE_EQ(stepped_feed_override(0.1, -1), 0.1);
-  EXPECT_DOUBLE_EQ(stepped_feed_override(2.0, 1), 2.0);
-  EXPECT_DOUBLE_EQ(clamped_feed_override(5), 2.0);
+  const FeedOverrideBounds b = feed_override_bounds(default_settings());  // 10 % to 200 %
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.0, 1, b), 1.1);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.0, -3, b), 0.7);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.04, 1, b), 1.1);  // to a whole ten
+  EXPECT_DOUBLE_EQ(stepped_feed_override(1.04, -1, b), 1.0);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(0.1, -1, b), 0.1);
+  EXPECT_DOUBLE_EQ(stepped_feed_override(2.0, 1, b), 2.0);
+  EXPECT_DOUBLE_EQ(clamped_feed_override(5, b), 2.0);
   EXPECT_EQ(feed_override_text(1.2), "feed 120 %");
 }
 

@@ -107,8 +107,8 @@ TEST(SettingsSchema, OptionalTablesAreTheRows) {
   for (const SettingRow& row : settings_schema())
     if (row.optional_table) optional.insert(std::string(row.section));
   EXPECT_EQ(optional,
-            (std::set<std::string>{"files", "limits", "pendant", "simulator", "spindle",
-                                   "toolchanger"}));
+            (std::set<std::string>{"feed_override", "files", "limits", "pendant", "simulator",
+                                   "spindle", "toolchanger"}));
   for (const SettingRow& row : settings_schema())
     EXPECT_EQ(row.optional_table, optional.count(std::string(row.section)) == 1) << row.path();
 }

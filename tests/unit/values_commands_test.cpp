@@ -3,15 +3,18 @@
 #include <gtest/gtest.h>
 #include <unistd.h>  // getpid
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
 #include "../support/interpreter_fixture.hpp"
+#include "gantry/commands/values_sheets.hpp"
 #include "gantry/core/text_file.hpp"
 #include "gantry/interp/interpreter.hpp"
 #include "gantry/interp/system_variables.hpp"
 #include "gantry/lang/script.hpp"
 #include "gantry/machine/job.hpp"
+#include "gantry/settings/settings_schema.hpp"
 #include "gantry/settings/values_file.hpp"
 #include "sim/sim_card.hpp"
 
@@ -442,6 +445,98 @@ TEST_F(ValuesTest, VnOutputModesSetByTheFileApplyAtItsEndAndAnUnwiredOneIsNamed)
             std::string::npos)
       << io.warnings()[0].message;
   EXPECT_TRUE(switched(sink.moves).empty());
+}
+
+}  // namespace
+}  // namespace gantry
+
+// ---- the values sheets: where each setting is shown --------------------------------------
+
+namespace gantry {
+namespace {
+
+// Every row of the schema is shown in a sheet (a V command's parameter, or the profile's rows
+// a bare V command lists after its parameters) or belongs to a table of the machine's wiring
+// read from the profile only: a new row (a new table) cannot be left out unnoticed.
+TEST(ValuesSheets, EveryRowIsInASheetOrAProfileOnlyTable) {
+  const std::span<const std::string_view> only = profile_only_tables();
+  for (const SettingRow& row : settings_schema()) {
+    const bool profile_only = std::find(only.begin(), only.end(), row.section) != only.end();
+    EXPECT_TRUE(!sheet_of(row).empty() || profile_only)
+        << row.path()
+        << ": shown in no values sheet; add its table to kSheetRows "
+           "(src/commands/values_display.cpp) or to kProfileOnly, and to docs/values.md";
+  }
+  // Each line of kSheetRows names rows that exist.
+  for (const SheetRows& r : sheet_profile_rows()) {
+    bool any = false;
+    for (const SettingRow& row : settings_schema()) any = any || row.path().starts_with(r.prefix);
+    EXPECT_TRUE(any) << r.code << " lists " << r.prefix << ", which no row starts with";
+  }
+}
+
+// Issue 28's settings (the machines people own) are in the sheet of their subject.
+TEST(ValuesSheets, IssueTwentyEightsSettingsAreInTheirSheets) {
+  const std::pair<std::string_view, std::string_view> want[] = {
+      {"limits.travel_only", "VL"},
+      {"limits.debounce", "VL"},
+      {"limits.cushion_steps", "VL"},
+      {"limits.esc_steps", "VL"},
+      {"limits.soft_clamp", "VL"},
+      {"homing.order", "VL"},
+      {"homing.require", "VL"},
+      {"homing.debounce", "VL"},
+      {"homing.<x..c>.direction", "VL"},
+      {"homing.<x..c>.fast_speed", "VL"},
+      {"homing.<x..c>.slow_speed", "VL"},
+      {"homing.<x..c>.back_off", "VL"},
+      {"homing.<x..c>.offset", "VL"},
+      {"homing.<x..c>.search", "VL"},
+      {"homing.<x..c>.square_input", "VL"},
+      {"homing.<x..c>.square_offset", "VL"},
+      {"homing.<x..c>.input", "VL"},
+      {"homing.<x..c>.park", "VL"},
+      {"axes.<x..c>.backlash", "VU"},
+      {"axes.<x..c>.wrap", "VU"},
+      {"drivers.channels", "VI"},  // slaved axes: a parameter of VI
+      {"display.w_axis", "VD"},
+      {"feed_override.min", "VS"},
+      {"feed_override.max", "VS"},
+  };
+  for (const auto& [path, code] : want) EXPECT_EQ(sheet_of(setting_row(path)), code) << path;
+  bool parameter = false;
+  EXPECT_EQ(sheet_of(setting_row("drivers.channels"), &parameter), "VI");
+  EXPECT_TRUE(parameter);
+  EXPECT_EQ(sheet_of(setting_row("limits.debounce"), &parameter), "VL");
+  EXPECT_FALSE(parameter);
+  // Every key of [spindle] and [toolchanger], whatever keys they gain: the cutter's sheet.
+  int machine = 0;
+  for (const SettingRow& row : settings_schema())
+    if (row.section == "spindle" || row.section == "toolchanger") {
+      EXPECT_EQ(sheet_of(row), "VC") << row.path();
+      ++machine;
+    }
+  EXPECT_GT(machine, 10);
+}
+
+// A bare VL lists, after its parameters, the limit and homing keys in force; a family on one
+// line, over the axes in use, a key left out as "-".
+TEST(ValuesSheets, ABareSheetListsItsProfileRows) {
+  Settings s = default_settings();
+  s.limits.debounce = 7;
+  s.homing.park[2] = 1.5;
+  s.feed_override.max = 150;
+  const std::string vl = sheet_profile_lines("VL", s);
+  EXPECT_NE(vl.find("set in the profile"), std::string::npos) << vl;
+  EXPECT_NE(vl.find("limits.debounce "), std::string::npos) << vl;
+  EXPECT_NE(vl.find("  7\n"), std::string::npos) << vl;
+  const std::size_t park = vl.find("homing.<x..c>.park");
+  ASSERT_NE(park, std::string::npos) << vl;
+  const std::string line = vl.substr(park, vl.find('\n', park) - park);
+  EXPECT_NE(line.find("x -  y -  z 1.5"), std::string::npos) << line;
+  EXPECT_EQ(line.find(" a "), std::string::npos) << line;  // display.axes = 3
+  EXPECT_NE(sheet_profile_lines("VS", s).find("feed_override.max  150"), std::string::npos);
+  EXPECT_EQ(sheet_profile_lines("VA", s), "");
 }
 
 }  // namespace

@@ -157,3 +157,176 @@ TEST(WinCncHoming, PerAxisKeysAreOptionalAndDefaultToTheHomingTable) {
 
 }  // namespace
 }  // namespace gantry
+
+namespace gantry {
+namespace {
+
+// The home input spikes for two words while X searches, far from the switch (a wire picking
+// up noise); the switch itself closes at kSwitch.
+SimWorld spiked_world(const Settings& s) {
+  SimWorld w = HomingMachine::world();
+  const int bit = s.inputs.switch_bits[static_cast<std::size_t>(s.homing.input - 1)];
+  const double tick = 1.0 / s.card.pacer_hz();
+  w.input_events = {{0.3, bit, true}, {0.3 + 2 * tick, bit, false}};
+  return w;
+}
+
+// g28_lim_cnt: with homing.debounce = 4 the spike is forgotten and X homes exactly where the
+// switch closes, as without it; with 1 (the first closing) the spike stops the search there,
+// and the measured approach finds no switch.
+TEST(WinCncHoming, TheHomingDebounceIgnoresASpikeAndKeepsTheSwitchsPlace) {
+  for (const int debounce : {4, 1}) {
+    Settings s = profile();
+    s.homing.debounce = debounce;
+    const std::string path =
+        (fs::temp_directory_path() / ("gantry_homing_debounce_" + std::to_string(getpid())))
+            .string();
+    SimCard card(s, false, spiked_world(s), path);
+    ScriptedIO io{true, {}};
+    PersistentStore store;
+    Controller c{s, card, io, store};
+    const Outcome o = c.run(Script::from_text("G28 X\n", "part.nc"));
+    ASSERT_TRUE(o) << o.reason;
+    c.wait();
+    const ControllerStatus st = c.status();
+    const double spu = s.axes[0].steps_per_unit;
+    const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * spu));
+    if (debounce == 4) {
+      ASSERT_EQ(st.state, MachineState::Idle) << st.message;
+      EXPECT_EQ(card.steps()[0], at_switch + std::llround(0.5 * spu));
+      const ModalState ms = c.modal();
+      EXPECT_NEAR(ms.position[0] + ms.zero[0], 0.5, 1e-12);
+    } else {
+      EXPECT_NE(st.state, MachineState::Idle);
+      EXPECT_NE(st.message.find("did not close again"), std::string::npos) << st.message;
+      EXPECT_GT(card.steps()[0], at_switch + std::llround(0.5 * spu));  // stopped short
+    }
+    fs::remove(path);
+  }
+}
+
+// The debounced switch's place does not depend on the count: G28 X with homing.debounce 30
+// ends on the same step as with 1, on a switch that does not bounce.
+TEST(WinCncHoming, TheDebouncedEdgeIsWhereTheSwitchClosed) {
+  Settings s = profile();
+  s.homing.debounce = 30;
+  HomingMachine m(s);
+  const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+  ASSERT_TRUE(o) << o.reason;
+  m.c.wait();
+  ASSERT_EQ(m.c.status().state, MachineState::Idle) << m.c.status().message;
+  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * m.spu()));
+  EXPECT_EQ(m.card.steps()[0], at_switch + m.steps(0.5));
+  fs::remove(m.path);
+}
+
+// The watch's count, sample by sample, as every card feeds it: a run shorter than the count
+// is forgotten; the edge given is the first sample of the run that reached it; a run of
+// samples alike counts as many.
+TEST(WinCncHoming, TheEdgeDetectorCountsSamplesAtTheLevel) {
+  EdgeDetector d;
+  d.arm({.mask = 1u << 3, .levels = 1u << 3, .stop = 0, .debounce = 3}, 0);
+  EXPECT_FALSE(d.sample(1u << 3, 10));  // 1
+  EXPECT_FALSE(d.sample(0, 11));        // released: forgotten
+  EXPECT_FALSE(d.sample(1u << 3, 12));  // 1
+  EXPECT_FALSE(d.sample(1u << 3, 13));  // 2
+  EXPECT_EQ(d.samples_left(), 1u);
+  const std::optional<InputEdge> e = d.sample(1u << 3, 14);  // 3
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->tick, 12u);
+  EXPECT_EQ(e->bit, 3);
+  EXPECT_FALSE(d.sample(1u << 3, 15));  // once until armed again
+  d.arm({.mask = 1u << 3, .levels = 1u << 3, .stop = 0, .debounce = 5}, 0);
+  EXPECT_FALSE(d.sample(1u << 3, 20, 4));
+  const std::optional<InputEdge> run = d.sample(1u << 3, 24, 1);
+  ASSERT_TRUE(run);
+  EXPECT_EQ(run->tick, 20u);
+  // Armed at its level already: it must leave it first, whatever the count.
+  d.arm({.mask = 1u << 3, .levels = 1u << 3, .stop = 0, .debounce = 1}, 1u << 3);
+  EXPECT_FALSE(d.sample(1u << 3, 30, 100));
+  EXPECT_FALSE(d.sample(0, 31));
+  EXPECT_TRUE(d.sample(1u << 3, 32));
+}
+
+// g28coord: after G28 X, X goes to its park position (table base 3) at jog speed; Z, not
+// homed, has a park too and stays. A park outside the soft limits is refused at load.
+TEST(WinCncHoming, TheParkPositionFollowsHoming) {
+  Settings s = profile();
+  s.homing.park[0] = 3.0;
+  s.homing.park[2] = -0.5;
+  HomingMachine m(s);
+  const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+  ASSERT_TRUE(o) << o.reason;
+  m.c.wait();
+  ASSERT_EQ(m.c.status().state, MachineState::Idle) << m.c.status().message;
+  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * m.spu()));
+  EXPECT_EQ(m.card.steps()[0], at_switch + m.steps(3.0));
+  EXPECT_EQ(m.card.steps()[2], 0);
+  const ModalState ms = m.c.modal();
+  EXPECT_NEAR(ms.position[0] + ms.zero[0], 3.0, 1e-12);
+  fs::remove(m.path);
+
+  std::string text = default_profile_text();
+  const std::string key = "[homing.x]\n";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.insert(text.find(key) + key.size(), "park = 30\n");
+  const SettingsLoad bad = parse_settings(text, "p.toml");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.errors[0].message.find("homing.x.park 30 is outside X's soft limits"),
+            std::string::npos)
+      << bad.errors[0].message;
+}
+
+// g28move A: X homes on a switch of its own, input 5 (bit 9), while the others share input 3;
+// without homing.x.input it watches input 3, which X's switch never closes.
+TEST(WinCncHoming, AnAxisHomesOnItsOwnInput) {
+  for (const bool own : {true, false}) {
+    Settings s = profile();
+    s.inputs.switch_bits[4] = 9;
+    s.inputs.home_bit[0] = 9;
+    if (own) s.homing.axis_input[0] = 5;
+    s.homing.search[0] = 3.0;
+    HomingMachine m(s);
+    const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+    ASSERT_TRUE(o) << o.reason;
+    m.c.wait();
+    const ControllerStatus st = m.c.status();
+    if (own) {
+      ASSERT_EQ(st.state, MachineState::Idle) << st.message;
+      const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * m.spu()));
+      EXPECT_EQ(m.card.steps()[0], at_switch + m.steps(0.5));
+    } else {
+      EXPECT_NE(st.message.find("input 3 never closed"), std::string::npos) << st.message;
+    }
+    fs::remove(m.path);
+  }
+}
+
+// WinCNC homes on the limit switch of the homing side (the import makes it an input switch,
+// homing.x.input): X homes down onto its min limit switch (bit 2, input 5) and stops there
+// without a limit fault, as the card does not trip on a bit homing watches.
+TEST(WinCncHoming, AnAxisHomesOnItsLimitSwitch) {
+  Settings s = profile();
+  s.inputs.switch_bits[4] = s.inputs.min_bit[0];
+  s.homing.axis_input[0] = 5;
+  s.homing.search[0] = 3.0;
+  SimWorld w;
+  w.min_switch[0] = kSwitch;
+  const std::string path =
+      (fs::temp_directory_path() / ("gantry_homing_limit_" + std::to_string(getpid()))).string();
+  SimCard card(s, false, w, path);
+  ScriptedIO io{true, {}};
+  PersistentStore store;
+  Controller c{s, card, io, store};
+  const Outcome o = c.run(Script::from_text("G28 X\n", "part.nc"));
+  ASSERT_TRUE(o) << o.reason;
+  c.wait();
+  ASSERT_EQ(c.status().state, MachineState::Idle) << c.status().message;
+  const double spu = s.axes[0].steps_per_unit;
+  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * spu));
+  EXPECT_EQ(card.steps()[0], at_switch + std::llround(0.5 * spu));
+  fs::remove(path);
+}
+
+}  // namespace
+}  // namespace gantry

@@ -3,6 +3,7 @@
 // homing, CNC.MAC and CNCSCRN.INI lines) read into a profile that is compared with a golden
 // one, checked value by value against the manual's numbers, loaded, and run on the simulated
 // card; every keyword it cannot map is listed with its file and line; bad input is located.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -141,6 +142,26 @@ TEST(WincncImport, TheManualsNumbersLandInTheirKeys) {
   EXPECT_DOUBLE_EQ(s.homing.slow_speed, 10.0 / 60);
   EXPECT_DOUBLE_EQ(s.homing.back_off, 0.25);
   EXPECT_DOUBLE_EQ(s.homing.square_offset[1], 0.03);  // g28altmove=Y.03
+  // g28move X.5 Y.5, Z.5 W.5: homing ends .5 off each switch, at zero.
+  EXPECT_EQ(s.homing.offset[0], 0.5);
+  EXPECT_EQ(s.homing.offset[3], 0.5);
+  EXPECT_EQ(s.homing.debounce, 20);  // g28_lim_cnt=20
+  // enab=c2 ... t1 a"XYZW": X, Y, Z and W (on A) to home again after the E-stop mid-motion.
+  EXPECT_EQ(s.homing.require, 0b1111u);
+  // G28 homes each axis on its limit switch of the homing side: Z and W up (axishi p3 b3, p2
+  // b4 o0), Y down (axislo p3 b0 o0), each made an input switch after the auxin ones; X's
+  // reads 0 when closed (o1), which an input switch cannot: listed.
+  EXPECT_EQ(s.homing.axis_input[2], 4);
+  EXPECT_EQ(s.inputs.switch_bits[3], 27);
+  EXPECT_EQ(s.homing.axis_input[3], 5);
+  EXPECT_EQ(s.inputs.switch_bits[4], 20);
+  EXPECT_EQ(s.homing.axis_input[1], 6);
+  EXPECT_EQ(s.inputs.switch_bits[5], 24);
+  EXPECT_EQ(s.homing.axis_input[0], 0);
+  EXPECT_NE(find(r, "g28move (x)"), nullptr);
+  // override=E1 L10 H150
+  EXPECT_EQ(s.feed_override.min, 10);
+  EXPECT_EQ(s.feed_override.max, 150);
   // Outputs on port 7: c1 b7, c2 b6 -> bits 31, 30.
   ASSERT_EQ(s.outputs.aux_bits.size(), 2u);
   EXPECT_EQ(s.outputs.aux_bits[0], 31);
@@ -185,8 +206,7 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
     bool later;
   };
   const Want wants[] = {
-      {"axisvel S (X)", "WINCNC.INI", 12, false}, {"override", "WINCNC.INI", 57, false},
-      {"g28_lim_cnt=20", "WINCNC.INI", 43, true}, {"enab A", "WINCNC.INI", 48, true},
+      {"axisvel S (X)", "WINCNC.INI", 12, false}, {"enab M", "WINCNC.INI", 48, false},
       {"spindle T, I", "WINCNC.INI", 54, true},   {"atc1", "WINCNC.INI", 62, true},
       {"keypad", "WINCNC.INI", 61, false},        {"axishi O (W)", "WINCNC.INI", 29, false},
       {"\"Viewer\"", "CNCSCRN.INI", 4, false},    {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
@@ -206,10 +226,64 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
   // The table the "not mapped yet" rows come from names what each will need.
   for (const WincncPending& p : wincnc_not_mapped_yet()) EXPECT_FALSE(p.what.empty()) << p.keyword;
   const std::string report = wincnc_report(r);
-  EXPECT_NE(report.find("WINCNC.INI:43: g28_lim_cnt=20"), std::string::npos);
-  // Mapped since the cushioned stop and the clamp landed: not listed.
-  for (const char* k : {"lim_step=100", "esc_step=200", "softlim V1"})
+  EXPECT_NE(report.find("WINCNC.INI:54: spindle T, I"), std::string::npos);
+  // Mapped since the cushioned stop, the clamp, the homing debounce and the override bounds
+  // landed: not listed.
+  for (const char* k : {"lim_step=100", "esc_step=200", "softlim V1", "g28_lim_cnt=20",
+                        "g28_lim_cnt", "override", "lim_mode=1"})
     EXPECT_EQ(find(r, k), nullptr) << k;
+}
+
+// The limit and homing keys issue 28 added, each from its WINCNC.INI line: lim_mode 2 and 3
+// (0 and 1 with a shorter release debounce, which has nothing to act on here), a later
+// g28move line's speeds and search length for its own axes, g28coord's park positions (an
+// all-zero line is not used), g28_lim_cnt at most 30, override's bounds; g28move A, override
+// E0 and its inputs listed.
+TEST(WincncImport, LimitHomingAndOverrideKeysMap) {
+  const std::string head =
+      "unit=IN\naxischar=XYZ\naxisspec=p0 s0 d0 r1000 a400\naxisspec=p0 s1 d1 r1000 a400\n"
+      "axisspec=p0 s2 d2 r1000 a200 t3\nlolim=X0 Y0\nhilim=X48 Y24 Z0\n";
+  for (const auto& [mode, travel] : {std::pair{2, false}, std::pair{3, true}}) {
+    const WincncImport r = import_text(head + fmt::format("lim_mode={}\n", mode));
+    ASSERT_TRUE(r.ok()) << format(r.errors[0]);
+    EXPECT_EQ(r.settings.limits.travel_only, travel) << mode;
+    EXPECT_EQ(find(r, fmt::format("lim_mode={}", mode)), nullptr);
+  }
+  const WincncImport r = import_text(
+      head +
+      "g28move=Z.25 F60 T6 R.2\ng28move=X.5 Y1 F120 T12 R.3 L50 A1\ng28coord=X10 Y5 Z0\n"
+      "g28_lim_cnt=45\noverride=E0 L25 H120 D3 U4\n");
+  ASSERT_TRUE(r.ok()) << format(r.errors[0]);
+  const Settings& s = r.settings;
+  EXPECT_DOUBLE_EQ(s.homing.fast_speed, 1.0);  // the first line's: [homing]
+  EXPECT_DOUBLE_EQ(*s.homing.fast[0], 2.0);    // the second line's: X's and Y's own
+  EXPECT_DOUBLE_EQ(*s.homing.slow[1], 0.2);
+  EXPECT_DOUBLE_EQ(*s.homing.retract[0], 0.3);
+  EXPECT_DOUBLE_EQ(*s.homing.search[1], 50);
+  EXPECT_FALSE(s.homing.fast[2]);
+  EXPECT_FALSE(s.homing.search[2]);
+  EXPECT_DOUBLE_EQ(*s.homing.offset[1], 1.0);
+  EXPECT_DOUBLE_EQ(*s.homing.park[0], 10);
+  EXPECT_DOUBLE_EQ(*s.homing.park[1], 5);
+  EXPECT_DOUBLE_EQ(*s.homing.park[2], 0);
+  EXPECT_EQ(s.homing.debounce, 30);  // at most 30, as lim_cnt
+  EXPECT_EQ(s.feed_override.min, 25);
+  EXPECT_EQ(s.feed_override.max, 120);
+  for (const char* k : {"g28move A", "override E0", "override D", "override U"}) {
+    const WincncUnmapped* u = find(r, k);
+    ASSERT_NE(u, nullptr) << k;
+    EXPECT_FALSE(u->later) << k;
+  }
+  EXPECT_NE(find(r, "g28move A")->why.find("homing.<axis>.input"), std::string::npos);
+  // "not used if all positions are zero"
+  const WincncImport zero = import_text(head + "g28coord=X0 Y0 Z0\n");
+  ASSERT_TRUE(zero.ok());
+  for (int i = 0; i < kAxisCount; ++i) EXPECT_FALSE(zero.settings.homing.park[i]);
+  // A park outside the soft limits: the profile's rule, located at the key.
+  const WincncImport out = import_text(head + "g28coord=X60\n");
+  ASSERT_FALSE(out.ok());
+  EXPECT_NE(format(out.errors[0]).find("homing.x.park"), std::string::npos)
+      << format(out.errors[0]);
 }
 
 // The profile written loads as --profile reads it and runs on the simulated card: W moves

@@ -79,6 +79,7 @@ struct InputTrigger {
   int input = 0;
   bool closing = true;
   bool instant = false;
+  int debounce = 1;  // the card's input samples in a row at the level (homing.debounce)
 };
 
 // What a file has set that changes how its moves are drawn, not how they run: the cutter

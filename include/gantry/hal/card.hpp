@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gantry/core/axes.hpp"        // Steps6
+#include "gantry/hal/debounce.hpp"     // Debounce
 #include "gantry/hal/input_roles.hpp"  // InputTrip
 
 namespace gantry {
@@ -37,8 +38,11 @@ struct InputSample {
 // `mask` fires when it changes to its level in `levels`. An edge, not a level: a bit already at
 // its level when armed must first leave it. A bit also in `stop` stops the card at the word
 // where it fired (an instant stop: the words after it are dropped, and no fault is raised).
+// `debounce`: the bit fires once it has read its level in that many of the card's input
+// samples in a row (homing.debounce, WinCNC's g28_lim_cnt); a shorter visit is forgotten.
 struct InputWatch {
   std::uint32_t mask = 0, levels = 0, stop = 0;
+  int debounce = 1;
 };
 
 // Where a watch fired: the words before `tick` had played when the edge was seen (the tool
@@ -49,29 +53,42 @@ struct InputEdge {
   std::uint32_t bits = 0;
 };
 
-// The edge logic of InputWatch over successive samples; fires once until armed again.
+// The edge logic of InputWatch over successive samples; fires once until armed again. With a
+// debounce, the edge it gives is the first sample of the run that reached the count (where
+// the switch closed), whatever the count: the tool's place there does not depend on it.
 class EdgeDetector {
  public:
+  static constexpr std::uint64_t kNone = Debounce::kNone;
   void arm(const InputWatch& w, std::uint32_t bits_now) {
     w_ = w;
     armed_ = (bits_now ^ w.levels) & w.mask;  // bits away from their level may fire
+    count_ = Debounce(w.debounce);
     fired_ = false;
   }
-  // The bit that fired at this sample, if one did.
-  std::optional<int> sample(std::uint32_t bits) {
+  // The edge that fired at this sample (taken at `tick`, standing for `repeat` samples
+  // alike), if one did.
+  std::optional<InputEdge> sample(std::uint32_t bits, std::uint64_t tick = 0,
+                                  std::uint64_t repeat = 1) {
     if (fired_ || w_.mask == 0) return std::nullopt;
     const std::uint32_t away = (bits ^ w_.levels) & w_.mask;
-    const std::uint32_t hit = armed_ & ~away & w_.mask;
+    const std::uint32_t at = armed_ & ~away & w_.mask;  // armed bits at their level
+    const std::uint32_t fresh = at & ~count_.pending();
+    if (fresh != 0 && (count_.pending() & at) == 0) first_ = {tick, 0, bits};  // a new count
     armed_ |= away;
-    if (hit == 0) return std::nullopt;
+    if (!count_.sample(at, fresh, repeat)) return std::nullopt;
     fired_ = true;
-    return std::countr_zero(hit);
+    first_.bit = std::countr_zero(count_.pending());
+    return first_;
   }
+  // More samples alike that make it fire (kNone: none would).
+  std::uint64_t samples_left() const { return fired_ ? Debounce::kNone : count_.samples_left(); }
   const InputWatch& watch() const { return w_; }
 
  private:
   InputWatch w_;
   std::uint32_t armed_ = 0;
+  Debounce count_;
+  InputEdge first_;
   bool fired_ = false;
 };
 
@@ -152,8 +169,7 @@ class Card {
   virtual std::optional<InputEdge> watch_fired() {
     if (!fired_) {
       const InputSample s = sample_inputs();
-      if (std::optional<int> bit = watcher_.sample(s.bits))
-        fired_ = InputEdge{s.tick, *bit, s.bits};
+      fired_ = watcher_.sample(s.bits, s.tick);
     }
     return fired_;
   }

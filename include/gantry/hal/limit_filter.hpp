@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gantry/core/axes.hpp"        // kAxisCount, Steps6
+#include "gantry/hal/debounce.hpp"     // Debounce
 #include "gantry/hal/input_roles.hpp"  // InputTrip
 #include "gantry/hal/pin_map.hpp"      // PinMap
 
@@ -33,7 +34,7 @@ struct Settings;
 class LimitFilter {
  public:
   static constexpr double kTravelS = 0.05;
-  static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
+  static constexpr std::uint64_t kNone = Debounce::kNone;
 
   LimitFilter() = default;
   // The profile's rule and wiring; `pacer_hz` sizes the travel window in ticks.
@@ -51,16 +52,15 @@ class LimitFilter {
   bool sample(const InputTrip& limits, std::uint64_t tick, std::uint32_t before, std::uint32_t bits,
               std::uint64_t repeat = 1);
   // Inputs still counting: how many more samples alike trip the card; kNone when none count.
-  std::uint64_t samples_to_trip() const;
-  void reset() { pending_ = 0, count_ = 0; }
+  std::uint64_t samples_to_trip() const { return count_.samples_left(); }
+  void reset() { count_.reset(); }
   bool travel_only() const { return travel_only_; }
-  int debounce() const { return debounce_; }
+  int debounce() const { return count_.needed(); }
 
  private:
   bool travelling_to(std::uint32_t fresh, std::uint64_t tick) const;
 
   bool travel_only_ = false;
-  int debounce_ = 1;
   std::int64_t window_ = 0;  // kTravelS in ticks
   PinMap pins_;              // channel k's step and direction bits (channels, not axes)
   std::uint32_t step_bits_ = 0;
@@ -69,8 +69,7 @@ class LimitFilter {
   std::array<std::int64_t, kAxisCount> last_step_{kLongAgo, kLongAgo, kLongAgo,
                                                   kLongAgo, kLongAgo, kLongAgo};
   std::array<bool, kAxisCount> last_positive_{};
-  std::uint32_t pending_ = 0;  // fresh inputs counting their samples
-  std::uint64_t count_ = 0;    // samples they have read active so far
+  Debounce count_;  // limits.debounce: the inputs counting their samples
 };
 
 // A channel's motion at the instant a cushioned stop begins: its step rate (steps per tick,

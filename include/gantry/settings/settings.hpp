@@ -171,6 +171,14 @@ struct HomingSettings {
   // mid-motion (WinCNC's enab A"axes"): bit i, axis i. A run moving one of them is refused
   // until C3 (or G28) homes it, or the operator confirms the position.
   std::uint32_t require = 0;
+  // Input samples in a row a home switch must read closed before homing takes it (WinCNC's
+  // g28_lim_cnt; limits.debounce is lim_cnt, for the limit switches).
+  int debounce = 1;
+  // Per axis: the input switch (1-12) its home switch closes, instead of `input` (0: `input`):
+  // WinCNC's g28move A, homing on another switch than the others'.
+  std::array<int, kAxisCount> axis_input{};
+  // Per axis: where it goes after homing (table base; WinCNC's g28coord). nullopt: it stays.
+  std::array<std::optional<double>, kAxisCount> park{};
 };
 
 // What a move beyond the soft limits does (WinCNC's softlim B and V).
@@ -184,6 +192,13 @@ struct LimitSettings {
   int cushion_steps = 0;     // steps of deceleration after a hit, instead of a dead stop
   int esc_steps = 0;         // the same after the operator's E-stop
   SoftClamp soft_clamp = SoftClamp::Off;  // refused (Off), or clamped: Z only, or every axis
+};
+
+// [feed_override]: the bounds of the operator's live feed override, percent of the programmed
+// speeds (WinCNC's override L and H), for every front end that changes it.
+struct FeedOverrideSettings {
+  int min = 10;
+  int max = 200;
 };
 
 // The simulated card's machine (card.type "sim"; docs/hardware.md): where its proximity
@@ -340,6 +355,7 @@ struct Settings {
   InputSettings inputs;
   HomingSettings homing;
   LimitSettings limits;
+  FeedOverrideSettings feed_override;
   SimulatorSettings simulator;
   CutterSettings cutter;
   TabSettings tabs;
