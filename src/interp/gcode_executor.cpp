@@ -582,7 +582,7 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   if (w.has('S')) {  // the speed first, then the spindle starts at it (LinuxCNC's order)
     const double rpm = w.get('S');
     const SpindleSettings& sp = ctx_.settings().spindle;
-    if (sp.pwm_bit >= 0 && rpm > sp.max_rpm)
+    if (sp.speed_output() && rpm > sp.max_rpm)
       fail(w.at('S', loc), fmt::format("S{} is faster than this spindle runs ({} RPM, "
                                        "spindle.max_rpm); nothing was changed",
                                        format_number(rpm), format_number(sp.max_rpm)));

@@ -255,6 +255,34 @@ TEST(Spindle, FrequencyModeCarriesTheSpeedAsAPulseRate) {
               m.pacer() / static_cast<double>(std::llround(m.pacer() / 1500)), 3);
 }
 
+// The D/A word (spindle.dac_bits, 4 bits here: 0 to 15 for 0 to max_rpm) on the pin trace:
+// initial_rpm's word before the spindle first runs, then S's, and 0 after the run.
+TEST(Spindle, DacBitsCarryTheSpeedAsAWordFromTheInitialRpmOn) {
+  Settings s = spindle_profile();
+  s.spindle.spin_up_s = 0;
+  s.spindle.spin_down_s = 0;
+  s.spindle.max_rpm = 24000;
+  s.spindle.dac_bits = {6, 7, 14, 15};
+  s.spindle.initial_rpm = 12000;
+  Machine m(s, {}, "dac");
+  m.run("G20\nM3\nG4 P0.5\nS6000\nG4 P0.5\nS18000\nG4 P0.5\nM5\n");
+  ASSERT_EQ(m.error(), "");
+  auto word = [](std::uint32_t w) {
+    return static_cast<int>((w >> 6 & 1u) | (w >> 7 & 1u) << 1 | (w >> 14 & 1u) << 2 |
+                            (w >> 15 & 1u) << 3);
+  };
+  const Trace t = m.trace();
+  std::vector<int> words;  // each new word, in order
+  for (const auto& [tick, w] : t)
+    if (words.empty() || words.back() != word(w)) words.push_back(word(w));
+  // 12000 -> 7.5 -> 8; 6000 -> 3.75 -> 4; 18000 -> 11.25 -> 11; the run's end: 0.
+  EXPECT_EQ(words, (std::vector<int>{0, 8, 4, 11, 0}));
+  const auto run_on = edges(t, kRunBit, true);
+  ASSERT_EQ(run_on.size(), 1u);
+  for (const auto& [tick, w] : t)  // the speed stood before the spindle started
+    if (tick == run_on[0]) EXPECT_EQ(word(w), 8);
+}
+
 // ---- the tool changer
 
 constexpr double kSensorX = 10, kSensorY = 16, kSensorTop = -1.25, kSensorZero = -2.0;
@@ -617,6 +645,25 @@ TEST(SpindleSettings, NewKeysLoadAndAreChecked) {
   EXPECT_EQ(messages(parse_settings(text, "p.toml")),
             "spindle.reverse_output cannot be output switch 1, which runs the spindle\n"
             "spindle.at_speed_input: input switch 6 is not wired (inputs.switch_bits)\n");
+}
+
+TEST(SpindleSettings, DacBitsAndInitialRpmLoadAndAreChecked) {
+  std::string text = default_profile_text();
+  const std::string from = "max_rpm = 24000.0";
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  std::string good = text;
+  good.insert(at + from.size(), "\ndac_bits = \"6, 7, 14, 15\"\ninitial_rpm = 12000.0\n");
+  const SettingsLoad l = parse_settings(good, "p.toml");
+  ASSERT_TRUE(l.ok()) << messages(l);
+  EXPECT_EQ(l.settings.spindle.dac_bits, (std::vector<int>{6, 7, 14, 15}));
+  EXPECT_EQ(l.settings.spindle.initial_rpm, 12000);
+  EXPECT_TRUE(l.settings.spindle.speed_output());
+  std::string bad = text;
+  bad.insert(at + from.size(), "\ndac_bits = \"6, 16\"\ninitial_rpm = 30000.0\n");
+  EXPECT_EQ(messages(parse_settings(bad, "p.toml")),
+            "spindle.dac_bits (bit 1): output bit 16 is already used by another pin\n"
+            "spindle.initial_rpm 30000 is faster than spindle.max_rpm 24000\n");
 }
 
 }  // namespace
