@@ -279,8 +279,11 @@ TEST(Spindle, DacBitsCarryTheSpeedAsAWordFromTheInitialRpmOn) {
   EXPECT_EQ(words, (std::vector<int>{0, 8, 4, 11, 0}));
   const auto run_on = edges(t, kRunBit, true);
   ASSERT_EQ(run_on.size(), 1u);
-  for (const auto& [tick, w] : t)  // the speed stood before the spindle started
-    if (tick == run_on[0]) EXPECT_EQ(word(w), 8);
+  for (const auto& [tick, w] : t) {  // the speed stood before the spindle started
+    if (tick == run_on[0]) {
+      EXPECT_EQ(word(w), 8);
+    }
+  }
 }
 
 // ---- the tool changer
