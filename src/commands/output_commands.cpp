@@ -52,7 +52,7 @@ void motors_off(CommandContext& ctx, const CommandCall& call) {
 void spindle_speed(CommandContext& ctx, const CommandCall& call) {
   const double rpm = *call.number(0);
   const SpindleSettings& spindle = ctx.settings().spindle;
-  if (spindle.pwm_bit >= 0 && rpm > spindle.max_rpm)
+  if (spindle.speed_output() && rpm > spindle.max_rpm)
     fail(call.param_loc(0),
          fmt::format("TR {} RPM is faster than this spindle runs ({} RPM, spindle.max_rpm); "
                      "nothing was changed",

@@ -462,6 +462,15 @@ void CommandContext::set_output(int n, bool on, const SourceLoc& loc) {
                           "switch output {} off)",
                           n, n == 1 ? "forward" : "in reverse", n == 1 ? "in reverse" : "forward",
                           n == 1 ? sp.reverse_output : 1));
+  // A spindle starting runs at the RPM held (spindle.initial_rpm, or TR's before a run's end
+  // set the output to 0): the speed output carries it first.
+  if (on && spindle_output(n) && settings_.spindle.speed_output() &&
+      speed_sent_ != state_.spindle_rpm) {
+    CanonMove speed = here(MoveKind::SpindleSpeed, loc);
+    speed.spindle_rpm = state_.spindle_rpm;
+    sink_.move(speed);
+    speed_sent_ = state_.spindle_rpm;
+  }
   CanonMove m = here(MoveKind::Output, loc);
   m.output = n;
   m.output_on = on;
@@ -476,7 +485,7 @@ void CommandContext::set_spindle_speed(double rpm, const SourceLoc& loc, bool qu
   state_.spindle_rpm = rpm;
   if (state_.preview) return;  // a preview switches nothing
   note_drawing(loc);
-  if (settings_.spindle.pwm_bit < 0) {
+  if (!settings_.spindle.speed_output()) {
     if (!quiet && !std::exchange(spindle_speed_warned_, true))
       warn(loc,
            "TR: this machine's profile has no spindle speed output ([spindle] pwm_bit), so "
@@ -487,6 +496,7 @@ void CommandContext::set_spindle_speed(double rpm, const SourceLoc& loc, bool qu
   CanonMove m = here(MoveKind::SpindleSpeed, loc);
   m.spindle_rpm = rpm;
   sink_.move(m);
+  speed_sent_ = rpm;
   if (rpm != was && spindle_direction() != 0) wait_at_speed(loc);
 }
 

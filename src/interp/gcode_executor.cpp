@@ -93,6 +93,7 @@ int g_group(int code) {
     case 281:
     case 300:
     case 301:
+    case 370:  // G37: measure the tool on the tool-length sensor (Fanuc's, WinCNC's g37=)
     case 530:
     case 920:
     case 921:
@@ -352,6 +353,13 @@ void GcodeExecutor::check_words(const Words& w, const SourceLoc& loc) {
     return l;
   };
   check_comp_words(w, motion, loc);
+  if (w.non_modal == 370)  // G37: the sensor's place and descent are the profile's
+    for (char c : kAxes)
+      if (w.has(c))
+        fail(w.at(c, loc), fmt::format("G37 takes no axis words ({}): the sensor's place and its "
+                                       "descent are the profile's [toolchanger]; put a move on "
+                                       "a line of its own",
+                                       c));
   const bool uses_axes = takes_axis_words(w.non_modal, wincnc) || w.wincnc_axes;
   const bool own_letters = w.own_letters();
   if (w.g[8] == 431 && w.g[1] >= 0 && w.any_axis())
@@ -574,7 +582,7 @@ void GcodeExecutor::run(const Words& w, const SourceLoc& loc) {
   if (w.has('S')) {  // the speed first, then the spindle starts at it (LinuxCNC's order)
     const double rpm = w.get('S');
     const SpindleSettings& sp = ctx_.settings().spindle;
-    if (sp.pwm_bit >= 0 && rpm > sp.max_rpm)
+    if (sp.speed_output() && rpm > sp.max_rpm)
       fail(w.at('S', loc), fmt::format("S{} is faster than this spindle runs ({} RPM, "
                                        "spindle.max_rpm); nothing was changed",
                                        format_number(rpm), format_number(sp.max_rpm)));

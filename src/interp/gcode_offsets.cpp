@@ -93,6 +93,8 @@ void GcodeExecutor::non_modal(const Words& w, int code, const SourceLoc& loc) {
       }
       o.axis_offset.setZero();
       return;
+    case 370:
+      return tool_measure(w, loc);  // gcode_tools.cpp
     case 923:
       if (wincnc && !o.axis_offset.isZero(0)) {  // WinCNC: offsets set: store and clear them
         o.axis_offset_saved = o.axis_offset;

@@ -142,6 +142,24 @@ void GcodeExecutor::tool_length(const Words& w, const SourceLoc& loc) {
   }
 }
 
+// G37: the tool in the spindle measured on the profile's tool-length sensor, with no change
+// (docs/gcode.md, "Tool table"), its length written to the tool table as M6's measure writes
+// it. G43 (G43 H) applies it from the next block on, as after G10 L1; in the WinCNC dialect
+// G37 turns the length on at once, as M37 does (its G43 takes the last measure).
+void GcodeExecutor::tool_measure(const Words& w, const SourceLoc& loc) {
+  SourceLoc at = loc;
+  at.column = w.g_col[0];
+  if (comp_active())
+    fail(at, "G37 with cutter compensation on: turn it off (G40) before measuring the tool");
+  GcodeOffsets& o = ctx_.state().gcode;
+  if (o.tool != 0) tool_entry(o.tool, at);  // the table read (and its file refreshed) first
+  const std::optional<double> length = measure_tool_in_spindle(ctx_, "G37", at);
+  if (length && ctx_.settings().gcode_dialect == GcodeDialect::WinCNC) {
+    o.measured_length = *length;
+    o.tool_length = *length;
+  }
+}
+
 // G10 L1 sets tool P's offsets to the values given; L10 so that, with its length applied,
 // the current position reads them in the coordinate system in use; L11 the same in G59.3
 // without the G92 offsets. R is the radius (the table keeps the diameter). The file is

@@ -9,7 +9,8 @@
 
 #include "gantry/commands/command_table.hpp"  // home_on_switches
 #include "gantry/interp/gcode_executor.hpp"
-#include "gantry/lang/wincnc.hpp"  // evaluate_wincnc_braces
+#include "gantry/interp/tool_changer.hpp"  // M37 on a rack, the sensor
+#include "gantry/lang/wincnc.hpp"          // evaluate_wincnc_braces
 #include "gcode_words.hpp"
 
 namespace gantry {
@@ -97,12 +98,9 @@ constexpr Refusal kRefused[] = {
     {'M', 290,
      "M29 (end the line at a limit, for custom homing) is not supported; home with "
      "G28 (the profile's [homing])"},
-    {'M', 371,
-     "M37.1 (tool measure switch height TM1, for G37) is not supported: Gantry has no "
-     "automatic tool measuring (g37=)"},
     {'M', 372,
-     "M37.2 (tool measure switch height TM2, for G37) is not supported: Gantry has no "
-     "automatic tool measuring (g37=)"},
+     "M37.2 (the second tool measure switch's height, TM2) is not supported: Gantry has one "
+     "tool-length sensor (the profile's [toolchanger]); calibrate it with M37.1"},
     {'M', 373,
      "M37.3 (shift the stored tool measures) is not supported: Gantry keeps one "
      "measure per tool; measure again with M37"},
@@ -385,13 +383,26 @@ double GcodeExecutor::wincnc_brace(std::string_view text, const SourceLoc& at) c
       fail(l,
            "{TS1} needs the tool changer's offset (atc1= in WINCNC.INI), which Gantry does "
            "not have; use {TP1}");
-    if (name.size() == 3 && name.substr(0, 2) == "TM")
-      fail(l, fmt::format("{{{}}} is the tool measure switch's (g37=, M37.1): Gantry has no "
-                          "automatic tool measuring",
+    // The tool-length sensor (the profile's [toolchanger]; WinCNC's g37= and M37.1).
+    const ToolChangerSettings& tc = ctx_.settings().toolchanger;
+    if (name == "TM2" || name == "TMI" || name == "TMJ")
+      fail(l, fmt::format("{{{}}} is the second tool measure switch's (g37 I J, M37.2): Gantry "
+                          "has one tool-length sensor",
                           name));
+    if (name.size() == 3 && name.substr(0, 2) == "TM" && tc.sensor_input == 0)
+      fail(l, fmt::format("{{{}}} is the tool measure switch's (g37=, M37.1), and this "
+                          "machine's profile has no tool-length sensor (toolchanger.sensor_input)",
+                          name));
+    const ModalState& st = ctx_.state();
+    if (name == "TM1") return (tc.sensor_zero_z - st.zero[2]) / k[2];  // M37.1's height
+    if (name == "TMX") return tc.sensor_x / k[0];
+    if (name == "TMY") return tc.sensor_y / k[1];
+    if (name == "TMD") return (tc.clear_z - tc.sensor_start_z) / k[2];
+    if (name == "TMF") return tc.sensor_speed * 60 / length_scale();
     if (name.size() == 3 && name.substr(0, 2) == "TH")
       fail(l, fmt::format("{{{}}} is torch height control's: Gantry has none", name));
-    fail(l, fmt::format("{{{}}} is not a variable Gantry knows: it has X Y Z A B C, TP1, TN1, TH1 "
+    fail(l, fmt::format("{{{}}} is not a variable Gantry knows: it has X Y Z A B C, TP1, TN1, TH1, "
+                        "the sensor's TM1 TMX TMY TMD TMF "
                         "and LZ0-LZ5 (WinCNC's CNC.MAC variables are not read)",
                         name));
   };
@@ -445,7 +456,7 @@ void GcodeExecutor::wincnc_codes(const Words& w, const SourceLoc& loc) {
   if (w.wm >= 0) {
     const std::string code = code_name('M', w.wm);
     if (const char* why = refusal('M', w.wm)) fail(at_col(w.wm_col), why);
-    only_axes(code, w.wm == 370 ? "Z" : "C");
+    only_axes(code, w.wm == 370 || w.wm == 371 ? "Z" : "C");
     auto channel = [&](int hi, const char* what) {
       const double c =
           required('C', code, fmt::format("the {} channel, as {} C2", what, code).c_str());
@@ -524,32 +535,93 @@ void GcodeExecutor::wincnc_codes(const Words& w, const SourceLoc& loc) {
         const char tool_letter = w.has('T') ? 'T' : 'H';
         if (w.has('T') && w.has('H'))
           fail(w.at('H', loc), "M37 takes the tool number as T or H, not both");
-        if (w.has(tool_letter)) {
-          const int t = whole(w.get(tool_letter), 0, 99999, w.at(tool_letter, loc),
-                              fmt::format("M37 {}", tool_letter));
-          if (t != o.tool) {  // no tool changer: the operator loads it
-            ctx_.come_to_rest(loc);
-            if (!io_.confirm(fmt::format("M37: load tool {} and bring its tip to the measuring "
-                                         "point, then continue",
-                                         t),
-                             loc))
-              throw OperatorStop({loc, Severity::Error, "stopped by the operator at M37"});
-            o.tool = t;
-            selected_tool_ = t;
-          }
+        if (w.has('O') && w.has('Z'))
+          fail(w.at('Z', loc), "M37 takes the length as O or the tip's Z, not both");
+        const ToolChangerSettings& tc = ctx_.settings().toolchanger;
+        const SourceLoc at = at_col(w.wm_col);
+        // Neither O nor Z: the sensor measures it (as G37), where the profile has one.
+        const bool by_sensor = !w.has('O') && !w.has('Z');
+        if (by_sensor && tc.sensor_input == 0)
+          required('Z', code,
+                   "what Z reads at the tool's tip now (M37 Z0 with the tip on the table), or "
+                   "O, the offset (this machine has no tool-length sensor to measure it on: "
+                   "toolchanger.sensor_input)");
+        int t = o.tool;
+        if (w.has(tool_letter))
+          t = whole(w.get(tool_letter), 0, 99999, w.at(tool_letter, loc),
+                    fmt::format("M37 {}", tool_letter));
+        if (by_sensor && t == 0)
+          fail(at,
+               "M37: the spindle holds no tool (tool 0) to measure on the sensor; name it "
+               "with T, as M37 T1");
+        std::optional<Vec6> start;  // where a rack's change began: the machine goes back
+        if (t != o.tool && tc.rack()) {
+          // A rack: the change is M6's sequence (docs/hardware.md, "Tool changer"). A tip
+          // then hangs over the rack, at no known point: Z cannot measure it.
+          if (w.has('Z'))
+            fail(w.at('Z', loc),
+                 fmt::format("M37 T{} Z: the rack changes the tool first, and its tip is then "
+                             "at no known point; give O (its length), or neither (the sensor "
+                             "measures it), or change with M6 T{}, bring the tip to a known "
+                             "point and M37 Z there",
+                             t, t));
+          check_tool_change(ctx_, o.tool, t, at);  // a change refused moves nothing
+          ctx_.come_to_rest(loc);
+          start = st.position + st.zero;
+          rack_tool_change(ctx_, o.tool, t, at);
+        } else if (t != o.tool) {  // no rack: the operator loads it
+          ctx_.come_to_rest(loc);
+          if (!io_.confirm(by_sensor ? fmt::format("M37: load tool {}, then continue", t)
+                                     : fmt::format("M37: load tool {} and bring its tip to "
+                                                   "the measuring point, then continue",
+                                                   t),
+                           loc))
+            throw OperatorStop({loc, Severity::Error, "stopped by the operator at M37"});
         }
-        if (w.has('O')) {
-          o.measured_length = w.get('O') * length_scale();
+        o.tool = t;
+        selected_tool_ = t;
+        if (by_sensor) {
+          std::optional<double> length;
+          if (start) {
+            length = measure_tool(ctx_, t, at);  // checked with the change
+            return_from_change(ctx_, (*start)[0], (*start)[1], at);
+          } else {
+            length = measure_tool_in_spindle(ctx_, "M37", at);
+          }
+          if (length) o.measured_length = *length;  // a check measures nothing
         } else {
-          const double z = required('Z', code,
-                                    "what Z reads at the tool's tip now (M37 Z0 with the tip on "
-                                    "the table), or O, the offset");
-          // The tip reads Z (no G92) from now on: file Z - length = Z.
-          o.measured_length = ctx_.position()[2] - z * k[2];
+          if (w.has('O')) {
+            o.measured_length = w.get('O') * length_scale();
+          } else {
+            // The tip reads Z (no G92) from now on: file Z - length = Z.
+            o.measured_length = ctx_.position()[2] - w.get('Z') * k[2];
+          }
+          if (ToolEntry* e = o.tool != 0 ? o.tools.change(o.tool) : nullptr)
+            e->offset[2] = o.measured_length;  // for L110
+          if (start) return_from_change(ctx_, (*start)[0], (*start)[1], at);
         }
         o.tool_length = o.measured_length;  // M37 turns G43 on
-        if (ToolEntry* e = o.tool != 0 ? o.tools.change(o.tool) : nullptr)
-          e->offset[2] = o.measured_length;  // for L110
+        break;
+      }
+      case 371: {  // M37.1: the sensor's height, TM1 (calibrates G37)
+        if (ctx_.settings().toolchanger.sensor_input == 0)
+          fail(at_col(w.wm_col),
+               "M37.1 sets the tool-length sensor's height (TM1, for G37), and this machine's "
+               "profile has none (toolchanger.sensor_input)");
+        if (w.has('Z')) {
+          // Z: the sensor's top as the tip reads it there (M37's frame: no G92).
+          ctx_.change_values(ValueScope::Permanent).toolchanger.sensor_zero_z =
+              w.get('Z') * k[2] + st.zero[2];
+          break;
+        }
+        // Alone: the tool in the spindle, its length M37 measured, closes the sensor.
+        if (o.measured_length == 0)
+          fail(at_col(w.wm_col),
+               "M37.1: the tool in the spindle has no measured length: measure it first (M37 "
+               "Z0 with its tip on the table), or give the sensor's height, as M37.1 Z1.25");
+        const std::optional<double> zero =
+            calibrate_sensor(ctx_, o.measured_length, "M37.1", at_col(w.wm_col));
+        if (zero) ctx_.change_values(ValueScope::Permanent).toolchanger.sensor_zero_z = *zero;
         break;
       }
       case 991:

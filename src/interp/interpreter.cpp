@@ -85,6 +85,7 @@ Interpreter::Interpreter(const Settings& settings, MotionSink& sink, MachineLink
   options_.subroutine_dirs.insert(options_.subroutine_dirs.end(), settings.subroutine_paths.begin(),
                                   settings.subroutine_paths.end());
   state_.speeds = settings.speeds;
+  state_.spindle_rpm = settings.spindle.initial_rpm;
   gcode_ = std::make_unique<GcodeExecutor>(ctx_, io_, [this] {  // M2, M30: the file ends
     // In a subroutine's own file, its callers' file ends too: it is one program.
     size_t from = frames_.size() - 1;
@@ -456,9 +457,10 @@ void Interpreter::run(std::shared_ptr<const Script> script, bool typed) {
       ctx_.spindle_settles_ = true;
       state_.tool_offset = Vec6::Zero();
       // The speed output goes to 0 with the spindle; TR's RPM stays, as a VFD keeps it.
-      if (state_.spindle_rpm > 0 && settings_.spindle.pwm_bit >= 0 && !state_.preview) {
+      if (ctx_.speed_sent_ != 0 && settings_.spindle.speed_output() && !state_.preview) {
         CanonMove m = ctx_.here(MoveKind::SpindleSpeed, SourceLoc{});
         sink_.move(m);
+        ctx_.speed_sent_ = 0;
       }
       ctx_.spindle_speed_warned_ = false;
       ctx_.soft_clamp_warned_ = false;

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>  // messages
 
+#include <array>
 #include <vector>
 
 #include "gantry/interp/command_context.hpp"
@@ -133,6 +134,49 @@ void check_tool_change(CommandContext& ctx, int from, int to, const SourceLoc& l
   for (const Vec6& p : places) ctx.check_reach(file_point(ctx, p), loc);
 }
 
+void check_tool_measure(CommandContext& ctx, int tool, const char* code, const SourceLoc& loc,
+                        bool writes_table) {
+  const ToolChangerSettings& tc = ctx.settings().toolchanger;
+  if (tc.sensor_input == 0)
+    fail(loc, fmt::format("{} measures the tool in the spindle on the tool-length sensor, and "
+                          "this machine's profile has none (toolchanger.sensor_input); give "
+                          "its length with G10 L1 (or M37 Z in the WinCNC dialect)",
+                          code));
+  if (tool == 0)
+    fail(loc, fmt::format("{}: the spindle holds no tool (tool 0); load one with M6 T, or say "
+                          "which it holds with M61 Q; nothing moved",
+                          code));
+  if (writes_table && !ctx.settings().tool_table_path.empty()) {
+    const ToolTable& table = current_table(ctx, loc);
+    if (!table.find(tool))
+      fail(loc, fmt::format("tool {} is not in the tool table {}, so the length the sensor "
+                            "measures could not be written; add a line T{} P{} for it; nothing "
+                            "moved",
+                            tool, table.path(), tool, tool));
+  }
+  const Vec6 here = table_base_here(ctx);
+  for (const auto& [x, y, z] : {std::array{here[kX], here[kY], tc.clear_z},
+                                std::array{tc.sensor_x, tc.sensor_y, tc.clear_z},
+                                std::array{tc.sensor_x, tc.sensor_y, tc.sensor_min_z}}) {
+    Vec6 p = here;
+    p[kX] = x;
+    p[kY] = y;
+    p[kZ] = z;
+    ctx.check_reach(file_point(ctx, p), loc);
+  }
+}
+
+std::optional<double> measure_tool_in_spindle(CommandContext& ctx, const char* code,
+                                              const SourceLoc& loc) {
+  const int tool = ctx.state().gcode.tool;
+  check_tool_measure(ctx, tool, code, loc, true);
+  ctx.come_to_rest(loc);
+  const Vec6 start = table_base_here(ctx);
+  const std::optional<double> length = measure_tool(ctx, tool, loc);
+  return_from_change(ctx, start[kX], start[kY], loc);
+  return length;
+}
+
 void rack_tool_change(CommandContext& ctx, int from, int to, const SourceLoc& loc) {
   const ToolChangerSettings& tc = ctx.settings().toolchanger;
   GcodeOffsets& o = ctx.state().gcode;
@@ -157,9 +201,8 @@ void rack_tool_change(CommandContext& ctx, int from, int to, const SourceLoc& lo
   o.tool = to;
 }
 
-std::optional<double> measure_tool(CommandContext& ctx, int tool, const SourceLoc& loc) {
+std::optional<double> sensor_trip_z(CommandContext& ctx, int tool, const SourceLoc& loc) {
   const ToolChangerSettings& tc = ctx.settings().toolchanger;
-  if (tc.sensor_input == 0 || tool == 0) return std::nullopt;
   go_z(ctx, tc.clear_z, SpeedClass::Jog, loc);
   go(ctx, tc.sensor_x, tc.sensor_y, tc.clear_z, SpeedClass::Jog, loc);
   go_z(ctx, tc.sensor_start_z, SpeedClass::Jog, loc);
@@ -179,10 +222,31 @@ std::optional<double> measure_tool(CommandContext& ctx, int tool, const SourceLo
                           "changed",
                           tool, tc.sensor_input, format_number(tc.sensor_start_z),
                           format_number(tc.sensor_min_z)));
-  const double length = table_base_here(ctx)[kZ] - tc.sensor_zero_z;
+  return table_base_here(ctx)[kZ];
+}
+
+std::optional<double> measure_tool(CommandContext& ctx, int tool, const SourceLoc& loc) {
+  const ToolChangerSettings& tc = ctx.settings().toolchanger;
+  if (tc.sensor_input == 0 || tool == 0) return std::nullopt;
+  const std::optional<double> trip = sensor_trip_z(ctx, tool, loc);
+  if (!trip) return std::nullopt;
+  const double length = *trip - tc.sensor_zero_z;
   length_to_tool_table(ctx, tool, length, loc);
   go_z(ctx, tc.clear_z, SpeedClass::Jog, loc);
   return length;
+}
+
+std::optional<double> calibrate_sensor(CommandContext& ctx, double length, const char* code,
+                                       const SourceLoc& loc) {
+  const int tool = ctx.state().gcode.tool;
+  check_tool_measure(ctx, tool, code, loc, false);
+  ctx.come_to_rest(loc);
+  const Vec6 start = table_base_here(ctx);
+  const std::optional<double> trip = sensor_trip_z(ctx, tool, loc);
+  go_z(ctx, ctx.settings().toolchanger.clear_z, SpeedClass::Jog, loc);
+  return_from_change(ctx, start[kX], start[kY], loc);
+  if (!trip) return std::nullopt;
+  return *trip - length;
 }
 
 void return_from_change(CommandContext& ctx, double x, double y, const SourceLoc& loc) {

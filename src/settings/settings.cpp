@@ -361,6 +361,7 @@ void read_row(TableReader& t, const SettingRow& row, int i, Settings& s) {
       return;
     }
     case SettingKind::IntList: {
+      if (row.optional && !t.has(key)) return;  // a key added after profiles were written
       const std::vector<int> v = t.int_list(key, static_cast<int>(row.range.lo),
                                             static_cast<int>(row.range.hi), row.count);
       if (row.count == 0)
@@ -426,6 +427,14 @@ static void spindle_and_tool_changer_rules(const Settings& s, double pacer,
     err(fmt::format("spindle.max_hz {} is faster than the card's {:.0f} Hz pacer can carry (at "
                     "most {:.0f} Hz, two ticks a period)",
                     sp.max_hz, pacer, pacer / 2));
+  if (!sp.dac_bits.empty() && sp.pwm_bit >= 0)
+    err("spindle.dac_bits and spindle.pwm_bit are both speed outputs: give one of them");
+  if (sp.dac_bits.size() > 16)
+    err(fmt::format("spindle.dac_bits lists {} bits: a D/A word has at most 16",
+                    sp.dac_bits.size()));
+  if (sp.speed_output() && sp.initial_rpm > sp.max_rpm)
+    err(fmt::format("spindle.initial_rpm {} is faster than spindle.max_rpm {}", sp.initial_rpm,
+                    sp.max_rpm));
   if (sp.reverse_output == 1)
     err("spindle.reverse_output cannot be output switch 1, which runs the spindle");
   else if (sp.reverse_output != 0 && !output_wired(sp.reverse_output))
@@ -530,6 +539,8 @@ static void check_consistency(const Settings& s, const std::string& origin,
   for (size_t k = 0; k < s.outputs.aux_bits.size(); ++k)
     outputs.emplace_back(fmt::format("outputs.aux_bits (output {})", k + 1), s.outputs.aux_bits[k]);
   outputs.emplace_back("spindle.pwm_bit", s.spindle.pwm_bit);
+  for (size_t k = 0; k < s.spindle.dac_bits.size(); ++k)
+    outputs.emplace_back(fmt::format("spindle.dac_bits (bit {})", k), s.spindle.dac_bits[k]);
   for (const auto& [name, bit] : outputs) {
     if (bit < 0) continue;
     if (used & (1u << bit))

@@ -23,27 +23,6 @@
 namespace gantry {
 namespace {
 
-constexpr std::string_view kToolsPart = "tool changer and spindle";
-
-// The settings other parts of issue 28 are adding now: each keyword here is reported "not
-// mapped yet" until its row lands and this table loses the line.
-constexpr WincncPending kPending[] = {
-    {"atc1", "a tool changer: unload height, tool sensor offset, changing spindle's height",
-     kToolsPart},
-    {"atc2", "a second tool changer", kToolsPart},
-    {"g37", "the tool-length sensors' places, descent and feed", kToolsPart},
-    {"spindle T, I", "the spindle's speed output (D/A or frequency) and its RPM at start",
-     kToolsPart},
-    {"da", "the spindle's D/A output", kToolsPart},
-    {"pwm", "the spindle PWM's frequency and top duty", kToolsPart},
-};
-
-const WincncPending* pending(std::string_view keyword) {
-  for (const WincncPending& p : kPending)
-    if (p.keyword == keyword) return &p;
-  return nullptr;
-}
-
 // How a keyword of WINCNC.INI is read: its parameters (letters), or a raw value; whether
 // Gantry maps it (`reason` empty) or why not.
 enum class Form { Letters, Raw };
@@ -292,13 +271,7 @@ class Importer {
     r_.errors.push_back({at(*l.file, l.number, column), Severity::Error, std::move(msg)});
   }
   void unmapped(const Line& l, std::string keyword, std::string why) {
-    r_.unmapped.push_back({at(*l.file, l.number), std::move(keyword), std::move(why), false});
-  }
-  void later(const Line& l, std::string_view key, std::string what_given = "") {
-    const WincncPending* p = pending(key);
-    r_.unmapped.push_back(
-        {at(*l.file, l.number), what_given.empty() ? std::string(key) : what_given,
-         fmt::format("{} (being added: {})", p ? p->what : "", p ? p->part : ""), true});
+    r_.unmapped.push_back({at(*l.file, l.number), std::move(keyword), std::move(why)});
   }
   void mapped(const Line& l, std::string what) {
     r_.mapped.push_back(fmt::format("{}:{}: {}", l.file->path, l.number, what));
@@ -1496,10 +1469,119 @@ void Importer::build() {
         s.spindle.max_rpm = *rpm;
         mapped(l, "spindle R -> spindle.max_rpm");
       }
-    if (has(l, 'T') || has(l, 'I')) later(l, "spindle T, I");
+    if (has(l, 'I'))
+      if (auto rpm = number(l, 'I', 0, 1e6)) {
+        s.spindle.initial_rpm = *rpm;
+        mapped(l, "spindle I -> spindle.initial_rpm");
+      }
+    if (has(l, 'T'))
+      if (auto t = whole(l, 'T', 1, 3)) {
+        if (*t == 1)
+          unmapped(l, "spindle T1",
+                   "the D/A converter on CN2 pins 12-14: Gantry carries the speed as a D/A word "
+                   "on output bits (spindle.dac_bits), a PWM duty or a frequency "
+                   "(spindle.pwm_bit); name the bits the converter is wired to");
+        else if (*t == 2)
+          mapped(l, "spindle T2 -> no speed output (Spin.mac's outputs set the speed)");
+        else {
+          s.spindle.speed_mode = SpindleSettings::SpeedMode::Frequency;
+          mapped(l,
+                 "spindle T3 -> spindle.speed_mode = \"frequency\" (name CN2 pin 11's bit in "
+                 "spindle.pwm_bit)");
+        }
+      }
   }
-  for (const char* k : {"atc1", "atc2", "g37", "da", "pwm"})
-    if (const auto it = single.find(k); it != single.end()) later(*it->second, k);
+  // The spindle's D/A (da=): its start voltage as a share of its top one is the RPM at start.
+  if (const auto it = single.find("da"); it != single.end()) {
+    const Line& l = *it->second;
+    const auto sp = single.find("spindle");
+    if (has(l, 'I') && sp != single.end() && has(*sp->second, 'I')) {
+      unmapped(l, "da I", "the spindle's I gives the RPM at start (spindle.initial_rpm)");
+    } else if (has(l, 'I')) {
+      const std::optional<double> v = has(l, 'V') ? number(l, 'V', 0, 1000, true) : 10.0;
+      const std::optional<double> i = number(l, 'I', 0, 1000);
+      if (v && i && *i > *v) {
+        error(l, l.params.at('I').column,
+              fmt::format("da I{} is above its top voltage V{}", num(*i), num(*v)));
+      } else if (v && i) {
+        s.spindle.initial_rpm = *i / *v * s.spindle.max_rpm;
+        mapped(l, fmt::format("da I V -> spindle.initial_rpm = {} (I / V of spindle.max_rpm)",
+                              num(s.spindle.initial_rpm)));
+      }
+    }
+    for (char c : std::string_view("TAC"))
+      if (has(l, c))
+        unmapped(l, fmt::format("da {}", c),
+                 "the D/A's port (parallel, the PCI daughter board, serial): Gantry's D/A word "
+                 "is output bits of the card (spindle.dac_bits); name them");
+    if (has(l, 'R'))
+      unmapped(l, "da R", "a refresh period: Gantry's D/A word stands until the speed changes");
+  }
+  if (const auto it = single.find("pwm"); it != single.end()) {
+    const Line& l = *it->second;
+    if (has(l, 'F'))
+      if (auto f = number(l, 'F', 0, 1e6, true)) {
+        s.spindle.pwm_hz = *f;
+        mapped(l, "pwm F -> spindle.pwm_hz (the manual gives no unit: read as Hz)");
+      }
+    if (has(l, 'M') && l.params.at('M').value != 100)
+      unmapped(l, "pwm M",
+               "a top duty below 100 %: Gantry's duty reaches 100 % at spindle.max_rpm; give "
+               "max_rpm the RPM that 100 % would run");
+  }
+  // The tool-length sensor (g37=): its place and feed; its input is not in WINCNC.INI.
+  if (const auto it = single.find("g37"); it != single.end()) {
+    const Line& l = *it->second;
+    if (has(l, 'X'))
+      if (auto x = number(l, 'X', -1e6 / len, 1e6 / len)) s.toolchanger.sensor_x = *x * len;
+    if (has(l, 'Y'))
+      if (auto y = number(l, 'Y', -1e6 / len, 1e6 / len)) s.toolchanger.sensor_y = *y * len;
+    if (has(l, 'F'))
+      if (auto f = number(l, 'F', 0, 1e6 / len, true)) s.toolchanger.sensor_speed = *f * len / 60;
+    mapped(l,
+           "g37 X Y F -> toolchanger.sensor_x, sensor_y, sensor_speed (name the sensor's input "
+           "in toolchanger.sensor_input)");
+    if (has(l, 'D'))
+      unmapped(l, "g37 D",
+               "the rapid descent: Gantry's probe starts at a height, "
+               "toolchanger.sensor_start_z; set it that far below toolchanger.clear_z");
+    for (char c : std::string_view("IJ"))
+      if (has(l, c))
+        unmapped(l, fmt::format("g37 {}", c),
+                 "a second tool measure switch: Gantry has one tool-length sensor");
+  }
+  if (const auto it = single.find("atc1"); it != single.end()) {
+    const Line& l = *it->second;
+    if (has(l, 'H'))
+      if (auto h = number(l, 'H', -1e6 / len, 1e6 / len)) {
+        s.toolchanger.slot_z = *h * len;
+        mapped(l,
+               "atc1 H -> toolchanger.slot_z (the rack's slots are WinCNC's Tool Positions, "
+               "not in WINCNC.INI: list them in toolchanger.slots, with release_output)");
+      }
+    if (has(l, 'A'))
+      if (auto a = whole(l, 'A', 0, 8)) {
+        if (*a == 2)
+          mapped(l, "atc1 A2 -> the changer on Z");
+        else
+          unmapped(l, fmt::format("atc1 A{}", *a),
+                   "a changer on another axis's head: Gantry's changer works on Z");
+      }
+    if (has(l, 'M')) mapped(l, "atc1 M -> the tool table (tool_table, G43's and M37's)");
+    if (has(l, 'O'))
+      unmapped(l, "atc1 O",
+               "the offset to the tool sensor, from what the manual does not say: Gantry's "
+               "lengths are from toolchanger.sensor_zero_z (calibrate it with M37.1)");
+    if (has(l, 'Z'))
+      unmapped(l, "atc1 Z",
+               "the height of the changing spindle's nose: Gantry's lengths are from the "
+               "sensor's zero, toolchanger.sensor_zero_z");
+  }
+  if (const auto it = single.find("atc2"); it != single.end())
+    unmapped(*it->second, "atc2",
+             "a second tool changer: the manual gives its line but not how it works (which "
+             "head, its rack and sensor); Gantry has one changer, on Z (docs/hardware.md, "
+             "\"Tool changer\")");
   if (const auto it = single.find("backlash"); it != single.end()) {
     const Line& l = *it->second;
     if (has(l, 'B') && l.params.at('B').value == 0) {
@@ -1592,10 +1674,6 @@ void Importer::build() {
 
 }  // namespace
 
-std::span<const WincncPending> wincnc_not_mapped_yet() {
-  return kPending;
-}
-
 WincncImport import_wincnc(const WincncSources& in) {
   return Importer(in).run();
 }
@@ -1611,8 +1689,8 @@ std::string wincnc_profile_text(const WincncImport& r, const WincncSources& in) 
       "# the import's report for why):\n";
   std::string line = "#  ";
   for (const WincncUnmapped& u : r.unmapped) {
-    const std::string item = fmt::format(" {}:{} {}{};", u.loc.file ? *u.loc.file : "", u.loc.line,
-                                         u.keyword, u.later ? " (not mapped yet)" : "");
+    const std::string item =
+        fmt::format(" {}:{} {};", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword);
     if (line.size() + item.size() > 98) {
       head += line + "\n";
       line = "#  ";
@@ -1624,19 +1702,10 @@ std::string wincnc_profile_text(const WincncImport& r, const WincncSources& in) 
 }
 
 std::string wincnc_report(const WincncImport& r) {
-  std::string out;
-  size_t now = 0, later = 0;
-  for (const WincncUnmapped& u : r.unmapped) (u.later ? later : now)++;
-  out += fmt::format("not mapped ({}):\n", now);
+  std::string out = fmt::format("not mapped ({}):\n", r.unmapped.size());
   for (const WincncUnmapped& u : r.unmapped)
-    if (!u.later)
-      out += fmt::format("  {}:{}: {}: {}\n", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword,
-                         u.why);
-  out += fmt::format("not mapped yet ({}): settings issue 28 is adding\n", later);
-  for (const WincncUnmapped& u : r.unmapped)
-    if (u.later)
-      out += fmt::format("  {}:{}: {}: {}\n", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword,
-                         u.why);
+    out += fmt::format("  {}:{}: {}: {}\n", u.loc.file ? *u.loc.file : "", u.loc.line, u.keyword,
+                       u.why);
   return out;
 }
 

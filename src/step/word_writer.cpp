@@ -34,6 +34,13 @@ WordWriter::WordWriter(const Settings& settings, const StepTiming& timing, Card&
       pwm_period_ticks_ = 2;
     }
   }
+  if (!settings.spindle.dac_bits.empty()) {
+    max_rpm_ = settings.spindle.max_rpm;
+    for (int b : settings.spindle.dac_bits) {
+      dac_masks_.push_back(1u << b);
+      dac_all_ |= 1u << b;
+    }
+  }
   aux_bits_ = settings.outputs.aux_bits;
   for (int k = 0; k < kAxisCount; ++k) channel_steps_[k] = 1u << settings.pins[k].step_bit;
 }
@@ -77,6 +84,14 @@ void WordWriter::set_spindle(bool on) {
 
 void WordWriter::set_spindle_speed(double rpm) {
   const double duty = std::clamp(rpm / max_rpm_, 0.0, 1.0);
+  if (!dac_masks_.empty()) {  // a D/A converter's word: the levels, as outputs stand
+    const double top = static_cast<double>((std::uint64_t{1} << dac_masks_.size()) - 1);
+    const auto word = static_cast<std::uint64_t>(std::llround(duty * top));
+    level_word_ &= ~dac_all_;
+    for (size_t k = 0; k < dac_masks_.size(); ++k)
+      if (word >> k & 1u) level_word_ |= dac_masks_[k];
+    return;
+  }
   if (frequency_ticks_hz_ > 0) {
     // Frequency mode: a square wave of duty x max_hz, half high, in whole ticks (the period
     // at least two); 0 RPM holds the line low.

@@ -255,6 +255,37 @@ TEST(Spindle, FrequencyModeCarriesTheSpeedAsAPulseRate) {
               m.pacer() / static_cast<double>(std::llround(m.pacer() / 1500)), 3);
 }
 
+// The D/A word (spindle.dac_bits, 4 bits here: 0 to 15 for 0 to max_rpm) on the pin trace:
+// initial_rpm's word before the spindle first runs, then S's, and 0 after the run.
+TEST(Spindle, DacBitsCarryTheSpeedAsAWordFromTheInitialRpmOn) {
+  Settings s = spindle_profile();
+  s.spindle.spin_up_s = 0;
+  s.spindle.spin_down_s = 0;
+  s.spindle.max_rpm = 24000;
+  s.spindle.dac_bits = {6, 7, 14, 15};
+  s.spindle.initial_rpm = 12000;
+  Machine m(s, {}, "dac");
+  m.run("G20\nM3\nG4 P0.5\nS6000\nG4 P0.5\nS18000\nG4 P0.5\nM5\n");
+  ASSERT_EQ(m.error(), "");
+  auto word = [](std::uint32_t w) {
+    return static_cast<int>((w >> 6 & 1u) | (w >> 7 & 1u) << 1 | (w >> 14 & 1u) << 2 |
+                            (w >> 15 & 1u) << 3);
+  };
+  const Trace t = m.trace();
+  std::vector<int> words;  // each new word, in order
+  for (const auto& [tick, w] : t)
+    if (words.empty() || words.back() != word(w)) words.push_back(word(w));
+  // 12000 -> 7.5 -> 8; 6000 -> 3.75 -> 4; 18000 -> 11.25 -> 11; the run's end: 0.
+  EXPECT_EQ(words, (std::vector<int>{0, 8, 4, 11, 0}));
+  const auto run_on = edges(t, kRunBit, true);
+  ASSERT_EQ(run_on.size(), 1u);
+  for (const auto& [tick, w] : t) {  // the speed stood before the spindle started
+    if (tick == run_on[0]) {
+      EXPECT_EQ(word(w), 8);
+    }
+  }
+}
+
 // ---- the tool changer
 
 constexpr double kSensorX = 10, kSensorY = 16, kSensorTop = -1.25, kSensorZero = -2.0;
@@ -411,6 +442,159 @@ TEST(ToolChanger, WithoutARackTheOperatorChangesAndTheSensorMeasures) {
               std::floor(kSensorTop * spu) / spu - kSensorZero, 1e-9);
 }
 
+// ---- measuring without a change: G37, WinCNC's M37 and M37.1
+
+// The lowest Z the trace reaches (steps), and X and Y (steps) at that moment.
+std::array<std::int64_t, 3> lowest_z(const Trace& t, const Settings& s) {
+  std::int64_t z = 0, low = 0, tick = 0;
+  for (const test::TracePulse& p :
+       channel_pulses(t, s.pins[kZ].step_bit, s.pins[kZ].dir_bit, s.pins[kZ].invert_dir)) {
+    z += p.positive ? 1 : -1;
+    if (z < low) {
+      low = z;
+      tick = p.tick + 1;
+    }
+  }
+  return {steps_at(t, s, kX, tick), steps_at(t, s, kY, tick), low};
+}
+
+// G37 probes the tool in the spindle on the sensor (no drawbar, no change), writes its length
+// to the tool table and comes back over where it began; G43 in the next block applies it.
+TEST(ToolMeasure, G37MeasuresTheToolInTheSpindleAndG43AfterItAppliesTheLength) {
+  Machine m(rack_profile(), rack_world(), "g37");
+  m.run("G20\nG0 X1 Y1\nM61 Q2\nG37\nG43\nG0 Z0\n");
+  ASSERT_EQ(m.error(), "");
+  const Trace t = m.trace();
+  EXPECT_TRUE(edges(t, kDrawbarBit, true).empty());
+  const double spu = m.settings.axes[kZ].steps_per_unit;
+  const double trip = std::floor(kSensorTop * spu) / spu;
+  // The probe went down over the sensor, past its top only by its ramp down after the trip.
+  const std::array<std::int64_t, 3> low = lowest_z(t, m.settings);
+  EXPECT_EQ(low[0], m.steps(kSensorX, kX));
+  EXPECT_EQ(low[1], m.steps(kSensorY, kY));
+  EXPECT_LE(low[2], std::llround(trip * spu));
+  EXPECT_GT(low[2], std::llround(trip * spu) - m.steps(0.05, kZ));
+  const ToolEntry* e = m.modal.gcode.tools.find(2);
+  ASSERT_NE(e, nullptr);
+  EXPECT_NEAR(e->length(), trip - kSensorZero, 1e-9);
+  EXPECT_EQ(m.modal.gcode.tool, 2);
+  // Back over X1 Y1; G0 Z0 with G43 on puts the spindle the length above working 0.
+  EXPECT_EQ(m.status.steps[kX], m.steps(1, kX));
+  EXPECT_EQ(m.status.steps[kY], m.steps(1, kY));
+  EXPECT_EQ(m.status.steps[kZ], std::llround((trip - kSensorZero) * spu));
+}
+
+// Without G43 the length measured is in the table only: Z0 is the spindle's own Z 0.
+TEST(ToolMeasure, G37WithoutG43LeavesTheOffsetOff) {
+  Machine m(rack_profile(), rack_world(), "g37_no_g43");
+  m.run("G20\nM61 Q2\nG37\nG0 Z0\n");
+  ASSERT_EQ(m.error(), "");
+  EXPECT_EQ(m.status.steps[kZ], 0);
+  EXPECT_NE(m.modal.gcode.tools.find(2)->length(), 0);
+}
+
+TEST(ToolMeasure, G37IsRefusedWithoutASensorOrAToolAndNothingMoves) {
+  Settings s = rack_profile();
+  s.toolchanger = ToolChangerSettings{};
+  Machine m(s, rack_world(), "g37_none");
+  Outcome o = m.play("G20\nG0 X1\nM61 Q1\nG37\n");
+  ASSERT_FALSE(o);
+  ASSERT_FALSE(o.errors.empty());
+  EXPECT_EQ(format(o.errors[0]),
+            "part.nc:4:1: error: G37 measures the tool in the spindle on the tool-length sensor, "
+            "and this machine's profile has none (toolchanger.sensor_input); give its length "
+            "with G10 L1 (or M37 Z in the WinCNC dialect)");
+  EXPECT_EQ(m.status.steps[kX], 0);
+  Machine empty(rack_profile(), rack_world(), "g37_empty");
+  o = empty.play("G20\nG0 X1\nG37\n");
+  ASSERT_FALSE(o);
+  ASSERT_FALSE(o.errors.empty());
+  EXPECT_EQ(format(o.errors[0]),
+            "part.nc:3:1: error: G37: the spindle holds no tool (tool 0); load one with M6 T, or "
+            "say which it holds with M61 Q; nothing moved");
+  EXPECT_EQ(empty.status.steps[kX], 0);
+  Machine axes(rack_profile(), rack_world(), "g37_axes");
+  o = axes.play("G20\nM61 Q1\nG37 Z1\n");
+  ASSERT_FALSE(o);
+  EXPECT_EQ(format(o.errors[0]),
+            "part.nc:3:5: error: G37 takes no axis words (Z): the sensor's place and its descent "
+            "are the profile's [toolchanger]; put a move on a line of its own");
+}
+
+Settings wincnc_rack() {
+  Settings s = rack_profile();
+  s.gcode_dialect = GcodeDialect::WinCNC;
+  return s;
+}
+
+// WinCNC's M37 T on a rack: M6's sequence (the drawbar at the same places), the sensor's
+// measure, and G43 on at once (M37 turns it on).
+TEST(ToolMeasure, WincncM37TOnARackRunsTheChangeMeasuresAndTurnsG43On) {
+  Machine m(wincnc_rack(), rack_world(), "m37_rack");
+  m.run("G20\nG0 X1 Y1\nL110 T1\nM37 T3\nG0 Z0\n");
+  ASSERT_EQ(m.error(), "");
+  auto at = [&](double x, double y, double z) {
+    return std::array<std::int64_t, 3>{m.steps(x, kX), m.steps(y, kY), m.steps(z, kZ)};
+  };
+  EXPECT_EQ(drawbar_places(m, true),
+            (std::vector<std::array<std::int64_t, 3>>{at(2, 16, -1), at(6, 16, 2)}));
+  EXPECT_EQ(drawbar_places(m, false),
+            (std::vector<std::array<std::int64_t, 3>>{at(2, 16, 2), at(6, 16, -1)}));
+  const double spu = m.settings.axes[kZ].steps_per_unit;
+  const double length = std::floor(kSensorTop * spu) / spu - kSensorZero;
+  EXPECT_EQ(m.modal.gcode.tool, 3);
+  EXPECT_NEAR(m.modal.gcode.tools.find(3)->length(), length, 1e-9);
+  EXPECT_NEAR(m.modal.gcode.tool_length, length, 1e-9);
+  EXPECT_EQ(m.status.steps[kX], m.steps(1, kX));
+  EXPECT_EQ(m.status.steps[kY], m.steps(1, kY));
+  EXPECT_EQ(m.status.steps[kZ], std::llround(length * spu));
+}
+
+TEST(ToolMeasure, WincncM37TZOnARackIsRefusedAndNothingMoves) {
+  Machine m(wincnc_rack(), rack_world(), "m37_z");
+  const Outcome o = m.play("G20\nG0 X1\nL110 T1\nM37 T3 Z0\n");
+  ASSERT_FALSE(o);
+  ASSERT_FALSE(o.errors.empty());
+  EXPECT_EQ(format(o.errors[0]),
+            "part.nc:4:8: error: M37 T3 Z: the rack changes the tool first, and its tip is then "
+            "at no known point; give O (its length), or neither (the sensor measures it), or "
+            "change with M6 T3, bring the tip to a known point and M37 Z there");
+  EXPECT_EQ(m.status.steps[kX], 0);
+}
+
+// M37.1 calibrates the sensor: with a tool M37 Z0 measured at the table, probed on the
+// sensor, the sensor's zero becomes the one that measures that same length; G37 then gives
+// it. M37.1 Z states the sensor's height instead.
+TEST(ToolMeasure, WincncM37Point1CalibratesTheSensorForG37) {
+  Machine m(wincnc_rack(), rack_world(), "m37_1");
+  m.run("G20\nL110 T2\nG0 Z-0.75\nM37 Z0\nM37.1\nG49\nG37\nG0 X3\n");
+  ASSERT_EQ(m.error(), "");
+  EXPECT_NEAR(m.modal.gcode.tools.find(2)->length(), -0.75, 1e-9);
+  EXPECT_NEAR(m.modal.gcode.tool_length, -0.75, 1e-9);  // G37 turned it on again
+  Machine z(wincnc_rack(), rack_world(), "m37_1z");
+  z.run("G20\nL110 T2\nM37.1 Z-0.5\nG37\n");
+  ASSERT_EQ(z.error(), "");
+  const double spu = z.settings.axes[kZ].steps_per_unit;
+  EXPECT_NEAR(z.modal.gcode.tools.find(2)->length(), std::floor(kSensorTop * spu) / spu + 0.5,
+              1e-9);
+}
+
+TEST(ToolMeasure, WincncM37Point2AndTheSecondSwitchAreRefusedByName) {
+  Machine m(wincnc_rack(), rack_world(), "m37_2");
+  Outcome o = m.play("G20\nM37.2 Z0\n");
+  ASSERT_FALSE(o);
+  EXPECT_EQ(format(o.errors[0]),
+            "part.nc:2:1: error: M37.2 (the second tool measure switch's height, TM2) is not "
+            "supported: Gantry has one tool-length sensor (the profile's [toolchanger]); "
+            "calibrate it with M37.1");
+  Machine t(wincnc_rack(), rack_world(), "tm2");
+  o = t.play("G20\nG0 X{TMX+0} Y{TMY+0}\nG0 Z{TM2+0}\n");
+  ASSERT_FALSE(o);
+  EXPECT_EQ(format(o.errors[0]),
+            "part.nc:3:6: error: {TM2} is the second tool measure switch's (g37 I J, M37.2): "
+            "Gantry has one tool-length sensor");
+}
+
 // ---- the profile's keys
 
 std::string messages(const SettingsLoad& l) {
@@ -464,6 +648,25 @@ TEST(SpindleSettings, NewKeysLoadAndAreChecked) {
   EXPECT_EQ(messages(parse_settings(text, "p.toml")),
             "spindle.reverse_output cannot be output switch 1, which runs the spindle\n"
             "spindle.at_speed_input: input switch 6 is not wired (inputs.switch_bits)\n");
+}
+
+TEST(SpindleSettings, DacBitsAndInitialRpmLoadAndAreChecked) {
+  std::string text = default_profile_text();
+  const std::string from = "max_rpm = 24000.0";
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  std::string good = text;
+  good.insert(at + from.size(), "\ndac_bits = \"6, 7, 14, 15\"\ninitial_rpm = 12000.0\n");
+  const SettingsLoad l = parse_settings(good, "p.toml");
+  ASSERT_TRUE(l.ok()) << messages(l);
+  EXPECT_EQ(l.settings.spindle.dac_bits, (std::vector<int>{6, 7, 14, 15}));
+  EXPECT_EQ(l.settings.spindle.initial_rpm, 12000);
+  EXPECT_TRUE(l.settings.spindle.speed_output());
+  std::string bad = text;
+  bad.insert(at + from.size(), "\ndac_bits = \"6, 16\"\ninitial_rpm = 30000.0\n");
+  EXPECT_EQ(messages(parse_settings(bad, "p.toml")),
+            "spindle.dac_bits (bit 1): output bit 16 is already used by another pin\n"
+            "spindle.initial_rpm 30000 is faster than spindle.max_rpm 24000\n");
 }
 
 }  // namespace

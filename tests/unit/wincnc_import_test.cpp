@@ -194,8 +194,8 @@ TEST(WincncImport, TheManualsNumbersLandInTheirKeys) {
   EXPECT_EQ(find(r, "M5=[")->loc.line, 4);
 }
 
-// Every keyword the manual documents that has no key is listed with its file and line; those
-// another part of issue 28 is adding are "not mapped yet", from the one table.
+// Every keyword the manual documents that has no key is listed with its file and line, and
+// why.
 TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
   const WincncImport r = import_wincnc(manual());
   ASSERT_TRUE(r.ok());
@@ -203,18 +203,16 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
     const char* keyword;
     const char* file;
     int line;
-    bool later;
   };
   const Want wants[] = {
-      {"axisvel S (X)", "WINCNC.INI", 12, false}, {"enab M", "WINCNC.INI", 48, false},
-      {"spindle T, I", "WINCNC.INI", 54, true},   {"atc1", "WINCNC.INI", 62, true},
-      {"keypad", "WINCNC.INI", 61, false},        {"axishi O (W)", "WINCNC.INI", 29, false},
-      {"\"Viewer\"", "CNCSCRN.INI", 4, false},    {"\"JobCmd\"", "CNCSCRN.INI", 14, false},
+      {"axisvel S (X)", "WINCNC.INI", 12}, {"enab M", "WINCNC.INI", 48},
+      {"spindle T1", "WINCNC.INI", 54},    {"atc1 O", "WINCNC.INI", 62},
+      {"keypad", "WINCNC.INI", 61},        {"axishi O (W)", "WINCNC.INI", 29},
+      {"\"Viewer\"", "CNCSCRN.INI", 4},    {"\"JobCmd\"", "CNCSCRN.INI", 14},
   };
   for (const Want& w : wants) {
     const WincncUnmapped* u = find(r, w.keyword);
     ASSERT_NE(u, nullptr) << w.keyword;
-    EXPECT_EQ(u->later, w.later) << w.keyword;
     if (w.line) {
       EXPECT_EQ(*u->loc.file, w.file) << w.keyword;
       EXPECT_EQ(u->loc.line, w.line) << w.keyword;
@@ -223,10 +221,8 @@ TEST(WincncImport, WhatItCannotMapIsListedWithFileAndLine) {
   }
   // Y's and Z's limits are o0 where X's are o1: Gantry has one polarity, and says so.
   EXPECT_NE(find(r, "axislo O (Y)"), nullptr);
-  // The table the "not mapped yet" rows come from names what each will need.
-  for (const WincncPending& p : wincnc_not_mapped_yet()) EXPECT_FALSE(p.what.empty()) << p.keyword;
   const std::string report = wincnc_report(r);
-  EXPECT_NE(report.find("WINCNC.INI:54: spindle T, I"), std::string::npos);
+  EXPECT_NE(report.find("WINCNC.INI:54: spindle T1"), std::string::npos);
   // Mapped since the cushioned stop, the clamp, the homing debounce and the override bounds
   // landed: not listed.
   for (const char* k : {"lim_step=100", "esc_step=200", "softlim V1", "g28_lim_cnt=20",
@@ -272,7 +268,6 @@ TEST(WincncImport, LimitHomingAndOverrideKeysMap) {
   for (const char* k : {"g28move A", "override E0", "override D", "override U"}) {
     const WincncUnmapped* u = find(r, k);
     ASSERT_NE(u, nullptr) << k;
-    EXPECT_FALSE(u->later) << k;
   }
   EXPECT_NE(find(r, "g28move A")->why.find("homing.<axis>.input"), std::string::npos);
   // "not used if all positions are zero"
@@ -284,6 +279,44 @@ TEST(WincncImport, LimitHomingAndOverrideKeysMap) {
   ASSERT_FALSE(out.ok());
   EXPECT_NE(format(out.errors[0]).find("homing.x.park"), std::string::npos)
       << format(out.errors[0]);
+}
+
+// The tool changer's and the spindle's lines (atc1, g37, spindle, da, pwm at the manual's
+// file's end): what Gantry has lands in its keys, the rest is listed with its line.
+TEST(WincncImport, TheToolChangerAndSpindleLinesLandInTheirKeys) {
+  const WincncImport r = import_wincnc(manual());
+  ASSERT_TRUE(r.ok());
+  const Settings& s = r.settings;
+  EXPECT_DOUBLE_EQ(s.toolchanger.slot_z, 2);     // atc1=H2
+  EXPECT_TRUE(s.toolchanger.slots.empty());      // the Tool Positions are not in the INI
+  EXPECT_DOUBLE_EQ(s.toolchanger.sensor_x, 10);  // g37=X10 Y40 ... F30
+  EXPECT_DOUBLE_EQ(s.toolchanger.sensor_y, 40);
+  EXPECT_DOUBLE_EQ(s.toolchanger.sensor_speed, 0.5);
+  EXPECT_EQ(s.toolchanger.sensor_input, 0);
+  EXPECT_DOUBLE_EQ(s.spindle.pwm_hz, 75);      // pwm=F75 M100
+  EXPECT_DOUBLE_EQ(s.spindle.initial_rpm, 0);  // spindle I0 wins over da I5
+  struct Want {
+    const char* keyword;
+    int line;
+  };
+  for (const Want& w : {Want{"spindle T1", 54}, Want{"atc1 O", 62}, Want{"atc1 Z", 62},
+                        Want{"g37 D", 68}, Want{"g37 I", 68}, Want{"g37 J", 68}, Want{"da I", 69},
+                        Want{"da T", 69}, Want{"da R", 69}, Want{"atc2", 71}}) {
+    const WincncUnmapped* u = find(r, w.keyword);
+    ASSERT_NE(u, nullptr) << w.keyword;
+    EXPECT_EQ(u->loc.line, w.line) << w.keyword;
+  }
+  EXPECT_EQ(find(r, "pwm M"), nullptr);  // M100: Gantry's own top duty
+  // da's start voltage as a share of its top one, without spindle I; T3, the frequency output.
+  const WincncImport d =
+      import_text("axischar=XYZ\nspindle=T3 R20000\nda=V10 I2.5\npwm=F100 M80\n");
+  ASSERT_TRUE(d.ok());
+  EXPECT_DOUBLE_EQ(d.settings.spindle.initial_rpm, 5000);
+  EXPECT_EQ(d.settings.spindle.speed_mode, SpindleSettings::SpeedMode::Frequency);
+  ASSERT_NE(find(d, "pwm M"), nullptr);
+  const WincncImport bad = import_text("axischar=XYZ\nda=V5 I7\n");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(format(bad.errors[0]), "WINCNC.INI:2:7: error: da I7 is above its top voltage V5");
 }
 
 // The profile written loads as --profile reads it and runs on the simulated card: W moves

@@ -301,6 +301,7 @@ class CommandContext {
   bool warned_ = false;                // this run's first motion was warned of
   bool checking_ = false;              // a check: a refused move still changes the location
   bool switch4_auto_ = false;          // ... and switch 4 came on with the warning
+  double speed_sent_ = 0;              // the RPM the speed output carries now
   bool spindle_speed_warned_ = false;  // TR with no speed output: this run was told once
   bool spindle_settles_ = true;        // false while a run's end switches everything off
   bool soft_clamp_warned_ = false;     // limits.soft_clamp "all" clamped a move: told once

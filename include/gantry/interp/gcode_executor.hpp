@@ -118,6 +118,7 @@ class GcodeExecutor : private GcodeParameters {
   void tool_change(const Words& w, const SourceLoc& loc);  // T, M6, M61
   void tool_length(const Words& w, const SourceLoc& loc);  // G43, G43.1, G49
   void tool_data(const Words& w, const SourceLoc& loc);    // G10 L1, L10, L11
+  void tool_measure(const Words& w, const SourceLoc& loc);  // G37: on the tool-length sensor
   std::optional<double> tool_parameter(int n) const;       // #5400-#5413
   // Cutter radius compensation (gcode_cutter_comp.cpp).
   void check_comp_words(const Words& w, int motion, const SourceLoc& loc) const;

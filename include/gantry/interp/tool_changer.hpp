@@ -16,6 +16,19 @@ class CommandContext;
 // measure with no tool table line to write), so that a refused change moves nothing.
 void check_tool_change(CommandContext& ctx, int from, int to, const SourceLoc& loc);
 
+// Refuses, at `loc` and before anything moves, a measure of tool `tool` (in the spindle) on
+// the sensor that cannot be made: no sensor in the profile, no tool in the spindle, no tool
+// table line to write (`writes_table`), the sensor's places outside the soft limits. `code`
+// names the command for the messages ("G37").
+void check_tool_measure(CommandContext& ctx, int tool, const char* code, const SourceLoc& loc,
+                        bool writes_table);
+
+// A measure of the tool in the spindle on the sensor, with no change (G37, M37 alone on a
+// machine with a sensor): refused as check_tool_measure refuses, then measure_tool and back
+// over the X, Y where it began. nullopt: a check or a preview (nothing measured).
+std::optional<double> measure_tool_in_spindle(CommandContext& ctx, const char* code,
+                                              const SourceLoc& loc);
+
 // The rack's sequence: the spindle stops (its spin-down wait), Z rises to clear_z, tool
 // `from` goes back to its slot (down to slot_z, the drawbar opens, up), tool `to` is picked
 // from its (the drawbar opens, down, it closes, up). The tool in the spindle
@@ -28,6 +41,18 @@ void rack_tool_change(CommandContext& ctx, int from, int to, const SourceLoc& lo
 // rises to clear_z again. nullopt: no sensor, or no live machine (a check measures nothing).
 // The sensor not closing is an error at `loc` that stops the job.
 std::optional<double> measure_tool(CommandContext& ctx, int tool, const SourceLoc& loc);
+
+// The sensor's probe alone: Z at clear_z, over the sensor, down to sensor_start_z, then the
+// probe; the table base Z where the sensor closed (the tool left there), nullopt with no live
+// machine. The sensor not closing is an error at `loc` naming tool `tool`.
+std::optional<double> sensor_trip_z(CommandContext& ctx, int tool, const SourceLoc& loc);
+
+// WinCNC's M37.1 alone: the tool in the spindle, whose length (G43's) is `length`, is probed
+// on the sensor and the machine returns; the sensor_zero_z that makes the sensor measure
+// that length (the trip less `length`), nullopt with no live machine. Refused before
+// anything moves as check_tool_measure refuses (no tool table line needed).
+std::optional<double> calibrate_sensor(CommandContext& ctx, double length, const char* code,
+                                       const SourceLoc& loc);
 
 // Back over the table base X, Y where a change began, at clear_z.
 void return_from_change(CommandContext& ctx, double x, double y, const SourceLoc& loc);

@@ -110,6 +110,12 @@ struct SpindleSettings {
   // start or a change of speed the machine waits for it, at most at_speed_timeout_s.
   int at_speed_input = 0;
   double at_speed_timeout_s = 10;
+  // A D/A converter's input word (WinCNC's da=): output bits, least significant first, that
+  // hold rpm / max_rpm x (2^n - 1) while the spindle's speed stands (empty: none). A speed
+  // output as pwm_bit is; the profile gives one of them.
+  std::vector<int> dac_bits;
+  double initial_rpm = 0;  // the RPM TR and S hold at start (WinCNC's spindle I, da I)
+  bool speed_output() const { return pwm_bit >= 0 || !dac_bits.empty(); }
 };
 
 // An automatic tool changer (docs/hardware.md, "Tool changer"): a rack of slots, one per tool

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,7 +33,6 @@ struct WincncUnmapped {
   SourceLoc loc;        // its file and line
   std::string keyword;  // "lim_step", "axisvel S", "\"Viewer\""
   std::string why;      // why, and what to do instead
-  bool later = false;   // a setting another part of issue 28 is adding: "not mapped yet"
 };
 
 // A CNC.MAC macro, as the custom cut `C<cut>` that runs its command.
@@ -62,18 +60,9 @@ WincncImport import_wincnc(const WincncSources& in);
 // The profile's text: a header naming the sources and what was not mapped, then every key
 // (settings_text).
 std::string wincnc_profile_text(const WincncImport& r, const WincncSources& in);
-// The report `gantry import-wincnc` prints: what was not mapped, then what is not mapped yet.
+// The report `gantry import-wincnc` prints: what was not mapped, and why.
 std::string wincnc_report(const WincncImport& r);
 // A macro's custom cut file (C<cut>.sbp).
 std::string wincnc_macro_cut(const WincncMacro& m);
-
-// The WinCNC keywords whose Gantry setting other parts of issue 28 are adding (limits and
-// homing; the tool changer and the spindle): one table, so that wiring one later is one row.
-struct WincncPending {
-  std::string_view keyword;  // "lim_step", "g28move L"
-  std::string_view what;     // what Gantry will need
-  std::string_view part;     // "limits and homing" or "tool changer and spindle"
-};
-std::span<const WincncPending> wincnc_not_mapped_yet();
 
 }  // namespace gantry

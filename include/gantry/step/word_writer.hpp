@@ -138,6 +138,8 @@ class WordWriter {
   std::vector<int> aux_bits_;
   std::int64_t pump_half_ticks_ = 1;
   std::uint32_t pwm_mask_ = 0;
+  std::vector<std::uint32_t> dac_masks_;  // spindle.dac_bits, least significant first
+  std::uint32_t dac_all_ = 0;
   std::int64_t pwm_period_ticks_ = 1, pwm_high_ticks_ = 0;  // high for the first ticks of a period
   double max_rpm_ = 0;
   double frequency_ticks_hz_ = 0;  // frequency mode: ticks a period at max_rpm (0: PWM mode)
