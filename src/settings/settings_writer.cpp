@@ -55,6 +55,7 @@ void write_row(toml::table& root, const SettingRow& row, int i, const Settings& 
     case SettingKind::IntList:
       if (row.count == 0) {
         const auto& v = *static_cast<const std::vector<int>*>(field);
+        if (row.optional && v.empty()) return;  // left out: what reading it back gives
         return put(joined(v.data(), v.size()));
       }
       return put(joined(static_cast<const int*>(field), static_cast<size_t>(row.count)));
