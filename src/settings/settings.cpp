@@ -421,7 +421,9 @@ static void friendly_motion_rules(const Settings& s, const std::function<void(st
   auto wired = [&](int n) {
     return n >= 1 && n <= static_cast<int>(s.outputs.aux_bits.size()) && s.outputs.aux_bits[n - 1] >= 0;
   };
-  if (fm.laser_output != 0 && !wired(fm.laser_output))
+  // Output 1 is the default, named whether or not the profile is a laser table's: an unwired
+  // one leaves M100 refused and G16 tracing with the beam off, as before the setting.
+  if (fm.laser_output > 1 && !wired(fm.laser_output))
     err(fmt::format("friendly_motion.laser_output: output switch {} is not wired (outputs.aux_bits)",
                     fm.laser_output));
   std::map<int, std::string> used;
