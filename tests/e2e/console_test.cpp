@@ -995,12 +995,14 @@ TEST(ConsoleTerminal, TeachModeLogsThePositionWithAltF1AndTheOutputsWithAltF7ToF
   ASSERT_TRUE(t.started());
   ASSERT_TRUE(t.wait_for_prompt()) << t.text();
   t.keys("M-F1");  // no run, no log: it says what it is for
-  ASSERT_TRUE(t.wait_for_line("Alt-F1: no Friendly Motion program runs (N10001) and no teach log "
-                              "is open (TEACH file)"))
+  ASSERT_TRUE(
+      t.wait_for_line("Alt-F1: no Friendly Motion program runs (N10001) and no teach log "
+                      "is open (TEACH file)"))
       << t.text();
   t.line("teach taught.fm");
-  ASSERT_TRUE(t.wait_for([&] { return t.text().find("teaching into taught.fm") != std::string::npos; }))
-      << t.text();
+  ASSERT_TRUE(t.wait_for([&] {
+    return t.text().find("teaching into taught.fm") != std::string::npos;
+  })) << t.text();
   ASSERT_TRUE(t.wait_for_prompt()) << t.text();
   t.line("J2, 2, 3");
   ASSERT_TRUE(t.wait_for_line(readout("idle", {2, 3, 0, 0, 0, 0}))) << t.text();

@@ -626,7 +626,6 @@ TEST_F(FmTest, RefusedNamedWithWhy) {
   EXPECT_NE(error("S5\n").message.find("Sf#"), std::string::npos);
 }
 
-
 // ---- the laser table's hardware: the beam's output, the relay matrix, the feed range -------
 
 TEST_F(FmTest, TheLaserIsTheProfilesOutputWithItsOnAndOffWaits) {
@@ -636,8 +635,7 @@ TEST_F(FmTest, TheLaserIsTheProfilesOutputWithItsOnAndOffWaits) {
   settings.friendly_motion.laser_off_s = 0.02;
   // The beam switches at rest and waits before the next move starts: on at the move's start,
   // off at its end. Other outputs keep their numbers and switch without waiting.
-  EXPECT_EQ(moves_of("M100 X1 M101 M102"),
-            "O3+; D0.0500; L 1.0000,0.0000; O3-; D0.0200; O2+; O2-");
+  EXPECT_EQ(moves_of("M100 X1 M101 M102"), "O3+; D0.0500; L 1.0000,0.0000; O3-; D0.0200; O2+; O2-");
   // G16's strokes switch the same output, with the same waits.
   const std::string scribed = moves_of("G19.1 G16\"I\"");
   EXPECT_NE(scribed.find("O3+; D0.0500; L "), std::string::npos) << scribed;
@@ -689,11 +687,11 @@ TEST_F(FmTest, TheRelayMatrixSwitchesTheProfilesOutputs) {  // fact 82
 }
 
 TEST_F(FmTest, TheRelaySettingsLoadAndAreLeftOutWhenUnused) {
-  const SettingsLoad load = parse_settings(
-      default_profile_text() +
-          std::string("\n[friendly_motion]\nlaser_output = 2\nlaser_on_s = 0.01\n"
-                      "relay_a = \"5, 6\"\nrelay_b = \"0, 7\"\nfeed_max = 10\n"),
-      "t.toml");
+  const SettingsLoad load =
+      parse_settings(default_profile_text() +
+                         std::string("\n[friendly_motion]\nlaser_output = 2\nlaser_on_s = 0.01\n"
+                                     "relay_a = \"5, 6\"\nrelay_b = \"0, 7\"\nfeed_max = 10\n"),
+                     "t.toml");
   ASSERT_TRUE(load.ok()) << load.errors.front().message;
   EXPECT_EQ(load.settings.friendly_motion.laser_output, 2);
   EXPECT_EQ(load.settings.friendly_motion.relay_a, (std::vector<int>{5, 6}));
@@ -729,8 +727,10 @@ TEST_F(FmTest, FeedsOutsideTheTablesRangeAreErrors) {  // fact 46, digest 7.18
 TEST_F(FmTest, WritingTheTrimAndDiagnosticVariablesIsWarned) {  // digest 7.1, 7.18
   auto warnings = [&](const std::string& text) {
     std::vector<std::string> out;
-    for (const Diagnostic& d : script(text)->errors())
-      if (d.severity == Severity::Warning) out.push_back(fmt::format("{}:{} {}", d.loc.line, d.loc.column, d.message));
+    const auto loaded = script(text);  // kept: errors() is the script's
+    for (const Diagnostic& d : loaded->errors())
+      if (d.severity == Severity::Warning)
+        out.push_back(fmt::format("{}:{} {}", d.loc.line, d.loc.column, d.message));
     return out;
   };
   const std::vector<std::string> w = warnings("V1=2 V74=1\nV72=?\nV79=0 V80=1 V71=1\n");
