@@ -23,6 +23,7 @@
 
 #include "cli/key_taps.hpp"
 #include "cli/line_editor.hpp"
+#include "gantry/session/fm_hot_keys.hpp"  // fm_hot_key
 
 namespace {
 
@@ -985,6 +986,17 @@ TEST(RunAtATerminal, CtrlCAtAPauseEndsTheFileWithTheMovesBeforeItPlayed) {
   const std::string text = t.text();
   EXPECT_NE(text.find("pause.sbp:2:1: error: stopped by the operator"), std::string::npos) << text;
   EXPECT_NE(text.find("steps      X=917 "), std::string::npos) << text;  // MX, 1 played first
+}
+
+// Alt-F1 and Alt-F10 as xterm and tmux send them name Friendly Motion's hot keys.
+TEST(ConsoleKeys, AltFunctionKeysAreFriendlyMotionsHotKeys) {
+  const std::vector<Key> keys = decode({"\x1b[1;3P\x1b[21;3~\x1b[1;5P"});
+  ASSERT_EQ(keys.size(), 3u);
+  EXPECT_EQ(key_name(keys[0]), "Alt+F1");
+  EXPECT_EQ(key_name(keys[1]), "Alt+F10");
+  EXPECT_EQ(gantry::session::fm_hot_key(key_name(keys[0])), 1);
+  EXPECT_EQ(gantry::session::fm_hot_key(key_name(keys[1])), 10);
+  EXPECT_FALSE(gantry::session::fm_hot_key(key_name(keys[2])));  // Ctrl+F1
 }
 
 // Friendly Motion's Alt-F keys at a terminal (docs/friendlymotion.md, "Hot keys and teach

@@ -746,6 +746,30 @@ TEST_F(FmTest, WritingTheTrimAndDiagnosticVariablesIsWarned) {  // digest 7.1, 7
   EXPECT_TRUE(errors_of(check_script(script("V74=1 X1\n"))).empty());
 }
 
+// The facts not tested above, each as the manual states it.
+TEST_F(FmTest, TheRemainingFacts) {
+  // Fact 34: +X moves the table (the X axis) in its + direction.
+  EXPECT_EQ(moves_of("X0.5"), "L 0.5000,0.0000");
+  // Fact 44: G codes do not move, G16 excepted.
+  EXPECT_EQ(moves_of("G90 G91 G2 G3 G70 G71 G70 G9 G0 G43 G44 G68.5 G19.5 G10\"fontfile.txt\""),
+            "");
+  EXPECT_NE(moves_of("G19.1 G16\"I\"").find("L "), std::string::npos);
+  // Fact 81: M201 (fault reset), M205 (stop trimming), M206 (probes up) are inputs 2, 6, 7.
+  io.asked.clear();
+  run("M201 M205 M206");
+  ASSERT_EQ(io.asked.size(), 3u);
+  EXPECT_NE(io.asked[0].find("input 2 to close"), std::string::npos) << io.asked[0];
+  EXPECT_NE(io.asked[1].find("input 6 to close"), std::string::npos) << io.asked[1];
+  EXPECT_NE(io.asked[2].find("input 7 to close"), std::string::npos) << io.asked[2];
+  // Fact 91: the default font file is fontfile.txt (G10 names it without error).
+  EXPECT_TRUE(errors_of(check_script(script("G10\"fontfile.txt\" G16\"A\"\n"))).empty());
+  // Facts 106-112: T needs a resistor trimmer and is refused by name; V75 is 1 at load; V74
+  // and V76-V79 are the trim's (ordinary variables here, warned when written).
+  EXPECT_NE(error("T\n").message.find("T (resistor trim)"), std::string::npos);
+  EXPECT_EQ(shown("", "V75"), "1.0000");
+  EXPECT_EQ(shown("V76=2.5", "V76"), "2.5000");
+}
+
 // ---- STEP at the start and the Alt-F keys' subroutines -------------------------------------
 
 TEST_F(FmTest, ARunMayStartInStep) {  // fact 71 (gantry run --step)
