@@ -1068,4 +1068,21 @@ TEST(ConsoleTerminal, AltF1DuringAFriendlyMotionRunCallsN10001ThenSteps) {
   ASSERT_TRUE(t.wait_for_line(readout("idle", {1, 2, 0, 0, 0, 0}))) << t.text();
 }
 
+// `gantry run --step`: a Friendly Motion program starts in STEP mode, line 1 first.
+TEST(RunAtATerminal, StepStartsAFriendlyMotionProgramLineByLine) {
+  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed";
+  TmuxConsole t("step.fm --step", "run", {{"step.fm", "G70 G91 F1 X1\nX1\nX1\n"}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("STEP: line 1 next") != std::string::npos; }))
+      << t.text();
+  t.keys("Enter");  // Step (the default): line 1 runs, line 2 asks
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("STEP: line 2 next") != std::string::npos; }))
+      << t.text();
+  t.type("2");  // Auto: the rest runs
+  t.keys("Enter");
+  ASSERT_TRUE(t.wait_for_line("[run exited: 0]")) << t.text();
+  EXPECT_EQ(t.text().find("STEP: line 3 next"), std::string::npos) << t.text();
+  EXPECT_NE(t.text().find("steps      X=2750 Y=0 "), std::string::npos) << t.text();  // 3 in
+}
+
 }  // namespace
