@@ -223,6 +223,9 @@ void App::global_keys() {
     report(c_.estop(), "E-stop");
   }
   if (pendant_keys()) return;  // a bound key does only what it is bound to
+  if (io.KeyAlt && !io.KeyCtrl && !io.KeyShift)  // Friendly Motion's Alt-F1...F10
+    for (int f = 1; f <= 10; ++f)
+      if (ImGui::IsKeyPressed(GLFW_KEY_F1 + f - 1, false)) return fm_key(f);
   if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) show_keys_ = !show_keys_;
   if (io.KeyAlt)
     for (std::size_t i = 0; i < menus_.size(); ++i)

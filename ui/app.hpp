@@ -21,6 +21,7 @@
 #include "file_dialog.hpp"
 #include "fill_sheet.hpp"
 #include "gantry/session/activity_watch.hpp"  // ActivityWatch
+#include "gantry/session/fm_hot_keys.hpp"     // FmKeys
 #include "gantry/session/key_bindings.hpp"    // KeyPendant
 #include "gantry/session/live_position.hpp"   // LivePosition
 #include "gantry/session/recent_files.hpp"    // RecentFiles
@@ -108,6 +109,7 @@ class App {
   void global_keys();
   bool pendant_keys();  // the [pendant] keys (pendant_keys.cpp): true when one acted this frame
   void bind_keys();     // ... made GLFW's keys, once
+  void fm_key(int n);   // Alt-F`n`: Friendly Motion's hot key or the teach log's
   void log(LogLine::Kind kind, std::string text);
   void snapshot();  // at rest: the exact position, the frame and the units
   void poll();      // once a frame: output, questions, the end of an activity, a finished load
@@ -136,6 +138,7 @@ class App {
   };
   std::vector<BoundKey> bound_keys_;
   std::optional<session::KeyPendant> key_pendant_;
+  session::FmKeys fm_keys_;  // TEACH's log and the Alt-F keys, as the terminal console has
 
   // Command line.
   std::string line_;

@@ -53,12 +53,32 @@ void App::run_line(const std::string& typed) {
       kp_focus_ = true;
       ImGui::SetWindowFocus("Keypad");
       return log(LogLine::Info, "keypad: arrows X and Y, PageUp/PageDown Z; Esc leaves");
+    case Word::Teach: {
+      const session::FmKeys::Result r = fm_keys_.teach(rest, settings_.units);
+      return log(r.error ? LogLine::Error : LogLine::Info, r.message);
+    }
     case Word::Step:  // the window has no single step: the line goes to the machine
     case Word::None:
       break;
   }
   const Outcome o = c_.run_typed(Script::from_text(line, kConsoleName));
   report(o, "refused");
+}
+
+// Alt-F1...F10: during a run (or at its SK keypad) the file's hot-key subroutine; at rest the
+// teach log's (session::FmKeys decides, as in the terminal console).
+void App::fm_key(int n) {
+  const bool running = !rest_state(status_.state) && status_.state != MachineState::Jogging;
+  if (!running && !at_rest())
+    return log(LogLine::Error, fmt::format("Alt-F{}: the table is moving; teach once it is at rest", n));
+  if (!running) snapshot();  // at rest: the exact position
+  session::FmKeys::Result r = fm_keys_.key(n, running, c_, m_.io, position(status_),
+                                           settings_.friendly_motion);
+  if (!r.typed.empty()) {  // the output a teach key switches, as a typed SO would
+    const Outcome o = c_.run_typed(Script::from_text(r.typed, kConsoleName));
+    if (!o) r.message += "; the output was not switched: " + o.reason;
+  }
+  log(r.error ? LogLine::Error : LogLine::Info, r.message);
 }
 
 void App::console_window() {

@@ -239,6 +239,7 @@ void Console::estop() {
 
 void Console::on_key(const Key& k) {
   if (bound_key(k)) return;  // a [pendant] key does only what it is bound to, in every mode
+  if (const std::optional<int> n = session::fm_hot_key(key_name(k))) return fm_key(*n);
   if (k.code == KeyCode::Char && k.alt) {  // an Alt+character no binding takes: ESC, then it
     for (const Key& each : escape_and_char(k)) {
       on_key(each);
@@ -408,10 +409,42 @@ Console::WordEnd Console::console_word(const session::TypedLine& t, bool termina
                                "played; space or Enter runs the next, Esc ends the file\n"
                              : "single step off\n");
       return WordEnd::Done;
+    case Word::Teach: {
+      const session::FmKeys::Result r = fm_keys_.teach(t.rest, units_);
+      write_out(r.message + "\n");
+      return r.error && !terminal ? WordEnd::Failed : WordEnd::Done;
+    }
     case Word::None:
       break;
   }
   return WordEnd::NotAWord;
+}
+
+// Alt-F1...F10: during a run (a file running, or waiting at its SK or M3 keypad) the file's
+// hot-key subroutine; at rest the teach log's (session::FmKeys decides, as in the window).
+void Console::fm_key(int n) {
+  const bool running = mode_ == Mode::Job || kp_.file;
+  const ControllerStatus st = c_.status();
+  if (!running && (!at_rest(st.state) || !st.settled || kp_.active))
+    return flash(fmt::format("Alt-F{}: the table is moving; teach once it is at rest", n));
+  if (!running) snapshot();  // at rest: the exact position
+  session::FmKeys::Result r =
+      fm_keys_.key(n, running, c_, io_, live_.exact(), values_.settings().friendly_motion);
+  if (r.answered && asking_) {  // the key answered the STEP question: it is gone
+    asking_ = false;
+    editor_.erase();
+  }
+  if (!r.typed.empty()) {  // the output a teach key switches, at rest, as a typed SO would
+    const Outcome o = c_.run_typed(Script::from_text(r.typed, kConsoleName));
+    if (!o)
+      r.message += "; the output was not switched: " + o.reason;
+    else
+      c_.wait_for(milliseconds(2000));
+  }
+  if (mode_ == Mode::Prompt && !asking_)
+    print_above(r.message);
+  else
+    flash(r.message);
 }
 
 void Console::handle_line(const std::string& typed) {

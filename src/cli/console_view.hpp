@@ -18,6 +18,7 @@
 #include "gantry/session/key_bindings.hpp"   // KeyBindings, KeyPendant
 #include "gantry/session/pendant_input.hpp"  // PendantInput
 #include "gantry/session/console_words.hpp"  // TypedLine
+#include "gantry/session/fm_hot_keys.hpp"    // FmKeys
 #include "gantry/session/live_machine.hpp"   // ValuesKeeper
 #include "gantry/session/live_position.hpp"  // LivePosition
 #include "gantry/session/machine_memory.hpp" // MachineMemory
@@ -74,6 +75,7 @@ class Console {
   void show_question(const std::string& text, const std::string& prompt);
   void keypad_key(const Key& k);
   bool bound_key(const Key& k);  // a [pendant] key: its events sent, true
+  void fm_key(int n);            // Alt-F`n`: Friendly Motion's hot key or the teach log's
   void tick();
   void handle_line(const std::string& line);
   void end_job();
@@ -115,6 +117,7 @@ class Console {
   std::uint64_t question_shown_ = 0;  // the id of the last question shown
   Question asked_;                    // ... and the question
   bool single_step_ = false;
+  session::FmKeys fm_keys_;  // TEACH's log and the Alt-F keys
   Vec6 line_start_ = Vec6::Zero();
   bool status_drawn_ = false;
   bool warned_ = false;  // the status line showed SW's warning (its bell rang)

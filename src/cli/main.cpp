@@ -90,6 +90,7 @@ std::function<bool(int, bool, const std::optional<Vec6>&)> unattended_inputs(
 struct RunArgs {
   std::string file, profile, card;  // card: empty = the profile's
   bool json = false, realtime = false;
+  bool step = false;                         // --step: Friendly Motion starts in STEP mode
   std::string trace;                         // --trace FILE: the simulated card's pin trace
   std::optional<double> estop_at, stall_at;  // simulated operator and producer
   std::optional<double> probe_z;
@@ -315,6 +316,14 @@ int cmd_run(const RunArgs& a, const LanguageArgs& lang) {
   report.units = settings.units;
   report.axis_names = axis_names(settings);
   std::shared_ptr<const Script> script = load_part_file(a.file, opt.interpreter.language);
+  if (a.step && !script->fm()) {
+    fmt::print(stderr,
+               "error: --step is Friendly Motion's STEP mode, and {} is not a Friendly Motion "
+               "program (the console's STEP single-steps OpenSBP and G-code)\n",
+               a.file);
+    return 1;
+  }
+  opt.interpreter.fm_step = a.step;
   // A person at a terminal answers the file's questions, unless --yes/--input do. With
   // --json, stdout holds only the report: PRINT goes to stderr.
   std::FILE* const print_to = a.json ? stderr : stdout;
@@ -714,6 +723,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"sim", "pci7200", "gpiod"}));
   run_cmd->add_flag("--json", run.json, "Print the report as one JSON object on stdout");
   run_cmd->add_flag("--realtime", run.realtime, "Play the simulated card in real time");
+  run_cmd->add_flag("--step", run.step,
+                    "A Friendly Motion program starts in STEP mode: the operator starts each "
+                    "line (Step), or runs on (Auto), as after an M0");
   run_cmd->add_option("--trace", run.trace, "Write the simulated card's pin trace to FILE");
   run_cmd->add_option("--sim-estop-at", run.estop_at, "Simulate E-stop at this machine time, s");
   run_cmd->add_option("--sim-stall-at", run.stall_at,

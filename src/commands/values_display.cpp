@@ -35,8 +35,8 @@ constexpr SheetRows kSheetRows[] = {
 // The machine's wiring and set-up: read from the profile only, shown in no sheet.
 constexpr std::string_view kProfileOnly[] = {
     "",  // name, dialect, gcode_dialect, tool_table, subroutines (units: VD's)
-    "card",  "pins.<x..c>", "inputs",    "inputs.<x..c>", "outputs",
-    "files", "pendant",     "simulator", "planner",       "machine",
+    "card",    "pins.<x..c>", "inputs",  "inputs.<x..c>", "outputs",         "files",
+    "pendant", "simulator",   "planner", "machine",       "friendly_motion",
 };
 
 // A row's value as the listing shows it: a key left out as "-", text as written.
@@ -126,7 +126,7 @@ std::string setting_value_text(const SettingRow& row, const Settings& s, int i) 
     case SettingKind::Choice: {
       const int k = row.choice_get ? row.choice_get(s, i) : *row.member<int>(s, i);
       return k >= 0 && static_cast<std::size_t>(k) < row.names.size() ? std::string(row.names[k])
-                                                                       : std::to_string(k);
+                                                                      : std::to_string(k);
     }
     case SettingKind::IntList:
       return std::to_string(row.member<int>(s)[i]);
@@ -151,9 +151,12 @@ std::string values_listing(const CommandSpec& spec, const std::vector<ShownValue
   std::string out = fmt::format("{}, {} (in force):\n", spec.code, spec.name);
   for (const ShownValue& v : values) {
     std::string unit = v.unit.empty() ? std::string(v.param->unit) : v.unit;
-    if (unit == "units") unit = u;
-    else if (unit.starts_with("units/")) unit = u + unit.substr(5);
-    else if (unit == "steps/unit") unit = "steps/" + u;
+    if (unit == "units")
+      unit = u;
+    else if (unit.starts_with("units/"))
+      unit = u + unit.substr(5);
+    else if (unit == "steps/unit")
+      unit = "steps/" + u;
     out += fmt::format("  {:>2}  {:<{}}  {}{}{}\n", v.number, v.param->name, width, v.value,
                        unit.empty() ? "" : " ", unit);
   }

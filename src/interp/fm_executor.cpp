@@ -328,11 +328,54 @@ void FmExecutor::units(bool metric) {
   ctx_.set_file_units(metric ? Units::Millimetres : Units::Inches);
 }
 
+// The manual's X-Y feed range, 0.005 to 6 in/s, is its table's: a profile may give its own
+// ([friendly_motion] feed_min, feed_max). A feed outside it is an error, as the manual's
+// "Minimum/Maximum Allowable Feedrate" says, rather than a silent clamp that would change
+// the marking's dose.
+void FmExecutor::feed_in_range(double f, const SourceLoc& loc) const {
+  const FriendlyMotionSettings& fm = ctx_.settings().friendly_motion;
+  const double inch = units_factor(Units::Inches, ctx_.settings().units);
+  const double lo = fm.feed_min.value_or(0.005 * inch), hi = fm.feed_max.value_or(6 * inch);
+  const double v = f * unit();
+  if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) return;
+  const double u = unit();
+  fail(loc, fmt::format("F{}: the X-Y feed must be {:g} to {:g} {}/s ({}); nothing was set", f,
+                        lo / u, hi / u, metric_ ? "mm" : "in",
+                        fm.feed_min || fm.feed_max
+                            ? "friendly_motion.feed_min and feed_max"
+                            : "the manual's range; a profile's [friendly_motion] feed_min and "
+                              "feed_max give another"));
+}
+
 // ---- outputs ----------------------------------------------------------------------------
 
+int FmExecutor::laser_output() const {
+  const int k = ctx_.settings().friendly_motion.laser_output;
+  const std::vector<int>& wired = ctx_.settings().outputs.aux_bits;
+  return k >= 1 && k <= static_cast<int>(wired.size()) && wired[static_cast<size_t>(k - 1)] >= 0
+             ? k
+             : 0;
+}
+
+void FmExecutor::switch_output(int k, bool on, const SourceLoc& loc) {
+  ctx_.set_output(k, on, loc);
+  if (k != laser_output()) return;
+  const FriendlyMotionSettings& fm = ctx_.settings().friendly_motion;
+  const double wait = on ? fm.laser_on_s : fm.laser_off_s;
+  if (wait > 0) ctx_.dwell(wait, loc);
+}
+
 void FmExecutor::output(int code, const SourceLoc& loc) {
-  const int k = (code - 100) / 2 + 1;
+  int k = (code - 100) / 2 + 1;
   const bool on = code % 2 == 0;
+  // M100/M101 gate the beam: the output the profile names for it (output 1 unless it says).
+  if (k == 1) {
+    k = ctx_.settings().friendly_motion.laser_output;
+    if (k == 0)
+      fail(loc, fmt::format("M{} gates the laser, and this profile names no laser output "
+                            "(friendly_motion.laser_output = 0); nothing was switched",
+                            code));
+  }
   if (k > 12)
     fail(loc, fmt::format("M{} switches output {}, and Gantry has output switches 1 to 12 "
                           "(M100-M123)",
@@ -343,7 +386,42 @@ void FmExecutor::output(int code, const SourceLoc& loc) {
                           "(outputs.aux_bits); nothing was switched",
                           code, k));
   if (dry_run_) return;  // G43: the moves run, the outputs stay as they are
-  ctx_.set_output(k, on, loc);
+  switch_output(k, on, loc);
+}
+
+// P: the relay matrix wired to output switches ([friendly_motion] relay_a, relay_b). A probe
+// is on one bus at a time (on both it would join them), so PA# lets it go from bus B first;
+// PD opens every relay. Like M100-M131, the relays switch at rest and stay as they are in G43.
+void FmExecutor::relay(const FmCommand& c, const FmLine& line, const SourceLoc& loc) {
+  const FriendlyMotionSettings& fm = ctx_.settings().friendly_motion;
+  if (fm.relay_a.empty() && fm.relay_b.empty())
+    fail(loc,
+         "P switches the resistor trimmer's relay matrix (test probes to bus A or B); this "
+         "machine's profile wires none ([friendly_motion] relay_a, relay_b), so it cannot be "
+         "run");
+  auto on = [&](int k) { return k > 0 && ((ctx_.state().outputs >> (k - 1)) & 1u) != 0; };
+  if (c.axis == 'D') {
+    if (dry_run_) return;
+    for (const std::vector<int>* bus : {&fm.relay_a, &fm.relay_b})
+      for (int k : *bus)
+        if (on(k)) switch_output(k, false, loc);
+    return;
+  }
+  const double p = value(line, c.expr, loc);
+  const std::vector<int>& mine = c.axis == 'A' ? fm.relay_a : fm.relay_b;
+  const std::vector<int>& other = c.axis == 'A' ? fm.relay_b : fm.relay_a;
+  const char* key = c.axis == 'A' ? "relay_a" : "relay_b";
+  if (p != std::trunc(p) || p < 1 || p > static_cast<double>(mine.size()) ||
+      mine[static_cast<size_t>(p) - 1] == 0)
+    fail(loc, fmt::format("P{}{}: test probe {} has no relay to bus {} (friendly_motion.{} "
+                          "wires {}); nothing was switched",
+                          c.axis, p, p, c.axis, key,
+                          mine.empty() ? std::string("no probe")
+                                       : fmt::format("probes 1 to {} where not 0", mine.size())));
+  const auto n = static_cast<size_t>(p);
+  if (dry_run_) return;
+  if (n <= other.size() && on(other[n - 1])) switch_output(other[n - 1], false, loc);
+  switch_output(mine[n - 1], true, loc);
 }
 
 // ---- text ---------------------------------------------------------------------------------
@@ -418,12 +496,12 @@ void FmExecutor::scribe(const FmCommand& c, const SourceLoc& loc) {
   const FmScribePath path =
       fm_scribe(text, v_[73], strings_[0], {char_size_ * unit(), 0.5}, text_loc);
   const Vec6 start = ctx_.position();
-  const std::vector<int>& wired = ctx_.settings().outputs.aux_bits;
-  const bool laser = !dry_run_ && !wired.empty() && wired[0] >= 0;
+  const int beam = laser_output();
+  const bool laser = !dry_run_ && beam > 0;
   if (!laser && !dry_run_ && !std::exchange(laser_warned_, true))
     ctx_.warn(loc,
-              "G16: this profile wires no output 1 (M100, the Q-switch gate), so the "
-              "characters are traced with the laser off");
+              "G16: this profile wires no laser output (friendly_motion.laser_output, M100's "
+              "Q-switch gate), so the characters are traced with the laser off");
   auto point = [&](const FmPoint& d) {
     const std::array<double, 2> r = rotate(d[0], d[1]);
     Vec6 p = start;
@@ -434,12 +512,12 @@ void FmExecutor::scribe(const FmCommand& c, const SourceLoc& loc) {
   for (const std::vector<FmPoint>& stroke : path.strokes) {
     line_to(point(stroke.front()), loc);
     after_move(loc);
-    if (laser) ctx_.set_output(1, true, loc);
+    if (laser) switch_output(beam, true, loc);
     for (size_t k = 1; k < stroke.size(); ++k) {
       line_to(point(stroke[k]), loc);
       after_move(loc);
     }
-    if (laser) ctx_.set_output(1, false, loc);
+    if (laser) switch_output(beam, false, loc);
   }
   line_to(point(path.end), loc);  // where the next character would start
   after_move(loc);
@@ -610,6 +688,7 @@ void FmExecutor::execute(const FmCommand& c, const FmLine& line, const SourceLoc
     case FmOp::Feed: {
       const double f = value(line, c.expr, loc);
       if (!(f > 0)) fail(loc, fmt::format("a feed rate must be above 0, not {}", f));
+      if (c.axis != 'C') feed_in_range(f, loc);
       if (c.axis == 'C')
         ctx_.state().speeds.move.c = f;
       else
@@ -654,6 +733,8 @@ void FmExecutor::execute(const FmCommand& c, const FmLine& line, const SourceLoc
     case FmOp::ShowString:
       io_.print(fmt::format("@{}={}\n", c.code, strings_[static_cast<size_t>(c.code)]));
       return;
+    case FmOp::Relay:
+      return relay(c, line, loc);
     case FmOp::Analog:
       value(line, c.expr, loc);
       if (!std::exchange(analog_warned_, true))

@@ -17,8 +17,9 @@ namespace {
 constexpr size_t kMaxCalls = 10;  // "Subroutines may be nested up to 10 deep"
 
 // Whether the program goes on after an M0 at `c`: a line with a command follows that is not
-// a subroutine's (a line numbered with a K call's target starts the subroutines, which the
-// main program's M0 ends before, as the manual's "All programs should include an M0 or M2").
+// a subroutine's (a line numbered with a K call's target, or a hot key's N10001-N10010, starts
+// the subroutines, which the main program's M0 ends before, as the manual's "All programs
+// should include an M0 or M2").
 bool program_follows(const Script& script, Cursor c) {
   FmLine line;
   Diagnostic error;
@@ -32,7 +33,9 @@ bool program_follows(const Script& script, Cursor c) {
     const std::string_view text = script.line_at(c, &next);
     if (!parse_fm_line(text, script.name(), c.line, &line, &error)) return true;
     if (line.commands.empty()) continue;
-    return !(line.sequence && called.count(*line.sequence));
+    // N10001-N10010 are the Alt-F keys' subroutines, which only the keyboard calls.
+    return !(line.sequence &&
+             (called.count(*line.sequence) || (*line.sequence > 10000 && *line.sequence <= 10010)));
   }
   return false;
 }
@@ -68,18 +71,60 @@ void Interpreter::fm_wait_input(int code, const SourceLoc& loc) {
   wait_for_input(n, true, loc, fmt::format("M{}", code));
 }
 
+bool Interpreter::in_friendly_motion() const {
+  return !frames_.empty() && frames_.back().script->fm();
+}
+
+// "The Alternate Function Keys (Alt-F1 to Alt-F-10) directly call and execute the subroutines
+// N10001 to N10010 ... When subroutine execution is completed, the system returns to the STEP
+// mode." The key is taken before a line: the subroutine runs (on its own, in AUTO), and its
+// M6 comes back to the start of that line, which then waits for the operator (STEP). A key
+// whose subroutine the program lacks is the manual's error message: a warning, and the run
+// goes on (a stray key does not end a part).
+bool Interpreter::fm_hot_call(int key, const SourceLoc& loc) {
+  FmFlow& flow = *fm_flow_;
+  Frame& f = frames_.back();
+  const int n = 10000 + key;
+  const std::optional<Cursor> target = f.script->label(fmt::format("N{}", n));
+  if (!target) {
+    io_.warn({loc, Severity::Warning,
+              fmt::format("Alt-F{} calls subroutine N{}, which this program does not have; "
+                          "nothing was called",
+                          key, n)});
+    return false;
+  }
+  if (flow.calls.size() >= kMaxCalls)
+    fail(loc, fmt::format("Alt-F{}: subroutines already nest 10 deep (the manual's limit)", key));
+  io_.print(fmt::format("Alt-F{}: N{}\n", key, n));
+  flow.calls.push_back({current_, 0, *target, 0, true});
+  f.pc = *target;
+  flow.step = false;
+  return true;
+}
+
 void Interpreter::exec(const FmStmt& s, const SourceLoc& loc) {
   FmFlow& flow = *fm_flow_;
   const FmLine& line = s.line;
   size_t k = 0;
+  auto hot_key = [&] { return options_.fm_hot_key ? options_.fm_hot_key() : 0; };
   if (flow.resume_offset == current_.offset) {  // back from a subroutine: after its K
     k = flow.resume_index;
     flow.resume_offset = SIZE_MAX;
-  } else if (flow.step && !ctx_.checking_) {
-    const std::string answer = io_.choose(fmt::format("STEP: line {} next", current_.line),
-                                          {"Step", "Auto", "Stop"}, 0, "Friendly Motion", loc);
-    if (answer == "Stop") throw OperatorStop({loc, Severity::Error, "stopped by the operator"});
-    flow.step = answer == "Step";
+  } else if (!ctx_.checking_) {
+    if (const int key = hot_key(); key > 0 && fm_hot_call(key, loc)) return;
+    while (flow.step) {
+      const std::string answer = io_.choose(fmt::format("STEP: line {} next", current_.line),
+                                            {"Step", "Auto", "Stop"}, 0, kFmStepTitle, loc);
+      if (answer == "Stop") throw OperatorStop({loc, Severity::Error, "stopped by the operator"});
+      flow.step = answer == "Step";
+      // A hot key pressed at the question answered it (session::press_fm_hot_key): its
+      // subroutine runs first and this line asks again when it returns; a key with no
+      // subroutine asks again at once.
+      const int key = hot_key();
+      if (key == 0) break;
+      if (fm_hot_call(key, loc)) return;
+      flow.step = true;
+    }
   }
   for (; k < line.commands.size(); ++k) {
     const FmCommand& c = line.commands[k];
@@ -118,6 +163,12 @@ void Interpreter::exec(const FmStmt& s, const SourceLoc& loc) {
                  "M6 returns from a subroutine, and none was called (K); end the main "
                  "program with M0 or M2 before the subroutines");
           FmFlow::Call& call = flow.calls.back();
+          if (call.hot) {  // an Alt-F key's: the line it came before runs next, in STEP
+            f.pc = call.line;
+            flow.calls.pop_back();
+            flow.step = true;
+            return;
+          }
           if (call.left > 0) {  // R: the subroutine again
             --call.left;
             f.pc = call.target;
@@ -138,7 +189,7 @@ void Interpreter::exec(const FmStmt& s, const SourceLoc& loc) {
           }
           const std::string answer =
               io_.choose("M0: program stop. Step runs a line at a time, Auto runs on, Stop ends",
-                         {"Step", "Auto", "Stop"}, 1, "Friendly Motion", at);
+                         {"Step", "Auto", "Stop"}, 1, kFmStepTitle, at);
           if (answer == "Stop")
             throw OperatorStop({at, Severity::Error, "stopped by the operator at M0"});
           flow.step = answer == "Step";

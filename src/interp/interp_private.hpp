@@ -189,6 +189,7 @@ struct Interpreter::FmFlow {
     size_t next = 0;  // the command after the K on it
     Cursor target;    // the subroutine's first line (for R)
     long left = 0;    // calls still to come (R)
+    bool hot = false;  // an Alt-F key's: M6 goes back to the start of `line`, in STEP mode
   };
   std::vector<Call> calls;
   size_t resume_offset = SIZE_MAX;  // the line to resume at (its offset), and its command

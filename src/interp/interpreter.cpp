@@ -202,6 +202,7 @@ void Interpreter::push_file(std::shared_ptr<const Script> script, const FileCall
   if (script->fm()) {
     fm_->begin_file();
     *fm_flow_ = FmFlow{};
+    fm_flow_->step = options_.fm_step;  // --step: the operator starts each line
   }
   Frame f;
   f.script = std::move(script);

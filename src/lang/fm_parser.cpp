@@ -551,11 +551,15 @@ FmCommand read_command(std::string_view up, std::string_view raw, int col, bool 
       c.text = std::string(r.raw_rest());
       return c;
     }
-    case 'P':
-      --r.pos;  // at the command
-      r.fail(
-          "P switches the resistor trimmer's relay matrix (test probes to bus A or B); "
-          "Gantry's machine profiles wire no relay matrix, so it cannot be run");
+    case 'P':  // the relay matrix: whether the profile wires one is the executor's question
+      c.op = FmOp::Relay;
+      if (r.peek() != 'A' && r.peek() != 'B' && r.peek() != 'D')
+        r.fail("P is PA# or PB# (connect test probe # to bus A or B) or PD (disconnect all)");
+      c.axis = r.peek();
+      ++r.pos;
+      if (c.axis != 'D') c.expr = r.expression(false, fmt::format("P{}", c.axis));
+      expect_end(r, c.axis == 'D' ? "PD" : "the probe number");
+      return c;
     case 'S':
       c.op = FmOp::Analog;
       if (r.peek() != 'F' && r.peek() != 'C')

@@ -21,15 +21,16 @@ const std::vector<FmCommandInfo>& fm_commands() {
        "An arc to X,Y about centre I,J (absolute under G90, relative to the start under G91), "
        "direction from G2/G3; end = start is a full circle; R# runs it # times."},
       {"F", "Set feed rate", "F#  FX#  FY#  FC#",
-       "Feed in units per second: F, FX and FY set the X-Y feed, FC the C axis (deg/s)."},
+       "Feed in units per second: F, FX and FY set the X-Y feed (0.005-6 in/s, or the "
+       "profile's [friendly_motion] range; outside it an error), FC the C axis (deg/s)."},
       {"G0", "End profile", "G0",
        "Ends continuous velocity (G9): the table stops after each "
        "move again. G0R# is refused (undocumented)."},
       {"G2", "Clockwise", "G2", "Arcs that follow run clockwise (the default)."},
       {"G3", "Counter-clockwise", "G3", "Arcs that follow run counter-clockwise."},
       {"G4", "Timed delay", "G4X#[Q]",
-       "Waits # seconds (at least 0.001) with the table at rest; Q inside a profile waits "
-       "without stopping the motion."},
+       "Waits # seconds (at least 0.001) with the table at rest; Q inside a profile (a delay "
+       "while the axes move) is refused."},
       {"G7", "Direct communication", "G7...", "Refused: there is no U.S. Laser controller.", false},
       {"G9", "Begin profile", "G9", "Continuous velocity: moves blend until G0."},
       {"G10", "Select font file", "G10\"file\"",
@@ -50,7 +51,8 @@ const std::vector<FmCommandInfo>& fm_commands() {
        "Writes up to 5 values, comma-separated, then a new line."},
       {"G27", "Read values from input file", "G27[R#,]V#,...",
        "Reads up to 5 values (from record R#), into variables whose index is an expression."},
-      {"G43", "Dry run", "G43", "Moves run; outputs (M100-M131, the laser) stay off."},
+      {"G43", "Dry run", "G43",
+       "Moves run; outputs (M100-M131, P's relays, the laser) stay as they are."},
       {"G44", "Normal run", "G44", "Outputs switch again."},
       {"G58", "Display data", "G58\"text\"V#@#",
        "Shows text, values (4 decimals) and strings, upper case, one space apart."},
@@ -81,13 +83,17 @@ const std::vector<FmCommandInfo>& fm_commands() {
       {"M98", "Axis zero", "M98  M98X  M98Y", "The current position becomes ZERO (not under G60)."},
       {"M99", "Machine home", "M99  M99X  M99Y", "Homes the axes; ends the user coordinates."},
       {"M100-M131", "Output M-functions", "M1##  MV#",
-       "Even codes switch output (code-100)/2+1 on, odd off, at rest between moves."},
+       "Even codes switch output (code-100)/2+1 on, odd off, at rest between moves; M100/M101 "
+       "the laser's ([friendly_motion] laser_output, with its on/off waits)."},
       {"M200-M231", "Input M-functions", "M2##", "Waits until input (code-200)+1 is active."},
       {"V", "Variables", "V#=expr  V#=?  V#=?(text)  V#",
        "V0-V90 assigned; + - * / ^ ( ), SIN COS TAN ASIN ACOS ATAN (degrees) right after =; "
        "=? asks the operator; V# alone shows it. V91-V98 read the machine."},
       {"@", "Strings", "@#=text  A#=text  @#=?  @#", "Strings @0-@9: set, ask, show."},
-      {"P", "Relay matrix", "PA#  PB#  PD", "Refused: no relay matrix is wired.", false},
+      {"P", "Relay matrix", "PA#  PB#  PD",
+       "Connects test probe # to bus A or B (and lets it go from the other), or disconnects "
+       "all, through the output switches [friendly_motion] relay_a and relay_b name; refused "
+       "when the profile wires none."},
       {"S", "Analog I/O", "Sf#  SC#",
        "Q-switch frequency (kHz) and lamp current: recorded (no analog output is wired)."},
       {"T", "Trimming", "T...", "Refused: the T line's format is not documented.", false},

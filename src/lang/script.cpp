@@ -338,12 +338,20 @@ void Script::index_fm() {
   FmLine line;
   Diagnostic error;
   std::vector<std::pair<int, SourceLoc>> targets;
+  std::vector<std::pair<int, SourceLoc>> special;  // V72-V79 written (digest §7.1, §7.18)
+  bool scribes = false;                            // a G16: V73 is its %i %f %c value
   for (Cursor c = start(), next; !at_end(c); c = next) {
     const std::string_view text = line_at(c, &next);
     ++lines_;
     if (!parse_fm_line(text, name_, c.line, &line, &error)) {
       errors_.push_back(error);
       continue;
+    }
+    for (const FmCommand& cmd : line.commands) {
+      scribes = scribes || (cmd.op == FmOp::G && cmd.code == 16);
+      if ((cmd.op == FmOp::Assign || (cmd.op == FmOp::Prompt && cmd.axis != '@')) &&
+          cmd.code >= 72 && cmd.code <= 79)
+        special.emplace_back(cmd.code, SourceLoc{name_, c.line, cmd.column});
     }
     if (line.sequence) {
       const std::string key = fmt::format("N{}", *line.sequence);
@@ -367,6 +375,22 @@ void Script::index_fm() {
                                        cmd.op == FmOp::Call ? ", and after the subroutine returns"
                                                             : "")});
     }
+  }
+  // V72-V79 are the manual's special variables: V72 its diagnostic mode, V73 scribing's
+  // value, V74-V79 the trim's. Gantry runs no T, so writing one outside scribing is most
+  // likely a program that uses it for its own purposes, which would break on U.S. Laser's.
+  for (const auto& [n, loc] : special) {
+    if (n == 73 && scribes) continue;
+    errors_.push_back(
+        {loc, Severity::Warning,
+         fmt::format("V{} is {}; the manual reserves it, so a program should not use it for "
+                     "its own values (here it is an ordinary variable)",
+                     n,
+                     n == 72   ? "the manual's diagnostic mode"
+                     : n == 73 ? "the value G16 scribes with %i %f %c, and this file scribes "
+                                 "nothing"
+                               : "one of the resistor trim's (T) variables V74-V79, and Gantry "
+                                 "runs no T")});
   }
   for (const auto& [n, loc] : targets)
     if (!labels_.count(fmt::format("N{}", n)))

@@ -95,6 +95,7 @@ Controller::Controller(const Settings& settings, Card& card, OperatorIO& io, Per
       forward_(std::make_unique<ForwardSink>(*this)) {
   forward_->to = qsink_;  // the planner runs on the feeder thread (feeder_thread.hpp)
   options.stop_check = &feed_.abort_flag();  // a stop ends even a file that loops without moving
+  options.fm_hot_key = [this] { return hot_key_.exchange(0); };
   interp_ = std::make_unique<Interpreter>(settings, *forward_, forward_.get(), io, store,
                                           std::move(options));
   interp_->on_progress([this](std::size_t done, std::size_t total) {
@@ -180,6 +181,7 @@ Outcome Controller::start_run(std::shared_ptr<const Script> script, bool checked
     lines_ = script->line_count();
     running_file_ = true;
     typed_ = typed;
+    hot_key_.store(0);  // a key pressed before the run is not the run's
     activity_file_ = script->name() ? *script->name() : std::string();
     top_file_ = typed ? nullptr : script->name();
     start_activity([this, script, typed] {
@@ -470,8 +472,30 @@ CanonMove Controller::keypad_move(const JogRequest& j) const {
 // After each statement of a file. A new feed override goes to the planner (it re-plans what
 // it holds). Single step: the statement's motion plays out, then the file holds as Paused
 // until resume (the next statement) or stop.
+Outcome Controller::hot_key(int key) {
+  if (key < 1 || key > 10)
+    return {false, fmt::format("Alt-F{}: the hot keys are Alt-F1 to Alt-F10", key), {}};
+  std::lock_guard lock(m_);
+  if (!busy_ || !running_file_)
+    return {false,
+            fmt::format("Alt-F{} calls subroutine N{} of the Friendly Motion program running, "
+                        "and no program runs",
+                        key, 10000 + key),
+            {}};
+  hot_key_.store(key);
+  return {};
+}
+
 void Controller::after_statement() {
   feed_.pause_outputs(outputs_off_on_pause(interp_->settings()));  // VN may change them
+  // A hot key only a Friendly Motion line takes: in another language it is told, not kept.
+  if (hot_key_.load() != 0 && !interp_->in_friendly_motion())
+    if (const int key = hot_key_.exchange(0); key != 0)
+      io_.warn({{},
+                Severity::Warning,
+                fmt::format("Alt-F{} calls subroutine N{} of a Friendly Motion program; the "
+                            "file running is not one, so nothing was called",
+                            key, 10000 + key)});
   if (override_changed_.exchange(false)) {
     double factor = 1;
     {

@@ -34,6 +34,8 @@ TypedLine read_typed_line(std::string_view typed, bool single_step) {
              (bare || scan::upper(t.rest) == "ON" || scan::upper(t.rest) == "OFF")) {
     t.word = TypedLine::Word::Step;
     t.step_on = bare ? !single_step : scan::upper(t.rest) == "ON";
+  } else if (word == "TEACH") {
+    t.word = TypedLine::Word::Teach;
   } else if (code == "SK" && (line.size() == 2 || line[2] == ',' || line[2] == ' ')) {
     t.word = TypedLine::Word::Keypad;
     const size_t comma = line.find(',');

@@ -413,6 +413,38 @@ void read_profile(TableReader& root, Settings& s) {
 
 }  // namespace
 
+// [friendly_motion]'s outputs (docs/friendlymotion.md): the beam's gate and every relay an
+// output switch that is wired, no switch two relays' (a probe on bus A and on bus B at once
+// would join the buses), none the beam's; the feed range in order.
+static void friendly_motion_rules(const Settings& s, const std::function<void(std::string)>& err) {
+  const FriendlyMotionSettings& fm = s.friendly_motion;
+  auto wired = [&](int n) {
+    return n >= 1 && n <= static_cast<int>(s.outputs.aux_bits.size()) && s.outputs.aux_bits[n - 1] >= 0;
+  };
+  // Output 1 is the default, named whether or not the profile is a laser table's: an unwired
+  // one leaves M100 refused and G16 tracing with the beam off, as before the setting.
+  if (fm.laser_output > 1 && !wired(fm.laser_output))
+    err(fmt::format("friendly_motion.laser_output: output switch {} is not wired (outputs.aux_bits)",
+                    fm.laser_output));
+  std::map<int, std::string> used;
+  for (const auto& [bus, relays] : {std::pair{'a', &fm.relay_a}, std::pair{'b', &fm.relay_b}})
+    for (size_t k = 0; k < relays->size(); ++k) {
+      const int n = (*relays)[k];
+      if (n == 0) continue;
+      const std::string name = fmt::format("friendly_motion.relay_{} (probe {})", bus, k + 1);
+      if (!wired(n))
+        err(fmt::format("{}: output switch {} is not wired (outputs.aux_bits)", name, n));
+      else if (n == fm.laser_output)
+        err(fmt::format("{}: output switch {} gates the laser (friendly_motion.laser_output)",
+                        name, n));
+      else if (const auto [at, fresh] = used.emplace(n, name); !fresh)
+        err(fmt::format("{}: output switch {} is already {}'s relay", name, n, at->second));
+    }
+  if (fm.feed_min && fm.feed_max && *fm.feed_min > *fm.feed_max)
+    err(fmt::format("friendly_motion.feed_min ({}) is above friendly_motion.feed_max ({})",
+                    *fm.feed_min, *fm.feed_max));
+}
+
 // [spindle]'s outputs and inputs and [toolchanger]'s places (docs/hardware.md, "Spindle",
 // "Tool changer"): switches that are wired, heights in order, places within the soft limits.
 static void spindle_and_tool_changer_rules(const Settings& s, double pacer,
@@ -554,6 +586,7 @@ static void check_consistency(const Settings& s, const std::string& origin,
                     "pacer; at most {:.0f} Hz keeps TR's duty within 1 %",
                     s.spindle.pwm_hz, pacer / s.spindle.pwm_hz, pacer, pacer / 100));
   spindle_and_tool_changer_rules(s, pacer, err);
+  friendly_motion_rules(s, err);
   // Each bit has one role, but the proximity switches of several axes may share one (wired
   // in parallel), and switch_bits only names bits for part files.
   std::uint32_t inputs_used = 0, home_bits = 0;

@@ -32,12 +32,15 @@ void write_row(toml::table& root, const SettingRow& row, int i, const Settings& 
   const std::string key = row.key_at(i);
   auto put = [&](auto&& value) { table_at(root, row.section_at(i)).insert(key, value); };
   switch (row.kind) {
-    case SettingKind::Number: return put(*static_cast<const double*>(field));
+    case SettingKind::Number:
+      return put(*static_cast<const double*>(field));
     case SettingKind::OptionalNumber:
       if (const auto& v = *static_cast<const std::optional<double>*>(field)) put(*v);
       return;
-    case SettingKind::Integer: return put(*static_cast<const int*>(field));
-    case SettingKind::Bool: return put(*static_cast<const bool*>(field));
+    case SettingKind::Integer:
+      return put(*static_cast<const int*>(field));
+    case SettingKind::Bool:
+      return put(*static_cast<const bool*>(field));
     case SettingKind::Choice:
       return put(std::string(row.names[static_cast<size_t>(row.choice_get(s, i))]));
     case SettingKind::Text: {

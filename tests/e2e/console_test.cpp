@@ -23,6 +23,7 @@
 
 #include "cli/key_taps.hpp"
 #include "cli/line_editor.hpp"
+#include "gantry/session/fm_hot_keys.hpp"  // fm_hot_key
 
 namespace {
 
@@ -562,6 +563,11 @@ class TmuxConsole {
   void write(const std::string& name, const std::string& text) {
     std::ofstream(dir_.path() / name) << text;
   }
+  std::string read(const std::string& name) const {
+    std::stringstream ss;
+    ss << std::ifstream(dir_.path() / name, std::ios::binary).rdbuf();
+    return ss.str();
+  }
 
  private:
   int tmux(const std::string& args) {
@@ -994,6 +1000,103 @@ TEST(RunAtATerminal, CtrlCAtAPauseEndsTheFileWithTheMovesBeforeItPlayed) {
   const std::string text = t.text();
   EXPECT_NE(text.find("pause.sbp:2:1: error: stopped by the operator"), std::string::npos) << text;
   EXPECT_NE(text.find("steps      X=917 "), std::string::npos) << text;  // MX, 1 played first
+}
+
+// Alt-F1 and Alt-F10 as xterm and tmux send them name Friendly Motion's hot keys.
+TEST(ConsoleKeys, AltFunctionKeysAreFriendlyMotionsHotKeys) {
+  const std::vector<Key> keys = decode({"\x1b[1;3P\x1b[21;3~\x1b[1;5P"});
+  ASSERT_EQ(keys.size(), 3u);
+  EXPECT_EQ(key_name(keys[0]), "Alt+F1");
+  EXPECT_EQ(key_name(keys[1]), "Alt+F10");
+  EXPECT_EQ(gantry::session::fm_hot_key(key_name(keys[0])), 1);
+  EXPECT_EQ(gantry::session::fm_hot_key(key_name(keys[1])), 10);
+  EXPECT_FALSE(gantry::session::fm_hot_key(key_name(keys[2])));  // Ctrl+F1
+}
+
+// Friendly Motion's Alt-F keys at a terminal (docs/friendlymotion.md, "Hot keys and teach
+// mode"): tmux sends Alt-F1 as xterm does (ESC [ 1 ; 3 P).
+TEST(ConsoleTerminal, TeachModeLogsThePositionWithAltF1AndTheOutputsWithAltF7ToF10) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim");
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.keys("M-F1");  // no run, no log: it says what it is for
+  ASSERT_TRUE(
+      t.wait_for_line("Alt-F1: no Friendly Motion program runs (N10001) and no teach log "
+                      "is open (TEACH file)"))
+      << t.text();
+  t.line("teach taught.fm");
+  ASSERT_TRUE(t.wait_for([&] {
+    return t.text().find("teaching into taught.fm") != std::string::npos;
+  })) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("J2, 2, 3");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {2, 3, 0, 0, 0, 0}))) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.keys("M-F1");
+  ASSERT_TRUE(t.wait_for_line("taught X2.0000Y3.0000")) << t.text();
+  t.keys("M-F7");
+  ASSERT_TRUE(t.wait_for_line("taught M100")) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("J2, 1, 0.5");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {1, 0.5, 0, 0, 0, 0}))) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.keys("M-F1");
+  ASSERT_TRUE(t.wait_for_line("taught X1.0000Y0.5000")) << t.text();
+  t.keys("M-F8");
+  ASSERT_TRUE(t.wait_for_line("taught M101")) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("teach off");
+  ASSERT_TRUE(t.wait_for_line("teach log taught.fm closed: 4 lines taught, then M0")) << t.text();
+  EXPECT_EQ(t.read("taught.fm"),
+            "! taught at the Gantry console: Alt-F1 positions, Alt-F7-F10 outputs\r\n"
+            "G70 G90\r\nX2.0000Y3.0000\r\nM100\r\nX1.0000Y0.5000\r\nM101\r\nM0\r\n");
+  // The program taught runs as taught: from 0, 0 through both points.
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("J2, 0, 0");
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {0, 0, 0, 0, 0, 0}))) << t.text();
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("FP, taught.fm");
+  const std::string end = readout("idle", {1, 0.5, 0, 0, 0, 0});
+  ASSERT_TRUE(t.wait_for([&] {
+    int n = 0;
+    for (const std::string& l : t.screen()) n += l == end;
+    return n == 2;  // the jog's, then the program's
+  })) << t.text();
+}
+
+TEST(ConsoleTerminal, AltF1DuringAFriendlyMotionRunCallsN10001ThenSteps) {
+  REQUIRE_TMUX();
+  TmuxConsole t("--card sim", "console",
+                {{"hot.fm", "! hot keys\nG70 G91 F1\nM0\nX1\nM0\nN10001 Y2\nM6\n"}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for_prompt()) << t.text();
+  t.line("FP, hot.fm");
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("M0: program stop") != std::string::npos; }))
+      << t.text();
+  t.keys("M-F1");  // answers the M0 with Step: N10001 runs, then line 4 waits in STEP
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("STEP: line 4 next") != std::string::npos; }))
+      << t.text();
+  EXPECT_NE(t.text().find("Alt-F1: N10001"), std::string::npos) << t.text();
+  t.line("2");  // Auto: line 4 (X1) and the M0 before the subroutines end it
+  ASSERT_TRUE(t.wait_for_line(readout("idle", {1, 2, 0, 0, 0, 0}))) << t.text();
+}
+
+// `gantry run --step`: a Friendly Motion program starts in STEP mode, line 1 first.
+TEST(RunAtATerminal, StepStartsAFriendlyMotionProgramLineByLine) {
+  if (!have_tmux()) GTEST_SKIP() << "tmux is not installed";
+  TmuxConsole t("step.fm --step", "run", {{"step.fm", "G70 G91 F1 X1\nX1\nX1\n"}});
+  ASSERT_TRUE(t.started());
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("STEP: line 1 next") != std::string::npos; }))
+      << t.text();
+  t.keys("Enter");  // Step (the default): line 1 runs, line 2 asks
+  ASSERT_TRUE(t.wait_for([&] { return t.text().find("STEP: line 2 next") != std::string::npos; }))
+      << t.text();
+  t.type("2");  // Auto: the rest runs
+  t.keys("Enter");
+  ASSERT_TRUE(t.wait_for_line("[run exited: 0]")) << t.text();
+  EXPECT_EQ(t.text().find("STEP: line 3 next"), std::string::npos) << t.text();
+  EXPECT_NE(t.text().find("steps      X=2750 Y=0 "), std::string::npos) << t.text();  // 3 in
 }
 
 }  // namespace

@@ -617,13 +617,207 @@ TEST_F(FmTest, HomingEndsTheUserCoordinatesAndMakesHomeZero) {  // fact 61, 77
 
 TEST_F(FmTest, RefusedNamedWithWhy) {
   EXPECT_NE(error("T1\n").message.find("T (resistor trim)"), std::string::npos);
-  EXPECT_NE(error("PA1\n").message.find("relay matrix"), std::string::npos);
+  EXPECT_NE(error("PA1\n").message.find("relay matrix"), std::string::npos);  // unwired
   EXPECT_NE(error("L5\n").message.find("never described"), std::string::npos);
   EXPECT_NE(error("G7ABC\n").message.find("G7"), std::string::npos);
   EXPECT_NE(error("G0R2\n").message.find("G0R#"), std::string::npos);
   EXPECT_NE(error("G19X2\n").message.find("ratio and direction"), std::string::npos);
   EXPECT_NE(error("G10\"mine.txt\"\n").message.find("font file"), std::string::npos);
   EXPECT_NE(error("S5\n").message.find("Sf#"), std::string::npos);
+}
+
+// ---- the laser table's hardware: the beam's output, the relay matrix, the feed range -------
+
+TEST_F(FmTest, TheLaserIsTheProfilesOutputWithItsOnAndOffWaits) {
+  // Left out: output 1, no waits (the golden programs above).
+  settings.friendly_motion.laser_output = 3;
+  settings.friendly_motion.laser_on_s = 0.05;
+  settings.friendly_motion.laser_off_s = 0.02;
+  // The beam switches at rest and waits before the next move starts: on at the move's start,
+  // off at its end. Other outputs keep their numbers and switch without waiting.
+  EXPECT_EQ(moves_of("M100 X1 M101 M102"), "O3+; D0.0500; L 1.0000,0.0000; O3-; D0.0200; O2+; O2-");
+  // G16's strokes switch the same output, with the same waits.
+  const std::string scribed = moves_of("G19.1 G16\"I\"");
+  EXPECT_NE(scribed.find("O3+; D0.0500; L "), std::string::npos) << scribed;
+  EXPECT_NE(scribed.find("O3-; D0.0200"), std::string::npos) << scribed;
+  EXPECT_EQ(scribed.find("O1"), std::string::npos) << scribed;
+  // G43 dry run: the moves, no beam and no waits.
+  EXPECT_EQ(moves_of("G43 M100 X1 M101"), "L 1.0000,0.0000");
+  // No laser output: M100 is refused by name; G16 traces with the beam off, and says so.
+  settings.friendly_motion.laser_output = 0;
+  EXPECT_NE(error("M100\n").message.find("names no laser output"), std::string::npos);
+  io.warnings.clear();
+  EXPECT_EQ(moves_of("G19.1 G16\"I\"").find("O"), std::string::npos);
+  ASSERT_FALSE(io.warnings.empty());
+  EXPECT_NE(io.warnings[0].message.find("laser off"), std::string::npos);
+}
+
+TEST_F(FmTest, TheRelayMatrixSwitchesTheProfilesOutputs) {  // fact 82
+  // Without the profile's relays P is refused by name, before anything moves.
+  EXPECT_NE(error("X1 PA1\n").message.find("wires none"), std::string::npos);
+  // Probe 1 on bus A is output 7, probe 3 output 8 (probe 2 has no relay); probe 1 on bus B 9.
+  settings.friendly_motion.relay_a = {7, 0, 8};
+  settings.friendly_motion.relay_b = {9};
+  EXPECT_TRUE(settings_problems(settings).empty());
+  // PA1 connects probe 1 to bus A; PB1 moves it to bus B (it lets go of A first: a probe on
+  // both would join the buses); PA3 adds probe 3; PD opens every relay that is closed.
+  EXPECT_EQ(moves_of("PA1 X1 PB1 PA3 PD X2"),
+            "O7+; L 1.0000,0.0000; O7-; O9+; O8+; O8-; O9-; L 3.0000,0.0000");
+  EXPECT_EQ(moves_of("G90 V4=3 PAV4"), "O8+; O8-");  // a variable; off at the job's end
+  // A probe the profile gives no relay, and a probe number that is none, are located errors.
+  Diagnostic e = error("X1 PA2\n");
+  EXPECT_EQ(e.loc.column, 4);
+  EXPECT_NE(e.message.find("probe 2 has no relay to bus A"), std::string::npos) << e.message;
+  EXPECT_NE(error("PB2\n").message.find("probe 2 has no relay to bus B"), std::string::npos);
+  EXPECT_NE(error("PA1.5\n").message.find("no relay"), std::string::npos);
+  EXPECT_NE(error("PC1\n").message.find("PA# or PB#"), std::string::npos);
+  EXPECT_NE(error("PD1\n").message.find("unexpected"), std::string::npos);
+  // G43: the relays stay as they are, as the other outputs do.
+  EXPECT_EQ(moves_of("G43 PA1 PD X1"), "L 1.0000,0.0000");
+  // The profile's rules: a relay is a wired output switch, not the laser's, not another's.
+  Settings s = settings;
+  s.friendly_motion.relay_b = {7};
+  EXPECT_FALSE(settings_problems(s).empty());
+  s.friendly_motion.relay_b = {1};
+  const std::vector<std::string> laser = settings_problems(s);
+  ASSERT_FALSE(laser.empty());
+  EXPECT_NE(laser[0].find("gates the laser"), std::string::npos) << laser[0];
+  s.friendly_motion.relay_b = {13};
+  EXPECT_FALSE(settings_problems(s).empty());
+}
+
+TEST_F(FmTest, TheRelaySettingsLoadAndAreLeftOutWhenUnused) {
+  const SettingsLoad load =
+      parse_settings(default_profile_text() +
+                         std::string("\n[friendly_motion]\nlaser_output = 2\nlaser_on_s = 0.01\n"
+                                     "relay_a = \"5, 6\"\nrelay_b = \"0, 7\"\nfeed_max = 10\n"),
+                     "t.toml");
+  ASSERT_TRUE(load.ok()) << load.errors.front().message;
+  EXPECT_EQ(load.settings.friendly_motion.laser_output, 2);
+  EXPECT_EQ(load.settings.friendly_motion.relay_a, (std::vector<int>{5, 6}));
+  EXPECT_EQ(load.settings.friendly_motion.relay_b, (std::vector<int>{0, 7}));
+  EXPECT_EQ(load.settings.friendly_motion.feed_max, 10.0);
+  EXPECT_FALSE(load.settings.friendly_motion.feed_min);
+  // The shipped default has no [friendly_motion]: output 1, no relays, the manual's range.
+  const Settings d = default_settings();
+  EXPECT_EQ(d.friendly_motion.laser_output, 1);
+  EXPECT_TRUE(d.friendly_motion.relay_a.empty());
+}
+
+TEST_F(FmTest, FeedsOutsideTheTablesRangeAreErrors) {  // fact 46, digest 7.18
+  EXPECT_EQ(moves_of("F6 X1 F0.005 X1"), "L 1.0000,0.0000; L 2.0000,0.0000");
+  Diagnostic e = error("X1 F6.5\n");
+  EXPECT_EQ(e.loc.column, 4);
+  EXPECT_NE(e.message.find("F6.5: the X-Y feed must be 0.005 to 6 in/s"), std::string::npos)
+      << e.message;
+  EXPECT_NE(error("FX0.004\n").message.find("0.005 to 6 in/s"), std::string::npos);
+  EXPECT_NE(error("V1=7 FYV1\n").message.find("0.005 to 6"), std::string::npos);
+  // In millimetres the same range: 0.127 to 152.4 mm/s.
+  EXPECT_EQ(moves_of("G71 F152.4 X25.4"), "L 1.0000,0.0000");
+  EXPECT_NE(error("G71 F153\n").message.find("0.127 to 152.4 mm/s"), std::string::npos);
+  // FC (degrees per second) is not the X-Y range's.
+  EXPECT_EQ(moves_of("FC90 C10"), "L 0.0000,0.0000,0.0000,0.0000,0.0000,10.0000");
+  // A profile's own range.
+  settings.friendly_motion.feed_max = 10;
+  EXPECT_EQ(moves_of("F8 X1"), "L 1.0000,0.0000");
+  EXPECT_NE(error("F11\n").message.find("friendly_motion.feed_min and feed_max"),
+            std::string::npos);
+}
+
+TEST_F(FmTest, WritingTheTrimAndDiagnosticVariablesIsWarned) {  // digest 7.1, 7.18
+  auto warnings = [&](const std::string& text) {
+    std::vector<std::string> out;
+    const auto loaded = script(text);  // kept: errors() is the script's
+    for (const Diagnostic& d : loaded->errors())
+      if (d.severity == Severity::Warning)
+        out.push_back(fmt::format("{}:{} {}", d.loc.line, d.loc.column, d.message));
+    return out;
+  };
+  const std::vector<std::string> w = warnings("V1=2 V74=1\nV72=?\nV79=0 V80=1 V71=1\n");
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_EQ(w[0].rfind("1:6 V74 is one of the resistor trim's (T) variables", 0), 0u) << w[0];
+  EXPECT_EQ(w[1].rfind("2:1 V72 is the manual's diagnostic mode", 0), 0u) << w[1];
+  EXPECT_EQ(w[2].rfind("3:1 V79", 0), 0u) << w[2];
+  // V73 is G16's value: warned only in a file that scribes nothing.
+  EXPECT_EQ(warnings("V73=66.55\nG16\"%f\"\n").size(), 0u);
+  ASSERT_EQ(warnings("V73=66.55\n").size(), 1u);
+  EXPECT_NE(warnings("V73=66.55\n")[0].find("scribes nothing"), std::string::npos);
+  // A warning is not an error: the program still runs.
+  EXPECT_TRUE(errors_of(check_script(script("V74=1 X1\n"))).empty());
+}
+
+// The facts not tested above, each as the manual states it.
+TEST_F(FmTest, TheRemainingFacts) {
+  // Fact 34: +X moves the table (the X axis) in its + direction.
+  EXPECT_EQ(moves_of("X0.5"), "L 0.5000,0.0000");
+  // Fact 44: G codes do not move, G16 excepted.
+  EXPECT_EQ(moves_of("G90 G91 G2 G3 G70 G71 G70 G9 G0 G43 G44 G68.5 G19.5 G10\"fontfile.txt\""),
+            "");
+  EXPECT_NE(moves_of("G19.1 G16\"I\"").find("L "), std::string::npos);
+  // Fact 81: M201 (fault reset), M205 (stop trimming), M206 (probes up) are inputs 2, 6, 7.
+  io.asked.clear();
+  run("M201 M205 M206");
+  ASSERT_EQ(io.asked.size(), 3u);
+  EXPECT_NE(io.asked[0].find("input 2 to close"), std::string::npos) << io.asked[0];
+  EXPECT_NE(io.asked[1].find("input 6 to close"), std::string::npos) << io.asked[1];
+  EXPECT_NE(io.asked[2].find("input 7 to close"), std::string::npos) << io.asked[2];
+  // Fact 91: the default font file is fontfile.txt (G10 names it without error).
+  EXPECT_TRUE(errors_of(check_script(script("G10\"fontfile.txt\" G16\"A\"\n"))).empty());
+  // Facts 106-112: T needs a resistor trimmer and is refused by name; V75 is 1 at load; V74
+  // and V76-V79 are the trim's (ordinary variables here, warned when written).
+  EXPECT_NE(error("T\n").message.find("T (resistor trim)"), std::string::npos);
+  EXPECT_EQ(shown("", "V75"), "1.0000");
+  EXPECT_EQ(shown("V76=2.5", "V76"), "2.5000");
+}
+
+// ---- STEP at the start and the Alt-F keys' subroutines -------------------------------------
+
+TEST_F(FmTest, ARunMayStartInStep) {  // fact 71 (gantry run --step)
+  InterpreterOptions o;
+  o.fm_step = true;
+  io.buttons = {"Step", "Auto"};
+  run_script(script("X1\nX1\nX1\n"), o);
+  EXPECT_EQ(summary(sink.moves), "L 1.0000,0.0000; L 2.0000,0.0000; L 3.0000,0.0000");
+  ASSERT_EQ(io.asked.size(), 2u);  // line 1 (Step), line 2 (Auto), then it runs on
+  EXPECT_NE(io.asked[0].find("STEP: line 1"), std::string::npos);
+  EXPECT_NE(io.asked[1].find("STEP: line 2"), std::string::npos);
+  // A check asks nothing.
+  io.asked.clear();
+  EXPECT_TRUE(errors_of(check_script(script("X1\nX1\n"), o)).empty());
+  EXPECT_TRUE(io.asked.empty());
+}
+
+TEST_F(FmTest, AltFKeysCallTheirSubroutinesThenStep) {  // fact 70
+  // The keys the operator presses, one per poll (before each line): Alt-F1 before line 2.
+  std::vector<int> keys = {0, 1};
+  InterpreterOptions o;
+  o.fm_hot_key = [&] {
+    if (keys.empty()) return 0;
+    const int k = keys.front();
+    keys.erase(keys.begin());
+    return k;
+  };
+  io.buttons = {"Auto"};
+  const char* program = "G90 X1\nX2\nX3\nM0\nN10001 Y1 M100\nM101\nM6\n";
+  run_script(script(program), o);
+  // N10001 runs before line 2, then line 2 waits for the operator (STEP), who runs on.
+  EXPECT_EQ(summary(sink.moves),
+            "L 1.0000,0.0000; L 1.0000,1.0000; O1+; O1-; L 2.0000,1.0000; L 3.0000,1.0000");
+  ASSERT_EQ(io.asked.size(), 1u);  // the M0 before the subroutines ends the program
+  EXPECT_NE(io.asked[0].find("STEP: line 2"), std::string::npos);
+  EXPECT_NE(io.printed.find("Alt-F1: N10001"), std::string::npos);
+  // A key whose subroutine the program lacks: the manual's error message, and the run goes on.
+  keys = {3};
+  io.warnings.clear();
+  io.asked.clear();
+  run_script(script(program), o);
+  EXPECT_EQ(summary(sink.moves), "L 1.0000,0.0000; L 2.0000,0.0000; L 3.0000,0.0000");
+  ASSERT_EQ(io.warnings.size(), 1u);
+  EXPECT_NE(io.warnings[0].message.find("Alt-F3 calls subroutine N10003, which this program "
+                                        "does not have"),
+            std::string::npos);
+  EXPECT_EQ(io.warnings[0].loc.line, 1);
+  EXPECT_TRUE(io.asked.empty());
 }
 
 // ---- scribing ------------------------------------------------------------------------------

@@ -25,8 +25,8 @@ TEST(SettingsSchemaDocs, EveryRowIsInTheKeyTable) {
   const std::string doc = settings_doc();
   ASSERT_FALSE(doc.empty());
   for (const SettingRow& row : settings_schema()) {
-    const std::string line = "| `" + row.path() + "` | " + row.type_name() + " | " +
-                             row.allowed() + " | " + std::string(row.help) + " |\n";
+    const std::string line = "| `" + row.path() + "` | " + row.type_name() + " | " + row.allowed() +
+                             " | " + std::string(row.help) + " |\n";
     EXPECT_NE(doc.find(line), std::string::npos) << "docs/settings.md lacks the line\n" << line;
     if (row.unit == SettingUnit::Length) {
       EXPECT_NE(row.help.find("(a length)"), std::string::npos) << row.path();
@@ -55,7 +55,8 @@ TEST(SettingsSchemaDocs, TheKeyTableListsOnlySchemaRows) {
 TEST(SettingsSchema, PathsAreUniqueAndFound) {
   for (const SettingRow& row : settings_schema()) {
     EXPECT_EQ(&setting_row(row.path()), &row);
-    if (row.kind == SettingKind::Number && row.family != SettingFamily::Groups) {  // speeds: 0 until a profile sets them
+    if (row.kind == SettingKind::Number &&
+        row.family != SettingFamily::Groups) {  // speeds: 0 until a profile sets them
       for (int i = 0; i < row.size(); ++i)
         EXPECT_TRUE(row.range.contains(row.get(Settings{}, i))) << row.path(i);
     }
@@ -106,9 +107,8 @@ TEST(SettingsSchema, OptionalTablesAreTheRows) {
   std::set<std::string> optional;
   for (const SettingRow& row : settings_schema())
     if (row.optional_table) optional.insert(std::string(row.section));
-  EXPECT_EQ(optional,
-            (std::set<std::string>{"feed_override", "files", "limits", "pendant", "simulator",
-                                   "spindle", "toolchanger"}));
+  EXPECT_EQ(optional, (std::set<std::string>{"feed_override", "files", "friendly_motion", "limits",
+                                             "pendant", "simulator", "spindle", "toolchanger"}));
   for (const SettingRow& row : settings_schema())
     EXPECT_EQ(row.optional_table, optional.count(std::string(row.section)) == 1) << row.path();
 }

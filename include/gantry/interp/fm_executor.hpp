@@ -16,6 +16,10 @@
 
 namespace gantry {
 
+// The title of Friendly Motion's STEP questions (STEP, M0: Step, Auto, Stop), by which a front
+// end knows that a hot key may answer one (session::press_fm_hot_key).
+inline constexpr std::string_view kFmStepTitle = "Friendly Motion";
+
 class FmExecutor {
  public:
   FmExecutor(CommandContext& ctx, OperatorIO& io);
@@ -47,9 +51,15 @@ class FmExecutor {
   void line_to(const Vec6& target, const SourceLoc& loc);
   void after_move(const SourceLoc& loc);  // outside a profile the table stops after each move
   void assign(int n, double v, const SourceLoc& loc);
+  void feed_in_range(double f, const SourceLoc& loc) const;  // F, FX, FY: the table's range
   void g_code(const FmCommand& c, const FmLine& line, const SourceLoc& loc);
   void m_code(int code, const FmCommand& c, const SourceLoc& loc);
   void output(int code, const SourceLoc& loc);
+  // Output switch k on or off, at rest; the laser's (friendly_motion.laser_output) then waits
+  // its on or off time, so the beam is steady before the next move.
+  void switch_output(int k, bool on, const SourceLoc& loc);
+  void relay(const FmCommand& c, const FmLine& line, const SourceLoc& loc);  // PA# PB# PD
+  int laser_output() const;  // the beam's output switch, 0: none
   void user_system(char form, const SourceLoc& loc);
   void units(bool metric);
   std::string show_text(const FmCommand& c) const;  // G58 / G25

@@ -65,6 +65,8 @@ class Interpreter : private EvalEnv {
   const ModalState& state() const { return state_; }
   const Settings& settings() const { return settings_; }
   const InterpreterOptions& options() const { return options_; }
+  // The statement running is a Friendly Motion file's (its hot keys are polled there).
+  bool in_friendly_motion() const;
   // The machine controller's: the state a check starts from (the live one), and where the
   // tool really is after a stop or a jog (machine frame, units: the step counts over
   // steps per unit); working and table base locations follow, the zero stays.
@@ -157,6 +159,9 @@ class Interpreter : private EvalEnv {
   bool fm_input_active(int code, const SourceLoc& loc);
   void fm_wait_input(int code, const SourceLoc& loc);
   void fm_go_to(int sequence, const SourceLoc& loc);
+  // Alt-F`key`: N(10000 + key) as a subroutine before the line at `loc`, which runs after it
+  // in STEP mode; false (warned) when the program has no such subroutine.
+  bool fm_hot_call(int key, const SourceLoc& loc);
   // O-words, M98/M99 and WinCNC's M98 file (gcode_control_flow.cpp).
   struct GcodeFlow;
   void gcode_flow(const GcodeBlock& b, const SourceLoc& loc);

@@ -75,6 +75,12 @@ struct InterpreterOptions {
   // there. On the live machine (nullopt) only an event still to come. Null: the machine's
   // inputs are unknown (a real card's sensors may change them): PAUSE UNTIL waits.
   std::function<bool(int n, bool closed, const std::optional<Vec6>& check_at)> unattended_inputs;
+  // Friendly Motion (docs/friendlymotion.md, "Flow"): a run starts in STEP mode, the operator
+  // starting each line, as after an M0 (`gantry run --step`).
+  bool fm_step = false;
+  // Friendly Motion's hot keys: the Alt-F key (1-10) the operator pressed since the last
+  // call, 0 for none (taken once). A run polls it before each line and calls N10001-N10010.
+  std::function<int()> fm_hot_key;
 };
 
 }  // namespace gantry

@@ -163,6 +163,10 @@ class Controller : private FeederEvents {
   // (Paused) until resume runs the next one; stop ends it there. For the runs that follow
   // and the one running.
   void set_single_step(bool on);
+  // Friendly Motion's Alt-F1...Alt-F10 (`key` 1-10): the file running calls subroutine
+  // N10001...N10010 before its next line, then waits in STEP mode (fm_flow.cpp). Refused when
+  // no file runs; a file that is not Friendly Motion warns and calls nothing.
+  Outcome hot_key(int key);
   // A call after each statement with (line reached in the top-level file, its line count),
   // on the job thread.
   void on_progress(std::function<void(std::size_t, std::size_t)> f);
@@ -245,6 +249,7 @@ class Controller : private FeederEvents {
   // which then reads feed_override_ under m_) and single_step_ (a setting; seq_cst, no data
   // hangs on it). Neither concerns the feeder.
   std::atomic<bool> override_changed_{false}, single_step_{false};
+  std::atomic<int> hot_key_{0};  // Alt-F1...F10 pressed, for the interpreter's next FM line
   bool step_waiting_ = false;  // single step: the file holds after a statement
   bool running_file_ = false;  // the activity is a file (not a jog)
   bool typed_ = false;         // ... typed at the console (not a part file of its own)

@@ -333,6 +333,18 @@ struct PendantSettings {
   std::string xhc_coordinates = "work";      // the XHC display at start: "work" or "machine"
 };
 
+// [friendly_motion]: a Friendly Motion laser table's hardware (docs/friendlymotion.md): the
+// beam's gate (M100's output, the output G16's strokes switch) and its timing, the resistor
+// trimmer's relay matrix (P), the X-Y feed range. The table is optional.
+struct FriendlyMotionSettings {
+  int laser_output = 1;     // the output switch that gates the beam; 0: none
+  double laser_on_s = 0;    // the wait after the beam switches on, before the move (s)
+  double laser_off_s = 0;   // ... after it switches off (s)
+  std::vector<int> relay_a;  // P: the output switch that connects probe 1, 2, ... to bus A (0: none)
+  std::vector<int> relay_b;  // ... to bus B
+  std::optional<double> feed_min, feed_max;  // the X-Y feed range, units/s; none: 0.005-6 in/s
+};
+
 struct Settings {
   std::string name;
   Units units = Units::Inches;
@@ -374,6 +386,7 @@ struct Settings {
   MachineSettings machine;
   FilesSettings files;
   PendantSettings pendant;
+  FriendlyMotionSettings friendly_motion;
 };
 
 // The letter an axis is shown and programmed by: X Y Z A B C, or W for the axis the profile
