@@ -64,6 +64,18 @@ ToolTable& current_table(CommandContext& ctx, const SourceLoc& loc) {
   return table;
 }
 
+// Before anything moves: a measured length needs the tool's line in the tool table file (a
+// profile without one keeps lengths in memory).
+void require_table_line(CommandContext& ctx, int tool, const SourceLoc& loc) {
+  if (ctx.settings().tool_table_path.empty()) return;
+  const ToolTable& table = current_table(ctx, loc);
+  if (!table.find(tool))
+    fail(loc, fmt::format("tool {} is not in the tool table {}, so the length the sensor "
+                          "measures could not be written; add a line T{} P{} for it; nothing "
+                          "moved",
+                          tool, table.path(), tool, tool));
+}
+
 // Tool `tool`'s length becomes `length` in the tool table, written back to its file at once
 // (atomically, as G10 L1 writes it); a check or a preview changes it in memory only.
 void length_to_tool_table(CommandContext& ctx, int tool, double length, const SourceLoc& loc) {
@@ -101,14 +113,7 @@ void check_tool_change(CommandContext& ctx, int from, int to, const SourceLoc& l
                             "moved",
                             from, slots));
   }
-  if (tc.sensor_input != 0 && to != 0 && !ctx.settings().tool_table_path.empty()) {
-    const ToolTable& table = current_table(ctx, loc);
-    if (!table.find(to))
-      fail(loc, fmt::format("tool {} is not in the tool table {}, so the length the sensor "
-                            "measures could not be written; add a line T{} P{} for it; nothing "
-                            "moved",
-                            to, table.path(), to, to));
-  }
+  if (tc.sensor_input != 0 && to != 0) require_table_line(ctx, to, loc);
   // Every place the sequence goes to within the soft limits (the profile's check holds them
   // within the table, but a VL or a zero may narrow what a file reaches).
   const Vec6 here = table_base_here(ctx);
@@ -146,14 +151,7 @@ void check_tool_measure(CommandContext& ctx, int tool, const char* code, const S
     fail(loc, fmt::format("{}: the spindle holds no tool (tool 0); load one with M6 T, or say "
                           "which it holds with M61 Q; nothing moved",
                           code));
-  if (writes_table && !ctx.settings().tool_table_path.empty()) {
-    const ToolTable& table = current_table(ctx, loc);
-    if (!table.find(tool))
-      fail(loc, fmt::format("tool {} is not in the tool table {}, so the length the sensor "
-                            "measures could not be written; add a line T{} P{} for it; nothing "
-                            "moved",
-                            tool, table.path(), tool, tool));
-  }
+  if (writes_table) require_table_line(ctx, tool, loc);
   const Vec6 here = table_base_here(ctx);
   for (const auto& [x, y, z] : {std::array{here[kX], here[kY], tc.clear_z},
                                 std::array{tc.sensor_x, tc.sensor_y, tc.clear_z},
