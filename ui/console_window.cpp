@@ -70,10 +70,11 @@ void App::run_line(const std::string& typed) {
 void App::fm_key(int n) {
   const bool running = !rest_state(status_.state) && status_.state != MachineState::Jogging;
   if (!running && !at_rest())
-    return log(LogLine::Error, fmt::format("Alt-F{}: the table is moving; teach once it is at rest", n));
+    return log(LogLine::Error,
+               fmt::format("Alt-F{}: the table is moving; teach once it is at rest", n));
   if (!running) snapshot();  // at rest: the exact position
-  session::FmKeys::Result r = fm_keys_.key(n, running, c_, m_.io, position(status_),
-                                           settings_.friendly_motion);
+  session::FmKeys::Result r =
+      fm_keys_.key(n, running, c_, m_.io, position(status_), settings_.friendly_motion);
   if (!r.typed.empty()) {  // the output a teach key switches, as a typed SO would
     const Outcome o = c_.run_typed(Script::from_text(r.typed, kConsoleName));
     if (!o) r.message += "; the output was not switched: " + o.reason;

@@ -11,19 +11,19 @@
 #include <string>
 #include <string_view>
 
-#include "console.hpp"                       // ConsoleArgs
-#include "key_taps.hpp"                      // KeyTaps
-#include "gantry/machine/controller.hpp"     // Controller
-#include "gantry/session/activity_watch.hpp" // ActivityWatch
-#include "gantry/session/key_bindings.hpp"   // KeyBindings, KeyPendant
-#include "gantry/session/pendant_input.hpp"  // PendantInput
-#include "gantry/session/console_words.hpp"  // TypedLine
-#include "gantry/session/fm_hot_keys.hpp"    // FmKeys
-#include "gantry/session/live_machine.hpp"   // ValuesKeeper
-#include "gantry/session/live_position.hpp"  // LivePosition
-#include "gantry/session/machine_memory.hpp" // MachineMemory
-#include "gantry/session/operator_io.hpp"    // OperatorMailbox, Question
-#include "line_editor.hpp"                   // Key, LineEditor
+#include "console.hpp"                        // ConsoleArgs
+#include "gantry/machine/controller.hpp"      // Controller
+#include "gantry/session/activity_watch.hpp"  // ActivityWatch
+#include "gantry/session/console_words.hpp"   // TypedLine
+#include "gantry/session/fm_hot_keys.hpp"     // FmKeys
+#include "gantry/session/key_bindings.hpp"    // KeyBindings, KeyPendant
+#include "gantry/session/live_machine.hpp"    // ValuesKeeper
+#include "gantry/session/live_position.hpp"   // LivePosition
+#include "gantry/session/machine_memory.hpp"  // MachineMemory
+#include "gantry/session/operator_io.hpp"     // OperatorMailbox, Question
+#include "gantry/session/pendant_input.hpp"   // PendantInput
+#include "key_taps.hpp"                       // KeyTaps
+#include "line_editor.hpp"                    // Key, LineEditor
 
 namespace gantry::console {
 

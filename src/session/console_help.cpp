@@ -25,7 +25,7 @@ const char* const kTerminalHelp =
     "Words: help [CODE]   help commands   status   ack (after an E-stop)   K (keypad)   quit\n"
     "  step [on|off] (single step: each statement holds once its motion has played)\n"
     "  confirm (the position restored from the last session is right: no need to home)\n"
-    "  teach FILE | teach off (Friendly Motion's teach log: Alt-F1 the position, F7-F10 M100-M103)\n"
+    "  teach FILE | teach off (Friendly Motion's teach log: Alt-F1 the place, F7-F10 M100-M103)\n"
     "Alt-F1...Alt-F10 during a Friendly Motion run: its subroutines N10001...N10010, then STEP.\n"
     "While a line runs: space pauses (then space or Enter resumes, Esc or q quits the file),\n"
     "  Esc stops, ! or Ctrl-C is the E-stop. Other lines wait until the machine is at rest.\n"

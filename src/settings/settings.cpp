@@ -419,13 +419,15 @@ void read_profile(TableReader& root, Settings& s) {
 static void friendly_motion_rules(const Settings& s, const std::function<void(std::string)>& err) {
   const FriendlyMotionSettings& fm = s.friendly_motion;
   auto wired = [&](int n) {
-    return n >= 1 && n <= static_cast<int>(s.outputs.aux_bits.size()) && s.outputs.aux_bits[n - 1] >= 0;
+    return n >= 1 && n <= static_cast<int>(s.outputs.aux_bits.size()) &&
+           s.outputs.aux_bits[n - 1] >= 0;
   };
   // Output 1 is the default, named whether or not the profile is a laser table's: an unwired
   // one leaves M100 refused and G16 tracing with the beam off, as before the setting.
   if (fm.laser_output > 1 && !wired(fm.laser_output))
-    err(fmt::format("friendly_motion.laser_output: output switch {} is not wired (outputs.aux_bits)",
-                    fm.laser_output));
+    err(fmt::format(
+        "friendly_motion.laser_output: output switch {} is not wired (outputs.aux_bits)",
+        fm.laser_output));
   std::map<int, std::string> used;
   for (const auto& [bus, relays] : {std::pair{'a', &fm.relay_a}, std::pair{'b', &fm.relay_b}})
     for (size_t k = 0; k < relays->size(); ++k) {
@@ -435,8 +437,8 @@ static void friendly_motion_rules(const Settings& s, const std::function<void(st
       if (!wired(n))
         err(fmt::format("{}: output switch {} is not wired (outputs.aux_bits)", name, n));
       else if (n == fm.laser_output)
-        err(fmt::format("{}: output switch {} gates the laser (friendly_motion.laser_output)",
-                        name, n));
+        err(fmt::format("{}: output switch {} gates the laser (friendly_motion.laser_output)", name,
+                        n));
       else if (const auto [at, fresh] = used.emplace(n, name); !fresh)
         err(fmt::format("{}: output switch {} is already {}'s relay", name, n, at->second));
     }

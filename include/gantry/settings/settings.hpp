@@ -337,10 +337,10 @@ struct PendantSettings {
 // beam's gate (M100's output, the output G16's strokes switch) and its timing, the resistor
 // trimmer's relay matrix (P), the X-Y feed range. The table is optional.
 struct FriendlyMotionSettings {
-  int laser_output = 1;     // the output switch that gates the beam; 0: none
-  double laser_on_s = 0;    // the wait after the beam switches on, before the move (s)
-  double laser_off_s = 0;   // ... after it switches off (s)
-  std::vector<int> relay_a;  // P: the output switch that connects probe 1, 2, ... to bus A (0: none)
+  int laser_output = 1;      // the output switch that gates the beam; 0: none
+  double laser_on_s = 0;     // the wait after the beam switches on, before the move (s)
+  double laser_off_s = 0;    // ... after it switches off (s)
+  std::vector<int> relay_a;  // P: the switch joining probe 1, 2, ... to bus A (0: none)
   std::vector<int> relay_b;  // ... to bus B
   std::optional<double> feed_min, feed_max;  // the X-Y feed range, units/s; none: 0.005-6 in/s
 };
