@@ -81,9 +81,10 @@ void add_output_commands(std::vector<CommandSpec>& out) {
        "Tools: spindle speed (RPM)",
        CommandGroup::Tools,
        "Sets the spindle's speed in RPM; output switch 1 (C6, C7) switches the spindle on and "
-       "off. Where the profile has a speed output ([spindle] pwm_bit), its PWM duty becomes "
-       "rpm / max_rpm (or, with speed_mode \"frequency\", its pulse rate rpm / max_rpm x "
-       "max_hz) between the moves around TR; otherwise the speed is recorded and the run "
+       "off. Where the profile has a speed output, it carries rpm / max_rpm between the moves "
+       "around TR: as a PWM duty on [spindle] pwm_bit (or, with speed_mode \"frequency\", a "
+       "pulse rate rpm / max_rpm x max_hz), or as a D/A word on dac_bits; otherwise the speed "
+       "is recorded and the run "
        "warns once that the spindle keeps the speed set on it. A change while the spindle "
        "runs waits for the profile's at-speed input, where it has one. %(161) reads the speed "
        "while the spindle runs.",
