@@ -105,12 +105,23 @@ CanonMove x_move(const Settings& s, double length) {
   return m;
 }
 
+// The motion pipeline from the planner to `card`, as the controller's feeder thread holds it.
+struct Pipeline {
+  Pipeline(const Settings& s, Card& card) : steps(s, card), feeder(steps), planner(s, feeder) {}
+  // The lead and the block size the hold is measured against.
+  void note_lead(HoldRun& r) const {
+    r.lead_ticks = steps.lead().lead_ticks();
+    r.block = static_cast<std::int64_t>(steps.lead().block_words());
+  }
+  StepGenerator steps;
+  MotionFeeder feeder;
+  LookAheadPlanner planner;
+};
+
 void play_move(const Settings& s, Card& card, double length) {
-  StepGenerator steps(s, card);
-  MotionFeeder feeder(steps);
-  LookAheadPlanner planner(s, feeder);
-  planner.move(x_move(s, length));
-  planner.flush();
+  Pipeline p(s, card);
+  p.planner.move(x_move(s, length));
+  p.planner.flush();
 }
 
 std::vector<std::uint32_t> reference_words(const Settings& s, double length) {
@@ -128,11 +139,9 @@ HoldRun run_with_request(const Settings& s, Card& inner, double length, std::uin
   RecordingCard card(&inner);
   card.start(s.card.pacer_hz());
   HoldRun r;
-  StepGenerator steps(s, card);
-  MotionFeeder feeder(steps);
-  LookAheadPlanner planner(s, feeder);
-  r.lead_ticks = steps.lead().lead_ticks();
-  r.block = static_cast<std::int64_t>(steps.lead().block_words());
+  Pipeline p(s, card);
+  p.note_lead(r);
+  auto& [steps, feeder, planner] = p;
   std::atomic<bool> done{false};
   std::thread gen([&] {
     planner.move(x_move(s, length));
@@ -309,11 +318,9 @@ HoldRun hold_while_the_lead_is_full(const Settings& s, const std::vector<CanonMo
   GatedCard card;
   card.start(s.card.pacer_hz());
   HoldRun r;
-  StepGenerator steps(s, card);
-  MotionFeeder feeder(steps);
-  LookAheadPlanner planner(s, feeder);
-  r.lead_ticks = steps.lead().lead_ticks();
-  r.block = static_cast<std::int64_t>(steps.lead().block_words());
+  Pipeline p(s, card);
+  p.note_lead(r);
+  auto& [steps, feeder, planner] = p;
   std::thread gen([&] {
     for (const CanonMove& m : moves) planner.move(m);
     planner.flush();

@@ -329,20 +329,24 @@ std::vector<std::array<std::int64_t, 3>> drawbar_places(const Machine& m, bool r
   return out;
 }
 
-TEST(ToolChanger, M6SwapsToolsOnTheRackMeasuresTheNewOneAndG43UsesIt) {
-  Machine m(rack_profile(), rack_world(), "m6");
-  m.run("G20\nG0 X1 Y1\nM61 Q1\nS12000 M3\nT3 M6\nG43\nG0 Z0\n");
-  ASSERT_EQ(m.error(), "");
+// Tool 1 let go at its slot's Z over slot 1, then tool 3 picked over slot 3: the drawbar
+// opens down in slot 1, and up over slot 3 before going down; it closes up over slot 1 and
+// down in slot 3.
+void expect_drawbar_swapped_tool_1_for_3(const Machine& m) {
   auto at = [&](double x, double y, double z) {
     return std::array<std::int64_t, 3>{m.steps(x, kX), m.steps(y, kY), m.steps(z, kZ)};
   };
-  // Tool 1 let go at its slot's Z over slot 1, then tool 3 picked over slot 3: the drawbar
-  // opens down in slot 1, and up over slot 3 before going down; it closes up over slot 1 and
-  // down in slot 3.
   EXPECT_EQ(drawbar_places(m, true),
             (std::vector<std::array<std::int64_t, 3>>{at(2, 16, -1), at(6, 16, 2)}));
   EXPECT_EQ(drawbar_places(m, false),
             (std::vector<std::array<std::int64_t, 3>>{at(2, 16, 2), at(6, 16, -1)}));
+}
+
+TEST(ToolChanger, M6SwapsToolsOnTheRackMeasuresTheNewOneAndG43UsesIt) {
+  Machine m(rack_profile(), rack_world(), "m6");
+  m.run("G20\nG0 X1 Y1\nM61 Q1\nS12000 M3\nT3 M6\nG43\nG0 Z0\n");
+  ASSERT_EQ(m.error(), "");
+  expect_drawbar_swapped_tool_1_for_3(m);
   // The spindle was stopped, and spun down, before the drawbar first opened.
   const Trace t = m.trace();
   ASSERT_EQ(edges(t, kRunBit, false).size(), 1u);
@@ -533,13 +537,7 @@ TEST(ToolMeasure, WincncM37TOnARackRunsTheChangeMeasuresAndTurnsG43On) {
   Machine m(wincnc_rack(), rack_world(), "m37_rack");
   m.run("G20\nG0 X1 Y1\nL110 T1\nM37 T3\nG0 Z0\n");
   ASSERT_EQ(m.error(), "");
-  auto at = [&](double x, double y, double z) {
-    return std::array<std::int64_t, 3>{m.steps(x, kX), m.steps(y, kY), m.steps(z, kZ)};
-  };
-  EXPECT_EQ(drawbar_places(m, true),
-            (std::vector<std::array<std::int64_t, 3>>{at(2, 16, -1), at(6, 16, 2)}));
-  EXPECT_EQ(drawbar_places(m, false),
-            (std::vector<std::array<std::int64_t, 3>>{at(2, 16, 2), at(6, 16, -1)}));
+  expect_drawbar_swapped_tool_1_for_3(m);
   const double spu = m.settings.axes[kZ].steps_per_unit;
   const double length = std::floor(kSensorTop * spu) / spu - kSensorZero;
   EXPECT_EQ(m.modal.gcode.tool, 3);

@@ -52,6 +52,14 @@ struct HomingMachine {
   Controller c{settings, card, io, store};
   double spu() const { return settings.axes[0].steps_per_unit; }
   std::int64_t steps(double in) const { return std::llround(in * spu()); }
+  // X's step where its switch closes (the first whole step at or past it).
+  std::int64_t at_switch() const { return static_cast<std::int64_t>(std::floor(kSwitch * spu())); }
+  // G28 X, run to its end when it starts.
+  Outcome home_x() {
+    const Outcome o = c.run(Script::from_text("G28 X\n", "part.nc"));
+    if (o) c.wait();
+    return o;
+  }
 };
 
 Settings profile() {
@@ -121,9 +129,8 @@ TEST(WinCncHoming, TheSearchStopsAtItsLongestTravelWithAnError) {
   Settings s = profile();
   s.homing.search[0] = 1.0;  // the switch is 1.5 in away
   HomingMachine m(s);
-  const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+  const Outcome o = m.home_x();
   ASSERT_TRUE(o) << o.reason;
-  m.c.wait();
   const ControllerStatus st = m.c.status();
   EXPECT_NE(st.state, MachineState::Idle);
   EXPECT_NE(st.message.find("never closed within 1"), std::string::npos) << st.message;
@@ -211,12 +218,10 @@ TEST(WinCncHoming, TheDebouncedEdgeIsWhereTheSwitchClosed) {
   Settings s = profile();
   s.homing.debounce = 30;
   HomingMachine m(s);
-  const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+  const Outcome o = m.home_x();
   ASSERT_TRUE(o) << o.reason;
-  m.c.wait();
   ASSERT_EQ(m.c.status().state, MachineState::Idle) << m.c.status().message;
-  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * m.spu()));
-  EXPECT_EQ(m.card.steps()[0], at_switch + m.steps(0.5));
+  EXPECT_EQ(m.card.steps()[0], m.at_switch() + m.steps(0.5));
   fs::remove(m.path);
 }
 
@@ -255,12 +260,10 @@ TEST(WinCncHoming, TheParkPositionFollowsHoming) {
   s.homing.park[0] = 3.0;
   s.homing.park[2] = -0.5;
   HomingMachine m(s);
-  const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+  const Outcome o = m.home_x();
   ASSERT_TRUE(o) << o.reason;
-  m.c.wait();
   ASSERT_EQ(m.c.status().state, MachineState::Idle) << m.c.status().message;
-  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * m.spu()));
-  EXPECT_EQ(m.card.steps()[0], at_switch + m.steps(3.0));
+  EXPECT_EQ(m.card.steps()[0], m.at_switch() + m.steps(3.0));
   EXPECT_EQ(m.card.steps()[2], 0);
   const ModalState ms = m.c.modal();
   EXPECT_NEAR(ms.position[0] + ms.zero[0], 3.0, 1e-12);
@@ -287,14 +290,12 @@ TEST(WinCncHoming, AnAxisHomesOnItsOwnInput) {
     if (own) s.homing.axis_input[0] = 5;
     s.homing.search[0] = 3.0;
     HomingMachine m(s);
-    const Outcome o = m.c.run(Script::from_text("G28 X\n", "part.nc"));
+    const Outcome o = m.home_x();
     ASSERT_TRUE(o) << o.reason;
-    m.c.wait();
     const ControllerStatus st = m.c.status();
     if (own) {
       ASSERT_EQ(st.state, MachineState::Idle) << st.message;
-      const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * m.spu()));
-      EXPECT_EQ(m.card.steps()[0], at_switch + m.steps(0.5));
+      EXPECT_EQ(m.card.steps()[0], m.at_switch() + m.steps(0.5));
     } else {
       EXPECT_NE(st.message.find("input 3 never closed"), std::string::npos) << st.message;
     }
