@@ -116,27 +116,27 @@ double resident_mb() {
   return resident * static_cast<double>(::sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
-// Peak RSS of loading (the whole-file check pass) and running a 10M-line file of moves, in a
-// child process: rss_MB (its peak, which starts at bench_process_MB, this process's resident
-// memory when it forks) against target_MB.
-void BM_ScriptTenMillionLinesPeakRss(benchmark::State& state) {
-  const long lines = state.range(0);
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "gantry_script_bench_10m.sbp").string();
-  {
-    std::ofstream out(path, std::ios::binary);
-    std::string chunk;
-    out << "SA\n";
-    for (long i = 0; i < lines - 1; ++i) {
-      chunk +=
-          fmt::format("M3, {}.{:04}, {}.5, -0.{:03}\n", 1 + i % 20, i % 10000, 1 + i % 15, i % 500);
-      if (chunk.size() > (size_t{1} << 20)) {
-        out << chunk;
-        chunk.clear();
-      }
+// Writes `lines` lines made by `line(i)` to a file in the temporary directory, a MiB at a time.
+template <typename Line>
+std::string write_big_file(const char* name, long lines, Line line) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream out(path, std::ios::binary);
+  std::string chunk;
+  for (long i = 0; i < lines; ++i) {
+    line(i, chunk);
+    if (chunk.size() > (size_t{1} << 20)) {
+      out << chunk;
+      chunk.clear();
     }
-    out << chunk;
   }
+  out << chunk;
+  return path;
+}
+
+// Peak RSS of loading (the whole-file check pass) and running the file at `path`, in a child
+// process: rss_MB (its peak, which starts at bench_process_MB, this process's resident memory
+// when it forks) against target_MB. The file is removed after.
+void peak_rss(benchmark::State& state, const std::string& path) {
   double rss_mb = 0, parent_mb = 0;
   for (auto _ : state) {
     parent_mb = resident_mb();  // the child starts with this much counted in its peak
@@ -163,7 +163,44 @@ void BM_ScriptTenMillionLinesPeakRss(benchmark::State& state) {
       static_cast<double>(std::filesystem::file_size(path)) / (1024.0 * 1024.0);
   std::filesystem::remove(path);
 }
+
+// A 10M-line file of moves.
+void BM_ScriptTenMillionLinesPeakRss(benchmark::State& state) {
+  peak_rss(state, write_big_file("gantry_script_bench_10m.sbp", state.range(0),
+                                 [](long i, std::string& out) {
+                                   if (i == 0) return void(out += "SA\n");
+                                   out += fmt::format("M3, {}.{:04}, {}.5, -0.{:03}\n", 1 + i % 20,
+                                                      i % 10000, 1 + i % 15, i % 500);
+                                 }));
+}
 BENCHMARK(BM_ScriptTenMillionLinesPeakRss)
+    ->Arg(10000000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+
+// A 10M-line file of labels and jumps, bench/sbp_bench_files.py's mixed.sbp in shape: blocks
+// of eight lines with two labels, a forward GOTO, a backward one and a GOSUB to one of ten
+// subroutines at the end (2.5 M labels, 3.75 M jumps, 2.5 M of them forward).
+void BM_ScriptTenMillionLinesOfLabelsPeakRss(benchmark::State& state) {
+  const long blocks = state.range(0) / 8;
+  peak_rss(state,
+           write_big_file("gantry_script_bench_10m_labels.sbp", blocks + 1,
+                          [blocks](long k, std::string& out) {
+                            if (k == 0) out += "SA\n&b = 1\n&c = 0\n";
+                            if (k == blocks) {
+                              out += "END\n";
+                              for (int j = 0; j < 10; ++j)
+                                out += fmt::format("S{}:\n&d = SIN(&a + {})\nRETURN\n", j, j);
+                              return;
+                            }
+                            out += fmt::format(
+                                "B{0}:\n&a = {1}.5 + ABS(&b - 1.25)\n&b = SQR(&a * 1.5) MOD 7\n"
+                                "IF &a > {2} THEN GOTO C{0}\nGOSUB S{3}\nC{0}:\n"
+                                "&c = &c + &a * 0.5\nIF &a < -1000 THEN GOTO B0\n",
+                                k, k % 10, 5 + k % 10, k % 10);
+                          }));
+}
+BENCHMARK(BM_ScriptTenMillionLinesOfLabelsPeakRss)
     ->Arg(10000000)
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);

@@ -4,6 +4,7 @@
 #include <fmt/format.h>  // messages
 
 #include <cstring>     // memchr
+#include <deque>       // the forward jumps
 #include <filesystem>  // weakly_canonical: one key per called file
 
 #include <fcntl.h>     // open
@@ -15,6 +16,7 @@
 #include "gantry/lang/check_only.hpp"    // check_line: the load pass builds no tree
 #include "gantry/lang/fm.hpp"            // parse_fm_line: Friendly Motion's load pass
 #include "gcode_oword.hpp"               // OwordIndexer
+#include "label_index.hpp"               // LabelIndex
 #include "script_file.hpp"               // ScriptFile: the file's blocks
 #include "simple_command.hpp"            // simple_command_code
 
@@ -93,7 +95,10 @@ void Script::set_language(std::optional<Language> forced, std::string_view path,
 }
 
 Script::Script(std::string text, const std::string& name)
-    : size_(text.size()), text_(std::move(text)), name_(std::make_shared<const std::string>(name)) {
+    : size_(text.size()),
+      text_(std::move(text)),
+      name_(std::make_shared<const std::string>(name)),
+      labels_(std::make_unique<LabelIndex>()) {
   if (text_.rfind("\xEF\xBB\xBF", 0) == 0) text_start_ = 3;
 }
 
@@ -254,10 +259,8 @@ std::optional<Cursor> Script::gcode_program(const std::string& number) const {
   return it->second;
 }
 
-std::optional<Cursor> Script::label(const std::string& name) const {
-  auto it = labels_.find(name);
-  if (it == labels_.end()) return std::nullopt;
-  return it->second;
+std::optional<Cursor> Script::label(std::string_view name) const {
+  return labels_->find(name);
 }
 
 namespace {
@@ -337,7 +340,7 @@ bool Script::read_common(Cursor c, std::string_view text, Cursor next, Statement
 void Script::index_fm() {
   FmLine line;
   Diagnostic error;
-  std::vector<std::pair<int, SourceLoc>> targets;
+  std::vector<std::pair<int, SourceLoc>> targets;  // checked at the end: J and K go forward too
   std::vector<std::pair<int, SourceLoc>> special;  // V72-V79 written (digest §7.1, §7.18)
   bool scribes = false;                            // a G16: V73 is its %i %f %c value
   for (Cursor c = start(), next; !at_end(c); c = next) {
@@ -355,11 +358,12 @@ void Script::index_fm() {
     }
     if (line.sequence) {
       const std::string key = fmt::format("N{}", *line.sequence);
-      if (!labels_.emplace(key, c).second)
+      const LabelIndex::Id id = labels_->intern(key);
+      if (!labels_->define(id, c))
         errors_.push_back({{name_, c.line, 1},
                            Severity::Warning,
                            fmt::format("{} is numbered again; J and K go to the first, line {}",
-                                       key, labels_.at(key).line)});
+                                       key, labels_->at(id)->line)});
     }
     for (size_t k = 0; k < line.commands.size(); ++k) {
       const FmCommand& cmd = line.commands[k];
@@ -393,7 +397,7 @@ void Script::index_fm() {
                                  "runs no T")});
   }
   for (const auto& [n, loc] : targets)
-    if (!labels_.count(fmt::format("N{}", n)))
+    if (!labels_->find(fmt::format("N{}", n)))
       errors_.push_back({loc, Severity::Error,
                          fmt::format("no line in this file starts with N{}; J and K go to a "
                                      "sequence number written first on its line",
@@ -429,7 +433,14 @@ void Script::index(const IsCommand& is_command) {
     owords.finish();
     return;
   }
-  std::vector<std::pair<std::string, SourceLoc>> targets;
+  // A jump to a label not defined when it is read: checked at the end. A name's number and a
+  // place (12 bytes, not the name's text and a SourceLoc), since a long file jumps forward to
+  // millions of labels.
+  struct Forward {
+    LabelIndex::Id label;
+    int line, column;
+  };
+  std::deque<Forward> forward;  // chunked: no copy of them all as it grows
   Statement common;           // its storage reused line after line
   const ExprCheckOnly check;  // this pass keeps no statement: expressions checked, not built
   auto check_command = [&](const Statement& st) {
@@ -447,15 +458,18 @@ void Script::index(const IsCommand& is_command) {
       for (const Statement* cmd : commands) check_command(*cmd);
     }
     if (const auto* l = std::get_if<LabelStmt>(&st.body)) {
-      if (!labels_.emplace(l->name, next).second)
+      const LabelIndex::Id id = labels_->intern(l->name);
+      if (!labels_->define(id, next))
         errors_.push_back({st.loc, Severity::Warning,
                            fmt::format("label {} is defined again; jumps go to the first one, "
                                        "line {}",
-                                       l->name, labels_.at(l->name).line - 1)});
+                                       l->name, labels_->at(id)->line - 1)});
     }
     jumps.clear();
     collect_jumps(st, jumps);
-    for (const JumpStmt* j : jumps) targets.emplace_back(j->label, j->label_loc);
+    for (const JumpStmt* j : jumps)
+      if (const LabelIndex::Id id = labels_->intern(j->label); !labels_->at(id))
+        forward.push_back({id, j->label_loc.line, j->label_loc.column});
   };
   Cursor c = start();
   while (!at_end(c)) {
@@ -483,12 +497,12 @@ void Script::index(const IsCommand& is_command) {
     if (lp.statement) record(*lp.statement, next);
     c = next;
   }
-  for (const auto& [label, loc] : targets)
-    if (!labels_.count(label))
-      errors_.push_back({loc, Severity::Error,
+  for (const Forward& f : forward)
+    if (!labels_->at(f.label))
+      errors_.push_back({SourceLoc{name_, f.line, f.column}, Severity::Error,
                          fmt::format("no label {}: in this file; labels are written on their own "
                                      "line as NAME:",
-                                     label)});
+                                     labels_->name(f.label))});
 }
 
 }  // namespace gantry

@@ -18,6 +18,7 @@
 namespace gantry {
 
 class ScriptFile;  // src/lang/script_file.hpp
+class LabelIndex;  // src/lang/label_index.hpp
 
 // The start of a physical line.
 struct Cursor {
@@ -107,7 +108,7 @@ class Script {
   // The physical line just above `c`, if any (same validity).
   std::optional<std::string_view> line_before(Cursor c) const;
   // The line after `NAME:` (name upper case, inner spaces single), or nullopt.
-  std::optional<Cursor> label(const std::string& name) const;
+  std::optional<Cursor> label(std::string_view name) const;
 
   // G-code O-words: the links of the O-word line starting at `offset` (null when it has none),
   // the first body line of subroutine `name` (`o<name> sub`, `o100 sub`: "100") and of the
@@ -168,7 +169,7 @@ class Script {
   };
   mutable std::vector<CachedParse> cache_;  // kCacheSlots entries once the first line is parsed
   CachedParse& cache_slot(size_t offset) const;
-  std::unordered_map<std::string, Cursor> labels_;
+  std::unique_ptr<LabelIndex> labels_;  // OpenSBP labels, Friendly Motion sequence numbers
   std::unordered_map<size_t, OwordLink> oword_links_;
   std::unordered_map<std::string, Cursor> gcode_subs_, gcode_programs_;
   friend class OwordIndexer;
