@@ -57,16 +57,26 @@ void CommandContext::check_reach(const Vec6& point, const SourceLoc& loc) const 
 }
 
 void CommandContext::check_working(const Vec6& target, const SourceLoc& loc) const {
-  const char* unit = units_name(settings_.units);
   // Soft limits are the table's envelope, in table base coordinates (VO's offset included:
   // it is where the tool really goes).
   const Vec6 table = target + state_.zero + state_.tool_offset;
   const Vec6 now = state_.position + state_.zero + state_.applied_offset;
   // homing.require's flags; C3's macro (the shipped C3.sbp homes with probes and moves) is
   // how they are cleared, so its moves are not refused.
-  const bool homing = interp_ && std::any_of(interp_->frames_.begin(), interp_->frames_.end(),
-                                             [](const auto& f) { return f.call.homing; });
-  const std::uint32_t to_home = interp_ && !homing ? interp_->gated_sink_->axes_to_home() : 0;
+  std::uint32_t to_home = interp_ ? interp_->gated_sink_->axes_to_home() : 0;
+  if (to_home && std::any_of(interp_->frames_.begin(), interp_->frames_.end(),
+                             [](const auto& f) { return f.call.homing; }))
+    to_home = 0;
+  // Nearly every move passes: one pass over the axes says so, with a bound stricter than the
+  // checks below (every axis finite and within kMaxCoordinate, moving or not), which then
+  // find the first problem, in their order, only when there may be one.
+  bool pass = to_home == 0;
+  for (int i = 0; pass && i < kAxisCount; ++i)
+    pass = std::abs(table[i]) <= kMaxCoordinate &&
+           (table[i] == now[i] || !settings_.machine.limit_checking ||
+            (table[i] >= settings_.axes[i].min && table[i] <= settings_.axes[i].max));
+  if (pass) return;
+  const char* unit = units_name(settings_.units);
   for (int i = 0; i < kAxisCount; ++i)
     if ((to_home >> i & 1u) && table[i] != now[i])
       fail(loc, fmt::format("{} must be homed before it moves again: an E-stop or a card fault "

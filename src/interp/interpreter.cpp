@@ -947,13 +947,20 @@ void check_choice(const CommandSpec& spec, const ParamSpec& ps, size_t i, const 
 }  // namespace
 
 void Interpreter::exec(const CommandStmt& cmd, const SourceLoc& loc) {
-  const CommandSpec* spec = table_.find(cmd.code);
-  if (!spec) fail(loc, unknown_command_message(cmd.code));
+  // A file is mostly one command line after another (M3, M3, ...): the last one's spec is
+  // kept, by its code.
+  if (!last_spec_ || cmd.code != last_spec_->code) {
+    const CommandSpec* spec = table_.find(cmd.code);
+    if (!spec) fail(loc, unknown_command_message(cmd.code));
+    last_spec_ = spec;
+  }
+  const CommandSpec* spec = last_spec_;
   const std::vector<ParamSpec>& params = spec->params_for(settings_.dialect);
   if (cmd.args.size() > params.size()) extra_params(*spec, cmd, params.size(), loc);
   // The values' storage is kept from line to line (taken, so a nested call gets its own).
+  // The loop below writes every one of them.
   std::vector<std::optional<Value>> values = std::move(values_storage_);
-  values.assign(params.size(), std::nullopt);
+  values.resize(params.size());
   CommandCall call{*spec, loc, cmd.args, values};
   const size_t param_count = params.size(), arg_count = cmd.args.size();
   for (size_t i = 0; i < param_count; ++i) {

@@ -471,6 +471,7 @@ void Script::index(const IsCommand& is_command) {
       if (const LabelIndex::Id id = labels_->intern(j->label); !labels_->at(id))
         forward.push_back({id, j->label_loc.line, j->label_loc.column});
   };
+  char known[2] = {};  // the last simple command's code that is a command: asked once a run
   Cursor c = start();
   while (!at_end(c)) {
     Cursor next;
@@ -479,10 +480,15 @@ void Script::index(const IsCommand& is_command) {
     // A simple command has no error, label or jump in it; only its code may be unknown, so
     // its numbers are not read here (the run reads them).
     if (char code[2]; simple_command_code(text, code)) {
-      if (is_command && !is_command(std::string_view(code, 2))) {
-        const size_t b = text.find_first_not_of(ascii::kBlanks);  // the statement's column
-        errors_.push_back({SourceLoc{name_, c.line, static_cast<int>(b) + 1}, Severity::Error,
-                           unknown_command_message(std::string_view(code, 2))});
+      if (code[0] != known[0] || code[1] != known[1]) {
+        if (!is_command || is_command(std::string_view(code, 2))) {
+          known[0] = code[0];
+          known[1] = code[1];
+        } else {
+          const size_t b = text.find_first_not_of(ascii::kBlanks);  // the statement's column
+          errors_.push_back({SourceLoc{name_, c.line, static_cast<int>(b) + 1}, Severity::Error,
+                             unknown_command_message(std::string_view(code, 2))});
+        }
       }
       c = next;
       continue;

@@ -239,6 +239,7 @@ class Interpreter : private EvalEnv {
   Cursor current_;            // the line being executed
   Statement simple_;          // the last simple command line, its storage reused line after line
   std::vector<std::optional<Value>> values_storage_;  // a command's values, reused likewise
+  const CommandSpec* last_spec_ = nullptr;            // the last command executed (exec)
   bool warning_off_ = false;
   bool stop_all_ = false;
   std::size_t executed_ = 0;
