@@ -164,7 +164,11 @@ void CommandContext::send_line(const Vec6& target, SpeedClass cls, const SourceL
   const Vec6 table = target + state_.zero + state_.tool_offset;
   const Vec6 now = state_.position + state_.zero + state_.applied_offset;
   if (table == now) return;  // no motion, no move
-  CanonMove m;
+  // Only this function writes line_ (and emit, what it sets on every move), so every field a
+  // line's move has is set below; kept from move to move, its location takes the same file's
+  // name again without a reference count's atomic increment and decrement (a twentieth of
+  // checking a file of moves).
+  CanonMove& m = line_;
   m.speed_class = cls;
   m.from = now + state_.machine_origin;
   m.to = table + state_.machine_origin;

@@ -293,6 +293,7 @@ class CommandContext {
   MotionSink& sink_;
   Interpreter* interp_ = nullptr;
   Transform transform_;
+  CanonMove line_;  // send_line's move (see there)
   std::size_t moves_ = 0;
   bool file_tabs_ = false;
   bool own_tabs_ = false;
