@@ -34,6 +34,7 @@ std::int64_t StepPlacement::place(const PlannedSegment& seg, std::int64_t t0,
   const std::array<bool, kAxisCount> positive_before = positive_;
   for (int i = 0; i < kAxisCount; ++i) {
     next_[i] = stop_[i] = events_.size();
+    head_[i] = kNoEvent;
     if (independent_ && independent_->axis() == i) continue;  // it moves on its own
     const std::int64_t target = whole(seg.to[i] * steps_per_unit_[i], "steps", seg.loc);
     const std::int64_t delta = target - position_[i];
@@ -73,6 +74,7 @@ std::int64_t StepPlacement::place(const PlannedSegment& seg, std::int64_t t0,
     positive_[i] = positive;
     end = std::max(end, last);
     stop_[i] = events_.size();
+    head_[i] = events_[next_[i]].tick;  // n > 0: at least one step
   }
   // Each axis's events are in tick order already: next_event() merges the runs (no sort, no
   // allocation). The axes are as before until each event is applied.
