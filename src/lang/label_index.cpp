@@ -12,7 +12,8 @@ constexpr size_t kPage = size_t{1} << 16;  // bytes of names a page holds
 
 size_t LabelIndex::slot(std::string_view name) const {
   const size_t mask = slots_.size() - 1;
-  for (size_t i = std::hash<std::string_view>{}(name)&mask;; i = (i + 1) & mask)
+  const size_t hash = std::hash<std::string_view>{}(name);
+  for (size_t i = hash & mask;; i = (i + 1) & mask)
     if (slots_[i] == kEmpty || this->name(slots_[i]) == name) return i;  // never full: grow
 }
 
