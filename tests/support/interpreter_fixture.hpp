@@ -132,6 +132,14 @@ class BasicKeptInterpreterFixture : public ::testing::Test {
     ADD_FAILURE() << "no error from:\n" << text;
     return {};
   }
+  // run_program and program_error for program text, as part.sbp; a load-pass error is the
+  // error run_error returns.
+  void run(std::string_view text) { run_program(Script::from_text(std::string(text), "part.sbp")); }
+  Diagnostic run_error(std::string_view text) {
+    const auto script = Script::from_text(std::string(text), "part.sbp");
+    if (!script->ok()) return script->errors().front();
+    return program_error(script, text);
+  }
   // The warnings the operator was given, one a line.
   std::string warnings() const {
     std::string out;

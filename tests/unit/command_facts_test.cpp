@@ -18,8 +18,12 @@
 #include <utility>
 #include <vector>
 
+#include "../support/interpreter_fixture.hpp"
 #include "../support/memory_files.hpp"
 #include "../support/recording_sink.hpp"
+#include "../support/vec6_expect.hpp"
+#include "../support/where.hpp"
+#include "gantry/canon/canon_move.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/interp/file_system.hpp"
@@ -27,7 +31,6 @@
 #include "gantry/interp/operator_io.hpp"
 #include "gantry/interp/persistent_store.hpp"
 #include "gantry/lang/script.hpp"
-#include "gantry/canon/canon_move.hpp"
 #include "gantry/motion/corner_speed.hpp"
 #include "gantry/motion/lookahead_planner.hpp"
 #include "gantry/motion/planned_segment.hpp"
@@ -37,30 +40,6 @@ namespace gantry {
 namespace {
 
 // ---- helpers ----------------------------------------------------------------------------
-
-std::string where(const SourceLoc& loc) {
-  return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
-         std::to_string(loc.column);
-}
-
-Vec6 at(double x, double y = 0, double z = 0, double a = 0, double b = 0, double c = 0) {
-  Vec6 v;
-  v << x, y, z, a, b, c;
-  return v;
-}
-
-void expect_vec(const Vec6& actual, const Vec6& expected, double tolerance = 1e-12) {
-  for (int i = 0; i < kAxisCount; ++i)
-    EXPECT_NEAR(actual[i], expected[i], tolerance) << "axis " << kAxisLetters[i];
-}
-
-void expect_speeds(const GroupSpeeds& s, double xy, double z, double a, double b, double c) {
-  EXPECT_DOUBLE_EQ(s.xy, xy);
-  EXPECT_DOUBLE_EQ(s.z, z);
-  EXPECT_DOUBLE_EQ(s.a, a);
-  EXPECT_DOUBLE_EQ(s.b, b);
-  EXPECT_DOUBLE_EQ(s.c, c);
-}
 
 // A number written in full precision, for program text.
 std::string num(double v) {
@@ -74,37 +53,9 @@ double deg(double d) {
   return d * M_PI / 180;
 }
 
-class CommandFacts : public ::testing::Test {
+class CommandFacts : public KeptInterpreterFixture {
  protected:
-  // Runs `text` as part.sbp; errors fail the test.
-  void run(std::string_view text) {
-    script_ = Script::from_text(std::string(text), "part.sbp");
-    ASSERT_TRUE(script_->ok()) << format(script_->errors().front());
-    interp().run(script_);
-  }
-
-  // Runs `text` expecting it to stop with an error; returns that error.
-  Diagnostic run_error(std::string_view text) {
-    script_ = Script::from_text(std::string(text), "part.sbp");
-    try {
-      if (!script_->ok()) throw GantryError(script_->errors().front());
-      interp().run(script_);
-    } catch (const GantryError& e) {
-      return e.diagnostic();
-    }
-    ADD_FAILURE() << "no error from:\n" << text;
-    return {};
-  }
-
-  Interpreter& interp() {
-    if (!interp_) {
-      InterpreterOptions options;
-      options.files = &files;
-      interp_.emplace(settings, sink, io, store, options);
-    }
-    return *interp_;
-  }
-  const ModalState& state() { return interp().state(); }
+  CommandFacts() { options.files = &files; }
 
   // The straight moves only (no Stop, Output or Dwell items).
   std::vector<CanonMove> lines() const {
@@ -124,16 +75,7 @@ class CommandFacts : public ::testing::Test {
     return v ? v->num() : std::nan("");
   }
 
-  Settings settings = default_settings();
-  RecordingSink sink;
   MemoryFiles files;
-  std::string printed;
-  ScriptedIO io{true, {}, &printed};
-  PersistentStore store;
-
- private:
-  std::shared_ptr<const Script> script_;
-  std::optional<Interpreter> interp_;
 };
 
 // ---- through the planner (§8.9 and the speed facts of §8.8) -------------------------------

@@ -8,65 +8,20 @@
 #include <vector>
 
 #include "../support/interpreter_fixture.hpp"
-#include "gantry/core/diagnostic.hpp"
+#include "../support/vec6_expect.hpp"
+#include "../support/where.hpp"
 #include "gantry/canon/canon_move.hpp"
+#include "gantry/core/diagnostic.hpp"
 #include "gantry/settings/settings.hpp"
 
 namespace gantry {
 namespace {
 
-std::string where(const SourceLoc& loc) {
-  return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
-         std::to_string(loc.column);
-}
-
-Vec6 at(double x, double y = 0, double z = 0, double a = 0, double b = 0, double c = 0) {
-  Vec6 v;
-  v << x, y, z, a, b, c;
-  return v;
-}
-
-void expect_vec(const Vec6& actual, const Vec6& expected) {
-  for (int i = 0; i < kAxisCount; ++i)
-    EXPECT_NEAR(actual[i], expected[i], 1e-12) << "axis " << kAxisLetters[i];
-}
-
-void expect_speeds(const GroupSpeeds& s, double xy, double z, double a, double b, double c) {
-  EXPECT_DOUBLE_EQ(s.xy, xy);
-  EXPECT_DOUBLE_EQ(s.z, z);
-  EXPECT_DOUBLE_EQ(s.a, a);
-  EXPECT_DOUBLE_EQ(s.b, b);
-  EXPECT_DOUBLE_EQ(s.c, c);
-}
-
 class InterpreterTest : public KeptInterpreterFixture {
  protected:
-  // Runs `text` as part.sbp; errors fail the test.
-  void run(std::string_view text) {
-    script_ = Script::from_text(std::string(text), "part.sbp");
-    ASSERT_TRUE(script_->ok()) << format(script_->errors().front());
-    interp().run(script_);
-  }
-
-  // Runs `text` expecting it to stop with an error; returns that error.
-  Diagnostic run_error(std::string_view text) {
-    script_ = Script::from_text(std::string(text), "part.sbp");
-    try {
-      if (!script_->ok()) throw GantryError(script_->errors().front());
-      interp().run(script_);
-    } catch (const GantryError& e) {
-      return e.diagnostic();
-    }
-    ADD_FAILURE() << "no error from:\n" << text;
-    return {};
-  }
-
   std::vector<Diagnostic> check(std::string_view text) {
-    script_ = Script::from_text(std::string(text), "part.sbp");
-    return interp().check(script_);
+    return interp().check(Script::from_text(std::string(text), "part.sbp"));
   }
-
-  std::shared_ptr<const Script> script_;
 };
 
 // ---- absolute and relative distances

@@ -20,6 +20,8 @@
 
 #include "../support/interpreter_fixture.hpp"
 #include "../support/temp_dir.hpp"
+#include "../support/where.hpp"
+#include "gantry/canon/canon_move.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/core/diagnostic_log.hpp"
 #include "gantry/interp/interpreter.hpp"
@@ -27,7 +29,6 @@
 #include "gantry/interp/persistent_store.hpp"
 #include "gantry/interp/value.hpp"
 #include "gantry/lang/script.hpp"
-#include "gantry/canon/canon_move.hpp"
 #include "gantry/settings/settings.hpp"
 
 namespace gantry {
@@ -125,11 +126,6 @@ class RecordingIO : public OperatorIO {
 };
 
 // "FILE:LINE:COL" of a location, so that one expectation checks all three.
-std::string where(const SourceLoc& loc) {
-  return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
-         std::to_string(loc.column);
-}
-
 Vec6 at(double x, double y = 0, double z = 0, double a = 0, double b = 0, double c = 0) {
   Vec6 v;
   v << x, y, z, a, b, c;

@@ -4,6 +4,7 @@
 #include <variant>
 #include <vector>
 
+#include "../support/where.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/lang/parser.hpp"
 #include "gantry/lang/script.hpp"
@@ -64,11 +65,6 @@ std::vector<std::string> param_texts(const CommandStmt& cmd) {
 }
 
 // "FILE:LINE:COL" of a location, so that one expectation checks all three.
-std::string where(const SourceLoc& loc) {
-  return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
-         std::to_string(loc.column);
-}
-
 using Texts = std::vector<std::string>;
 
 // ---- comments and blank lines

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "../support/where.hpp"
 #include "gantry/core/diagnostic.hpp"
 #include "gantry/settings/settings.hpp"
 #include "gantry/settings/values_file.hpp"  // parse_settings with values
@@ -13,11 +14,6 @@ namespace gantry {
 namespace {
 
 const std::string kOrigin = "test.toml";
-
-std::string where(const SourceLoc& loc) {
-  return (loc.file ? *loc.file : std::string("<none>")) + ":" + std::to_string(loc.line) + ":" +
-         std::to_string(loc.column);
-}
 
 // A profile text with one line changed, and the 1-based number of that line.
 struct Edited {
