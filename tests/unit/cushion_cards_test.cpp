@@ -424,6 +424,16 @@ void expect_same_as_sim(const Settings& s, const CardRun& card, const CardRun& s
   EXPECT_TRUE(same_pulses(a.y, b.y)) << name << ": Y " << a.y.size() << " vs " << b.y.size();
 }
 
+// An operator's E-stop on `card`: no fault, `steps` of X's steps of cushion, and the pulses
+// the simulated card plays when it is stopped at the same tick after the same words.
+void expect_esc_cushion_as_sim(const Settings& s, const CardRun& card, int steps,
+                               const char* name) {
+  EXPECT_EQ(card.fault, CardFault::None) << name;
+  expect_cushion(s, card, steps, name);
+  ASSERT_TRUE(card.cushion) << name;
+  expect_same_as_sim(s, card, sim_stop_at(s, card.written, card.cushion->from, steps), name);
+}
+
 Settings pci_settings(int cushion, int esc) {
   Settings s = default_settings();  // 200 kHz
   s.outputs.charge_pump_bit = -1;
@@ -480,23 +490,13 @@ TEST(CushionedStopOnCards, TheGpioCardDeceleratesAfterALimitHitAsTheSimulatedCar
 // card's after the same words.
 TEST(CushionedStopOnCards, ThePci7200DeceleratesForEscStepsAfterTheOperatorsEStop) {
   const Settings s = pci_settings(0, 200);
-  const CardRun pci = pci_run(s, kPciHit, false, 200);
-  EXPECT_EQ(pci.fault, CardFault::None);
-  expect_cushion(s, pci, 200, "PCI-7200");
-  ASSERT_TRUE(pci.cushion);
-  const CardRun sim = sim_stop_at(s, pci.written, pci.cushion->from, 200);
-  expect_same_as_sim(s, pci, sim, "PCI-7200");
+  expect_esc_cushion_as_sim(s, pci_run(s, kPciHit, false, 200), 200, "PCI-7200");
 }
 
 TEST(CushionedStopOnCards, TheGpioCardDeceleratesForEscStepsAfterTheOperatorsEStop) {
   Settings s = gpio_settings();
   s.limits.esc_steps = 200;
-  const CardRun gpio = gpio_run(s, kGpioHit, false, 200);
-  EXPECT_EQ(gpio.fault, CardFault::None);
-  expect_cushion(s, gpio, 200, "GPIO");
-  ASSERT_TRUE(gpio.cushion);
-  const CardRun sim = sim_stop_at(s, gpio.written, gpio.cushion->from, 200);
-  expect_same_as_sim(s, gpio, sim, "GPIO");
+  expect_esc_cushion_as_sim(s, gpio_run(s, kGpioHit, false, 200), 200, "GPIO");
 }
 
 // Left out (0): both cards stop dead, as before: no cushion, and no X step after the

@@ -4,15 +4,12 @@
 #include "gantry/session/fm_hot_keys.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>  // getpid
 
 #include <chrono>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 
+#include "../support/temp_dir.hpp"
 #include "gantry/commands/command_table.hpp"
 #include "gantry/lang/script.hpp"
 #include "gantry/session/console_words.hpp"
@@ -21,23 +18,6 @@
 
 namespace gantry {
 namespace {
-
-namespace fs = std::filesystem;
-
-std::string read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A file of this test's own in the temporary folder (removed first).
-std::string temp_path(const std::string& name) {
-  const fs::path p =
-      fs::temp_directory_path() / ("gantry_fm_keys_" + std::to_string(getpid()) + "_" + name);
-  fs::remove(p);
-  return p.string();
-}
 
 TEST(FmHotKeys, AltF1ToAltF10AreTheHotKeys) {
   EXPECT_EQ(session::fm_hot_key("Alt+F1"), 1);
@@ -59,7 +39,8 @@ TEST(FmHotKeys, TeachIsAConsoleWord) {
 
 // The manual's Appendix 1: jog, Alt-F1 logs the position, Alt-F7-F10 the laser and shutter.
 TEST(FmTeachLog, WritesAProgramThatRunsAsTaught) {
-  const std::string path = temp_path("teach.fm");
+  const TempDir dir("fm_keys");
+  const std::string path = dir.path("teach.fm");
   session::FmKeys keys;
   FriendlyMotionSettings fm;  // the laser is output 1
   Settings settings = default_settings();
@@ -100,7 +81,7 @@ TEST(FmTeachLog, WritesAProgramThatRunsAsTaught) {
   r = keys.teach("off", Units::Inches);
   EXPECT_NE(r.message.find("6 lines taught"), std::string::npos) << r.message;
   EXPECT_FALSE(keys.teaching());
-  EXPECT_EQ(read(path),
+  EXPECT_EQ(dir.read("teach.fm"),
             "! taught at the Gantry console: Alt-F1 positions, Alt-F7-F10 outputs\r\n"
             "G70 G90\r\n"
             "X1.2500Y-0.5000\r\n"
@@ -124,12 +105,11 @@ TEST(FmTeachLog, WritesAProgramThatRunsAsTaught) {
   EXPECT_TRUE(r.error);
   EXPECT_NE(r.message.find("names no laser output"), std::string::npos);
   keys.teach("OFF", Units::Millimetres);
-  EXPECT_NE(read(path).find("G71 G90\r\nX10.000Y20.000\r\nM0\r\n"), std::string::npos);
+  EXPECT_NE(dir.read("teach.fm").find("G71 G90\r\nX10.000Y20.000\r\nM0\r\n"), std::string::npos);
   // A log that cannot be written is an error, located by its path.
   r = keys.teach("/nonexistent/folder/teach.fm", Units::Inches);
   EXPECT_TRUE(r.error);
   EXPECT_NE(r.message.find("cannot write /nonexistent/folder/teach.fm"), std::string::npos);
-  fs::remove(path);
 }
 
 // Waits (without timing anything) until the running file asks a question; fails the test if

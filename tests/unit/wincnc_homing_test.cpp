@@ -33,12 +33,12 @@ namespace fs = std::filesystem;
 constexpr double kSwitch = -1.5;
 
 struct HomingMachine {
-  explicit HomingMachine(Settings s)
+  explicit HomingMachine(Settings s, const SimWorld& w = world())
       : settings(std::move(s)),
         path((fs::temp_directory_path() /
               ("gantry_wincnc_homing_" + std::to_string(getpid()) + ".trace"))
                  .string()),
-        card(settings, false, world(), path) {}
+        card(settings, false, w, path) {}
   static SimWorld world() {
     SimWorld w;
     w.home_switch[0] = kSwitch;
@@ -162,12 +162,6 @@ TEST(WinCncHoming, PerAxisKeysAreOptionalAndDefaultToTheHomingTable) {
   EXPECT_EQ(with.settings.homing.search[0], 30.0);
 }
 
-}  // namespace
-}  // namespace gantry
-
-namespace gantry {
-namespace {
-
 // The home input spikes for two words while X searches, far from the switch (a wire picking
 // up noise); the switch itself closes at kSwitch.
 SimWorld spiked_world(const Settings& s) {
@@ -185,30 +179,21 @@ TEST(WinCncHoming, TheHomingDebounceIgnoresASpikeAndKeepsTheSwitchsPlace) {
   for (const int debounce : {4, 1}) {
     Settings s = profile();
     s.homing.debounce = debounce;
-    const std::string path =
-        (fs::temp_directory_path() / ("gantry_homing_debounce_" + std::to_string(getpid())))
-            .string();
-    SimCard card(s, false, spiked_world(s), path);
-    ScriptedIO io{true, {}};
-    PersistentStore store;
-    Controller c{s, card, io, store};
-    const Outcome o = c.run(Script::from_text("G28 X\n", "part.nc"));
+    HomingMachine m(s, spiked_world(s));
+    const Outcome o = m.home_x();
     ASSERT_TRUE(o) << o.reason;
-    c.wait();
-    const ControllerStatus st = c.status();
-    const double spu = s.axes[0].steps_per_unit;
-    const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * spu));
+    const ControllerStatus st = m.c.status();
     if (debounce == 4) {
       ASSERT_EQ(st.state, MachineState::Idle) << st.message;
-      EXPECT_EQ(card.steps()[0], at_switch + std::llround(0.5 * spu));
-      const ModalState ms = c.modal();
+      EXPECT_EQ(m.card.steps()[0], m.at_switch() + m.steps(0.5));
+      const ModalState ms = m.c.modal();
       EXPECT_NEAR(ms.position[0] + ms.zero[0], 0.5, 1e-12);
     } else {
       EXPECT_NE(st.state, MachineState::Idle);
       EXPECT_NE(st.message.find("did not close again"), std::string::npos) << st.message;
-      EXPECT_GT(card.steps()[0], at_switch + std::llround(0.5 * spu));  // stopped short
+      EXPECT_GT(m.card.steps()[0], m.at_switch() + m.steps(0.5));  // stopped short
     }
-    fs::remove(path);
+    fs::remove(m.path);
   }
 }
 
@@ -313,20 +298,12 @@ TEST(WinCncHoming, AnAxisHomesOnItsLimitSwitch) {
   s.homing.search[0] = 3.0;
   SimWorld w;
   w.min_switch[0] = kSwitch;
-  const std::string path =
-      (fs::temp_directory_path() / ("gantry_homing_limit_" + std::to_string(getpid()))).string();
-  SimCard card(s, false, w, path);
-  ScriptedIO io{true, {}};
-  PersistentStore store;
-  Controller c{s, card, io, store};
-  const Outcome o = c.run(Script::from_text("G28 X\n", "part.nc"));
+  HomingMachine m(s, w);
+  const Outcome o = m.home_x();
   ASSERT_TRUE(o) << o.reason;
-  c.wait();
-  ASSERT_EQ(c.status().state, MachineState::Idle) << c.status().message;
-  const double spu = s.axes[0].steps_per_unit;
-  const auto at_switch = static_cast<std::int64_t>(std::floor(kSwitch * spu));
-  EXPECT_EQ(card.steps()[0], at_switch + std::llround(0.5 * spu));
-  fs::remove(path);
+  ASSERT_EQ(m.c.status().state, MachineState::Idle) << m.c.status().message;
+  EXPECT_EQ(m.card.steps()[0], m.at_switch() + m.steps(0.5));
+  fs::remove(m.path);
 }
 
 }  // namespace
